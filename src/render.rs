@@ -1,0 +1,1 @@
+//! Pictures of scenes: SVG, and PNG through resvg.

@@ -1,0 +1,261 @@
+//! The rule AST: formulas over class-relation atoms, rules with modifiers,
+//! rule sets (SPEC §4–§5).
+//!
+//! Formulas carry no source spans, so two rule sets compare equal when they
+//! mean the same text-independent thing; spans live beside them in
+//! [`RuleOrigin`] for diagnostics.
+
+use crate::relations::Relation;
+use std::fmt;
+
+/// A byte range in the source text.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Span {
+    /// First byte.
+    pub start: usize,
+    /// One past the last byte.
+    pub end: usize,
+}
+
+impl Span {
+    /// A span from byte offsets.
+    pub const fn new(start: usize, end: usize) -> Self {
+        Span { start, end }
+    }
+}
+
+/// The target of an atom: a class or `*` (every object of any class).
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Target {
+    /// A named class.
+    Class(String),
+    /// `*`: every other object.
+    Any,
+}
+
+impl fmt::Display for Target {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Target::Class(c) => f.write_str(c),
+            Target::Any => f.write_str("*"),
+        }
+    }
+}
+
+/// A class-relation atom `REL(subject, target)`.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Atom {
+    /// The relation.
+    pub rel: Relation,
+    /// The subject class.
+    pub subject: String,
+    /// The target class or `*`.
+    pub target: Target,
+}
+
+impl Atom {
+    /// Build an atom.
+    pub fn new(rel: Relation, subject: impl Into<String>, target: Target) -> Self {
+        Atom {
+            rel,
+            subject: subject.into(),
+            target,
+        }
+    }
+}
+
+impl fmt::Display for Atom {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}({}, {})", self.rel, self.subject, self.target)
+    }
+}
+
+/// A Boolean formula over atoms. `And`/`Or` are n-ary (at least two
+/// operands when produced by the parser, which flattens `a & (b & c)`).
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Formula {
+    /// An atom.
+    Atom(Atom),
+    /// Negation.
+    Not(Box<Formula>),
+    /// Conjunction.
+    And(Vec<Formula>),
+    /// Disjunction.
+    Or(Vec<Formula>),
+}
+
+impl Formula {
+    /// `!f`
+    pub fn not(f: Formula) -> Formula {
+        Formula::Not(Box::new(f))
+    }
+
+    /// Every atom, left to right.
+    pub fn atoms(&self) -> Vec<&Atom> {
+        let mut out = Vec::new();
+        let mut stack = vec![self];
+        while let Some(f) = stack.pop() {
+            match f {
+                Formula::Atom(a) => out.push(a),
+                Formula::Not(g) => stack.push(g),
+                Formula::And(v) | Formula::Or(v) => stack.extend(v.iter().rev()),
+            }
+        }
+        out
+    }
+
+    /// The subject class of the first atom (every atom of a checked rule has
+    /// the same one).
+    pub fn subject(&self) -> &str {
+        let mut f = self;
+        loop {
+            match f {
+                Formula::Atom(a) => return &a.subject,
+                Formula::Not(g) => f = g,
+                Formula::And(v) | Formula::Or(v) => f = &v[0],
+            }
+        }
+    }
+
+    /// Nesting depth (an atom has depth 1).
+    pub fn depth(&self) -> usize {
+        match self {
+            Formula::Atom(_) => 1,
+            Formula::Not(g) => 1 + g.depth(),
+            Formula::And(v) | Formula::Or(v) => 1 + v.iter().map(Formula::depth).max().unwrap_or(0),
+        }
+    }
+
+    /// Evaluate with a function giving each atom's value.
+    pub fn eval(&self, atom: &mut impl FnMut(&Atom) -> bool) -> bool {
+        match self {
+            Formula::Atom(a) => atom(a),
+            Formula::Not(g) => !g.eval(atom),
+            Formula::And(v) => v.iter().all(|g| g.eval(atom)),
+            Formula::Or(v) => v.iter().any(|g| g.eval(atom)),
+        }
+    }
+}
+
+/// How much a rule matters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Strength {
+    /// `weight W`, W > 0 (the default is `Weight(1.0)`).
+    Weight(f64),
+    /// `p P`, 0 < P < 1: the posterior that the rule is not intended;
+    /// weight = −ln P.
+    P(f64),
+    /// `hard`: must hold; not part of the score.
+    Hard,
+}
+
+impl Default for Strength {
+    fn default() -> Self {
+        Strength::Weight(1.0)
+    }
+}
+
+impl Strength {
+    /// The weight in the §6 score (0 for hard rules, which are constraints).
+    pub fn weight(&self) -> f64 {
+        match *self {
+            Strength::Weight(w) => w,
+            Strength::P(p) => -p.ln(),
+            Strength::Hard => 0.0,
+        }
+    }
+    /// Whether the rule is hard.
+    pub fn is_hard(&self) -> bool {
+        matches!(self, Strength::Hard)
+    }
+}
+
+/// Where a parsed rule came from (absent for rules built in code).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct RuleOrigin {
+    /// The whole rule.
+    pub span: Span,
+    /// The rule's name.
+    pub name: Span,
+    /// The modifier, if any.
+    pub modifier: Option<Span>,
+    /// Each atom's span, in [`Formula::atoms`] order.
+    pub atoms: Vec<Span>,
+}
+
+/// A named rule: `rule NAME [MODIFIER]: FORMULA`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rule {
+    /// Unique name within its set.
+    pub name: String,
+    /// Weight, posterior or hard.
+    pub strength: Strength,
+    /// The formula.
+    pub formula: Formula,
+    /// Comment lines written above the rule by the printer (without `# `).
+    /// Not compared by [`Rule::same_rule`].
+    pub comments: Vec<String>,
+    /// Source spans, when parsed.
+    pub origin: Option<RuleOrigin>,
+}
+
+impl Rule {
+    /// A rule with default weight 1 and no origin.
+    pub fn new(name: impl Into<String>, formula: Formula) -> Self {
+        Rule {
+            name: name.into(),
+            strength: Strength::default(),
+            formula,
+            comments: Vec::new(),
+            origin: None,
+        }
+    }
+    /// The same rule with another strength.
+    pub fn with_strength(mut self, s: Strength) -> Self {
+        self.strength = s;
+        self
+    }
+    /// The subject class.
+    pub fn subject(&self) -> &str {
+        self.formula.subject()
+    }
+    /// Name, strength and formula equal (ignores spans and comments).
+    pub fn same_rule(&self, other: &Rule) -> bool {
+        self.name == other.name && self.strength == other.strength && self.formula == other.formula
+    }
+}
+
+/// An ordered list of rules with unique names.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RuleSet {
+    /// The rules, in file order.
+    pub rules: Vec<Rule>,
+}
+
+impl RuleSet {
+    /// A rule set from rules (names are not checked here; see `rules::check`).
+    pub fn new(rules: Vec<Rule>) -> Self {
+        RuleSet { rules }
+    }
+    /// Whether both sets hold the same rules in the same order (ignoring
+    /// spans and comments).
+    pub fn same_rules(&self, other: &RuleSet) -> bool {
+        self.rules.len() == other.rules.len()
+            && self.rules.iter().zip(&other.rules).all(|(a, b)| a.same_rule(b))
+    }
+    /// Every class named by any atom (subjects and targets), sorted.
+    pub fn classes(&self) -> Vec<String> {
+        let mut out: Vec<String> = Vec::new();
+        for r in &self.rules {
+            for a in r.formula.atoms() {
+                out.push(a.subject.clone());
+                if let Target::Class(c) = &a.target {
+                    out.push(c.clone());
+                }
+            }
+        }
+        out.sort();
+        out.dedup();
+        out
+    }
+}

@@ -1,0 +1,18 @@
+//! The `.rcc` rule language (SPEC §5): AST, parser, semantic checks,
+//! pretty-printer and diagnostics.
+//!
+//! The grammar in `grammar/rcc.pest` is the single source of truth for the
+//! syntax. The parser does no I/O: callers pass the text and, for
+//! diagnostics, a file name.
+
+mod ast;
+mod check;
+mod diagnostic;
+mod parser;
+mod printer;
+
+pub use ast::{Atom, Formula, Rule, RuleOrigin, RuleSet, Span, Strength, Target};
+pub use check::check_classes;
+pub use diagnostic::{Diagnostic, RulesError};
+pub use parser::parse_rules;
+pub use printer::{format_number, print_formula, print_rule, print_rules};

@@ -1,0 +1,474 @@
+//! Scenes: the space, the grid and the objects (SPEC §1–§2).
+//!
+//! A [`Scene`] is parsed from JSON with [`Scene::from_json`] (one scene) or
+//! [`scenes_from_json`] (a demonstrations array), both of which validate the
+//! result. Errors are typed ([`SceneError`]) and name the JSON field path
+//! (`objects[3].x`) or the objects involved. This module does no file I/O:
+//! callers read the text and pass it in.
+
+use serde::{Deserialize, Serialize};
+use std::collections::HashSet;
+use std::fmt;
+
+/// An axis-aligned rectangle with integer min corner and size.
+///
+/// It occupies the closed set `[x, x+w] × [y, y+h]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Rect {
+    /// Min x (west edge).
+    pub x: i64,
+    /// Min y (south edge).
+    pub y: i64,
+    /// Width, ≥ 1.
+    pub w: i64,
+    /// Height, ≥ 1.
+    pub h: i64,
+}
+
+impl Rect {
+    /// A rectangle from its min corner and size.
+    pub const fn new(x: i64, y: i64, w: i64, h: i64) -> Self {
+        Rect { x, y, w, h }
+    }
+    /// East edge `x + w`.
+    pub const fn x2(&self) -> i64 {
+        self.x + self.w
+    }
+    /// North edge `y + h`.
+    pub const fn y2(&self) -> i64 {
+        self.y + self.h
+    }
+    /// Whether the interiors of `self` and `other` overlap (touching is fine).
+    pub const fn interiors_overlap(&self, other: &Rect) -> bool {
+        self.x < other.x2() && other.x < self.x2() && self.y < other.y2() && other.y < self.y2()
+    }
+    /// Whether `self` lies inside `outer` (closed containment).
+    pub const fn inside(&self, outer: &Rect) -> bool {
+        self.x >= outer.x && self.y >= outer.y && self.x2() <= outer.x2() && self.y2() <= outer.y2()
+    }
+}
+
+/// The table on which objects are laid out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Space {
+    /// Min x; defaults to 0.
+    #[serde(default)]
+    pub x: i64,
+    /// Min y; defaults to 0.
+    #[serde(default)]
+    pub y: i64,
+    /// Width, ≥ 1.
+    pub width: i64,
+    /// Height, ≥ 1.
+    pub height: i64,
+}
+
+impl Space {
+    /// The space as a rectangle.
+    pub const fn rect(&self) -> Rect {
+        Rect::new(self.x, self.y, self.width, self.height)
+    }
+}
+
+/// One object: a class, a size and, when placed, a position.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Object {
+    /// Unique id within the scene.
+    pub id: String,
+    /// Class name, e.g. `R`.
+    pub class: String,
+    /// Min x when placed.
+    pub x: Option<i64>,
+    /// Min y when placed.
+    pub y: Option<i64>,
+    /// Width, ≥ 1.
+    pub width: i64,
+    /// Height, ≥ 1.
+    pub height: i64,
+    /// A fixed object never moves (walls).
+    pub fixed: bool,
+}
+
+impl Object {
+    /// Whether the object has a position.
+    pub const fn is_placed(&self) -> bool {
+        self.x.is_some() && self.y.is_some()
+    }
+    /// The occupied rectangle, when placed.
+    pub fn rect(&self) -> Option<Rect> {
+        Some(Rect::new(self.x?, self.y?, self.width, self.height))
+    }
+}
+
+/// A scene: space, grid step and objects (SPEC §1).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Scene {
+    /// The table.
+    pub space: Space,
+    /// Grid step (≥ 1); positions of synthesised objects are multiples of it
+    /// from the space's min corner.
+    pub grid: i64,
+    /// The objects, in file order.
+    pub objects: Vec<Object>,
+}
+
+/// Why a scene (or a demonstrations file) is invalid.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SceneError {
+    /// The JSON text does not match the scene format.
+    #[error("{path}: {message}")]
+    Json {
+        /// Field path such as `objects[3].x` (`.` for the document root).
+        path: String,
+        /// What is wrong, with line and column.
+        message: String,
+    },
+    /// The scene parsed but breaks a rule of SPEC §1.
+    #[error("{path}: {message}")]
+    Invalid {
+        /// Field path of the first object involved, e.g. `objects[2]`.
+        path: String,
+        /// What is wrong, naming the objects.
+        message: String,
+    },
+}
+
+impl SceneError {
+    /// The field path the error points at.
+    pub fn path(&self) -> &str {
+        match self {
+            SceneError::Json { path, .. } | SceneError::Invalid { path, .. } => path,
+        }
+    }
+    fn invalid(path: impl Into<String>, message: impl Into<String>) -> Self {
+        SceneError::Invalid {
+            path: path.into(),
+            message: message.into(),
+        }
+    }
+    fn prefixed(self, prefix: &str) -> Self {
+        let join = |p: String| {
+            if p == "." {
+                prefix.to_string()
+            } else if p.starts_with('[') {
+                format!("{prefix}{p}")
+            } else {
+                format!("{prefix}.{p}")
+            }
+        };
+        match self {
+            SceneError::Json { path, message } => SceneError::Json {
+                path: join(path),
+                message,
+            },
+            SceneError::Invalid { path, message } => SceneError::Invalid {
+                path: join(path),
+                message,
+            },
+        }
+    }
+}
+
+// ---- JSON form -------------------------------------------------------------
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneJson {
+    space: Space,
+    #[serde(default = "default_grid")]
+    grid: i64,
+    objects: Vec<ObjectJson>,
+}
+
+fn default_grid() -> i64 {
+    10
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObjectJson {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    id: Option<String>,
+    class: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    x: Option<i64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    y: Option<i64>,
+    width: i64,
+    height: i64,
+    #[serde(default, skip_serializing_if = "is_false")]
+    fixed: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
+}
+
+fn json_error(e: serde_path_to_error::Error<serde_json::Error>) -> SceneError {
+    let path = e.path().to_string();
+    SceneError::Json {
+        path,
+        message: e.into_inner().to_string(),
+    }
+}
+
+impl SceneJson {
+    fn into_scene(self) -> Scene {
+        let objects = self
+            .objects
+            .into_iter()
+            .enumerate()
+            .map(|(i, o)| Object {
+                id: o.id.unwrap_or_else(|| format!("{}{}", o.class, i)),
+                class: o.class,
+                x: o.x,
+                y: o.y,
+                width: o.width,
+                height: o.height,
+                fixed: o.fixed,
+            })
+            .collect();
+        Scene {
+            space: self.space,
+            grid: self.grid,
+            objects,
+        }
+    }
+
+    fn from_scene(s: &Scene) -> Self {
+        SceneJson {
+            space: s.space,
+            grid: s.grid,
+            objects: s
+                .objects
+                .iter()
+                .map(|o| ObjectJson {
+                    id: Some(o.id.clone()),
+                    class: o.class.clone(),
+                    x: o.x,
+                    y: o.y,
+                    width: o.width,
+                    height: o.height,
+                    fixed: o.fixed,
+                })
+                .collect(),
+        }
+    }
+}
+
+fn is_identifier(s: &str) -> bool {
+    let mut chars = s.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+impl Scene {
+    /// Parse and validate one scene from JSON text.
+    pub fn from_json(text: &str) -> Result<Scene, SceneError> {
+        let de = &mut serde_json::Deserializer::from_str(text);
+        let raw: SceneJson = serde_path_to_error::deserialize(de).map_err(json_error)?;
+        let scene = raw.into_scene();
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// Serialise as pretty JSON (ids always written; `fixed` only when true).
+    pub fn to_json(&self) -> String {
+        let mut s = serde_json::to_string_pretty(&SceneJson::from_scene(self))
+            .expect("scene serialisation cannot fail");
+        s.push('\n');
+        s
+    }
+
+    /// Check SPEC §1: sizes ≥ 1, grid ≥ 1, unique ids, class names that are
+    /// identifiers, fixed objects placed, `x` and `y` given together, placed
+    /// objects inside the space, no two interiors overlapping.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        if self.space.width < 1 || self.space.height < 1 {
+            return Err(SceneError::invalid(
+                "space",
+                format!(
+                    "space size {}x{} is invalid; width and height must be at least 1",
+                    self.space.width, self.space.height
+                ),
+            ));
+        }
+        if self.grid < 1 {
+            return Err(SceneError::invalid(
+                "grid",
+                format!("grid step {} is invalid; expected an integer of at least 1", self.grid),
+            ));
+        }
+        let mut ids = HashSet::new();
+        let space = self.space.rect();
+        for (i, o) in self.objects.iter().enumerate() {
+            let path = format!("objects[{i}]");
+            if !is_identifier(&o.class) {
+                return Err(SceneError::invalid(
+                    format!("{path}.class"),
+                    format!(
+                        "class `{}` is not an identifier; expected letters, digits and `_`, not starting with a digit",
+                        o.class
+                    ),
+                ));
+            }
+            if o.id.is_empty() {
+                return Err(SceneError::invalid(format!("{path}.id"), "object id is empty"));
+            }
+            if !ids.insert(o.id.as_str()) {
+                let first = self.objects.iter().position(|p| p.id == o.id).unwrap_or(0);
+                return Err(SceneError::invalid(
+                    format!("{path}.id"),
+                    format!("duplicate object id `{}` (also objects[{first}])", o.id),
+                ));
+            }
+            if o.width < 1 || o.height < 1 {
+                return Err(SceneError::invalid(
+                    path,
+                    format!(
+                        "object `{}` has size {}x{}; width and height must be at least 1",
+                        o.id, o.width, o.height
+                    ),
+                ));
+            }
+            if o.x.is_some() != o.y.is_some() {
+                let missing = if o.x.is_none() { "x" } else { "y" };
+                return Err(SceneError::invalid(
+                    format!("{path}.{missing}"),
+                    format!("object `{}` has only one coordinate; give both x and y or neither", o.id),
+                ));
+            }
+            if o.fixed && !o.is_placed() {
+                return Err(SceneError::invalid(
+                    path,
+                    format!("fixed object `{}` has no position; fixed objects must be placed", o.id),
+                ));
+            }
+            if let Some(r) = o.rect() {
+                if r.x.checked_add(r.w).is_none() || r.y.checked_add(r.h).is_none() {
+                    return Err(SceneError::invalid(path, format!("object `{}` is too large", o.id)));
+                }
+                if !r.inside(&space) {
+                    return Err(SceneError::invalid(
+                        path,
+                        format!(
+                            "object `{}` at [{}, {}]x[{}, {}] lies outside the space [{}, {}]x[{}, {}]",
+                            o.id,
+                            r.x,
+                            r.x2(),
+                            r.y,
+                            r.y2(),
+                            space.x,
+                            space.x2(),
+                            space.y,
+                            space.y2()
+                        ),
+                    ));
+                }
+            }
+        }
+        // Overlaps: sweep over x to stay fast on large scenes.
+        let mut placed: Vec<(usize, Rect)> = self
+            .objects
+            .iter()
+            .enumerate()
+            .filter_map(|(i, o)| o.rect().map(|r| (i, r)))
+            .collect();
+        placed.sort_by_key(|(i, r)| (r.x, *i));
+        for a in 0..placed.len() {
+            let (i, ra) = placed[a];
+            for &(j, rb) in &placed[a + 1..] {
+                if rb.x >= ra.x2() {
+                    break;
+                }
+                if ra.interiors_overlap(&rb) {
+                    let (i, j) = (i.min(j), i.max(j));
+                    return Err(SceneError::invalid(
+                        format!("objects[{j}]"),
+                        format!(
+                            "objects `{}` (objects[{i}]) and `{}` (objects[{j}]) overlap",
+                            self.objects[i].id, self.objects[j].id
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether every object is placed.
+    pub fn is_complete(&self) -> bool {
+        self.objects.iter().all(Object::is_placed)
+    }
+
+    /// The distinct class names in order of first appearance.
+    pub fn classes(&self) -> Vec<&str> {
+        let mut out: Vec<&str> = Vec::new();
+        for o in &self.objects {
+            if !out.contains(&o.class.as_str()) {
+                out.push(&o.class);
+            }
+        }
+        out
+    }
+
+    /// Whether `o` sits on the grid: `(x − space.x) % grid == 0`, same for y.
+    pub fn on_grid(&self, o: &Object) -> bool {
+        match (o.x, o.y) {
+            (Some(x), Some(y)) => {
+                (x - self.space.x).rem_euclid(self.grid) == 0
+                    && (y - self.space.y).rem_euclid(self.grid) == 0
+            }
+            _ => true,
+        }
+    }
+}
+
+impl fmt::Display for Scene {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.to_json())
+    }
+}
+
+/// Parse and validate a JSON array of scenes (a demonstrations file).
+///
+/// Error paths are prefixed with the scene index: `[2].objects[3].x`.
+/// A single scene object (not an array) is accepted as a one-element list.
+pub fn scenes_from_json(text: &str) -> Result<Vec<Scene>, SceneError> {
+    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| SceneError::Json {
+        path: ".".into(),
+        message: e.to_string(),
+    })?;
+    match value {
+        serde_json::Value::Array(items) => {
+            let mut out = Vec::with_capacity(items.len());
+            // Re-serialising each element keeps the field path precise; line
+            // numbers are then relative to the element, so report paths only.
+            for (i, item) in items.into_iter().enumerate() {
+                let raw: SceneJson =
+                    serde_path_to_error::deserialize(item).map_err(|e| {
+                        let path = e.path().to_string();
+                        SceneError::Json {
+                            path,
+                            message: e.into_inner().to_string(),
+                        }
+                        .prefixed(&format!("[{i}]"))
+                    })?;
+                let scene = raw.into_scene();
+                scene.validate().map_err(|e| e.prefixed(&format!("[{i}]")))?;
+                out.push(scene);
+            }
+            Ok(out)
+        }
+        _ => Ok(vec![Scene::from_json(text)?]),
+    }
+}
+
+/// Serialise scenes as a pretty JSON array.
+pub fn scenes_to_json(scenes: &[Scene]) -> String {
+    let raw: Vec<SceneJson> = scenes.iter().map(SceneJson::from_scene).collect();
+    let mut s = serde_json::to_string_pretty(&raw).expect("scene serialisation cannot fail");
+    s.push('\n');
+    s
+}
