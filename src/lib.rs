@@ -9,3 +9,4 @@ pub mod relations;
 pub mod render;
 pub mod rules;
 pub mod scene;
+pub mod synth;
