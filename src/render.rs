@@ -207,16 +207,8 @@ fn effective_scale(s: f64) -> f64 {
 
 /// Draw one object as `<g>` with a `class="obj"` rect and, when it fits, a
 /// centred label (rotated for tall thin objects).
-fn draw_object(
-    out: &mut String,
-    o: &Object,
-    x: f64,
-    y: f64,
-    w: f64,
-    h: f64,
-    fill: &str,
-    ghost: bool,
-) {
+fn draw_object(out: &mut String, o: &Object, rect: (f64, f64, f64, f64), fill: &str, ghost: bool) {
+    let (x, y, w, h) = rect;
     let kind = if o.fixed { "fixed" } else { "movable" };
     let opacity = if ghost { " opacity=\"0.6\"" } else { "" };
     let _ = write!(
@@ -235,7 +227,7 @@ fn draw_object(
     let len = o.id.chars().count().max(1) as f64;
     let flat = (h * 0.55).min(w * 0.88 / (CHAR_W * len));
     let upright = (w * 0.55).min(h * 0.88 / (CHAR_W * len));
-    let (size, rotate) = if upright > flat * 1.2 {
+    let (size, rotate) = if h > 1.5 * w && upright > flat * 1.2 {
         (upright.min(16.0), true)
     } else {
         (flat.min(16.0), false)
@@ -573,7 +565,7 @@ pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) 
     out.push_str("<g class=\"objects\">\n");
     for o in &scene.objects {
         if let Some((x, y, w, h)) = to_screen(o) {
-            draw_object(&mut out, o, x, y, w, h, fill_of(o), false);
+            draw_object(&mut out, o, (x, y, w, h), fill_of(o), false);
         }
     }
     out.push_str("</g>\n");
@@ -585,7 +577,8 @@ pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) 
             else {
                 continue;
             };
-            let (x, y, w, h) = (x - 1.5, y - 1.5, w + 3.0, h + 3.0);
+            // Just outside the object, so its label stays readable.
+            let (x, y, w, h) = (x - 2.0, y - 2.0, w + 4.0, h + 4.0);
             let colour = if hard { "#c0392b" } else { "#ff8c00" };
             let _ = writeln!(
                 out,
@@ -615,7 +608,7 @@ pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) 
             tray_items.len()
         );
         for (o, x, y, w, h) in &tray_items {
-            draw_object(&mut out, o, tx + x, tray_y + y, *w, *h, fill_of(o), true);
+            draw_object(&mut out, o, (tx + x, tray_y + y, *w, *h), fill_of(o), true);
         }
         out.push_str("</g>\n");
     }
