@@ -44,8 +44,12 @@ impl CompiledFormula {
                 },
             },
             Formula::Not(g) => CompiledFormula::Not(Box::new(Self::compile(g, classes))),
-            Formula::And(v) => CompiledFormula::And(v.iter().map(|g| Self::compile(g, classes)).collect()),
-            Formula::Or(v) => CompiledFormula::Or(v.iter().map(|g| Self::compile(g, classes)).collect()),
+            Formula::And(v) => {
+                CompiledFormula::And(v.iter().map(|g| Self::compile(g, classes)).collect())
+            }
+            Formula::Or(v) => {
+                CompiledFormula::Or(v.iter().map(|g| Self::compile(g, classes)).collect())
+            }
         }
     }
 
@@ -62,7 +66,10 @@ impl CompiledFormula {
 }
 
 /// Per rule: who the subjects are and who breaks it.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// Serialises as `{name, weight, hard, satisfied, subjects, violators}`: a
+/// stable format read by scripts (`rccpack score --json`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct RuleReport {
     /// Rule name.
     pub name: String,
@@ -79,20 +86,23 @@ pub struct RuleReport {
 }
 
 /// The result of evaluating a scene against a rule set.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// Serialises as `{score, satisfied_weight, total_weight, hard_violations,
+/// off_grid, rules}`: the stable format of `rccpack score --json`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Evaluation {
-    /// One report per rule, in rule-set order.
-    pub rules: Vec<RuleReport>,
+    /// `satisfied_weight / total_weight`, or 1 when the denominator is 0.
+    pub score: f64,
     /// §6 numerator: Σ over soft rules of weight × satisfied subjects.
     pub satisfied_weight: f64,
     /// §6 denominator: Σ over soft rules of weight × subjects.
     pub total_weight: f64,
-    /// `satisfied_weight / total_weight`, or 1 when the denominator is 0.
-    pub score: f64,
     /// Number of (object, hard rule) pairs that fail.
     pub hard_violations: usize,
     /// Ids of placed movable objects that are not on the grid.
     pub off_grid: Vec<String>,
+    /// One report per rule, in rule-set order.
+    pub rules: Vec<RuleReport>,
 }
 
 impl Evaluation {
@@ -119,7 +129,11 @@ impl<'s> Evaluator<'s> {
             classes.intern(&c);
         }
         let atoms = ClassAtoms::new(scene, &classes, contact);
-        Evaluator { scene, classes, atoms }
+        Evaluator {
+            scene,
+            classes,
+            atoms,
+        }
     }
 
     /// The class index in use (scene classes first, then rule-only classes).
@@ -146,7 +160,11 @@ impl<'s> Evaluator<'s> {
         if self.atoms.byte(obj, None).is_none() {
             return false;
         }
-        f.eval(&|t| self.atoms.byte(obj, t).unwrap_or(crate::relations::EMPTY_TARGET))
+        f.eval(&|t| {
+            self.atoms
+                .byte(obj, t)
+                .unwrap_or(crate::relations::EMPTY_TARGET)
+        })
     }
 
     /// Evaluate every rule on every placed subject.

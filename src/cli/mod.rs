@@ -1,0 +1,57 @@
+//! Command-line front end: clap commands, file reading, exit codes.
+//!
+//! Exit codes (SPEC §10): 0 success; 1 bad input; 2 infeasible; 3 a limit
+//! stopped the search before any solution.
+
+mod check;
+mod io;
+mod render;
+mod score;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+pub use io::{read_rules, read_scene, read_scenes, Reported};
+
+/// Learn spatial placement rules from demonstrations and lay out new objects
+/// that keep them.
+#[derive(Parser, Debug)]
+#[command(name = "rccpack", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Parse and validate a `.rcc` rule file (optionally against a scene's classes).
+    Check(check::CheckArgs),
+    /// Score scenes against rules (SPEC §6): per rule and per object.
+    Score(score::ScoreArgs),
+    /// Draw a scene as SVG or PNG, optionally marking rule violations.
+    Render(render::RenderArgs),
+}
+
+/// Parse arguments, run the command, map errors to exit codes.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Check(a) => check::run(a),
+        Command::Score(a) => score::run(a),
+        Command::Render(a) => render::run(a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            if let Some(r) = e.downcast_ref::<Reported>() {
+                eprint!("{}", r.0);
+                if !r.0.ends_with('\n') {
+                    eprintln!();
+                }
+            } else {
+                eprintln!("error: {e:#}");
+            }
+            ExitCode::from(1)
+        }
+    }
+}

@@ -1,0 +1,49 @@
+use super::{read_rules, read_scene};
+use anyhow::Result;
+use clap::Args;
+use rccpack::relations::Contact;
+use rccpack::render::{render_to_path, RenderOptions};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// `rccpack render SCENE [--rules R] -o out.svg|out.png`
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene JSON.
+    scene: PathBuf,
+    /// Rules: objects that break one are outlined, and a legend lists them.
+    #[arg(long)]
+    rules: Option<PathBuf>,
+    /// Output picture; the extension picks the format (`.svg` or `.png`).
+    #[arg(short = 'o', long = "output")]
+    output: PathBuf,
+    /// Pixels per length unit.
+    #[arg(long, default_value_t = 1.0)]
+    scale: f64,
+    /// How EC decides that two sides touch: `point` (corners count) or `edge`.
+    #[arg(long, default_value = "point")]
+    contact: Contact,
+}
+
+pub fn run(a: RenderArgs) -> Result<ExitCode> {
+    let scene = read_scene(&a.scene)?;
+    let rules = match &a.rules {
+        Some(p) => Some(read_rules(p, std::slice::from_ref(&scene))?),
+        None => None,
+    };
+    if !(a.scale.is_finite() && a.scale > 0.0 && a.scale <= 20.0) {
+        anyhow::bail!(
+            "--scale {} is out of range; expected a number in (0, 20]",
+            a.scale
+        );
+    }
+    let opts = RenderOptions {
+        contact: a.contact,
+        scale: a.scale,
+        title: Some(a.scene.display().to_string()),
+    };
+    render_to_path(&scene, rules.as_ref(), &opts, &a.output)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", a.output.display()))?;
+    eprintln!("wrote {}", a.output.display());
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,115 @@
+use super::{read_rules, read_scenes};
+use anyhow::Result;
+use clap::Args;
+use rccpack::eval::{evaluate, Evaluation};
+use rccpack::relations::Contact;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// `rccpack score SCENE --rules R [--json] [--contact point|edge]`
+///
+/// SCENE is one scene or a demonstrations array; each scene is scored on its
+/// own, in order.
+#[derive(Args, Debug)]
+pub struct ScoreArgs {
+    /// Scene JSON (an object) or demonstrations JSON (an array of scenes).
+    scene: PathBuf,
+    /// The `.rcc` rule file.
+    #[arg(long)]
+    rules: PathBuf,
+    /// Print JSON: one object per scene (an array for an array input) with
+    /// `score`, `satisfied_weight`, `total_weight`, `hard_violations`,
+    /// `off_grid` and `rules: [{name, weight, hard, subjects, satisfied, violators}]`.
+    #[arg(long)]
+    json: bool,
+    /// How EC decides that two sides touch: `point` (corners count) or `edge`.
+    #[arg(long, default_value = "point")]
+    contact: Contact,
+}
+
+pub fn run(a: ScoreArgs) -> Result<ExitCode> {
+    let (scenes, is_array) = read_scenes(&a.scene)?;
+    let rules = read_rules(&a.rules, &scenes)?;
+    let evals: Vec<Evaluation> = scenes
+        .iter()
+        .map(|s| evaluate(s, &rules, a.contact))
+        .collect();
+    if a.json {
+        let text = if is_array {
+            serde_json::to_string_pretty(&evals)?
+        } else {
+            serde_json::to_string_pretty(&evals[0])?
+        };
+        println!("{text}");
+        return Ok(ExitCode::SUCCESS);
+    }
+    for (i, e) in evals.iter().enumerate() {
+        if i > 0 {
+            println!();
+        }
+        let label = if is_array {
+            format!("{} [{i}]", a.scene.display())
+        } else {
+            a.scene.display().to_string()
+        };
+        print!("{}", table(&label, e));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The human-readable report of one scene.
+fn table(label: &str, e: &Evaluation) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{label}: score {:.6}  (weight {} / {})",
+        e.score,
+        trim(e.satisfied_weight),
+        trim(e.total_weight)
+    );
+    if e.hard_violations > 0 {
+        let _ = writeln!(
+            s,
+            "  hard rules broken: {} (object, rule) pairs",
+            e.hard_violations
+        );
+    }
+    if !e.off_grid.is_empty() {
+        let _ = writeln!(s, "  off the grid: {}", e.off_grid.join(", "));
+    }
+    let w = e
+        .rules
+        .iter()
+        .map(|r| r.name.len())
+        .max()
+        .unwrap_or(4)
+        .max(4);
+    let _ = writeln!(
+        s,
+        "  {:<w$}  {:>8}  {:>9}  broken by",
+        "rule", "weight", "satisfied"
+    );
+    for r in &e.rules {
+        let weight = if r.hard {
+            "hard".to_string()
+        } else {
+            trim(r.weight)
+        };
+        let _ = writeln!(
+            s,
+            "  {:<w$}  {:>8}  {:>9}  {}",
+            r.name,
+            weight,
+            format!("{}/{}", r.satisfied, r.subjects),
+            r.violators.join(", ")
+        );
+    }
+    s
+}
+
+fn trim(v: f64) -> String {
+    let t = format!("{v:.4}");
+    let t = t.trim_end_matches('0').trim_end_matches('.');
+    t.to_string()
+}
