@@ -84,11 +84,14 @@ pub fn parse_rules(src: &str) -> Result<RuleSet, RulesError> {
     if diags.is_empty() {
         Ok(RuleSet::new(rules))
     } else {
+        diags.sort_by_key(|d| (d.span.start, d.span.end));
         Err(RulesError::new(diags))
     }
 }
 
-/// Stage 1: parenthesis depth over the raw text (comments skipped).
+/// Stage 1: parenthesis depth over the raw text (comments skipped). An
+/// atom's own `(` adds one level, so the limit here is one above
+/// [`MAX_DEPTH`]; stage 3 measures the exact depth.
 fn paren_depth_check(src: &str) -> Option<Diagnostic> {
     let mut depth = 0usize;
     let mut in_comment = false;
@@ -99,7 +102,7 @@ fn paren_depth_check(src: &str) -> Option<Diagnostic> {
             b'#' => in_comment = true,
             b'(' => {
                 depth += 1;
-                if depth > MAX_DEPTH {
+                if depth > MAX_DEPTH + 1 {
                     return Some(too_deep(Span::new(i, i + 1)));
                 }
             }
@@ -364,8 +367,7 @@ fn describe(r: R) -> &'static str {
     match r {
         R::EOI => "end of input",
         R::eol => "end of line",
-        R::file => "a rule",
-        R::rule_def | R::kw_rule => "`rule`",
+        R::file | R::rule_def | R::kw_rule => "a rule",
         R::name => "a rule name",
         R::colon => "`:`",
         R::modifier | R::weight_mod | R::p_mod | R::hard_mod => {
