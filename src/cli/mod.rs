@@ -37,6 +37,7 @@ enum Command {
 
 /// Parse arguments, run the command, map errors to exit codes.
 pub fn main() -> ExitCode {
+    restore_sigpipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check(a) => check::run(a),
@@ -57,5 +58,16 @@ pub fn main() -> ExitCode {
             }
             ExitCode::from(1)
         }
+    }
+}
+
+/// Die quietly on a closed pipe (`rccpack score … | head`) like other Unix
+/// tools, instead of panicking in `println!`.
+fn restore_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called once at start-up, before any thread exists; resetting a
+    // signal disposition to its default has no memory-safety preconditions.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }

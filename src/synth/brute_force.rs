@@ -1,0 +1,1 @@
+//! Exhaustive reference solver for tiny problems (tests only).
