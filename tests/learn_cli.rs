@@ -12,7 +12,11 @@ fn rccpack(args: &[&str]) -> Output {
 }
 
 fn demos() -> String {
-    concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing/demos.json").to_string()
+    concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/box-packing/demos.json"
+    )
+    .to_string()
 }
 
 fn tmp(name: &str) -> PathBuf {
@@ -41,7 +45,10 @@ fn learn_writes_rules_and_report_that_score_reads() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(o.stdout.is_empty(), "nothing on stdout with -o");
-    assert!(o.stderr.is_empty(), "no progress when stderr is not a terminal");
+    assert!(
+        o.stderr.is_empty(),
+        "no progress when stderr is not a terminal"
+    );
     let text = std::fs::read_to_string(&out).unwrap();
     assert!(text.contains("rule B_dr_n_R p "), "{text}");
     let r: serde_json::Value =
@@ -55,7 +62,13 @@ fn learn_writes_rules_and_report_that_score_reads() {
     let broken = st.iter().find(|s| s["candidate"] == false).unwrap();
     assert!(broken["broken_by"]["object"].is_string());
     // The learned file feeds `rccpack score`: every demonstration scores 1.
-    let o = rccpack(&["score", &demos(), "--rules", out.to_str().unwrap(), "--json"]);
+    let o = rccpack(&[
+        "score",
+        &demos(),
+        "--rules",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let scores: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     for s in scores.as_array().unwrap() {
@@ -95,17 +108,32 @@ fn statement_file_with_an_unknown_class_is_located() {
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
     assert!(e.contains("unknown.rcc"), "{e}");
-    assert!(e.contains("rule `bad` names class `Q`, which no demonstration has"), "{e}");
+    assert!(
+        e.contains("rule `bad` names class `Q`, which no demonstration has"),
+        "{e}"
+    );
     assert!(e.contains(":2:"), "line 2 named: {e}");
 }
 
 #[test]
 fn bad_parameters_exit_1_naming_the_flag() {
     for (args, msg) in [
-        (vec!["--cutoff", "1.5"], "invalid --cutoff 1.5: expected a number strictly between 0 and 1"),
-        (vec!["--samples", "0"], "invalid --samples 0: expected a whole number of at least 1"),
-        (vec!["--prior", "0"], "invalid --prior 0: expected a number strictly between 0 and 1"),
-        (vec!["--epsilon", "2"], "invalid --epsilon 2: expected a number strictly between 0 and 1"),
+        (
+            vec!["--cutoff", "1.5"],
+            "invalid --cutoff 1.5: expected a number strictly between 0 and 1",
+        ),
+        (
+            vec!["--samples", "0"],
+            "invalid --samples 0: expected a whole number of at least 1",
+        ),
+        (
+            vec!["--prior", "0"],
+            "invalid --prior 0: expected a number strictly between 0 and 1",
+        ),
+        (
+            vec!["--epsilon", "2"],
+            "invalid --epsilon 2: expected a number strictly between 0 and 1",
+        ),
     ] {
         let d = demos();
         let mut all = vec!["learn", d.as_str()];
