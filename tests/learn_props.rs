@@ -42,8 +42,11 @@ fn representable_product() -> impl Strategy<Value = (f64, u64)> {
     (1e-3..=1.0f64, 0..100u64)
 }
 
-/// The 36 cells of a 60×60 space with grid 10, as ((x, y), class index).
-fn demo_scene() -> impl Strategy<Value = Vec<((i64, i64), usize)>> {
+/// A demonstration as its objects: ((x, y), class index).
+type DemoCells = Vec<((i64, i64), usize)>;
+
+/// 3–9 of the 36 cells of a 60×60 region with grid 10, each with a class.
+fn demo_scene() -> impl Strategy<Value = DemoCells> {
     let cells: Vec<(i64, i64)> = (0..6)
         .flat_map(|x| (0..6).map(move |y| (x * 10, y * 10)))
         .collect();
@@ -56,7 +59,7 @@ fn demo_scene() -> impl Strategy<Value = Vec<((i64, i64), usize)>> {
 }
 
 /// Two to four demonstrations and a permutation of them.
-fn demo_set() -> impl Strategy<Value = (Vec<Vec<((i64, i64), usize)>>, Vec<usize>)> {
+fn demo_set() -> impl Strategy<Value = (Vec<DemoCells>, Vec<usize>)> {
     proptest::collection::vec(demo_scene(), 2..5).prop_flat_map(|demos| {
         let n = demos.len();
         (Just(demos), Just((0..n).collect::<Vec<_>>()).prop_shuffle())
