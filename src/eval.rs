@@ -44,8 +44,12 @@ impl CompiledFormula {
                 },
             },
             Formula::Not(g) => CompiledFormula::Not(Box::new(Self::compile(g, classes))),
-            Formula::And(v) => CompiledFormula::And(v.iter().map(|g| Self::compile(g, classes)).collect()),
-            Formula::Or(v) => CompiledFormula::Or(v.iter().map(|g| Self::compile(g, classes)).collect()),
+            Formula::And(v) => {
+                CompiledFormula::And(v.iter().map(|g| Self::compile(g, classes)).collect())
+            }
+            Formula::Or(v) => {
+                CompiledFormula::Or(v.iter().map(|g| Self::compile(g, classes)).collect())
+            }
         }
     }
 
@@ -119,7 +123,11 @@ impl<'s> Evaluator<'s> {
             classes.intern(&c);
         }
         let atoms = ClassAtoms::new(scene, &classes, contact);
-        Evaluator { scene, classes, atoms }
+        Evaluator {
+            scene,
+            classes,
+            atoms,
+        }
     }
 
     /// The class index in use (scene classes first, then rule-only classes).
@@ -146,7 +154,11 @@ impl<'s> Evaluator<'s> {
         if self.atoms.byte(obj, None).is_none() {
             return false;
         }
-        f.eval(&|t| self.atoms.byte(obj, t).unwrap_or(crate::relations::EMPTY_TARGET))
+        f.eval(&|t| {
+            self.atoms
+                .byte(obj, t)
+                .unwrap_or(crate::relations::EMPTY_TARGET)
+        })
     }
 
     /// Evaluate every rule on every placed subject.

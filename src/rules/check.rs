@@ -32,10 +32,7 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
                 if !classes.contains(&class) {
                     diags.push(Diagnostic::new(
                         span,
-                        format!(
-                            "unknown class `{class}` in rule `{}`: {listing}",
-                            rule.name
-                        ),
+                        format!("unknown class `{class}` in rule `{}`: {listing}", rule.name),
                     ));
                 }
             }

@@ -116,7 +116,9 @@ fn paren_depth_check(src: &str) -> Option<Diagnostic> {
 fn too_deep(span: Span) -> Diagnostic {
     Diagnostic::new(
         span,
-        format!("formula nested too deeply: more than {MAX_DEPTH} levels of parentheses and negations"),
+        format!(
+            "formula nested too deeply: more than {MAX_DEPTH} levels of parentheses and negations"
+        ),
     )
 }
 
@@ -129,10 +131,15 @@ fn token_depth_check(rule: &Pair<'_, R>) -> Option<Diagnostic> {
         match tok {
             Token::Start { rule: R::unary, .. } => saved.push(depth),
             Token::End { rule: R::unary, .. } => depth = saved.pop().unwrap_or(0),
-            Token::Start { rule: R::group, .. } | Token::Start { rule: R::not_op, .. } => {
+            Token::Start { rule: R::group, .. }
+            | Token::Start {
+                rule: R::not_op, ..
+            } => {
                 depth += 1;
                 if depth > MAX_DEPTH {
-                    let Token::Start { pos, .. } = tok else { unreachable!() };
+                    let Token::Start { pos, .. } = tok else {
+                        unreachable!()
+                    };
                     let s = pos.pos();
                     return Some(too_deep(Span::new(s, s + 1)));
                 }
@@ -398,7 +405,11 @@ fn found_at(src: &str, pos: usize) -> (String, Span) {
         .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
         .map(char::len_utf8)
         .sum();
-    let len = if word_len > 0 { word_len.min(64) } else { c.len_utf8() };
+    let len = if word_len > 0 {
+        word_len.min(64)
+    } else {
+        c.len_utf8()
+    };
     let shown: String = rest[..len].chars().flat_map(char::escape_debug).collect();
     (format!("`{shown}`"), Span::new(pos, pos + len))
 }
