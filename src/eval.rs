@@ -44,12 +44,8 @@ impl CompiledFormula {
                 },
             },
             Formula::Not(g) => CompiledFormula::Not(Box::new(Self::compile(g, classes))),
-            Formula::And(v) => {
-                CompiledFormula::And(v.iter().map(|g| Self::compile(g, classes)).collect())
-            }
-            Formula::Or(v) => {
-                CompiledFormula::Or(v.iter().map(|g| Self::compile(g, classes)).collect())
-            }
+            Formula::And(v) => CompiledFormula::And(v.iter().map(|g| Self::compile(g, classes)).collect()),
+            Formula::Or(v) => CompiledFormula::Or(v.iter().map(|g| Self::compile(g, classes)).collect()),
         }
     }
 
@@ -123,11 +119,7 @@ impl<'s> Evaluator<'s> {
             classes.intern(&c);
         }
         let atoms = ClassAtoms::new(scene, &classes, contact);
-        Evaluator {
-            scene,
-            classes,
-            atoms,
-        }
+        Evaluator { scene, classes, atoms }
     }
 
     /// The class index in use (scene classes first, then rule-only classes).
@@ -154,11 +146,7 @@ impl<'s> Evaluator<'s> {
         if self.atoms.byte(obj, None).is_none() {
             return false;
         }
-        f.eval(&|t| {
-            self.atoms
-                .byte(obj, t)
-                .unwrap_or(crate::relations::EMPTY_TARGET)
-        })
+        f.eval(&|t| self.atoms.byte(obj, t).unwrap_or(crate::relations::EMPTY_TARGET))
     }
 
     /// Evaluate every rule on every placed subject.

@@ -139,9 +139,7 @@ impl Relation {
 
     /// The name as written in `.rcc` files, e.g. `DR_N`.
     pub fn name(self) -> &'static str {
-        const NAMES: [&str; 8] = [
-            "DR_N", "DR_S", "DR_E", "DR_W", "EC_N", "EC_S", "EC_E", "EC_W",
-        ];
+        const NAMES: [&str; 8] = ["DR_N", "DR_S", "DR_E", "DR_W", "EC_N", "EC_S", "EC_E", "EC_W"];
         NAMES[self.index()]
     }
 
@@ -173,9 +171,7 @@ impl std::str::FromStr for Contact {
         match s {
             "point" => Ok(Contact::Point),
             "edge" => Ok(Contact::Edge),
-            _ => Err(format!(
-                "unknown contact mode `{s}`; expected `point` or `edge`"
-            )),
+            _ => Err(format!("unknown contact mode `{s}`; expected `point` or `edge`")),
         }
     }
 }

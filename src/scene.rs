@@ -297,10 +297,7 @@ impl Scene {
         if self.grid < 1 {
             return Err(SceneError::invalid(
                 "grid",
-                format!(
-                    "grid step {} is invalid; expected an integer of at least 1",
-                    self.grid
-                ),
+                format!("grid step {} is invalid; expected an integer of at least 1", self.grid),
             ));
         }
         let mut ids = HashSet::new();
@@ -317,10 +314,7 @@ impl Scene {
                 ));
             }
             if o.id.is_empty() {
-                return Err(SceneError::invalid(
-                    format!("{path}.id"),
-                    "object id is empty",
-                ));
+                return Err(SceneError::invalid(format!("{path}.id"), "object id is empty"));
             }
             if !ids.insert(o.id.as_str()) {
                 let first = self.objects.iter().position(|p| p.id == o.id).unwrap_or(0);
@@ -342,27 +336,18 @@ impl Scene {
                 let missing = if o.x.is_none() { "x" } else { "y" };
                 return Err(SceneError::invalid(
                     format!("{path}.{missing}"),
-                    format!(
-                        "object `{}` has only one coordinate; give both x and y or neither",
-                        o.id
-                    ),
+                    format!("object `{}` has only one coordinate; give both x and y or neither", o.id),
                 ));
             }
             if o.fixed && !o.is_placed() {
                 return Err(SceneError::invalid(
                     path,
-                    format!(
-                        "fixed object `{}` has no position; fixed objects must be placed",
-                        o.id
-                    ),
+                    format!("fixed object `{}` has no position; fixed objects must be placed", o.id),
                 ));
             }
             if let Some(r) = o.rect() {
                 if r.x.checked_add(r.w).is_none() || r.y.checked_add(r.h).is_none() {
-                    return Err(SceneError::invalid(
-                        path,
-                        format!("object `{}` is too large", o.id),
-                    ));
+                    return Err(SceneError::invalid(path, format!("object `{}` is too large", o.id)));
                 }
                 if !r.inside(&space) {
                     return Err(SceneError::invalid(
@@ -461,18 +446,17 @@ pub fn scenes_from_json(text: &str) -> Result<Vec<Scene>, SceneError> {
             // Re-serialising each element keeps the field path precise; line
             // numbers are then relative to the element, so report paths only.
             for (i, item) in items.into_iter().enumerate() {
-                let raw: SceneJson = serde_path_to_error::deserialize(item).map_err(|e| {
-                    let path = e.path().to_string();
-                    SceneError::Json {
-                        path,
-                        message: e.into_inner().to_string(),
-                    }
-                    .prefixed(&format!("[{i}]"))
-                })?;
+                let raw: SceneJson =
+                    serde_path_to_error::deserialize(item).map_err(|e| {
+                        let path = e.path().to_string();
+                        SceneError::Json {
+                            path,
+                            message: e.into_inner().to_string(),
+                        }
+                        .prefixed(&format!("[{i}]"))
+                    })?;
                 let scene = raw.into_scene();
-                scene
-                    .validate()
-                    .map_err(|e| e.prefixed(&format!("[{i}]")))?;
+                scene.validate().map_err(|e| e.prefixed(&format!("[{i}]")))?;
                 out.push(scene);
             }
             Ok(out)

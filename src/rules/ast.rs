@@ -241,11 +241,7 @@ impl RuleSet {
     /// spans and comments).
     pub fn same_rules(&self, other: &RuleSet) -> bool {
         self.rules.len() == other.rules.len()
-            && self
-                .rules
-                .iter()
-                .zip(&other.rules)
-                .all(|(a, b)| a.same_rule(b))
+            && self.rules.iter().zip(&other.rules).all(|(a, b)| a.same_rule(b))
     }
     /// Every class named by any atom (subjects and targets), sorted.
     pub fn classes(&self) -> Vec<String> {
