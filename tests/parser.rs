@@ -568,13 +568,12 @@ fn render_unknown_class() {
 #[test]
 fn render_color_and_unicode_columns() {
     // Columns count characters; snippets survive non-ASCII text before the span.
-    let src = "# héhé ünïcødé\nrule a: /* DR_N(B, R)\n";
-    let e = parse_rules("# héhé ünïcødé\nrule a: DR_N(B, R) €\n").unwrap_err();
-    assert_eq!(
-        e.line_col("# héhé ünïcødé\nrule a: DR_N(B, R) €\n"),
-        (2, 20)
-    );
-    let _ = src;
+    let src = "# héhé ünïcødé\nrule a: DR_N(B, R) €\n";
+    let e = parse_rules(src).unwrap_err();
+    assert_eq!(e.line_col(src), (2, 20));
+    let text = e.render("u.rcc", src, false);
+    assert!(text.contains("u.rcc:2:20"), "{text}");
+    assert!(text.contains("rule a: DR_N(B, R) €"), "{text}");
     let src = "rule é: DR_N(B, R)";
     let e = parse_rules(src).unwrap_err();
     assert_eq!(e.diagnostics[0].message, "expected a rule name, found `é`");
@@ -740,7 +739,7 @@ fn normalize(f: Formula) -> Formula {
 }
 
 /// Random formulas over one subject class, in the parser's normal form.
-fn formula_strategy(subject: &'static str) -> impl Strategy<Value = Formula> {
+fn formula_strategy_for(subject: &'static str) -> impl Strategy<Value = Formula> {
     atom_strategy(subject)
         .prop_recursive(5, 40, 4, |inner| {
             prop_oneof![
@@ -750,6 +749,11 @@ fn formula_strategy(subject: &'static str) -> impl Strategy<Value = Formula> {
             ]
         })
         .prop_map(normalize)
+}
+
+/// Random formulas over a random subject class, in the parser's normal form.
+fn formula_strategy() -> impl Strategy<Value = Formula> {
+    prop::sample::select(CLASSES.to_vec()).prop_flat_map(formula_strategy_for)
 }
 
 fn strength_strategy() -> impl Strategy<Value = Strength> {
@@ -770,7 +774,7 @@ fn strength_strategy() -> impl Strategy<Value = Strength> {
 /// Random rule sets: unique names, random subjects, strengths and formulas.
 fn ruleset_strategy() -> impl Strategy<Value = RuleSet> {
     let rule = (0..4usize)
-        .prop_flat_map(|s| (formula_strategy(CLASSES[s]), strength_strategy()))
+        .prop_flat_map(|s| (formula_strategy_for(CLASSES[s]), strength_strategy()))
         .prop_map(|(f, s)| Rule::new("x", f).with_strength(s));
     (
         prop::collection::vec(rule, 0..6),
@@ -835,6 +839,13 @@ fn no_panic(src: &str) {
 }
 
 proptest! {
+    #[test]
+    fn formulas_print_and_reparse(f in formula_strategy()) {
+        let src = format!("rule x: {}", print_formula(&f));
+        let back = parse_rules(&src).map_err(|e| TestCaseError::fail(e.render("f.rcc", &src, false)))?;
+        prop_assert_eq!(&back.rules[0].formula, &f);
+    }
+
     #[test]
     fn round_trip_print_parse(rs in ruleset_strategy()) {
         let text = print_rules(&rs);
