@@ -143,10 +143,23 @@ fn grammar_file() {
 
 #[test]
 fn grammar_eol() {
-    assert_eq!(ok("rule a: DR_N(B, R)\r\nrule b: DR_S(B, R)\r\n").rules.len(), 2);
-    assert_eq!(ok("\n\nrule a: DR_N(B, R)\n\n\nrule b: DR_S(B, R)").rules.len(), 2);
+    assert_eq!(
+        ok("rule a: DR_N(B, R)\r\nrule b: DR_S(B, R)\r\n")
+            .rules
+            .len(),
+        2
+    );
+    assert_eq!(
+        ok("\n\nrule a: DR_N(B, R)\n\n\nrule b: DR_S(B, R)")
+            .rules
+            .len(),
+        2
+    );
     let (m, lc) = err("rule a: DR_N(B, R) DR_S(B, R)");
-    assert_eq!(m, "expected end of input, end of line, `|` or `&`, found `DR_S`");
+    assert_eq!(
+        m,
+        "expected end of input, end of line, `|` or `&`, found `DR_S`"
+    );
     assert_eq!(lc, (1, 20));
 }
 
@@ -175,7 +188,10 @@ fn grammar_name() {
 fn grammar_colon() {
     ok("rule a : DR_N(B, R)");
     let (m, lc) = err("rule a DR_N(B, R)");
-    assert_eq!(m, "expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`");
+    assert_eq!(
+        m,
+        "expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`"
+    );
     assert_eq!(lc, (1, 8));
     let (m, _) = err("rule a hard DR_N(B, R)");
     assert_eq!(m, "expected `:`, found `DR_N`");
@@ -183,7 +199,10 @@ fn grammar_colon() {
 
 #[test]
 fn grammar_modifier() {
-    assert_eq!(ok("rule a hard: DR_N(B, R)").rules[0].strength, Strength::Hard);
+    assert_eq!(
+        ok("rule a hard: DR_N(B, R)").rules[0].strength,
+        Strength::Hard
+    );
     // At most one modifier.
     let (m, lc) = err("rule a hard weight 2: DR_N(B, R)");
     assert_eq!(m, "expected `:`, found `weight`");
@@ -192,8 +211,14 @@ fn grammar_modifier() {
 
 #[test]
 fn grammar_weight_mod_and_kw_weight() {
-    assert_eq!(ok("rule a weight 2.5: DR_N(B, R)").rules[0].strength, Strength::Weight(2.5));
-    assert_eq!(ok("rule a weight 1: DR_N(B, R)").rules[0].strength, Strength::Weight(1.0));
+    assert_eq!(
+        ok("rule a weight 2.5: DR_N(B, R)").rules[0].strength,
+        Strength::Weight(2.5)
+    );
+    assert_eq!(
+        ok("rule a weight 1: DR_N(B, R)").rules[0].strength,
+        Strength::Weight(1.0)
+    );
     let (m, _) = err("rule a weight: DR_N(B, R)");
     assert_eq!(m, "expected a number, found `:`");
     let (m, lc) = err("rule a weight 0: DR_N(B, R)");
@@ -202,7 +227,10 @@ fn grammar_weight_mod_and_kw_weight() {
     let (m, _) = err("rule a weight -2: DR_N(B, R)");
     assert_eq!(m, "bad weight `-2`: expected a finite number > 0");
     let (m, _) = err("rule a weight 1e999: DR_N(B, R)");
-    assert_eq!(m, "bad weight `1e999`: it is not finite; expected a finite number > 0");
+    assert_eq!(
+        m,
+        "bad weight `1e999`: it is not finite; expected a finite number > 0"
+    );
     // `weights` is not the keyword.
     let (m, _) = err("rule a weights 2: DR_N(B, R)");
     assert!(m.contains("found `weights`"), "{m}");
@@ -210,14 +238,23 @@ fn grammar_weight_mod_and_kw_weight() {
 
 #[test]
 fn grammar_p_mod_and_kw_p() {
-    assert_eq!(ok("rule a p 0.25: DR_N(B, R)").rules[0].strength, Strength::P(0.25));
-    assert_eq!(ok("rule a p 1e-300: DR_N(B, R)").rules[0].strength, Strength::P(1e-300));
+    assert_eq!(
+        ok("rule a p 0.25: DR_N(B, R)").rules[0].strength,
+        Strength::P(0.25)
+    );
+    assert_eq!(
+        ok("rule a p 1e-300: DR_N(B, R)").rules[0].strength,
+        Strength::P(1e-300)
+    );
     let (m, lc) = err("rule a p 1.5: DR_N(B, R)");
     assert_eq!(m, "bad p `1.5`: expected a number with 0 < p < 1");
     assert_eq!(lc, (1, 10));
     for bad in ["0", "1", "1.0", "-0.5", "1e-400"] {
         let (m, _) = err(&format!("rule a p {bad}: DR_N(B, R)"));
-        assert_eq!(m, format!("bad p `{bad}`: expected a number with 0 < p < 1"));
+        assert_eq!(
+            m,
+            format!("bad p `{bad}`: expected a number with 0 < p < 1")
+        );
     }
     let (m, _) = err("rule a p 1e999: DR_N(B, R)");
     assert!(m.contains("not finite"), "{m}");
@@ -225,25 +262,42 @@ fn grammar_p_mod_and_kw_p() {
 
 #[test]
 fn grammar_hard_mod_and_kw_hard() {
-    assert_eq!(ok("rule a hard : DR_N(B, R)").rules[0].strength, Strength::Hard);
+    assert_eq!(
+        ok("rule a hard : DR_N(B, R)").rules[0].strength,
+        Strength::Hard
+    );
     let (m, _) = err("rule a hardly: DR_N(B, R)");
     assert!(m.contains("found `hardly`"), "{m}");
 }
 
 #[test]
 fn grammar_number() {
-    for (t, v) in [("2.5", 2.5), ("1", 1.0), ("1.0e-8", 1e-8), (".5", 0.5), ("3.", 3.0), ("2E+3", 2000.0)] {
+    for (t, v) in [
+        ("2.5", 2.5),
+        ("1", 1.0),
+        ("1.0e-8", 1e-8),
+        (".5", 0.5),
+        ("3.", 3.0),
+        ("2E+3", 2000.0),
+    ] {
         let rs = ok(&format!("rule a weight {t}: DR_N(B, R)"));
         assert_eq!(rs.rules[0].strength, Strength::Weight(v), "{t}");
     }
     for bad in ["x", "1.2.3", "1e", "2x", "."] {
-        assert!(parse_rules(&format!("rule a weight {bad}: DR_N(B, R)")).is_err(), "{bad}");
+        assert!(
+            parse_rules(&format!("rule a weight {bad}: DR_N(B, R)")).is_err(),
+            "{bad}"
+        );
     }
 }
 
 #[test]
 fn grammar_formula_disjunction_conjunction_precedence() {
-    let (a, b, c) = (at("DR_N", "B", "R"), at("DR_S", "B", "R"), at("EC_E", "B", "*"));
+    let (a, b, c) = (
+        at("DR_N", "B", "R"),
+        at("DR_S", "B", "R"),
+        at("EC_E", "B", "*"),
+    );
     assert_eq!(
         formula("rule x: DR_N(B, R) | DR_S(B, R) & EC_E(B, *)"),
         Formula::Or(vec![a.clone(), Formula::And(vec![b.clone(), c.clone()])])
@@ -259,7 +313,10 @@ fn grammar_formula_disjunction_conjunction_precedence() {
     // Word forms.
     assert_eq!(
         formula("rule x: not DR_N(B, R) and DR_S(B, R) or EC_E(B, *)"),
-        Formula::Or(vec![Formula::And(vec![Formula::not(a.clone()), b.clone()]), c.clone()])
+        Formula::Or(vec![
+            Formula::And(vec![Formula::not(a.clone()), b.clone()]),
+            c.clone()
+        ])
     );
     // Flattening and vanishing parentheses.
     assert_eq!(
@@ -272,7 +329,10 @@ fn grammar_formula_disjunction_conjunction_precedence() {
     assert_eq!(m, "expected a formula, found end of input");
     assert_eq!(lc, (1, 9));
     let (m, _) = err("rule x: DR_N(B, R) |");
-    assert!(m.starts_with("expected ") && m.ends_with("found end of input"), "{m}");
+    assert!(
+        m.starts_with("expected ") && m.ends_with("found end of input"),
+        "{m}"
+    );
     let (m, _) = err("rule x: DR_N(B, R) & & DR_S(B, R)");
     assert!(m.ends_with("found `&`"), "{m}");
 }
@@ -280,7 +340,10 @@ fn grammar_formula_disjunction_conjunction_precedence() {
 #[test]
 fn grammar_unary_and_not_op() {
     let a = at("DR_N", "B", "R");
-    assert_eq!(formula("rule x: !!DR_N(B, R)"), Formula::not(Formula::not(a.clone())));
+    assert_eq!(
+        formula("rule x: !!DR_N(B, R)"),
+        Formula::not(Formula::not(a.clone()))
+    );
     assert_eq!(formula("rule x: not ! not DR_N(B, R)").depth(), 4);
     // `not` needs a word boundary; `notDR_N` is a (bad) relation name.
     let (m, _) = err("rule x: notDR_N(B, R)");
@@ -294,7 +357,10 @@ fn grammar_group_lparen_rparen() {
     let f = formula("rule x: !(DR_N(B, R) | DR_S(B, R))");
     assert_eq!(
         f,
-        Formula::not(Formula::Or(vec![at("DR_N", "B", "R"), at("DR_S", "B", "R")]))
+        Formula::not(Formula::Or(vec![
+            at("DR_N", "B", "R"),
+            at("DR_S", "B", "R")
+        ]))
     );
     let (m, lc) = err("rule x: (DR_N(B, R)\n");
     assert_eq!(m, "expected `)`, `|` or `&`, found end of line");
@@ -307,8 +373,14 @@ fn grammar_group_lparen_rparen() {
 
 #[test]
 fn grammar_or_op_and_and_op() {
-    assert_eq!(formula("rule x: DR_N(B, R) or DR_S(B, R)"), formula("rule x: DR_N(B, R) | DR_S(B, R)"));
-    assert_eq!(formula("rule x: DR_N(B, R) and DR_S(B, R)"), formula("rule x: DR_N(B, R) & DR_S(B, R)"));
+    assert_eq!(
+        formula("rule x: DR_N(B, R) or DR_S(B, R)"),
+        formula("rule x: DR_N(B, R) | DR_S(B, R)")
+    );
+    assert_eq!(
+        formula("rule x: DR_N(B, R) and DR_S(B, R)"),
+        formula("rule x: DR_N(B, R) & DR_S(B, R)")
+    );
     assert!(parse_rules("rule x: DR_N(B, R) || DR_S(B, R)").is_err());
     assert!(parse_rules("rule x: DR_N(B, R) && DR_S(B, R)").is_err());
     // `order` is not `or` followed by `der`.
@@ -319,7 +391,10 @@ fn grammar_or_op_and_and_op() {
 fn grammar_atom_and_relation() {
     for r in Relation::ALL {
         let f = formula(&format!("rule x: {}(B, R)", r.name()));
-        assert_eq!(f, Formula::Atom(Atom::new(r, "B", Target::Class("R".into()))));
+        assert_eq!(
+            f,
+            Formula::Atom(Atom::new(r, "B", Target::Class("R".into())))
+        );
     }
     let (m, lc) = err("rule x: DR_X(B, R)");
     assert_eq!(
@@ -339,7 +414,10 @@ fn grammar_atom_and_relation() {
 #[test]
 fn grammar_comma_subject_target() {
     assert_eq!(formula("rule x: EC_W(B,*)"), at("EC_W", "B", "*"));
-    assert_eq!(formula("rule x: EC_W( Blue_1 , red )"), at("EC_W", "Blue_1", "red"));
+    assert_eq!(
+        formula("rule x: EC_W( Blue_1 , red )"),
+        at("EC_W", "Blue_1", "red")
+    );
     let (m, lc) = err("rule x: DR_N(B R)");
     assert_eq!(m, "expected `,`, found `R`");
     assert_eq!(lc, (1, 16));
@@ -351,10 +429,17 @@ fn grammar_comma_subject_target() {
 
 #[test]
 fn grammar_continuation() {
-    let f = formula("rule x: DR_N(B, R)\n  | DR_S(B, R)\n\t& EC_E(B, *)\n   or EC_W(B, *)\n and EC_N(B, *)");
+    let f = formula(
+        "rule x: DR_N(B, R)\n  | DR_S(B, R)\n\t& EC_E(B, *)\n   or EC_W(B, *)\n and EC_N(B, *)",
+    );
     assert_eq!(f.atoms().len(), 5);
     // Blank lines before a continuation are allowed.
-    assert_eq!(formula("rule x: DR_N(B, R)\n\n  | DR_S(B, R)").atoms().len(), 2);
+    assert_eq!(
+        formula("rule x: DR_N(B, R)\n\n  | DR_S(B, R)")
+            .atoms()
+            .len(),
+        2
+    );
     // A line starting with anything else is not a continuation.
     assert!(parse_rules("rule x: DR_N(B, R)\n  DR_S(B, R)").is_err());
     assert!(parse_rules("rule x: DR_N(B, R)\n  ! DR_S(B, R)").is_err());
@@ -364,7 +449,8 @@ fn grammar_continuation() {
 
 #[test]
 fn grammar_comment_and_whitespace() {
-    let rs = ok("# head\nrule x: DR_N(B, R) # tail ( (( ((\n\t # indented\nrule y:\tDR_S( B ,\tR )#x");
+    let rs =
+        ok("# head\nrule x: DR_N(B, R) # tail ( (( ((\n\t # indented\nrule y:\tDR_S( B ,\tR )#x");
     assert_eq!(rs.rules.len(), 2);
     // `//` is not a comment.
     assert!(parse_rules("// no\nrule x: DR_N(B, R)").is_err());
@@ -387,7 +473,10 @@ fn mixed_subjects_error() {
 #[test]
 fn duplicate_names_error() {
     let (m, lc) = err("rule a: DR_N(B, R)\n\nrule b: DR_N(B, R)\nrule a: DR_S(B, R)\n");
-    assert_eq!(m, "duplicate rule name `a`: it is already defined on line 1");
+    assert_eq!(
+        m,
+        "duplicate rule name `a`: it is already defined on line 1"
+    );
     assert_eq!(lc, (4, 6));
 }
 
@@ -436,10 +525,7 @@ fn render(src: &str) -> String {
 
 #[test]
 fn render_unknown_relation() {
-    assert_eq!(
-        render("rule a: DR_X(B, R)\n"),
-        UNKNOWN_RELATION
-    );
+    assert_eq!(render("rule a: DR_X(B, R)\n"), UNKNOWN_RELATION);
 }
 
 #[test]
@@ -459,7 +545,10 @@ fn render_bad_p() {
 
 #[test]
 fn render_duplicate_name() {
-    assert_eq!(render("rule a: DR_N(B, R)\nrule a: DR_S(B, R)\n"), DUPLICATE_NAME);
+    assert_eq!(
+        render("rule a: DR_N(B, R)\nrule a: DR_S(B, R)\n"),
+        DUPLICATE_NAME
+    );
 }
 
 #[test]
@@ -470,17 +559,21 @@ fn render_unknown_class() {
     .unwrap();
     let src = "rule a: DR_N(B, R)\nrule b: DR_N(R, Q)\n";
     let rs = ok(src);
-    let text = check_classes(&rs, &scene).unwrap_err().render("x.rcc", src, false);
+    let text = check_classes(&rs, &scene)
+        .unwrap_err()
+        .render("x.rcc", src, false);
     assert_eq!(text, UNKNOWN_CLASS);
 }
 
 #[test]
 fn render_color_and_unicode_columns() {
     // Columns count characters; snippets survive non-ASCII text before the span.
-    let src = "# héhé ünïcødé\nrule a: /* DR_N(B, R)\n";
-    let e = parse_rules("# héhé ünïcødé\nrule a: DR_N(B, R) €\n").unwrap_err();
-    assert_eq!(e.line_col("# héhé ünïcødé\nrule a: DR_N(B, R) €\n"), (2, 20));
-    let _ = src;
+    let src = "# héhé ünïcødé\nrule a: DR_N(B, R) €\n";
+    let e = parse_rules(src).unwrap_err();
+    assert_eq!(e.line_col(src), (2, 20));
+    let text = e.render("u.rcc", src, false);
+    assert!(text.contains("u.rcc:2:20"), "{text}");
+    assert!(text.contains("rule a: DR_N(B, R) €"), "{text}");
     let src = "rule é: DR_N(B, R)";
     let e = parse_rules(src).unwrap_err();
     assert_eq!(e.diagnostics[0].message, "expected a rule name, found `é`");
@@ -502,18 +595,22 @@ fn render_long_line_falls_back_to_plain() {
     );
 }
 
-const UNKNOWN_RELATION: &str = "Error: x.rcc:1:9: unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_X(B, R)\n   │         ──┬─  \n   │           ╰─── unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W\n───╯\n";
-const MIXED_SUBJECTS: &str = "Error: x.rcc:1:22: rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n   ╭─[ x.rcc:1:22 ]\n   │\n 1 │ rule a: DR_N(B, R) & DR_S(G, R)\n   │                      ─────┬────  \n   │                           ╰────── rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n───╯\n";
-const MISSING_COLON: &str = "Error: x.rcc:1:8: expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n   ╭─[ x.rcc:1:8 ]\n   │\n 1 │ rule a DR_N(B, R)\n   │        ──┬─  \n   │          ╰─── expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n───╯\n";
-const BAD_P: &str = "Error: x.rcc:1:10: bad p `1.5`: expected a number with 0 < p < 1\n   ╭─[ x.rcc:1:10 ]\n   │\n 1 │ rule a p 1.5: DR_N(B, R)\n   │          ─┬─  \n   │           ╰─── bad p `1.5`: expected a number with 0 < p < 1\n───╯\n";
-const DUPLICATE_NAME: &str = "Error: x.rcc:2:6: duplicate rule name `a`: it is already defined on line 1\n   ╭─[ x.rcc:2:6 ]\n   │\n 2 │ rule a: DR_S(B, R)\n   │      ┬  \n   │      ╰── duplicate rule name `a`: it is already defined on line 1\n───╯\n";
-const UNKNOWN_CLASS: &str = "Error: x.rcc:1:9: unknown class `B` in rule `a`: the scene has classes R, W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_N(B, R)\n   │         ─────┬────  \n   │              ╰────── unknown class `B` in rule `a`: the scene has classes R, W\n───╯\nError: x.rcc:2:9: unknown class `Q` in rule `b`: the scene has classes R, W\n   ╭─[ x.rcc:2:9 ]\n   │\n 2 │ rule b: DR_N(R, Q)\n   │         ─────┬────  \n   │              ╰────── unknown class `Q` in rule `b`: the scene has classes R, W\n───╯\n";
+const UNKNOWN_RELATION: &str = "error: x.rcc:1:9: unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_X(B, R)\n   │         ──┬─  \n   │           ╰─── unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W\n───╯\n";
+const MIXED_SUBJECTS: &str = "error: x.rcc:1:22: rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n   ╭─[ x.rcc:1:22 ]\n   │\n 1 │ rule a: DR_N(B, R) & DR_S(G, R)\n   │                      ─────┬────  \n   │                           ╰────── rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n───╯\n";
+const MISSING_COLON: &str = "error: x.rcc:1:8: expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n   ╭─[ x.rcc:1:8 ]\n   │\n 1 │ rule a DR_N(B, R)\n   │        ──┬─  \n   │          ╰─── expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n───╯\n";
+const BAD_P: &str = "error: x.rcc:1:10: bad p `1.5`: expected a number with 0 < p < 1\n   ╭─[ x.rcc:1:10 ]\n   │\n 1 │ rule a p 1.5: DR_N(B, R)\n   │          ─┬─  \n   │           ╰─── bad p `1.5`: expected a number with 0 < p < 1\n───╯\n";
+const DUPLICATE_NAME: &str = "error: x.rcc:2:6: duplicate rule name `a`: it is already defined on line 1\n   ╭─[ x.rcc:2:6 ]\n   │\n 2 │ rule a: DR_S(B, R)\n   │      ┬  \n   │      ╰── duplicate rule name `a`: it is already defined on line 1\n───╯\n";
+const UNKNOWN_CLASS: &str = "error: x.rcc:1:9: unknown class `B` in rule `a`: the scene has classes R, W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_N(B, R)\n   │         ─────┬────  \n   │              ╰────── unknown class `B` in rule `a`: the scene has classes R, W\n───╯\nerror: x.rcc:2:9: unknown class `Q` in rule `b`: the scene has classes R, W\n   ╭─[ x.rcc:2:9 ]\n   │\n 2 │ rule b: DR_N(R, Q)\n   │         ─────┬────  \n   │              ╰────── unknown class `Q` in rule `b`: the scene has classes R, W\n───╯\n";
 
 // ---- depth and size limits -----------------------------------------------
 
 #[test]
 fn deep_parentheses_are_an_error() {
-    let src = format!("rule a: {}DR_N(B, R){}", "(".repeat(10_000), ")".repeat(10_000));
+    let src = format!(
+        "rule a: {}DR_N(B, R){}",
+        "(".repeat(10_000),
+        ")".repeat(10_000)
+    );
     let (m, lc) = err(&src);
     assert!(m.starts_with("formula nested too deeply"), "{m}");
     // The atom's own `(` counts in the raw scan that runs before pest.
@@ -546,7 +643,10 @@ fn depth_limit_boundary() {
 
 #[test]
 fn wide_formulas_are_fine() {
-    let src = format!("rule a: DR_N(B, R){}", " | DR_S(B, R) & EC_E(B, *)".repeat(20_000));
+    let src = format!(
+        "rule a: DR_N(B, R){}",
+        " | DR_S(B, R) & EC_E(B, *)".repeat(20_000)
+    );
     let f = formula(&src);
     assert_eq!(f.atoms().len(), 40_001);
 }
@@ -566,7 +666,10 @@ fn printer_minimal_parentheses() {
     for c in cases {
         assert_eq!(print_rules(&ok(c)), c);
     }
-    assert_eq!(print_rules(&ok("rule a weight 1.0: DR_N(B, R)")), "rule a: DR_N(B, R)\n");
+    assert_eq!(
+        print_rules(&ok("rule a weight 1.0: DR_N(B, R)")),
+        "rule a: DR_N(B, R)\n"
+    );
 }
 
 #[test]
@@ -574,8 +677,12 @@ fn printer_comments_and_wrapping() {
     let mut rs = ok(PILOT);
     rs.rules[0].comments = vec!["learned from 3 demos".into(), "p = 0.01".into()];
     let text = print_rules(&rs);
-    assert!(text.starts_with("# learned from 3 demos\n# p = 0.01\nrule blue_north_of_red: DR_N(B, R)\n"));
-    assert!(text.contains("\n                   | EC_W(B, *) & EC_S(B, *)\n"), "{text}");
+    assert!(text
+        .starts_with("# learned from 3 demos\n# p = 0.01\nrule blue_north_of_red: DR_N(B, R)\n"));
+    assert!(
+        text.contains("\n                   | EC_W(B, *) & EC_S(B, *)\n"),
+        "{text}"
+    );
     assert!(ok(&text).same_rules(&rs));
 }
 
@@ -632,7 +739,7 @@ fn normalize(f: Formula) -> Formula {
 }
 
 /// Random formulas over one subject class, in the parser's normal form.
-fn formula_strategy(subject: &'static str) -> impl Strategy<Value = Formula> {
+fn formula_strategy_for(subject: &'static str) -> impl Strategy<Value = Formula> {
     atom_strategy(subject)
         .prop_recursive(5, 40, 4, |inner| {
             prop_oneof![
@@ -644,12 +751,21 @@ fn formula_strategy(subject: &'static str) -> impl Strategy<Value = Formula> {
         .prop_map(normalize)
 }
 
+/// Random formulas over a random subject class, in the parser's normal form.
+fn formula_strategy() -> impl Strategy<Value = Formula> {
+    prop::sample::select(CLASSES.to_vec()).prop_flat_map(formula_strategy_for)
+}
+
 fn strength_strategy() -> impl Strategy<Value = Strength> {
     prop_oneof![
         Just(Strength::Weight(1.0)),
         (1e-300f64..1e300).prop_map(Strength::Weight),
-        (0.0f64..1e6).prop_filter("positive", |w| *w > 0.0).prop_map(Strength::Weight),
-        (0.0f64..1.0).prop_filter("in (0,1)", |p| *p > 0.0).prop_map(Strength::P),
+        (0.0f64..1e6)
+            .prop_filter("positive", |w| *w > 0.0)
+            .prop_map(Strength::Weight),
+        (0.0f64..1.0)
+            .prop_filter("in (0,1)", |p| *p > 0.0)
+            .prop_map(Strength::P),
         (-700.0f64..-1e-3).prop_map(|l| Strength::P(l.exp())),
         Just(Strength::Hard),
     ]
@@ -658,10 +774,13 @@ fn strength_strategy() -> impl Strategy<Value = Strength> {
 /// Random rule sets: unique names, random subjects, strengths and formulas.
 fn ruleset_strategy() -> impl Strategy<Value = RuleSet> {
     let rule = (0..4usize)
-        .prop_flat_map(|s| (formula_strategy(CLASSES[s]), strength_strategy()))
+        .prop_flat_map(|s| (formula_strategy_for(CLASSES[s]), strength_strategy()))
         .prop_map(|(f, s)| Rule::new("x", f).with_strength(s));
-    (prop::collection::vec(rule, 0..6), prop::collection::vec("[a-z ]{0,20}", 0..6)).prop_map(
-        |(mut rules, comments)| {
+    (
+        prop::collection::vec(rule, 0..6),
+        prop::collection::vec("[a-z ]{0,20}", 0..6),
+    )
+        .prop_map(|(mut rules, comments)| {
             for (i, r) in rules.iter_mut().enumerate() {
                 r.name = format!("rule_{i}");
                 if let Some(c) = comments.get(i) {
@@ -669,13 +788,21 @@ fn ruleset_strategy() -> impl Strategy<Value = RuleSet> {
                 }
             }
             RuleSet::new(rules)
-        },
-    )
+        })
 }
 
 fn mutation_strategy() -> impl Strategy<Value = Vec<(u8, usize, char)>> {
     prop::collection::vec(
-        (0u8..3, any::<usize>(), prop_oneof![any::<char>(), prop::sample::select(vec!['(', ')', '!', '&', '|', '\n', ':', ',', '*', '#', ' ', 'e', '9', '.'])]),
+        (
+            0u8..3,
+            any::<usize>(),
+            prop_oneof![
+                any::<char>(),
+                prop::sample::select(vec![
+                    '(', ')', '!', '&', '|', '\n', ':', ',', '*', '#', ' ', 'e', '9', '.'
+                ])
+            ],
+        ),
         1..8,
     )
 }
@@ -712,6 +839,13 @@ fn no_panic(src: &str) {
 }
 
 proptest! {
+    #[test]
+    fn formulas_print_and_reparse(f in formula_strategy()) {
+        let src = format!("rule x: {}", print_formula(&f));
+        let back = parse_rules(&src).map_err(|e| TestCaseError::fail(e.render("f.rcc", &src, false)))?;
+        prop_assert_eq!(&back.rules[0].formula, &f);
+    }
+
     #[test]
     fn round_trip_print_parse(rs in ruleset_strategy()) {
         let text = print_rules(&rs);

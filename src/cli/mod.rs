@@ -12,6 +12,7 @@ mod score;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+#[allow(unused_imports)] // read_scene: used by `synth` once it lands
 pub use io::{read_rules, read_scene, read_scenes, Reported};
 
 /// Learn spatial placement rules from demonstrations and lay out new objects

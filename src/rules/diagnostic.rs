@@ -101,7 +101,8 @@ fn render_one(d: &Diagnostic, file: &str, src: &str, color: bool) -> String {
         .finish();
     let mut buf = Vec::new();
     match report.write((file, Source::from(src)), &mut buf) {
-        Ok(()) => String::from_utf8_lossy(&buf).into_owned(),
+        // ariadne capitalises the kind; our messages are lowercase.
+        Ok(()) => String::from_utf8_lossy(&buf).replacen("Error:", "error:", 1),
         Err(_) => format!("error: {header}\n"),
     }
 }

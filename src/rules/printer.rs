@@ -76,7 +76,7 @@ pub fn print_formula(f: &Formula) -> String {
 
 fn strength_text(s: &Strength) -> Option<String> {
     match *s {
-        Strength::Weight(w) if w == 1.0 => None,
+        Strength::Weight(1.0) => None,
         Strength::Weight(w) => Some(format!("weight {}", format_number(w))),
         Strength::P(p) => Some(format!("p {}", format_number(p))),
         Strength::Hard => Some("hard".to_string()),
