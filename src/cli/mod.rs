@@ -7,6 +7,7 @@ mod check;
 mod io;
 mod render;
 mod score;
+mod synth;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -30,6 +31,9 @@ enum Command {
     Score(score::ScoreArgs),
     /// Draw a scene as SVG or PNG, optionally marking rule violations.
     Render(render::RenderArgs),
+    /// Place the unplaced objects of a problem so that the rules hold as well
+    /// as possible (SPEC §9).
+    Synth(synth::SynthArgs),
 }
 
 /// Parse arguments, run the command, map errors to exit codes.
@@ -39,6 +43,7 @@ pub fn main() -> ExitCode {
         Command::Check(a) => check::run(a),
         Command::Score(a) => score::run(a),
         Command::Render(a) => render::run(a),
+        Command::Synth(a) => synth::run(a),
     };
     match result {
         Ok(code) => code,
