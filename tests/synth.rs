@@ -514,3 +514,168 @@ fn directions_are_exact_with_off_grid_sizes() {
     // a at x=10 touches c (x=25) from the west; b can then not touch a.
     assert_eq!(r.evaluation.unwrap().satisfied_weight, 1.0);
 }
+
+// ---- measurements (run with `cargo test --release --test synth -- --ignored --nocapture`)
+
+fn templates(a: &str, classes: &[&str]) -> Vec<Formula> {
+    let mut out = Vec::new();
+    for b in classes.iter().copied().chain(["*"]) {
+        for d in ["N", "S", "E", "W"] {
+            out.push(atom(&format!("DR_{d}"), a, b));
+            out.push(atom(&format!("EC_{d}"), a, b));
+            out.push(not(atom(&format!("DR_{d}"), a, b)));
+        }
+        out.push(or(["EC_N", "EC_S", "EC_E", "EC_W"]
+            .iter()
+            .map(|r| atom(r, a, b))
+            .collect()));
+        out.push(and(["DR_N", "DR_S", "DR_E", "DR_W"]
+            .iter()
+            .map(|r| not(atom(r, a, b)))
+            .collect()));
+    }
+    out.push(corner(a));
+    out
+}
+
+/// A thesis-study-like problem: the box, 2–6 objects, 1–5 rules per class
+/// drawn from the pilot rules and the templates.
+fn study_problem(seed: u64) -> (Scene, RuleSet) {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let n = rng.random_range(2..=6);
+    let mut p = box_problem(0);
+    for i in 0..n {
+        let c = ["R", "G", "B"][rng.random_range(0..3)];
+        p.objects
+            .push(obj(&format!("{}{i}", c.to_lowercase()), c, 20, 20, None, false));
+    }
+    let pilot = pilot_rules();
+    let mut rules = Vec::new();
+    for c in ["R", "G", "B"] {
+        let mut pool: Vec<Formula> = pilot
+            .rules
+            .iter()
+            .filter(|r| r.subject() == c)
+            .map(|r| r.formula.clone())
+            .collect();
+        pool.extend(templates(c, &["R", "G", "B", "W"]));
+        for j in 0..rng.random_range(1..=5) {
+            let f = if rng.random_range(0..2) == 0 {
+                pool[rng.random_range(0..3)].clone()
+            } else {
+                pool[rng.random_range(0..pool.len())].clone()
+            };
+            let pv = 10f64.powf(-rng.random_range(2.0..12.0));
+            rules.push(Rule::new(format!("{c}{j}"), f).with_strength(Strength::P(pv)));
+        }
+    }
+    (p, RuleSet::new(rules))
+}
+
+fn scale_problem(per_class: usize, inner: i64) -> Scene {
+    let mut p = box_problem(per_class);
+    let (x0, y0) = (100, 100);
+    p.space.width = inner + 2 * x0 + 20;
+    p.space.height = inner + 2 * y0 + 20;
+    p.objects[0] = obj("w_south", "W", inner + 20, 10, Some((x0, y0)), true);
+    p.objects[1] = obj("w_north", "W", inner + 20, 10, Some((x0, y0 + 10 + inner)), true);
+    p.objects[2] = obj("w_west", "W", 10, inner, Some((x0, y0 + 10)), true);
+    p.objects[3] = obj("w_east", "W", 10, inner, Some((x0 + 10 + inner, y0 + 10)), true);
+    p
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    v[v.len() / 2]
+}
+
+#[test]
+#[ignore]
+fn bench_study() {
+    let quick = std::env::var_os("BENCH_QUICK").is_some();
+    for strategy in [
+        rccpack::synth::Strategy::UpperBoundFirst,
+        rccpack::synth::Strategy::ImproveFromFirst,
+    ] {
+        for (sym, red) in [(true, true), (true, false), (false, false)] {
+            if quick && !(sym && red) {
+                continue;
+            }
+            let mut times = Vec::new();
+            let mut not_opt = 0;
+            for seed in 0..250 {
+                let (p, rules) = study_problem(seed);
+                let opts = SynthOptions {
+                    strategy,
+                    symmetry_breaking: sym,
+                    redundant: red,
+                    time_limit: Some(Duration::from_secs(5)),
+                    ..Default::default()
+                };
+                let r = solve(&p, &rules, &opts);
+                if r.status != Status::Optimal {
+                    not_opt += 1;
+                }
+                times.push(r.stats.time_ms);
+            }
+            let max = times.iter().cloned().fold(0.0, f64::max);
+            println!(
+                "study {strategy:?} sym={sym} red={red}: median {:.2} ms, max {:.1} ms, not optimal {not_opt}",
+                median(&mut times),
+                max
+            );
+        }
+    }
+}
+
+#[test]
+#[ignore]
+fn bench_scale() {
+    let limit: u64 = std::env::var("BENCH_LIMIT")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(20);
+    let quick = std::env::var_os("BENCH_QUICK").is_some();
+    for (per_class, inner) in [(8usize, 200i64), (16, 300)] {
+        for strategy in [
+            rccpack::synth::Strategy::UpperBoundFirst,
+            rccpack::synth::Strategy::ImproveFromFirst,
+        ] {
+            if quick && strategy != rccpack::synth::Strategy::UpperBoundFirst {
+                continue;
+            }
+            for (sym, red) in [(true, true), (true, false), (false, false)] {
+                if quick && !(sym && red) {
+                    continue;
+                }
+                let p = scale_problem(per_class, inner);
+                let mut times = Vec::new();
+                let mut scores = Vec::new();
+                for seed in 0..3 {
+                    let opts = SynthOptions {
+                        strategy,
+                        seed,
+                        symmetry_breaking: sym,
+                        redundant: red,
+                        time_limit: Some(Duration::from_secs(limit)),
+                        ..Default::default()
+                    };
+                    let r = solve(&p, &pilot_rules(), &opts);
+                    times.push(r.stats.time_ms);
+                    scores.push(format!(
+                        "{:?}/{:.4}/first {:.0}ms",
+                        r.status,
+                        r.evaluation.map(|e| e.score).unwrap_or(f64::NAN),
+                        r.stats.time_to_first_ms.unwrap_or(f64::NAN)
+                    ));
+                }
+                println!(
+                    "scale n={} {strategy:?} sym={sym} red={red}: median {:.1} ms {:?}",
+                    per_class * 3,
+                    median(&mut times),
+                    scores
+                );
+            }
+        }
+    }
+}

@@ -39,7 +39,12 @@ use pumpkin_core::results::{
 use pumpkin_core::statistics::StatisticLogger;
 use pumpkin_core::termination::TerminationCondition;
 use pumpkin_core::variables::{AffineView, DomainId, Literal, TransformableVariable};
-use pumpkin_core::{DefaultBrancher, Solver};
+use pumpkin_core::branching::branchers::autonomous_search::AutonomousSearch;
+use pumpkin_core::branching::branchers::dynamic_brancher::DynamicBrancher;
+use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
+use pumpkin_core::branching::value_selection::InDomainMin;
+use pumpkin_core::branching::variable_selection::{FirstFail, InputOrder};
+use pumpkin_core::Solver;
 use std::cell::Cell;
 use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -101,13 +106,13 @@ impl TerminationCondition for Stop {
 
 /// A brancher wrapper that counts decisions and conflicts.
 #[derive(Debug)]
-pub struct Counting<B> {
-    inner: B,
+pub struct Counting {
+    inner: Box<dyn Brancher>,
     nodes: Rc<Cell<u64>>,
     conflicts: Rc<Cell<u64>>,
 }
 
-impl<B: Brancher> Brancher for Counting<B> {
+impl Brancher for Counting {
     fn log_statistics(&self, l: StatisticLogger) {
         self.inner.log_statistics(l)
     }
@@ -180,7 +185,7 @@ pub enum OptOutcome {
 /// A Pumpkin solver holding one model.
 pub struct Engine {
     solver: Solver,
-    brancher: Counting<DefaultBrancher>,
+    brancher: Counting,
     resolver: ResolutionResolver,
     vars: Vec<DomainId>,
     guards: Vec<Literal>,
@@ -338,8 +343,29 @@ impl Engine {
         }
         let counters = Counters::default();
         // The brancher only after every variable exists.
+        let inner: Box<dyn Brancher> = match std::env::var("RCCPACK_SEARCH").as_deref() {
+            Ok("vsids-ff") => Box::new(AutonomousSearch::new(IndependentVariableValueBrancher::new(
+                FirstFail::new(&vars),
+                InDomainMin,
+            ))),
+            Ok("static") => Box::new(DynamicBrancher::new(vec![
+                Box::new(IndependentVariableValueBrancher::new(
+                    FirstFail::new(&vars),
+                    InDomainMin,
+                )),
+                Box::new(solver.default_brancher()),
+            ])),
+            Ok("input") => Box::new(DynamicBrancher::new(vec![
+                Box::new(IndependentVariableValueBrancher::new(
+                    InputOrder::new(&vars),
+                    InDomainMin,
+                )),
+                Box::new(solver.default_brancher()),
+            ])),
+            _ => Box::new(solver.default_brancher()),
+        };
         let brancher = Counting {
-            inner: solver.default_brancher(),
+            inner,
             nodes: counters.nodes.clone(),
             conflicts: counters.conflicts.clone(),
         };

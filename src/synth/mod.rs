@@ -236,7 +236,18 @@ pub fn synthesize(
     let coefs = weights::integer_weights(&weights).ok_or_else(|| {
         SynthError::BadProblem("rule weights are too large for the solver".into())
     })?;
+    let t_model = start.elapsed();
     let mut engine = Engine::new(&model, opts.seed, false, Some(&coefs));
+    if std::env::var_os("RCCPACK_DEBUG").is_some() {
+        eprintln!(
+            "model {:.1} ms ({} vars, {} bools, {} clauses), engine {:.1} ms",
+            ms(t_model),
+            model.vars.len(),
+            model.bools.len(),
+            model.clauses.len(),
+            ms(start.elapsed() - t_model)
+        );
+    }
     let mut first: Option<Duration> = None;
     let mut best: Option<Duration> = None;
     let outcome = engine.optimise(&model, &limits, opts.strategy, &mut |vals| {
