@@ -5,7 +5,6 @@
 
 use crate::eval::Evaluation;
 use crate::relations::Contact;
-use crate::rules::RuleSet;
 use crate::scene::Scene;
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
@@ -117,7 +116,7 @@ pub struct SolveStats {
     pub time_to_best_ms: Option<f64>,
 }
 
-/// The result of [`synthesize`].
+/// The result of `synthesize`.
 #[derive(Debug, Clone)]
 pub struct SynthResult {
     /// How the search ended.
