@@ -5,6 +5,7 @@
 
 use crate::eval::Evaluation;
 use crate::relations::Contact;
+use crate::rules::RuleSet;
 use crate::scene::Scene;
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
