@@ -144,19 +144,13 @@ fn box_packing_pilot_reaches_one_and_is_optimal() {
 }
 
 #[test]
-fn bundled_example_files_if_present() {
+fn bundled_example_reaches_one_and_is_optimal() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing");
-    let (Ok(p), Ok(r)) = (
-        std::fs::read_to_string(dir.join("problem.json")),
-        std::fs::read_to_string(dir.join("pilot.rcc")),
-    ) else {
-        return; // lands on main later
-    };
+    let p = std::fs::read_to_string(dir.join("problem.json")).unwrap();
+    let r = std::fs::read_to_string(dir.join("pilot.rcc")).unwrap();
     let problem = Scene::from_json(&p).unwrap();
-    let Ok(rules) = std::panic::catch_unwind(|| rccpack::rules::parse_rules(&r)) else {
-        return; // parser not merged yet
-    };
-    let rules = rules.unwrap();
+    let rules = rccpack::rules::parse_rules(&r).unwrap();
+    assert!(rules.same_rules(&pilot_rules()) || rules.rules.len() == 12);
     let r = solve(&problem, &rules, &SynthOptions::default());
     assert_eq!(r.status, Status::Optimal);
     assert_eq!(r.evaluation.unwrap().score, 1.0);
@@ -316,14 +310,13 @@ fn time_limit_returns_a_valid_layout() {
         ..Default::default()
     };
     let r = solve(&p, &rules, &opts);
+    // The greedy first phase finds a packing at once, so there is a layout.
     assert!(
-        matches!(
-            r.status,
-            Status::Feasible | Status::Optimal | Status::Unknown
-        ),
+        matches!(r.status, Status::Feasible | Status::Optimal),
         "{:?}",
         r.status
     );
+    eprintln!("time-limited status: {:?}", r.status);
     assert!(
         r.stats.time_ms < 2000.0,
         "stopped in time: {}",

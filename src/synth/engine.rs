@@ -26,7 +26,6 @@ use super::model::{BoolDef, Coord, Lit, Model};
 use super::weights::SubsetSums;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
 use pumpkin_constraints::{boolean_equals, cumulative, less_than_or_equals};
-use pumpkin_core::branching::branchers::autonomous_search::AutonomousSearch;
 use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
 use pumpkin_core::branching::tie_breaking::InOrderTieBreaker;
 use pumpkin_core::branching::value_selection::InDomainMin;
@@ -451,15 +450,8 @@ impl Engine {
         }
         let counters = Counters::default();
         // The brancher only after every variable exists.
-        let main: Box<dyn Brancher> = match std::env::var("RCCPACK_SEARCH").as_deref() {
-            Ok("vsids-ff") => Box::new(AutonomousSearch::new(
-                IndependentVariableValueBrancher::new(FirstFail::new(&vars), InDomainMin),
-            )),
-            _ => Box::new(solver.default_brancher()),
-        };
-        let first_phase = Rc::new(Cell::new(
-            std::env::var("RCCPACK_FIRST").as_deref() != Ok("vsids"),
-        ));
+        let main: Box<dyn Brancher> = Box::new(solver.default_brancher());
+        let first_phase = Rc::new(Cell::new(true));
         let inner: Box<dyn Brancher> = Box::new(Phased {
             first: IndependentVariableValueBrancher::new(FirstFail::new(&vars), InDomainMin),
             main,
@@ -624,10 +616,7 @@ impl Engine {
                 sums.below(v).unwrap_or(-1)
             }
         };
-        let probes: u32 = std::env::var("RCCPACK_PROBES")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(UPPER_BOUND_PROBES);
+        let probes = UPPER_BOUND_PROBES;
         let mut hi = snap(total);
         let mut step = 0u32;
         loop {
