@@ -8,6 +8,7 @@ mod io;
 mod learn;
 mod render;
 mod score;
+mod synth;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -34,6 +35,9 @@ enum Command {
     Learn(learn::LearnArgs),
     /// Draw a scene as SVG or PNG, optionally marking rule violations.
     Render(render::RenderArgs),
+    /// Place the unplaced objects of a problem so that the rules hold as well
+    /// as possible (SPEC §9).
+    Synth(synth::SynthArgs),
 }
 
 /// Parse arguments, run the command, map errors to exit codes.
@@ -45,6 +49,7 @@ pub fn main() -> ExitCode {
         Command::Score(a) => score::run(a),
         Command::Render(a) => render::run(a),
         Command::Learn(a) => learn::run(a),
+        Command::Synth(a) => synth::run(a),
     };
     match result {
         Ok(code) => code,
