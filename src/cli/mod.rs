@@ -7,13 +7,13 @@ mod check;
 mod io;
 mod learn;
 mod render;
+mod run;
 mod score;
 mod synth;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
-#[allow(unused_imports)] // read_scene: used by `synth` once it lands
 pub use io::{read_rules, read_scene, read_scenes, Reported};
 
 /// Learn spatial placement rules from demonstrations and lay out new objects
@@ -38,6 +38,8 @@ enum Command {
     /// Place the unplaced objects of a problem so that the rules hold as well
     /// as possible (SPEC §9).
     Synth(synth::SynthArgs),
+    /// The whole pipeline on a task folder: learn, synthesise, render.
+    Run(run::RunArgs),
 }
 
 /// Parse arguments, run the command, map errors to exit codes.
@@ -50,6 +52,7 @@ pub fn main() -> ExitCode {
         Command::Render(a) => render::run(a),
         Command::Learn(a) => learn::run(a),
         Command::Synth(a) => synth::run(a),
+        Command::Run(a) => run::run(a),
     };
     match result {
         Ok(code) => code,

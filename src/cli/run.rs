@@ -44,16 +44,24 @@ pub struct RunArgs {
 }
 
 fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
-    std::fs::write(path, bytes).map_err(|e| Reported(format!("error: {}: cannot write: {e}", path.display())).into())
+    std::fs::write(path, bytes)
+        .map_err(|e| Reported(format!("error: {}: cannot write: {e}", path.display())).into())
 }
 
 pub fn run(a: RunArgs) -> Result<ExitCode> {
     if !(a.time_limit.is_finite() && a.time_limit >= 0.0) {
-        anyhow::bail!("--time-limit {}: expected a non-negative number of seconds", a.time_limit);
+        anyhow::bail!(
+            "--time-limit {}: expected a non-negative number of seconds",
+            a.time_limit
+        );
     }
     let out = a.out.clone().unwrap_or_else(|| a.dir.clone());
-    std::fs::create_dir_all(&out)
-        .map_err(|e| Reported(format!("error: {}: cannot create folder: {e}", out.display())))?;
+    std::fs::create_dir_all(&out).map_err(|e| {
+        Reported(format!(
+            "error: {}: cannot create folder: {e}",
+            out.display()
+        ))
+    })?;
     let statements = a.dir.join("statements.rcc");
     let statements = statements.exists().then_some(statements);
     let params = LearnParams {
@@ -63,7 +71,12 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         contact: a.contact,
         ..LearnParams::default()
     };
-    let learned = learn_files(&a.dir.join("demos.json"), statements.as_deref(), &params, false)?;
+    let learned = learn_files(
+        &a.dir.join("demos.json"),
+        statements.as_deref(),
+        &params,
+        false,
+    )?;
     let rules = learned.rules();
     write(&out.join("learned.rcc"), learned.to_rcc())?;
     write(&out.join("learn-report.json"), learned.report_json())?;
@@ -137,7 +150,11 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
             let c = result.conflict.clone().unwrap_or_default();
             eprintln!(
                 "infeasible: {}{}",
-                if c.objects_cannot_fit { "the objects cannot all fit in the space; " } else { "" },
+                if c.objects_cannot_fit {
+                    "the objects cannot all fit in the space; "
+                } else {
+                    ""
+                },
                 c.hard_rules.join(", ")
             );
             ExitCode::from(2)
