@@ -61,6 +61,7 @@
 #![warn(missing_docs)]
 
 pub mod eval;
+pub mod infer;
 pub mod relations;
 pub mod render;
 pub mod rules;

@@ -5,6 +5,7 @@
 
 mod check;
 mod io;
+mod learn;
 mod render;
 mod score;
 
@@ -29,6 +30,8 @@ enum Command {
     Check(check::CheckArgs),
     /// Score scenes against rules (SPEC §6): per rule and per object.
     Score(score::ScoreArgs),
+    /// Learn rules from demonstrations (SPEC §7).
+    Learn(learn::LearnArgs),
     /// Draw a scene as SVG or PNG, optionally marking rule violations.
     Render(render::RenderArgs),
 }
@@ -41,6 +44,7 @@ pub fn main() -> ExitCode {
         Command::Check(a) => check::run(a),
         Command::Score(a) => score::run(a),
         Command::Render(a) => render::run(a),
+        Command::Learn(a) => learn::run(a),
     };
     match result {
         Ok(code) => code,
