@@ -54,9 +54,15 @@ fn worked_check_of_spec_section_7() {
     for (i, &(q, n)) in cases.iter().enumerate() {
         let p = Posterior::new(q, 1e-9, n, 0.5);
         let l = 10f64.powf(p.log10_likelihood);
-        assert!((l - unnormalised[i]).abs() <= 1e-12 * unnormalised[i], "L[{i}] = {l}");
+        assert!(
+            (l - unnormalised[i]).abs() <= 1e-12 * unnormalised[i],
+            "L[{i}] = {l}"
+        );
         let post = p.written();
-        assert!((post - normalised[i]).abs() <= 1e-12 * normalised[i], "P[{i}] = {post}");
+        assert!(
+            (post - normalised[i]).abs() <= 1e-12 * normalised[i],
+            "P[{i}] = {post}"
+        );
         learned.push(p.learned(0.01));
         // The unnormalised product gives the same decision.
         assert_eq!(unnormalised[i] < 0.01, p.learned(0.01));
@@ -106,7 +112,12 @@ fn check_null_model(fixed_x: i64, fixed_y: i64) {
     let statements = vec![
         atom(Kind::DR, Dir::N, "M", "F"),
         atom(Kind::EC, Dir::N, "M", "F"),
-        Formula::Or(Dir::ALL.iter().map(|&d| atom(Kind::EC, d, "M", "F")).collect()),
+        Formula::Or(
+            Dir::ALL
+                .iter()
+                .map(|&d| atom(Kind::EC, d, "M", "F"))
+                .collect(),
+        ),
     ];
     let set = RuleSet::new(
         statements
@@ -187,7 +198,11 @@ fn learn_chance_rate_matches_exact_enumeration() {
         let exact = exact_fraction(&demo, f);
         let se = (exact * (1.0 - exact) / 20_000.0).sqrt();
         let q = s.q.unwrap();
-        assert!((q - exact).abs() <= 4.0 * se, "{}: q {q}, exact {exact}", s.name);
+        assert!(
+            (q - exact).abs() <= 4.0 * se,
+            "{}: q {q}, exact {exact}",
+            s.name
+        );
     }
 }
 
@@ -201,7 +216,13 @@ fn synthetic_demos() -> Vec<Scene> {
     };
     let layouts: [&[(&str, i64, i64)]; 3] = [
         &[("R", 50, 50), ("R", 70, 50), ("B", 50, 90), ("B", 70, 90)],
-        &[("R", 50, 50), ("B", 90, 90), ("B", 70, 90), ("R", 90, 50), ("R", 50, 70)],
+        &[
+            ("R", 50, 50),
+            ("B", 90, 90),
+            ("B", 70, 90),
+            ("R", 90, 50),
+            ("R", 50, 70),
+        ],
         &[("R", 70, 50), ("B", 50, 70), ("B", 50, 90)],
     ];
     layouts
@@ -239,18 +260,17 @@ fn same_seed_same_output_with_one_and_two_threads() {
     assert_eq!(one.to_rcc(), two.to_rcc());
     assert_eq!(one.report_json(), two.report_json());
     // And a different seed gives different chance counts.
-    let other = learn(
-        &demos,
-        None,
-        &LearnParams {
-            seed: 43,
-            ..params
-        },
-    )
-    .unwrap();
+    let other = learn(&demos, None, &LearnParams { seed: 43, ..params }).unwrap();
     assert_ne!(
-        one.statements.iter().map(|s| s.satisfied).collect::<Vec<_>>(),
-        other.statements.iter().map(|s| s.satisfied).collect::<Vec<_>>()
+        one.statements
+            .iter()
+            .map(|s| s.satisfied)
+            .collect::<Vec<_>>(),
+        other
+            .statements
+            .iter()
+            .map(|s| s.satisfied)
+            .collect::<Vec<_>>()
     );
 }
 
@@ -320,7 +340,10 @@ fn template_names_are_readable() {
 /// one of the thesis's 12 pilot rules is learned at the default cutoff.
 #[test]
 fn box_packing_example_learns_the_pilot_rules() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing/demos.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/box-packing/demos.json"
+    );
     let text = std::fs::read_to_string(path).expect("examples/box-packing/demos.json");
     let demos = scenes_from_json(&text).unwrap();
     let learned = learn(&demos, None, &LearnParams::default()).unwrap();
@@ -330,21 +353,46 @@ fn box_packing_example_learns_the_pilot_rules() {
         .map(|&k| learned.statements[k].name.as_str())
         .collect();
     let mut pilot = vec!["B_dr_n_R", "G_dr_e_R", "G_dr_e_B"];
-    let per_class = ["B_touches_B", "R_touches_R", "G_touches_G", "B_corner", "R_corner", "G_corner", "B_inside_W", "R_inside_W", "G_inside_W"];
+    let per_class = [
+        "B_touches_B",
+        "R_touches_R",
+        "G_touches_G",
+        "B_corner",
+        "R_corner",
+        "G_corner",
+        "B_inside_W",
+        "R_inside_W",
+        "G_inside_W",
+    ];
     pilot.extend(per_class);
     let missing: Vec<&&str> = pilot.iter().filter(|n| !names.contains(n)).collect();
-    assert!(missing.is_empty(), "not learned: {missing:?}\n{}", learned.to_rcc());
+    assert!(
+        missing.is_empty(),
+        "not learned: {missing:?}\n{}",
+        learned.to_rcc()
+    );
     // The file parses back and scores 1 on every demonstration.
     let rules = parse_rules(&learned.to_rcc()).unwrap();
     for d in &demos {
-        assert_eq!(rccpack::eval::evaluate(d, &rules, Contact::Point).score, 1.0);
+        assert_eq!(
+            rccpack::eval::evaluate(d, &rules, Contact::Point).score,
+            1.0
+        );
     }
 }
 
 // ---- bad input -------------------------------------------------------------
 
 fn err(demos: &[Scene], set: Option<&RuleSet>) -> InferError {
-    learn(demos, set, &LearnParams { samples: 10, ..LearnParams::default() }).unwrap_err()
+    learn(
+        demos,
+        set,
+        &LearnParams {
+            samples: 10,
+            ..LearnParams::default()
+        },
+    )
+    .unwrap_err()
 }
 
 #[test]
@@ -360,7 +408,10 @@ fn incomplete_demonstration_is_an_error() {
     demos[1].objects[5].x = None;
     demos[1].objects[5].y = None;
     let e = err(&demos, None);
-    assert!(matches!(e, InferError::IncompleteDemonstration { demo: 1, .. }));
+    assert!(matches!(
+        e,
+        InferError::IncompleteDemonstration { demo: 1, .. }
+    ));
     assert_eq!(
         e.to_string(),
         "demonstration [1] is incomplete: object `B1` has no position; every object of a demonstration must be placed"
@@ -415,11 +466,41 @@ fn unplaceable_objects_are_an_error() {
 fn bad_parameters_name_the_flag() {
     let demos = synthetic_demos();
     let cases: [(LearnParams, &str); 5] = [
-        (LearnParams { cutoff: 1.5, ..Default::default() }, "invalid --cutoff 1.5: expected a number strictly between 0 and 1"),
-        (LearnParams { cutoff: 0.0, ..Default::default() }, "invalid --cutoff 0: expected a number strictly between 0 and 1"),
-        (LearnParams { samples: 0, ..Default::default() }, "invalid --samples 0: expected a whole number of at least 1"),
-        (LearnParams { prior: 1.0, ..Default::default() }, "invalid --prior 1: expected a number strictly between 0 and 1"),
-        (LearnParams { epsilon: Some(f64::NAN), ..Default::default() }, "invalid --epsilon NaN: expected a number strictly between 0 and 1"),
+        (
+            LearnParams {
+                cutoff: 1.5,
+                ..Default::default()
+            },
+            "invalid --cutoff 1.5: expected a number strictly between 0 and 1",
+        ),
+        (
+            LearnParams {
+                cutoff: 0.0,
+                ..Default::default()
+            },
+            "invalid --cutoff 0: expected a number strictly between 0 and 1",
+        ),
+        (
+            LearnParams {
+                samples: 0,
+                ..Default::default()
+            },
+            "invalid --samples 0: expected a whole number of at least 1",
+        ),
+        (
+            LearnParams {
+                prior: 1.0,
+                ..Default::default()
+            },
+            "invalid --prior 1: expected a number strictly between 0 and 1",
+        ),
+        (
+            LearnParams {
+                epsilon: Some(f64::NAN),
+                ..Default::default()
+            },
+            "invalid --epsilon NaN: expected a number strictly between 0 and 1",
+        ),
     ];
     for (p, msg) in cases {
         assert_eq!(learn(&demos, None, &p).unwrap_err().to_string(), msg);

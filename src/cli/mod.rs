@@ -8,6 +8,7 @@ mod io;
 mod learn;
 mod render;
 mod score;
+mod studio;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -32,6 +33,8 @@ enum Command {
     Score(score::ScoreArgs),
     /// Learn rules from demonstrations (SPEC §7).
     Learn(learn::LearnArgs),
+    /// Serve the studio page: record demonstrations, learn, synthesise.
+    Studio(studio::StudioArgs),
     /// Draw a scene as SVG or PNG, optionally marking rule violations.
     Render(render::RenderArgs),
 }
@@ -45,6 +48,7 @@ pub fn main() -> ExitCode {
         Command::Score(a) => score::run(a),
         Command::Render(a) => render::run(a),
         Command::Learn(a) => learn::run(a),
+        Command::Studio(a) => studio::run(a),
     };
     match result {
         Ok(code) => code,
