@@ -209,7 +209,7 @@ function renderPalette() {
     item.title = `Drag a ${k.class} block (${k.width}×${k.height}) onto the table`;
     const scale = Math.min(1.6, 40 / Math.max(k.width, k.height));
     item.innerHTML = `<span class="swatch" style="width:${Math.max(10, k.width * scale)}px;height:${Math.max(10, k.height * scale)}px;background:${k.colour};border-color:${darker(k.colour)}"></span>
-      <span class="kind-label"><b>${esc(k.class)}</b><span class="muted small">${k.width}×${k.height} · ${k.count} in problem</span></span>`;
+      <span class="kind-label"><b>${esc(k.class)}</b><span class="muted small">${k.width}×${k.height}</span></span>`;
     item.addEventListener('pointerdown', (ev) => startDrag(ev, { id: nextId(k.class), class: k.class, width: k.width, height: k.height }, true));
     pal.appendChild(item);
   }
