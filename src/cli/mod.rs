@@ -9,6 +9,7 @@ mod learn;
 mod render;
 mod score;
 mod studio;
+mod synth;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -37,6 +38,9 @@ enum Command {
     Studio(studio::StudioArgs),
     /// Draw a scene as SVG or PNG, optionally marking rule violations.
     Render(render::RenderArgs),
+    /// Place the unplaced objects of a problem so that the rules hold as well
+    /// as possible (SPEC §9).
+    Synth(synth::SynthArgs),
 }
 
 /// Parse arguments, run the command, map errors to exit codes.
@@ -49,6 +53,7 @@ pub fn main() -> ExitCode {
         Command::Render(a) => render::run(a),
         Command::Learn(a) => learn::run(a),
         Command::Studio(a) => studio::run(a),
+        Command::Synth(a) => synth::run(a),
     };
     match result {
         Ok(code) => code,
