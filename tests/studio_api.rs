@@ -407,3 +407,103 @@ fn missing_or_bad_problem_is_an_error() {
     let e = rccpack::studio::router(&dir).unwrap_err().to_string();
     assert!(e.contains("space.width"), "{e}");
 }
+
+async fn wait_job(app: &axum::Router, job: &Value) -> Value {
+    for _ in 0..1200 {
+        let (s, v) = call(
+            app,
+            Method::GET,
+            &format!("/api/synth/{job}"),
+            Body::empty(),
+        )
+        .await;
+        assert_eq!(s, StatusCode::OK, "{v}");
+        if v["state"] != "running" {
+            return v;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    panic!("synthesis job {job} did not finish");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn synth_on_the_bundled_example() {
+    let dir = task_dir("synth", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let pilot = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing/pilot.rcc"),
+    )
+    .unwrap();
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/synth",
+        json!({"rules": pilot, "time_limit": 60}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::ACCEPTED, "{v}");
+    let done = wait_job(&app, &v["job"]).await;
+    assert_eq!(done["state"], "done", "{done}");
+    let r = &done["result"];
+    assert_eq!(r["status"], "optimal");
+    assert_eq!(r["score"], 1.0);
+    assert_eq!(r["evaluation"]["rules"].as_array().unwrap().len(), 12);
+    let scene = rccpack::scene::Scene::from_json(&r["scene"].to_string()).unwrap();
+    assert!(scene.is_complete());
+    assert_eq!(scene.objects.len(), 13);
+
+    // Bad rules: the located diagnostic; bad limit: field path.
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/synth",
+        json!({"rules": "rule x: DR_N(B R)\n"}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert!(
+        v["error"].as_str().unwrap().contains("chosen rules:1:"),
+        "{v}"
+    );
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/synth",
+        json!({"rules": pilot, "time_limit": -1}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert_eq!(v["path"], "time_limit");
+    let (s, _) = call(&app, Method::GET, "/api/synth/999", Body::empty()).await;
+    assert_eq!(s, StatusCode::NOT_FOUND);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn synth_can_be_cancelled() {
+    let dir = task_dir("cancel", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    // Templates-style rules that are hard to prove optimal; cancel at once.
+    let rules = "rule a: EC_N(R, G) | EC_E(R, B)\nrule b: EC_W(G, R) & EC_N(G, *)\nrule c: DR_S(B, G) | EC_S(B, R)\n";
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/synth",
+        json!({"rules": rules, "time_limit": 120}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::ACCEPTED, "{v}");
+    let (s, c) = call(
+        &app,
+        Method::POST,
+        &format!("/api/synth/{}/cancel", v["job"]),
+        Body::empty(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK);
+    assert_eq!(c["cancelled"], true);
+    let started = std::time::Instant::now();
+    let done = wait_job(&app, &v["job"]).await;
+    assert!(started.elapsed().as_secs() < 30, "cancel stops the search");
+    assert_eq!(done["cancelled"], true);
+    assert_eq!(done["state"], "done", "{done}");
+}

@@ -6,6 +6,7 @@ use super::AppState;
 use crate::infer::{learn as run_learn, LearnParams, StatementSource};
 use crate::rules::{check_classes, parse_rules, print_formula, print_rule, RuleSet};
 use crate::scene::{scenes_from_json, scenes_to_json, Scene};
+use crate::synth::{synthesize, Progress, ProgressFn, SynthOptions, SynthResult};
 use axum::body::Bytes;
 use axum::extract::{Path, State};
 use axum::http::{header, StatusCode};
@@ -14,7 +15,9 @@ use axum::Json;
 use serde::Deserialize;
 use serde_json::{json, Value};
 use std::collections::HashMap;
-use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 
 type St = State<Arc<AppState>>;
 
@@ -491,4 +494,140 @@ pub(crate) async fn put_learned(State(st): St, body: Bytes) -> ApiResult {
     }
     storage::atomic_write(&st.dir, LEARNED, &b.text).map_err(|e| ApiError::io(LEARNED, e))?;
     ok(learned_value(&st, Some(&b.text)))
+}
+
+// ---- synthesis -------------------------------------------------------------------
+
+/// One synthesis run: started by `POST /api/synth`, polled, cancellable.
+pub(crate) struct SynthJob {
+    cancel: Arc<AtomicBool>,
+    started: Instant,
+    best: Arc<Mutex<Option<f64>>>,
+    outcome: Option<Result<Value, String>>,
+}
+
+/// Jobs kept for polling; older ones are dropped.
+const KEEP_JOBS: usize = 8;
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct SynthBody {
+    /// The rules, as `.rcc` text (the page sends the chosen rules).
+    rules: String,
+    /// Seconds (default 30, at most 600).
+    time_limit: Option<f64>,
+    seed: Option<u64>,
+}
+
+const CHOSEN: &str = "chosen rules";
+
+pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
+    let b: SynthBody = parse_body(&body)?;
+    let set = parse_rules(&b.rules).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
+    check_classes(&set, &st.problem).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
+    let limit = b.time_limit.unwrap_or(30.0);
+    if !(limit.is_finite() && limit > 0.0 && limit <= 600.0) {
+        return Err(ApiError::bad(format!(
+            "request body: time_limit: {limit} is out of range; expected seconds in (0, 600]"
+        ))
+        .at("time_limit"));
+    }
+    let cancel = Arc::new(AtomicBool::new(false));
+    let best = Arc::new(Mutex::new(None));
+    let id = st.next_job.fetch_add(1, Ordering::Relaxed);
+    {
+        let mut jobs = st.jobs.lock().expect("jobs lock");
+        while jobs.len() >= KEEP_JOBS {
+            let oldest = *jobs.keys().next().expect("non-empty");
+            if let Some(j) = jobs.remove(&oldest) {
+                j.cancel.store(true, Ordering::Relaxed);
+            }
+        }
+        jobs.insert(
+            id,
+            SynthJob {
+                cancel: cancel.clone(),
+                started: Instant::now(),
+                best: best.clone(),
+                outcome: None,
+            },
+        );
+    }
+    let progress_best = best.clone();
+    let opts = SynthOptions {
+        time_limit: Some(Duration::from_secs_f64(limit)),
+        seed: b.seed.unwrap_or(0),
+        cancel: Some(cancel),
+        progress: Some(ProgressFn(Arc::new(move |p: &Progress| {
+            *progress_best.lock().expect("best lock") = Some(p.score);
+        }))),
+        ..SynthOptions::default()
+    };
+    let st2 = st.clone();
+    tokio::task::spawn_blocking(move || {
+        // The solver is not `Send`: it is created and run on this thread.
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            synthesize(&st2.problem, &set, &opts)
+        }));
+        let outcome = match outcome {
+            Ok(Ok(r)) => Ok(synth_value(&r)),
+            Ok(Err(e)) => Err(format!("{}: {e}", storage::PROBLEM)),
+            Err(_) => Err("synthesis failed unexpectedly (internal error)".to_string()),
+        };
+        if let Some(j) = st2.jobs.lock().expect("jobs lock").get_mut(&id) {
+            j.outcome = Some(outcome);
+        }
+    });
+    Ok((StatusCode::ACCEPTED, Json(json!({ "job": id }))).into_response())
+}
+
+fn synth_value(r: &SynthResult) -> Value {
+    let e = r.evaluation.as_ref();
+    json!({
+        "status": r.status,
+        "score": e.map(|e| e.score),
+        "satisfied_weight": e.map(|e| e.satisfied_weight),
+        "total_weight": e.map(|e| e.total_weight),
+        "time_ms": r.stats.time_ms,
+        "stats": r.stats,
+        "scene": r.scene.as_ref().map(scene_value),
+        "evaluation": e,
+        "conflict": r.conflict,
+    })
+}
+
+fn job_id(raw: &str) -> Result<u64, ApiError> {
+    raw.parse()
+        .map_err(|_| ApiError::new(StatusCode::NOT_FOUND, format!("no synthesis job {raw}")))
+}
+
+pub(crate) async fn synth_status(State(st): St, Path(job): Path<String>) -> ApiResult {
+    let id = job_id(&job)?;
+    let jobs = st.jobs.lock().expect("jobs lock");
+    let j = jobs
+        .get(&id)
+        .ok_or_else(|| ApiError::new(StatusCode::NOT_FOUND, format!("no synthesis job {id}")))?;
+    let mut v = json!({
+        "job": id,
+        "state": match &j.outcome { None => "running", Some(Ok(_)) => "done", Some(Err(_)) => "error" },
+        "elapsed_ms": j.started.elapsed().as_secs_f64() * 1000.0,
+        "best_score": *j.best.lock().expect("best lock"),
+        "cancelled": j.cancel.load(Ordering::Relaxed),
+    });
+    match &j.outcome {
+        Some(Ok(r)) => v["result"] = r.clone(),
+        Some(Err(e)) => v["error"] = json!(e),
+        None => {}
+    }
+    ok(v)
+}
+
+pub(crate) async fn cancel_synth(State(st): St, Path(job): Path<String>) -> ApiResult {
+    let id = job_id(&job)?;
+    let jobs = st.jobs.lock().expect("jobs lock");
+    let j = jobs
+        .get(&id)
+        .ok_or_else(|| ApiError::new(StatusCode::NOT_FOUND, format!("no synthesis job {id}")))?;
+    j.cancel.store(true, Ordering::Relaxed);
+    ok(json!({ "job": id, "cancelled": true }))
 }

@@ -50,6 +50,9 @@ pub(crate) struct AppState {
     pub problem_json: serde_json::Value,
     /// Serialises every read-modify-write of the folder's files.
     pub write_lock: tokio::sync::Mutex<()>,
+    /// Synthesis jobs by id (the most recent few).
+    pub jobs: std::sync::Mutex<std::collections::BTreeMap<u64, api::SynthJob>>,
+    pub next_job: std::sync::atomic::AtomicU64,
 }
 
 /// Build the studio's router over the task folder `dir`: reads and checks
@@ -80,6 +83,8 @@ pub fn router(dir: &Path) -> Result<Router, StudioError> {
         problem,
         problem_json,
         write_lock: tokio::sync::Mutex::new(()),
+        jobs: std::sync::Mutex::new(std::collections::BTreeMap::new()),
+        next_job: std::sync::atomic::AtomicU64::new(1),
     });
     Ok(Router::new()
         .route("/", get(api::index))
@@ -92,6 +97,9 @@ pub fn router(dir: &Path) -> Result<Router, StudioError> {
         )
         .route("/api/learn", post(api::learn))
         .route("/api/learned", get(api::get_learned).put(api::put_learned))
+        .route("/api/synth", post(api::start_synth))
+        .route("/api/synth/{job}", get(api::synth_status))
+        .route("/api/synth/{job}/cancel", post(api::cancel_synth))
         .fallback(api::not_found)
         .layer(DefaultBodyLimit::max(BODY_LIMIT))
         .layer(RequestBodyLimitLayer::new(BODY_LIMIT))

@@ -170,12 +170,15 @@ try {
 
   if (synthEnabled && await page.locator('#tab-synth').isVisible()) {
     await page.click('#tab-synth');
+    await page.fill('#synth-limit', '20');
     await page.click('#btn-synth');
     await page.waitForSelector('#synth-result .status', { timeout: 120000 });
     const status = await page.locator('#synth-result .status').textContent();
     log('synthesis status:', status);
     assert.match(status, /optimal|feasible/);
     assert.equal(await page.locator('#board .obj:not(.fixed)').count(), 9);
+    await page.evaluate(() => { document.getElementById('toast').className = 'toast'; });
+    await page.waitForTimeout(300);
     await page.screenshot({ path: path.join(out, 'studio-synth.png') });
   } else {
     log('synthesis: not in this build of the page');

@@ -373,6 +373,107 @@ async function saveRules() {
   toast(`Saved ${count} rules to learned.rcc.`, 'ok');
 }
 
+// ---- synthesize pane ------------------------------------------------------------------
+
+// The rules to solve with: the ticked learned rules of this session, else learned.rcc.
+function synthRules() {
+  if (state.learnResult && state.learnResult.rules.length) {
+    const { text, count } = chosenRulesText();
+    return { text, label: `the ${count} rules ticked in Learn` };
+  }
+  if (state.learned && state.learned.exists && state.learned.rules) {
+    return { text: state.learned.text, label: `learned.rcc (${state.learned.rules.length} rules)` };
+  }
+  return null;
+}
+
+function renderSynthPane() {
+  const r = synthRules();
+  $('synth-rules').innerHTML = r ? `Rules: <b>${esc(r.label)}</b>` : 'No rules yet: run Learn first, or save learned.rcc.';
+  $('btn-synth').disabled = !r || state.job !== undefined && state.job !== null;
+}
+
+async function synthesize() {
+  const r = synthRules();
+  if (!r) return;
+  const limit = Number($('synth-limit').value) || 30;
+  const res = await api('POST', '/api/synth', { rules: r.text, time_limit: limit });
+  if (!res.ok) { toast(res.data.error, 'error'); return; }
+  state.job = res.data.job;
+  $('btn-synth').disabled = true;
+  $('btn-cancel').hidden = false;
+  $('synth-progress').hidden = false;
+  $('synth-progress-text').textContent = 'starting…';
+  pollJob();
+}
+
+async function pollJob() {
+  const id = state.job;
+  if (id === null || id === undefined) return;
+  const res = await api('GET', `/api/synth/${id}`);
+  if (!res.ok) { finishJob(); toast(res.data.error, 'error'); return; }
+  const d = res.data;
+  if (d.state === 'running') {
+    const best = d.best_score === null ? 'no layout yet' : `best score so far ${d.best_score.toFixed(3)}`;
+    $('synth-progress-text').textContent = `${d.cancelled ? 'cancelling' : 'searching'} · ${(d.elapsed_ms / 1000).toFixed(1)} s · ${best}`;
+    setTimeout(pollJob, 250);
+    return;
+  }
+  finishJob();
+  if (d.state === 'error') { toast(d.error, 'error'); return; }
+  showResult(d.result, d.cancelled);
+}
+
+function finishJob() {
+  state.job = null;
+  $('btn-cancel').hidden = true;
+  $('synth-progress').hidden = true;
+  renderSynthPane();
+}
+
+function showResult(r, cancelled) {
+  const box = $('synth-result');
+  box.hidden = false;
+  const ev = r.evaluation;
+  const score = ev ? `<div class="score"><b>${ev.score.toFixed(3)}</b><span class="muted small">score · ${fmtW(ev.satisfied_weight)} of ${fmtW(ev.total_weight)} weight</span></div>` : '';
+  let rows = '';
+  if (ev) {
+    for (const rule of ev.rules) {
+      const okAll = rule.satisfied === rule.subjects;
+      rows += `<tr class="${okAll ? 'good' : 'bad'}"><td>${okAll ? '✓' : '✗'}</td><td>${esc(rule.name)}${rule.hard ? ' <span class="pill hard">hard</span>' : ''}</td>
+        <td class="num">${rule.satisfied} / ${rule.subjects}</td></tr>`;
+    }
+  }
+  let conflict = '';
+  if (r.conflict) {
+    const c = r.conflict;
+    conflict = `<div class="error-box">${c.objects_cannot_fit ? 'The objects cannot all fit in the space.' : ''}
+      ${c.hard_rules.length ? `These hard rules cannot hold together: ${c.hard_rules.map(esc).join(', ')}` : ''}</div>`;
+  }
+  box.innerHTML = `<div class="result-head"><span class="status ${r.status}">${r.status}</span>
+      <span class="muted small">${(r.time_ms / 1000).toFixed(2)} s · ${r.stats.nodes} nodes${cancelled ? ' · cancelled' : ''}</span></div>
+    ${score}${conflict}
+    ${rows ? `<div class="rule-table-wrap"><table class="rule-table"><thead><tr><th></th><th>rule</th><th class="num">objects keeping it</th></tr></thead><tbody>${rows}</tbody></table></div>` : ''}
+    ${r.scene ? '<button class="btn small" id="btn-back">Back to the table</button>' : ''}`;
+  if (r.scene) {
+    const violators = new Map();
+    for (const rule of ev.rules) for (const id of rule.violators) {
+      if (rule.hard || !violators.has(id)) violators.set(id, rule.hard ? 'hard' : 'soft');
+    }
+    const title = `Synthesized layout · ${r.status}`;
+    const info = violators.size ? `${violators.size} objects break a rule (outlined)` : 'every object keeps every rule';
+    state.result = { scene: r.scene, violators, title, info };
+    state.boardMode = 'result';
+    $('stage-title').textContent = title;
+    $('stage-info').textContent = info;
+    renderLegend();
+    redraw();
+    $('btn-back').onclick = showEditor;
+  }
+}
+
+function fmtW(w) { return Number.isInteger(w) ? String(w) : w.toFixed(2); }
+
 // ---- tabs -------------------------------------------------------------------------
 
 function setTab(tab) {
@@ -380,6 +481,16 @@ function setTab(tab) {
   for (const b of document.querySelectorAll('.tab')) b.classList.toggle('active', b.dataset.tab === tab);
   for (const p of document.querySelectorAll('.pane')) p.hidden = p.dataset.pane !== tab;
   if (tab === 'record') showEditor();
+  if (tab === 'synth') {
+    renderSynthPane();
+    if (state.result) {
+      state.boardMode = 'result';
+      $('stage-title').textContent = state.result.title;
+      $('stage-info').textContent = state.result.info;
+      renderLegend();
+      redraw();
+    }
+  }
 }
 
 // ---- start ------------------------------------------------------------------------
@@ -414,6 +525,10 @@ async function main() {
   $('btn-save').onclick = saveDemo;
   $('btn-learn').onclick = learn;
   $('btn-save-rules').onclick = saveRules;
+  $('btn-synth').onclick = synthesize;
+  $('btn-cancel').onclick = async () => {
+    if (state.job !== null && state.job !== undefined) await api('POST', `/api/synth/${state.job}/cancel`);
+  };
   $('btn-all').onclick = () => document.querySelectorAll('#rules input').forEach((c) => { c.checked = true; });
   $('btn-none').onclick = () => document.querySelectorAll('#rules input').forEach((c) => { c.checked = false; });
   for (const b of document.querySelectorAll('.tab')) b.onclick = () => setTab(b.dataset.tab);
