@@ -97,6 +97,25 @@ async fn page_and_task() {
     )
     .await;
     assert_eq!(s, StatusCode::NOT_FOUND);
+    // Only loopback host names are answered.
+    let req = Request::builder()
+        .uri("/api/task")
+        .header("host", "evil.example:80")
+        .body(Body::empty())
+        .unwrap();
+    assert_eq!(
+        app.clone().oneshot(req).await.unwrap().status(),
+        StatusCode::FORBIDDEN
+    );
+    let req = Request::builder()
+        .uri("/api/task")
+        .header("host", "127.0.0.1:8080")
+        .body(Body::empty())
+        .unwrap();
+    assert_eq!(
+        app.clone().oneshot(req).await.unwrap().status(),
+        StatusCode::OK
+    );
     let (s, task) = call(&app, Method::GET, "/api/task", Body::empty()).await;
     assert_eq!(s, StatusCode::OK);
     let kinds: Vec<&str> = task["kinds"]

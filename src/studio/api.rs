@@ -115,6 +115,29 @@ pub(crate) async fn not_found() -> ApiError {
     ApiError::new(StatusCode::NOT_FOUND, "no such page or API endpoint")
 }
 
+/// Refuse requests whose `Host` names anything but this machine's loopback
+/// (a page elsewhere reaching the studio through DNS rebinding).
+pub(crate) async fn local_host_only(
+    req: axum::extract::Request,
+    next: axum::middleware::Next,
+) -> Response {
+    if let Some(h) = req.headers().get(header::HOST) {
+        let host = h.to_str().unwrap_or("");
+        let name = match host.rsplit_once(':') {
+            Some((n, port)) if port.bytes().all(|b| b.is_ascii_digit()) => n,
+            _ => host,
+        };
+        if !matches!(name, "127.0.0.1" | "localhost" | "[::1]") {
+            return ApiError::new(
+                StatusCode::FORBIDDEN,
+                format!("host `{host}` refused: the studio answers only on 127.0.0.1"),
+            )
+            .into_response();
+        }
+    }
+    next.run(req).await
+}
+
 // ---- task --------------------------------------------------------------------
 
 /// Class colours exactly as `render` draws them: R/G/B by name, other

@@ -101,6 +101,7 @@ pub fn router(dir: &Path) -> Result<Router, StudioError> {
         .route("/api/synth/{job}", get(api::synth_status))
         .route("/api/synth/{job}/cancel", post(api::cancel_synth))
         .fallback(api::not_found)
+        .layer(axum::middleware::from_fn(api::local_host_only))
         .layer(DefaultBodyLimit::max(BODY_LIMIT))
         .layer(RequestBodyLimitLayer::new(BODY_LIMIT))
         .with_state(state))
