@@ -203,3 +203,49 @@ pub fn implies(f: &Formula, g: &Formula) -> bool {
             !f.eval(&mut val) || g.eval(&mut val)
         })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rules::parse_rules;
+
+    fn f(src: &str) -> Formula {
+        parse_rules(&format!("rule x: {src}\n")).unwrap().rules[0]
+            .formula
+            .clone()
+    }
+
+    #[test]
+    fn readings_of_the_template_shapes() {
+        let cases = [
+            ("DR_N(B, R)", "every B is north of every R"),
+            ("EC_E(B, *)", "every B touches the east side of some other object"),
+            ("!DR_E(B, *)", "no B is east of every other object"),
+            ("EC_N(B, B) | EC_S(B, B) | EC_E(B, B) | EC_W(B, B)", "every B touches some other B"),
+            ("!DR_N(B, W) & !DR_S(B, W) & !DR_E(B, W) & !DR_W(B, W)", "every B is inside the Ws"),
+            (
+                "(EC_N(B, *) & EC_W(B, *)) | (EC_W(B, *) & EC_S(B, *)) | (EC_S(B, *) & EC_E(B, *)) | (EC_E(B, *) & EC_N(B, *))",
+                "every B touches something on two adjacent sides (a corner)",
+            ),
+            ("DR_N(B, R) & !EC_W(B, G)", "every B satisfies: is north of every R and not touches the west side of some G"),
+        ];
+        for (src, want) in cases {
+            assert_eq!(reading(&f(src)), want, "{src}");
+        }
+    }
+
+    #[test]
+    fn implication_is_sound_on_known_cases() {
+        let inside = f("!DR_N(B, W) & !DR_S(B, W) & !DR_E(B, W) & !DR_W(B, W)");
+        assert!(implies(&inside, &f("!DR_N(B, W)")));
+        assert!(!implies(&f("!DR_N(B, W)"), &inside));
+        let touches_b = f("EC_N(B, B) | EC_S(B, B) | EC_E(B, B) | EC_W(B, B)");
+        assert!(implies(
+            &touches_b,
+            &f("EC_N(B, *) | EC_S(B, *) | EC_E(B, *) | EC_W(B, *)")
+        ));
+        assert!(implies(&f("DR_N(B, *)"), &f("DR_N(B, R)")));
+        assert!(!implies(&f("DR_N(B, R)"), &f("DR_N(B, *)")));
+        assert!(!implies(&f("DR_N(B, R)"), &f("DR_N(G, R)")));
+    }
+}

@@ -333,7 +333,9 @@ pub fn learn(
     let stats: Vec<ClassStats> = (0..classes.len())
         .map(|c| {
             let n: u64 = per_demo.iter().map(|v| v[c]).sum();
-            let big_n = full * n + per_demo[..rest].iter().map(|v| v[c]).sum::<u64>();
+            let big_n = full
+                .saturating_mul(n)
+                .saturating_add(per_demo[..rest].iter().map(|v| v[c]).sum::<u64>());
             ClassStats {
                 class: classes.name(c).to_string(),
                 demo_objects: n,

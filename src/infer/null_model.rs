@@ -147,11 +147,14 @@ impl Plan {
                     || ((o.x.unwrap_or(0) - space.x) % g == 0
                         && (o.y.unwrap_or(0) - space.y) % g == 0))
         });
-        let nx = ((space.w + g - 1) / g) as usize;
-        let ny = ((space.h + g - 1) / g) as usize;
-        // Cells only when the bitset stays small (≤ 64 MiB).
+        // Cells along each axis, rounded up (no overflow for huge spaces).
+        let nx = (space.w / g + i64::from(space.w % g != 0)) as u64;
+        let ny = (space.h / g + i64::from(space.h % g != 0)) as u64;
         let words = nx.div_ceil(64);
-        let use_cells = aligned && words.checked_mul(ny).is_some_and(|c| c <= 1 << 23);
+        // Cells only while the bitset stays small (≤ 512 KiB): it is copied
+        // at every scene restart.
+        let use_cells = aligned && words.checked_mul(ny).is_some_and(|c| c <= 1 << 16);
+        let (words, ny) = (words as usize, ny as usize);
         let mut plan = Plan {
             grid: g,
             space,

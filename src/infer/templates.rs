@@ -201,3 +201,21 @@ impl Generated {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn duplicate_formulas_are_dropped_and_names_stay_unique() {
+        let mut g = Generated::default();
+        let any = Target::Any;
+        g.expand(&PAIR_TEMPLATES[0], "B", &any);
+        g.expand(&PAIR_TEMPLATES[0], "B", &any);
+        assert_eq!(g.rules.len(), 4, "the second expansion adds nothing");
+        // A class literally named `any` gets distinct names from `*`.
+        g.expand(&PAIR_TEMPLATES[0], "B", &Target::Class("any".into()));
+        let names: Vec<&str> = g.rules.iter().map(|r| r.name.as_str()).collect();
+        assert!(names.contains(&"B_dr_n_any") && names.contains(&"B_dr_n_any_2"));
+    }
+}
