@@ -180,6 +180,20 @@ try {
     await page.evaluate(() => { document.getElementById('toast').className = 'toast'; });
     await page.waitForTimeout(300);
     await page.screenshot({ path: path.join(out, 'studio-synth.png') });
+
+    // After a reload the page solves with learned.rcc from disk. Rules that
+    // cannot both hold: every red block breaks one, and is outlined.
+    fs.writeFileSync(path.join(task, 'learned.rcc'),
+      'rule red_north_of_green: DR_N(R, G)\nrule red_south_of_green weight 2: DR_S(R, G)\n');
+    await page.reload();
+    await page.waitForSelector('body[data-ready="1"]');
+    await page.click('#tab-synth');
+    assert.match(await page.locator('#synth-rules').textContent(), /learned\.rcc \(2 rules\)/);
+    await page.click('#btn-synth');
+    await page.waitForSelector('#synth-result .status', { timeout: 120000 });
+    assert.equal(await page.locator('#board .obj .violation').count(), 3);
+    assert.match(await page.locator('#synth-result').textContent(), /0\.667/);
+    await page.screenshot({ path: path.join(out, 'studio-violations.png') });
   } else {
     log('synthesis: not in this build of the page');
   }
