@@ -213,7 +213,22 @@ async fn save_valid_and_invalid_demonstrations() {
     assert_eq!(v["objects"].as_array().unwrap().len(), 7);
     let (s, _) = call(&app, Method::GET, "/api/demos/1", Body::empty()).await;
     assert_eq!(s, StatusCode::NOT_FOUND);
-    let (s, v) = call(&app, Method::DELETE, "/api/demos/0", Body::empty()).await;
+    // A delete from a page that listed an older file is refused.
+    let (_, listed) = call(&app, Method::GET, "/api/demos", Body::empty()).await;
+    let (s, v) = call(
+        &app,
+        Method::DELETE,
+        "/api/demos/0?version=0123456789abcdef",
+        Body::empty(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::CONFLICT, "{v}");
+    assert_eq!(demos_on_disk(&dir), 1);
+    let uri = format!(
+        "/api/demos/0?version={}",
+        listed["version"].as_str().unwrap()
+    );
+    let (s, v) = call(&app, Method::DELETE, &uri, Body::empty()).await;
     assert_eq!(s, StatusCode::OK);
     assert_eq!(v["count"], 0);
     assert_eq!(demos_on_disk(&dir), 0);

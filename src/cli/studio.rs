@@ -27,7 +27,7 @@ pub fn run(a: StudioArgs) -> Result<ExitCode> {
         .enable_all()
         .build()
         .context("cannot start the async runtime")?;
-    rt.block_on(async move {
+    let served = rt.block_on(async move {
         let listener = tokio::net::TcpListener::bind(("127.0.0.1", a.port))
             .await
             .with_context(|| format!("cannot listen on 127.0.0.1:{}", a.port))?;
@@ -47,5 +47,8 @@ pub fn run(a: StudioArgs) -> Result<ExitCode> {
             .await
             .context("server error")?;
         Ok(ExitCode::SUCCESS)
-    })
+    });
+    // Do not wait for a long solve still running on a blocking thread.
+    rt.shutdown_timeout(std::time::Duration::from_millis(500));
+    served
 }

@@ -8,7 +8,7 @@ use crate::rules::{check_classes, parse_rules, print_formula, print_rule, RuleSe
 use crate::scene::{scenes_from_json, scenes_to_json, Scene};
 use crate::synth::{synthesize, Progress, ProgressFn, SynthOptions, SynthResult};
 use axum::body::Bytes;
-use axum::extract::{Path, State};
+use axum::extract::{Path, Query, State};
 use axum::http::{header, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
@@ -210,13 +210,19 @@ pub(crate) async fn task(State(st): St) -> ApiResult {
 /// Read demos.json; a file that does not parse is reported (409) and never
 /// overwritten.
 fn read_demos(st: &AppState) -> Result<Vec<Scene>, ApiError> {
+    read_demos_versioned(st).map(|(d, _)| d)
+}
+
+/// The demonstrations and the version of the file they came from.
+fn read_demos_versioned(st: &AppState) -> Result<(Vec<Scene>, String), ApiError> {
     let text = storage::read_optional(&st.dir, DEMOS)
         .map_err(|e| ApiError::io(DEMOS, e))?
         .unwrap_or_else(|| "[]".into());
     if !text.trim_start().starts_with('[') {
         return Err(corrupt("expected a JSON array of scenes"));
     }
-    scenes_from_json(&text).map_err(|e| corrupt(&e.to_string()))
+    let demos = scenes_from_json(&text).map_err(|e| corrupt(&e.to_string()))?;
+    Ok((demos, storage::version(Some(&text))))
 }
 
 fn corrupt(why: &str) -> ApiError {
@@ -323,9 +329,10 @@ fn parse_demo(st: &AppState, body: &[u8]) -> Result<Scene, ApiError> {
 }
 
 pub(crate) async fn list_demos(State(st): St) -> ApiResult {
-    let demos = read_demos(&st)?;
+    let (demos, version) = read_demos_versioned(&st)?;
     ok(json!({
         "count": demos.len(),
+        "version": version,
         "demos": demos.iter().map(scene_value).collect::<Vec<_>>(),
     }))
 }
@@ -360,9 +367,28 @@ pub(crate) async fn get_demo(State(st): St, Path(index): Path<String>) -> ApiRes
     ok(scene_value(&demos[i]))
 }
 
-pub(crate) async fn delete_demo(State(st): St, Path(index): Path<String>) -> ApiResult {
+#[derive(Deserialize)]
+pub(crate) struct DeleteQuery {
+    /// The `version` from `GET /api/demos`: refuse when the file changed
+    /// since (another tab saved or deleted), so the index still means the
+    /// demonstration the user saw.
+    version: Option<String>,
+}
+
+pub(crate) async fn delete_demo(
+    State(st): St,
+    Path(index): Path<String>,
+    Query(q): Query<DeleteQuery>,
+) -> ApiResult {
     let _guard = st.write_lock.lock().await;
-    let mut demos = read_demos(&st)?;
+    let (mut demos, version) = read_demos_versioned(&st)?;
+    if q.version.as_ref().is_some_and(|v| *v != version) {
+        return Err(ApiError::new(
+            StatusCode::CONFLICT,
+            format!("{DEMOS} changed since the page listed it (another tab?); nothing deleted — reload the list and try again"),
+        )
+        .with("kind", json!("stale_demos")));
+    }
     let i = demo_index(&index, demos.len())?;
     demos.remove(i);
     storage::atomic_write(&st.dir, DEMOS, &scenes_to_json(&demos))

@@ -197,6 +197,13 @@ try {
   } else {
     log('synthesis: not in this build of the page');
   }
+  // Delete a saved demonstration from the list.
+  await page.click('#tab-record');
+  page.once('dialog', (d) => d.accept());
+  await page.locator('#demos .demo').nth(1).getByRole('button', { name: 'Delete' }).click();
+  await page.waitForFunction(() => document.getElementById('demo-count').textContent === '1');
+  assert.equal(JSON.parse(fs.readFileSync(path.join(task, 'demos.json'), 'utf8')).length, 1);
+
   assert.deepEqual(errors, [], 'no errors in the page');
   log('ok; screenshots in', out);
 } catch (e) {

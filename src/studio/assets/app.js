@@ -234,6 +234,7 @@ async function loadDemos() {
     return;
   }
   state.demos = r.data.demos;
+  state.demosVersion = r.data.version;
   $('demo-count').textContent = r.data.count;
   box.replaceChildren();
   if (!r.data.count) {
@@ -263,7 +264,7 @@ async function loadDemos() {
     del.className = 'btn small danger'; del.textContent = 'Delete';
     del.onclick = async () => {
       if (!confirm(`Delete demonstration #${i + 1}?`)) return;
-      const d = await api('DELETE', `/api/demos/${i}`);
+      const d = await api('DELETE', `/api/demos/${i}?version=${encodeURIComponent(state.demosVersion)}`);
       if (d.ok) toast(`Deleted demonstration #${i + 1}.`, 'ok'); else toast(d.data.error, 'error');
       loadDemos();
     };
