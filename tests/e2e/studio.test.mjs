@@ -103,7 +103,7 @@ try {
   await page.waitForSelector('.toast.show.error');
   assert.match(await page.locator('#toast').textContent(), /refused.*overlap w_south/i);
   assert.equal(await placedCount(), 9);
-  // Outside the table: refused too.
+  // Partly outside the table: refused too.
   await place('G', 590, 590);
   assert.match(await page.locator('#toast').textContent(), /refused.*outside/i);
   assert.equal(await placedCount(), 9);

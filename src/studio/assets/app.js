@@ -166,7 +166,8 @@ function endDrag(ev) {
     return;
   }
   if (d.original) state.placed.push(d.original);
-  const moved = !d.original || d.original.x !== d.obj.x || d.original.y !== d.obj.y;
+  // A block from the palette released off the table: the user changed their mind.
+  const moved = d.original ? d.original.x !== d.obj.x || d.original.y !== d.obj.y : d.over;
   redraw();
   if (moved) {
     toast(`Drop refused: ${d.why}.`, 'error');
