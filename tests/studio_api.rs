@@ -538,6 +538,11 @@ async fn synth_can_be_cancelled() {
     let started = std::time::Instant::now();
     let done = wait_job(&app, &v["job"]).await;
     assert!(started.elapsed().as_secs() < 30, "cancel stops the search");
+    eprintln!(
+        "cancelled job ended: {} after {:?}",
+        done["result"]["status"],
+        started.elapsed()
+    );
     assert_eq!(done["cancelled"], true);
     assert_eq!(done["state"], "done", "{done}");
 }
