@@ -66,4 +66,5 @@ pub mod relations;
 pub mod render;
 pub mod rules;
 pub mod scene;
+pub mod studio;
 pub mod synth;

@@ -9,6 +9,7 @@ mod learn;
 mod render;
 mod run;
 mod score;
+mod studio;
 mod synth;
 
 use clap::{Parser, Subcommand};
@@ -33,6 +34,8 @@ enum Command {
     Score(score::ScoreArgs),
     /// Learn rules from demonstrations (SPEC §7).
     Learn(learn::LearnArgs),
+    /// Serve the studio page: record demonstrations, learn, synthesise.
+    Studio(studio::StudioArgs),
     /// Draw a scene as SVG or PNG, optionally marking rule violations.
     Render(render::RenderArgs),
     /// Place the unplaced objects of a problem so that the rules hold as well
@@ -53,6 +56,7 @@ pub fn main() -> ExitCode {
         Command::Learn(a) => learn::run(a),
         Command::Synth(a) => synth::run(a),
         Command::Run(a) => run::run(a),
+        Command::Studio(a) => studio::run(a),
     };
     match result {
         Ok(code) => code,

@@ -1,0 +1,54 @@
+use anyhow::{Context, Result};
+use clap::Args;
+use std::io::Write as _;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// `rccpack studio DIR [--port P] [--open]`
+///
+/// Serve the studio page for the task folder DIR on 127.0.0.1 only.
+#[derive(Args, Debug)]
+pub struct StudioArgs {
+    /// Task folder: `problem.json`, `demos.json` (created when absent),
+    /// optional `statements.rcc`; the page writes `learned.rcc` there.
+    dir: PathBuf,
+    /// Port on 127.0.0.1 (0: any free port; the URL is printed).
+    #[arg(long, default_value_t = 0)]
+    port: u16,
+    /// Open the page in the default browser.
+    #[arg(long)]
+    open: bool,
+}
+
+pub fn run(a: StudioArgs) -> Result<ExitCode> {
+    let app =
+        rccpack::studio::router(&a.dir).map_err(|e| super::Reported(format!("error: {e}")))?;
+    let rt = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+        .context("cannot start the async runtime")?;
+    let served = rt.block_on(async move {
+        let listener = tokio::net::TcpListener::bind(("127.0.0.1", a.port))
+            .await
+            .with_context(|| format!("cannot listen on 127.0.0.1:{}", a.port))?;
+        let url = format!("http://{}/", listener.local_addr()?);
+        println!("rccpack studio: {} at {url}", a.dir.display());
+        println!("press Ctrl-C to stop");
+        let _ = std::io::stdout().flush();
+        if a.open {
+            if let Err(e) = std::process::Command::new("xdg-open").arg(&url).spawn() {
+                eprintln!("warning: cannot open a browser ({e}); open {url} yourself");
+            }
+        }
+        axum::serve(listener, app)
+            .with_graceful_shutdown(async {
+                let _ = tokio::signal::ctrl_c().await;
+            })
+            .await
+            .context("server error")?;
+        Ok(ExitCode::SUCCESS)
+    });
+    // Do not wait for a long solve still running on a blocking thread.
+    rt.shutdown_timeout(std::time::Duration::from_millis(500));
+    served
+}

@@ -1,0 +1,682 @@
+//! HTTP handlers. Every error is JSON `{"error": "...", "path": "..."}` with a
+//! message in the same words as the command-line tool.
+
+use super::storage::{self, DEMOS, LEARNED, STATEMENTS};
+use super::AppState;
+use crate::infer::{learn as run_learn, LearnParams, StatementSource};
+use crate::rules::{check_classes, parse_rules, print_formula, print_rule, RuleSet};
+use crate::scene::{scenes_from_json, scenes_to_json, Scene};
+use crate::synth::{synthesize, Progress, ProgressFn, SynthOptions, SynthResult};
+use axum::body::Bytes;
+use axum::extract::{Path, Query, State};
+use axum::http::{header, StatusCode};
+use axum::response::{IntoResponse, Response};
+use axum::Json;
+use serde::Deserialize;
+use serde_json::{json, Value};
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+type St = State<Arc<AppState>>;
+
+/// An error answer: status, message, optional field path and extra fields.
+pub(crate) struct ApiError {
+    status: StatusCode,
+    message: String,
+    path: Option<String>,
+    extra: Option<(&'static str, Value)>,
+}
+
+impl ApiError {
+    fn new(status: StatusCode, message: impl Into<String>) -> Self {
+        ApiError {
+            status,
+            message: message.into(),
+            path: None,
+            extra: None,
+        }
+    }
+    fn bad(message: impl Into<String>) -> Self {
+        Self::new(StatusCode::BAD_REQUEST, message)
+    }
+    fn at(mut self, path: impl Into<String>) -> Self {
+        self.path = Some(path.into());
+        self
+    }
+    fn with(mut self, key: &'static str, v: Value) -> Self {
+        self.extra = Some((key, v));
+        self
+    }
+    fn io(name: &str, e: std::io::Error) -> Self {
+        Self::new(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            format!("{name}: cannot access file: {e}"),
+        )
+    }
+}
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        let mut body = json!({ "error": self.message });
+        if let Some(p) = self.path {
+            body["path"] = Value::String(p);
+        }
+        if let Some((k, v)) = self.extra {
+            body[k] = v;
+        }
+        (self.status, Json(body)).into_response()
+    }
+}
+
+type ApiResult = Result<Response, ApiError>;
+
+fn ok(v: Value) -> ApiResult {
+    Ok(Json(v).into_response())
+}
+
+// ---- page ------------------------------------------------------------------
+
+const INDEX_HTML: &str = include_str!("assets/index.html");
+const APP_JS: &str = include_str!("assets/app.js");
+const BOARD_JS: &str = include_str!("assets/board.js");
+const STYLE_CSS: &str = include_str!("assets/style.css");
+
+pub(crate) async fn index() -> Response {
+    (
+        [
+            (header::CONTENT_TYPE, "text/html; charset=utf-8"),
+            (header::CACHE_CONTROL, "no-store"),
+        ],
+        INDEX_HTML,
+    )
+        .into_response()
+}
+
+pub(crate) async fn asset(Path(name): Path<String>) -> Response {
+    let (body, ty) = match name.as_str() {
+        "app.js" => (APP_JS, "text/javascript; charset=utf-8"),
+        "board.js" => (BOARD_JS, "text/javascript; charset=utf-8"),
+        "style.css" => (STYLE_CSS, "text/css; charset=utf-8"),
+        _ => return not_found().await.into_response(),
+    };
+    (
+        [
+            (header::CONTENT_TYPE, ty),
+            (header::CACHE_CONTROL, "no-store"),
+        ],
+        body,
+    )
+        .into_response()
+}
+
+pub(crate) async fn not_found() -> ApiError {
+    ApiError::new(StatusCode::NOT_FOUND, "no such page or API endpoint")
+}
+
+/// Refuse requests whose `Host` names anything but this machine's loopback
+/// (a page elsewhere reaching the studio through DNS rebinding).
+pub(crate) async fn local_host_only(
+    req: axum::extract::Request,
+    next: axum::middleware::Next,
+) -> Response {
+    if let Some(h) = req.headers().get(header::HOST) {
+        let host = h.to_str().unwrap_or("");
+        let name = match host.rsplit_once(':') {
+            Some((n, port)) if port.bytes().all(|b| b.is_ascii_digit()) => n,
+            _ => host,
+        };
+        if !matches!(name, "127.0.0.1" | "localhost" | "[::1]") {
+            return ApiError::new(
+                StatusCode::FORBIDDEN,
+                format!("host `{host}` refused: the studio answers only on 127.0.0.1"),
+            )
+            .into_response();
+        }
+    }
+    next.run(req).await
+}
+
+// ---- task --------------------------------------------------------------------
+
+/// Class colours exactly as `render` draws them: R/G/B by name, other
+/// movable classes from the palette in order of first appearance.
+fn class_colours(scene: &Scene) -> HashMap<String, &'static str> {
+    const PALETTE: [&str; 8] = [
+        "#f0ad4e", "#8e6cc0", "#1fa2a0", "#e07b39", "#c2577e", "#7f8c3a", "#5d7ea8", "#b08d57",
+    ];
+    let mut out = HashMap::new();
+    let mut next = 0;
+    for o in scene.objects.iter().filter(|o| !o.fixed) {
+        if out.contains_key(&o.class) {
+            continue;
+        }
+        let c = match o.class.to_ascii_lowercase().as_str() {
+            "r" | "red" => "#d9534f",
+            "g" | "green" => "#5cb85c",
+            "b" | "blue" => "#428bca",
+            _ => {
+                next += 1;
+                PALETTE[(next - 1) % PALETTE.len()]
+            }
+        };
+        out.insert(o.class.clone(), c);
+    }
+    out
+}
+
+pub(crate) async fn task(State(st): St) -> ApiResult {
+    let p = &st.problem;
+    let mut kinds: Vec<(String, i64, i64, usize)> = Vec::new();
+    for o in p.objects.iter().filter(|o| !o.fixed) {
+        match kinds
+            .iter_mut()
+            .find(|k| k.0 == o.class && k.1 == o.width && k.2 == o.height)
+        {
+            Some(k) => k.3 += 1,
+            None => kinds.push((o.class.clone(), o.width, o.height, 1)),
+        }
+    }
+    let colours = class_colours(p);
+    let kinds: Vec<Value> = kinds
+        .into_iter()
+        .map(|(class, width, height, count)| {
+            json!({"class": class, "width": width, "height": height, "count": count,
+                   "colour": colours.get(&class).copied().unwrap_or("#888888")})
+        })
+        .collect();
+    let name = st
+        .dir
+        .canonicalize()
+        .ok()
+        .and_then(|d| d.file_name().map(|n| n.to_string_lossy().into_owned()))
+        .unwrap_or_else(|| "task".into());
+    let statements = storage::read_optional(&st.dir, STATEMENTS)
+        .map_err(|e| ApiError::io(STATEMENTS, e))?
+        .is_some();
+    ok(json!({
+        "name": name,
+        "problem": st.problem_json,
+        "kinds": kinds,
+        "colours": colours,
+        "fixed_colour": "#4a4a4a",
+        "statements": statements,
+    }))
+}
+
+// ---- demonstrations ------------------------------------------------------------
+
+/// Read demos.json; a file that does not parse is reported (409) and never
+/// overwritten.
+fn read_demos(st: &AppState) -> Result<Vec<Scene>, ApiError> {
+    read_demos_versioned(st).map(|(d, _)| d)
+}
+
+/// The demonstrations and the version of the file they came from.
+fn read_demos_versioned(st: &AppState) -> Result<(Vec<Scene>, String), ApiError> {
+    let text = storage::read_optional(&st.dir, DEMOS)
+        .map_err(|e| ApiError::io(DEMOS, e))?
+        .unwrap_or_else(|| "[]".into());
+    if !text.trim_start().starts_with('[') {
+        return Err(corrupt("expected a JSON array of scenes"));
+    }
+    let demos = scenes_from_json(&text).map_err(|e| corrupt(&e.to_string()))?;
+    Ok((demos, storage::version(Some(&text))))
+}
+
+fn corrupt(why: &str) -> ApiError {
+    ApiError::new(
+        StatusCode::CONFLICT,
+        format!(
+            "{DEMOS}: {why}; the studio will not overwrite it — fix or move the file, then reload"
+        ),
+    )
+    .with("kind", json!("corrupt_demos"))
+}
+
+fn scene_value(s: &Scene) -> Value {
+    serde_json::from_str(&s.to_json()).expect("scene JSON re-parses")
+}
+
+/// Parse a posted demonstration and check it as `check`/`score` would, plus
+/// that it is a complete layout of this task.
+fn parse_demo(st: &AppState, body: &[u8]) -> Result<Scene, ApiError> {
+    let text = std::str::from_utf8(body).map_err(|_| ApiError::bad("request body is not UTF-8"))?;
+    let scene = Scene::from_json(text).map_err(|e| {
+        let path = e.path().to_string();
+        ApiError::bad(format!("demonstration: {e}")).at(path)
+    })?;
+    let p = &st.problem;
+    if scene.space != p.space {
+        return Err(ApiError::bad(format!(
+            "demonstration: space: {}x{} at ({}, {}) differs from {}'s {}x{} at ({}, {})",
+            scene.space.width,
+            scene.space.height,
+            scene.space.x,
+            scene.space.y,
+            storage::PROBLEM,
+            p.space.width,
+            p.space.height,
+            p.space.x,
+            p.space.y
+        ))
+        .at("space"));
+    }
+    if scene.grid != p.grid {
+        return Err(ApiError::bad(format!(
+            "demonstration: grid: {} differs from {}'s {}",
+            scene.grid,
+            storage::PROBLEM,
+            p.grid
+        ))
+        .at("grid"));
+    }
+    for (i, o) in scene.objects.iter().enumerate() {
+        if !o.is_placed() {
+            return Err(ApiError::bad(format!(
+                "demonstration: objects[{i}]: object `{}` has no position; every object of a demonstration must be placed",
+                o.id
+            ))
+            .at(format!("objects[{i}]")));
+        }
+        if o.fixed {
+            if !p
+                .objects
+                .iter()
+                .any(|f| f.fixed && f.id == o.id && f.rect() == o.rect() && f.class == o.class)
+            {
+                return Err(ApiError::bad(format!(
+                    "demonstration: objects[{i}]: fixed object `{}` is not a fixed object of {} (fixed objects never move)",
+                    o.id,
+                    storage::PROBLEM
+                ))
+                .at(format!("objects[{i}]")));
+            }
+        } else if !p
+            .objects
+            .iter()
+            .any(|k| !k.fixed && k.class == o.class && k.width == o.width && k.height == o.height)
+        {
+            return Err(ApiError::bad(format!(
+                "demonstration: objects[{i}]: object `{}` ({} {}x{}) is not one of the kinds of objects of {}",
+                o.id,
+                o.class,
+                o.width,
+                o.height,
+                storage::PROBLEM
+            ))
+            .at(format!("objects[{i}]")));
+        }
+    }
+    for f in p.objects.iter().filter(|o| o.fixed) {
+        if !scene.objects.iter().any(|o| o.fixed && o.id == f.id) {
+            return Err(ApiError::bad(format!(
+                "demonstration: objects: fixed object `{}` of {} is missing",
+                f.id,
+                storage::PROBLEM
+            ))
+            .at("objects"));
+        }
+    }
+    if !scene.objects.iter().any(|o| !o.fixed) {
+        return Err(ApiError::bad(
+            "demonstration: objects: place at least one object before saving",
+        )
+        .at("objects"));
+    }
+    Ok(scene)
+}
+
+pub(crate) async fn list_demos(State(st): St) -> ApiResult {
+    let (demos, version) = read_demos_versioned(&st)?;
+    ok(json!({
+        "count": demos.len(),
+        "version": version,
+        "demos": demos.iter().map(scene_value).collect::<Vec<_>>(),
+    }))
+}
+
+pub(crate) async fn save_demo(State(st): St, body: Bytes) -> ApiResult {
+    let scene = parse_demo(&st, &body)?;
+    let _guard = st.write_lock.lock().await;
+    let mut demos = read_demos(&st)?;
+    demos.push(scene);
+    storage::atomic_write(&st.dir, DEMOS, &scenes_to_json(&demos))
+        .map_err(|e| ApiError::io(DEMOS, e))?;
+    Ok((
+        StatusCode::CREATED,
+        Json(json!({"index": demos.len() - 1, "count": demos.len()})),
+    )
+        .into_response())
+}
+
+fn demo_index(raw: &str, len: usize) -> Result<usize, ApiError> {
+    match raw.parse::<usize>() {
+        Ok(i) if i < len => Ok(i),
+        _ => Err(ApiError::new(
+            StatusCode::NOT_FOUND,
+            format!("no demonstration [{raw}]; {DEMOS} holds {len}"),
+        )),
+    }
+}
+
+pub(crate) async fn get_demo(State(st): St, Path(index): Path<String>) -> ApiResult {
+    let demos = read_demos(&st)?;
+    let i = demo_index(&index, demos.len())?;
+    ok(scene_value(&demos[i]))
+}
+
+#[derive(Deserialize)]
+pub(crate) struct DeleteQuery {
+    /// The `version` from `GET /api/demos`: refuse when the file changed
+    /// since (another tab saved or deleted), so the index still means the
+    /// demonstration the user saw.
+    version: Option<String>,
+}
+
+pub(crate) async fn delete_demo(
+    State(st): St,
+    Path(index): Path<String>,
+    Query(q): Query<DeleteQuery>,
+) -> ApiResult {
+    let _guard = st.write_lock.lock().await;
+    let (mut demos, version) = read_demos_versioned(&st)?;
+    if q.version.as_ref().is_some_and(|v| *v != version) {
+        return Err(ApiError::new(
+            StatusCode::CONFLICT,
+            format!("{DEMOS} changed since the page listed it (another tab?); nothing deleted — reload the list and try again"),
+        )
+        .with("kind", json!("stale_demos")));
+    }
+    let i = demo_index(&index, demos.len())?;
+    demos.remove(i);
+    storage::atomic_write(&st.dir, DEMOS, &scenes_to_json(&demos))
+        .map_err(|e| ApiError::io(DEMOS, e))?;
+    ok(json!({"count": demos.len()}))
+}
+
+// ---- learning ------------------------------------------------------------------
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct LearnBody {
+    samples: Option<usize>,
+    seed: Option<u64>,
+    cutoff: Option<f64>,
+}
+
+/// Parse a JSON body (empty = default) with field-path errors.
+fn parse_body<T: for<'de> Deserialize<'de> + Default>(body: &[u8]) -> Result<T, ApiError> {
+    if body.iter().all(u8::is_ascii_whitespace) {
+        return Ok(T::default());
+    }
+    let de = &mut serde_json::Deserializer::from_slice(body);
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let path = e.path().to_string();
+        ApiError::bad(format!("request body: {path}: {}", e.into_inner())).at(path)
+    })
+}
+
+fn rules_error(file: &str, src: &str, e: crate::rules::RulesError) -> ApiError {
+    ApiError::bad(e.render(file, src, false)).with("file", json!(file))
+}
+
+pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
+    let b: LearnBody = parse_body(&body)?;
+    let mut params = LearnParams::default();
+    if let Some(n) = b.samples {
+        params.samples = n;
+    }
+    if let Some(s) = b.seed {
+        params.seed = s;
+    }
+    if let Some(c) = b.cutoff {
+        params.cutoff = c;
+    }
+    let demos = read_demos(&st)?;
+    let statements = match storage::read_optional(&st.dir, STATEMENTS)
+        .map_err(|e| ApiError::io(STATEMENTS, e))?
+    {
+        Some(text) => Some(parse_rules(&text).map_err(|e| rules_error(STATEMENTS, &text, e))?),
+        None => None,
+    };
+    let learned =
+        tokio::task::spawn_blocking(move || run_learn(&demos, statements.as_ref(), &params))
+            .await
+            .map_err(|e| {
+                ApiError::new(
+                    StatusCode::INTERNAL_SERVER_ERROR,
+                    format!("learning failed: {e}"),
+                )
+            })?
+            .map_err(|e| {
+                ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, format!("{DEMOS}: {e}"))
+            })?;
+    let rcc = learned.to_rcc();
+    let header = rcc.split("\n\n").next().unwrap_or("").to_string() + "\n";
+    let set = learned.rules();
+    let rules: Vec<Value> = learned
+        .order
+        .iter()
+        .zip(&set.rules)
+        .map(|(&k, rule)| {
+            let s = &learned.statements[k];
+            let post = s.posterior.expect("learned rules have a posterior");
+            json!({
+                "name": s.name,
+                "subject": s.subject,
+                "formula": print_formula(&s.formula),
+                "english": s.english,
+                "posterior": post.written(),
+                "log10_posterior": post.log10_posterior,
+                "q": s.q,
+                "p": post.p,
+                "n": s.n,
+                "weight": rule.strength.weight(),
+                "implied_by": s.implied_by,
+                "rcc": print_rule(rule),
+            })
+        })
+        .collect();
+    ok(json!({
+        "demonstrations": learned.demos,
+        "source": match learned.source { StatementSource::Given => "given", StatementSource::Templates => "templates" },
+        "statements": learned.statements.len(),
+        "candidates": learned.statements.iter().filter(|s| s.candidate).count(),
+        "samples": params.samples,
+        "header": header,
+        "rules": rules,
+    }))
+}
+
+fn learned_value(st: &AppState, text: Option<&str>) -> Value {
+    let mut v = json!({
+        "exists": text.is_some(),
+        "text": text.unwrap_or(""),
+        "version": storage::version(text),
+    });
+    if let Some(t) = text {
+        match parse_rules(t).and_then(|set| check_classes(&set, &st.problem).map(|_| set)) {
+            Ok(set) => v["rules"] = rule_summary(&set),
+            Err(e) => v["error"] = json!(e.render(LEARNED, t, false)),
+        }
+    }
+    v
+}
+
+fn rule_summary(set: &RuleSet) -> Value {
+    set.rules
+        .iter()
+        .map(|r| {
+            json!({"name": r.name, "subject": r.subject(), "formula": print_formula(&r.formula),
+                   "weight": r.strength.weight(), "hard": r.strength.is_hard()})
+        })
+        .collect()
+}
+
+pub(crate) async fn get_learned(State(st): St) -> ApiResult {
+    let text = storage::read_optional(&st.dir, LEARNED).map_err(|e| ApiError::io(LEARNED, e))?;
+    ok(learned_value(&st, text.as_deref()))
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct PutLearned {
+    text: String,
+    /// The version the page loaded (`"absent"` when there was no file).
+    base_version: String,
+}
+
+pub(crate) async fn put_learned(State(st): St, body: Bytes) -> ApiResult {
+    let b: PutLearned = parse_body(&body)?;
+    let set = parse_rules(&b.text).map_err(|e| rules_error(LEARNED, &b.text, e))?;
+    check_classes(&set, &st.problem).map_err(|e| rules_error(LEARNED, &b.text, e))?;
+    let _guard = st.write_lock.lock().await;
+    let current = storage::read_optional(&st.dir, LEARNED).map_err(|e| ApiError::io(LEARNED, e))?;
+    if storage::version(current.as_deref()) != b.base_version {
+        return Err(ApiError::new(
+            StatusCode::CONFLICT,
+            format!("{LEARNED} changed on disk since the page loaded it; not overwritten — the page shows the file as it is now"),
+        )
+        .with("current", learned_value(&st, current.as_deref())));
+    }
+    storage::atomic_write(&st.dir, LEARNED, &b.text).map_err(|e| ApiError::io(LEARNED, e))?;
+    ok(learned_value(&st, Some(&b.text)))
+}
+
+// ---- synthesis -------------------------------------------------------------------
+
+/// One synthesis run: started by `POST /api/synth`, polled, cancellable.
+pub(crate) struct SynthJob {
+    cancel: Arc<AtomicBool>,
+    started: Instant,
+    best: Arc<Mutex<Option<f64>>>,
+    outcome: Option<Result<Value, String>>,
+}
+
+/// Jobs kept for polling; older ones are dropped.
+const KEEP_JOBS: usize = 8;
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct SynthBody {
+    /// The rules, as `.rcc` text (the page sends the chosen rules).
+    rules: String,
+    /// Seconds (default 30, at most 600).
+    time_limit: Option<f64>,
+    seed: Option<u64>,
+}
+
+const CHOSEN: &str = "chosen rules";
+
+pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
+    let b: SynthBody = parse_body(&body)?;
+    let set = parse_rules(&b.rules).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
+    check_classes(&set, &st.problem).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
+    let limit = b.time_limit.unwrap_or(30.0);
+    if !(limit.is_finite() && limit > 0.0 && limit <= 600.0) {
+        return Err(ApiError::bad(format!(
+            "request body: time_limit: {limit} is out of range; expected seconds in (0, 600]"
+        ))
+        .at("time_limit"));
+    }
+    let cancel = Arc::new(AtomicBool::new(false));
+    let best = Arc::new(Mutex::new(None));
+    let id = st.next_job.fetch_add(1, Ordering::Relaxed);
+    {
+        let mut jobs = st.jobs.lock().expect("jobs lock");
+        while jobs.len() >= KEEP_JOBS {
+            let oldest = *jobs.keys().next().expect("non-empty");
+            if let Some(j) = jobs.remove(&oldest) {
+                j.cancel.store(true, Ordering::Relaxed);
+            }
+        }
+        jobs.insert(
+            id,
+            SynthJob {
+                cancel: cancel.clone(),
+                started: Instant::now(),
+                best: best.clone(),
+                outcome: None,
+            },
+        );
+    }
+    let progress_best = best.clone();
+    let opts = SynthOptions {
+        time_limit: Some(Duration::from_secs_f64(limit)),
+        seed: b.seed.unwrap_or(0),
+        cancel: Some(cancel),
+        progress: Some(ProgressFn(Arc::new(move |p: &Progress| {
+            *progress_best.lock().expect("best lock") = Some(p.score);
+        }))),
+        ..SynthOptions::default()
+    };
+    let st2 = st.clone();
+    tokio::task::spawn_blocking(move || {
+        // The solver is not `Send`: it is created and run on this thread.
+        let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            synthesize(&st2.problem, &set, &opts)
+        }));
+        let outcome = match outcome {
+            Ok(Ok(r)) => Ok(synth_value(&r)),
+            Ok(Err(e)) => Err(format!("{}: {e}", storage::PROBLEM)),
+            Err(_) => Err("synthesis failed unexpectedly (internal error)".to_string()),
+        };
+        if let Some(j) = st2.jobs.lock().expect("jobs lock").get_mut(&id) {
+            j.outcome = Some(outcome);
+        }
+    });
+    Ok((StatusCode::ACCEPTED, Json(json!({ "job": id }))).into_response())
+}
+
+fn synth_value(r: &SynthResult) -> Value {
+    let e = r.evaluation.as_ref();
+    json!({
+        "status": r.status,
+        "score": e.map(|e| e.score),
+        "satisfied_weight": e.map(|e| e.satisfied_weight),
+        "total_weight": e.map(|e| e.total_weight),
+        "time_ms": r.stats.time_ms,
+        "stats": r.stats,
+        "scene": r.scene.as_ref().map(scene_value),
+        "evaluation": e,
+        "conflict": r.conflict,
+    })
+}
+
+fn job_id(raw: &str) -> Result<u64, ApiError> {
+    raw.parse()
+        .map_err(|_| ApiError::new(StatusCode::NOT_FOUND, format!("no synthesis job {raw}")))
+}
+
+pub(crate) async fn synth_status(State(st): St, Path(job): Path<String>) -> ApiResult {
+    let id = job_id(&job)?;
+    let jobs = st.jobs.lock().expect("jobs lock");
+    let j = jobs
+        .get(&id)
+        .ok_or_else(|| ApiError::new(StatusCode::NOT_FOUND, format!("no synthesis job {id}")))?;
+    let mut v = json!({
+        "job": id,
+        "state": match &j.outcome { None => "running", Some(Ok(_)) => "done", Some(Err(_)) => "error" },
+        "elapsed_ms": j.started.elapsed().as_secs_f64() * 1000.0,
+        "best_score": *j.best.lock().expect("best lock"),
+        "cancelled": j.cancel.load(Ordering::Relaxed),
+    });
+    match &j.outcome {
+        Some(Ok(r)) => v["result"] = r.clone(),
+        Some(Err(e)) => v["error"] = json!(e),
+        None => {}
+    }
+    ok(v)
+}
+
+pub(crate) async fn cancel_synth(State(st): St, Path(job): Path<String>) -> ApiResult {
+    let id = job_id(&job)?;
+    let jobs = st.jobs.lock().expect("jobs lock");
+    let j = jobs
+        .get(&id)
+        .ok_or_else(|| ApiError::new(StatusCode::NOT_FOUND, format!("no synthesis job {id}")))?;
+    j.cancel.store(true, Ordering::Relaxed);
+    ok(json!({ "job": id, "cancelled": true }))
+}

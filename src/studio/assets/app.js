@@ -1,0 +1,542 @@
+// rccpack studio: record demonstrations, learn rules, synthesise layouts.
+import { drawScene, drawObject, el, overlaps, inside, darker } from '/assets/board.js';
+
+const $ = (id) => document.getElementById(id);
+const state = {
+  task: null,
+  placed: [],          // movable objects on the table
+  selected: null,      // id of the selected object
+  drag: null,          // { obj, fromPalette, dx, dy, original, over, valid, why }
+  view: null,
+  demos: [],
+  learnResult: null,
+  learned: null,       // { exists, text, version, rules?, error? }
+  tab: 'record',
+  boardMode: 'edit',   // 'edit' | 'result'
+  result: null,        // synthesis result shown on the board
+};
+
+// ---- helpers ------------------------------------------------------------------
+
+async function api(method, url, body) {
+  const init = { method, headers: {} };
+  if (body !== undefined) {
+    init.body = typeof body === 'string' ? body : JSON.stringify(body);
+    init.headers['content-type'] = 'application/json';
+  }
+  const res = await fetch(url, init);
+  let data = null;
+  try { data = await res.json(); } catch { data = { error: `${res.status} ${res.statusText}` }; }
+  return { ok: res.ok, status: res.status, data };
+}
+
+let toastTimer = null;
+function toast(msg, kind = 'info') {
+  const t = $('toast');
+  t.textContent = msg;
+  t.className = `toast show ${kind}`;
+  clearTimeout(toastTimer);
+  toastTimer = setTimeout(() => { t.className = 'toast'; }, kind === 'error' ? 8000 : 3500);
+}
+
+function fmtP(p) {
+  if (p === null || p === undefined) return '–';
+  if (p === 0) return '0';
+  if (p >= 0.001) return p.toPrecision(2);
+  const [m, e] = p.toExponential(1).split('e');
+  return `${m}·10<sup>${Number(e)}</sup>`;
+}
+function pct(q) { return q === null || q === undefined ? '–' : `${(q * 100).toFixed(q < 0.01 ? 2 : 1)}%`; }
+function esc(s) { return String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c])); }
+
+function fixedObjects() { return state.task.problem.objects.filter((o) => o.fixed); }
+function boardScene() {
+  const p = state.task.problem;
+  return { space: p.space, grid: p.grid, objects: [...fixedObjects(), ...state.placed] };
+}
+function drawOpts(extra = {}) {
+  return { colours: state.task.colours, fixedColour: state.task.fixed_colour, ...extra };
+}
+
+// ---- board ------------------------------------------------------------------
+
+function redraw() {
+  const svg = $('board');
+  if (state.boardMode === 'result' && state.result) {
+    const { view } = drawScene(svg, state.result.scene, drawOpts({ violators: state.result.violators }));
+    state.view = view;
+    return;
+  }
+  const { view, layer } = drawScene(svg, boardScene(), drawOpts({ selected: state.selected }));
+  state.view = view;
+  const d = state.drag;
+  if (d && d.over) {
+    const g = drawObject(layer, view, d.obj, drawOpts());
+    g.classList.add('ghost', d.valid ? 'ok' : 'bad');
+    const r = view.rect(d.obj);
+    el('rect', { x: r.x - 1.5, y: r.y - 1.5, width: r.w + 3, height: r.h + 3, fill: 'none',
+      stroke: d.valid ? '#2e7d32' : '#c62828', 'stroke-width': 2, class: 'ghost-outline' }, g);
+  }
+  const n = state.placed.length;
+  $('stage-info').textContent = `${n} object${n === 1 ? '' : 's'} placed · grid ${state.task.problem.grid} · north is up`;
+  $('btn-delete').disabled = !state.selected;
+}
+
+function toWorld(ev) {
+  const svg = $('board');
+  const pt = svg.createSVGPoint();
+  pt.x = ev.clientX; pt.y = ev.clientY;
+  const ctm = svg.getScreenCTM();
+  if (!ctm) return null;
+  const p = pt.matrixTransform(ctm.inverse());
+  return state.view.world(p.x, p.y);
+}
+
+function overBoard(ev) {
+  const r = $('board').getBoundingClientRect();
+  return ev.clientX >= r.left && ev.clientX <= r.right && ev.clientY >= r.top && ev.clientY <= r.bottom;
+}
+
+// Why `o` cannot go where it is, or null.
+function refusal(o) {
+  const p = state.task.problem;
+  if (!inside(o, p.space)) return 'outside the table';
+  for (const other of [...fixedObjects(), ...state.placed]) {
+    if (other.id !== o.id && overlaps(o, other)) return `it would overlap ${other.id}`;
+  }
+  return null;
+}
+
+function snap(w) {
+  const p = state.task.problem;
+  const g = p.grid;
+  return {
+    x: p.space.x + Math.round((w.x - state.drag.dx - p.space.x) / g) * g,
+    y: p.space.y + Math.round((w.y - state.drag.dy - p.space.y) / g) * g,
+  };
+}
+
+function nextId(cls) {
+  const base = cls.toLowerCase();
+  const used = new Set([...fixedObjects(), ...state.placed].map((o) => o.id));
+  let i = 1;
+  while (used.has(`${base}${i}`)) i++;
+  return `${base}${i}`;
+}
+
+function startDrag(ev, obj, fromPalette) {
+  if (state.boardMode !== 'edit') showEditor();
+  ev.preventDefault();
+  const w = fromPalette ? null : toWorld(ev);
+  state.drag = {
+    obj: { ...obj }, fromPalette, original: fromPalette ? null : { ...obj },
+    dx: fromPalette ? obj.width / 2 : w.x - obj.x,
+    dy: fromPalette ? obj.height / 2 : w.y - obj.y,
+    over: !fromPalette, valid: true,
+  };
+  if (!fromPalette) {
+    state.selected = obj.id;
+    state.placed = state.placed.filter((o) => o.id !== obj.id);
+  }
+  document.body.classList.add('dragging');
+  moveDrag(ev);
+}
+
+function moveDrag(ev) {
+  const d = state.drag;
+  if (!d) return;
+  d.over = overBoard(ev);
+  const w = toWorld(ev);
+  if (w) Object.assign(d.obj, snap(w));
+  d.why = d.over ? refusal(d.obj) : 'dropped outside the table';
+  d.valid = !d.why;
+  redraw();
+}
+
+function endDrag(ev) {
+  const d = state.drag;
+  if (!d) return;
+  moveDrag(ev);
+  state.drag = null;
+  document.body.classList.remove('dragging');
+  if (d.valid) {
+    state.placed.push(d.obj);
+    state.selected = d.obj.id;
+    redraw();
+    return;
+  }
+  if (d.original) state.placed.push(d.original);
+  // A block from the palette released off the table: the user changed their mind.
+  const moved = d.original ? d.original.x !== d.obj.x || d.original.y !== d.obj.y : d.over;
+  redraw();
+  if (moved) {
+    toast(`Drop refused: ${d.why}.`, 'error');
+    flashRefused(d.obj);
+  }
+}
+
+function flashRefused(o) {
+  if (!state.view) return;
+  const r = state.view.rect(o);
+  const svg = $('board');
+  const f = el('rect', { x: r.x, y: r.y, width: r.w, height: r.h, class: 'refused', fill: '#c62828',
+    'fill-opacity': 0.25, stroke: '#c62828', 'stroke-width': 2 }, svg);
+  setTimeout(() => f.remove(), 900);
+}
+
+function deleteSelected() {
+  if (!state.selected) return;
+  state.placed = state.placed.filter((o) => o.id !== state.selected);
+  state.selected = null;
+  redraw();
+}
+
+function showEditor() {
+  state.boardMode = 'edit';
+  $('stage-title').textContent = 'New demonstration';
+  renderLegend();
+  redraw();
+}
+
+// ---- record pane ----------------------------------------------------------------
+
+function renderPalette() {
+  const pal = $('palette');
+  pal.replaceChildren();
+  for (const k of state.task.kinds) {
+    const item = document.createElement('div');
+    item.className = 'kind';
+    item.dataset.class = k.class;
+    item.title = `Drag a ${k.class} block (${k.width}×${k.height}) onto the table`;
+    const scale = Math.min(1.6, 40 / Math.max(k.width, k.height));
+    item.innerHTML = `<span class="swatch" style="width:${Math.max(10, k.width * scale)}px;height:${Math.max(10, k.height * scale)}px;background:${k.colour};border-color:${darker(k.colour)}"></span>
+      <span class="kind-label"><b>${esc(k.class)}</b><span class="muted small">${k.width}×${k.height}</span></span>`;
+    item.addEventListener('pointerdown', (ev) => startDrag(ev, { id: nextId(k.class), class: k.class, width: k.width, height: k.height }, true));
+    pal.appendChild(item);
+  }
+}
+
+function renderLegend() {
+  const items = state.task.kinds.map((k) => `<span><i style="background:${k.colour}"></i>${esc(k.class)}</span>`);
+  items.push(`<span><i style="background:${state.task.fixed_colour}"></i>fixed</span>`);
+  if (state.boardMode === 'result') {
+    items.push('<span><i class="ring soft"></i>breaks a rule</span>', '<span><i class="ring hard"></i>breaks a hard rule</span>');
+  }
+  $('legend').innerHTML = items.join('');
+}
+
+async function loadDemos() {
+  const r = await api('GET', '/api/demos');
+  const box = $('demos');
+  if (!r.ok) {
+    box.innerHTML = `<div class="error-box">${esc(r.data.error)}</div>`;
+    $('demo-count').textContent = '!';
+    state.demos = [];
+    return;
+  }
+  state.demos = r.data.demos;
+  state.demosVersion = r.data.version;
+  $('demo-count').textContent = r.data.count;
+  box.replaceChildren();
+  if (!r.data.count) {
+    box.innerHTML = '<p class="hint">None yet. Place the blocks the way you like them and save.</p>';
+  }
+  r.data.demos.forEach((scene, i) => {
+    const item = document.createElement('div');
+    item.className = 'demo';
+    item.dataset.index = i;
+    const svg = el('svg', { class: 'thumb' });
+    item.appendChild(svg);
+    drawScene(svg, scene, drawOpts({ thumb: true }));
+    const n = scene.objects.filter((o) => !o.fixed).length;
+    const meta = document.createElement('div');
+    meta.className = 'demo-meta';
+    meta.innerHTML = `<b>#${i + 1}</b><span class="muted small">${n} objects</span>`;
+    const show = document.createElement('button');
+    show.className = 'btn small'; show.textContent = 'Show'; show.title = 'Load a copy onto the table';
+    show.onclick = () => {
+      state.placed = scene.objects.filter((o) => !o.fixed).map((o) => ({ ...o }));
+      state.selected = null;
+      showEditor();
+      $('stage-title').textContent = `Copy of demonstration #${i + 1}`;
+      toast(`Demonstration #${i + 1} is on the table; saving adds a new one.`);
+    };
+    const del = document.createElement('button');
+    del.className = 'btn small danger'; del.textContent = 'Delete';
+    del.onclick = async () => {
+      if (!confirm(`Delete demonstration #${i + 1}?`)) return;
+      const d = await api('DELETE', `/api/demos/${i}?version=${encodeURIComponent(state.demosVersion)}`);
+      if (d.ok) toast(`Deleted demonstration #${i + 1}.`, 'ok'); else toast(d.data.error, 'error');
+      loadDemos();
+    };
+    meta.append(show, del);
+    item.appendChild(meta);
+    box.appendChild(item);
+  });
+}
+
+async function saveDemo() {
+  const r = await api('POST', '/api/demos', boardScene());
+  if (!r.ok) { toast(r.data.error, 'error'); return; }
+  toast(`Saved demonstration #${r.data.index + 1} to demos.json.`, 'ok');
+  state.placed = [];
+  state.selected = null;
+  showEditor();
+  loadDemos();
+}
+
+// ---- learn pane -------------------------------------------------------------------
+
+async function learn() {
+  const btn = $('btn-learn');
+  btn.disabled = true;
+  btn.textContent = 'Learning…';
+  $('learn-summary').innerHTML = '<div class="progress"><span></span></div>';
+  const r = await api('POST', '/api/learn', {});
+  btn.disabled = false;
+  btn.textContent = 'Learn again';
+  if (!r.ok) {
+    $('learn-summary').innerHTML = `<pre class="error-box">${esc(r.data.error)}</pre>`;
+    return;
+  }
+  const d = r.data;
+  state.learnResult = d;
+  $('learn-summary').innerHTML = `<p><b>${d.rules.length}</b> rules learned from <b>${d.demonstrations}</b> demonstrations:
+    ${d.candidates} of ${d.statements} ${d.source === 'given' ? 'statements from statements.rcc' : 'template statements'} hold in every demonstration;
+    the rest are rejected as likely by chance (${d.samples} random layouts).</p>`;
+  renderRules();
+}
+
+function renderRules() {
+  const d = state.learnResult;
+  $('rules-card').hidden = false;
+  const box = $('rules');
+  box.replaceChildren();
+  if (!d.rules.length) {
+    box.innerHTML = '<p class="hint">No rule is strong enough yet. Save more demonstrations.</p>';
+  }
+  d.rules.forEach((rule, i) => {
+    const row = document.createElement('label');
+    row.className = 'rule';
+    row.innerHTML = `<input type="checkbox" checked data-i="${i}">
+      <span class="rule-body">
+        <span class="rule-head"><b>${esc(rule.name)}</b>
+          <span class="pill" title="posterior probability that this is NOT one of your rules">P ${fmtP(rule.posterior)}</span>
+          <span class="pill light" title="how often random layouts satisfy it">chance ${pct(rule.q)}</span></span>
+        <span class="english">${esc(rule.english)}</span>
+        <code>${esc(rule.formula)}</code>
+      </span>`;
+    box.appendChild(row);
+  });
+}
+
+function chosenRulesText() {
+  const d = state.learnResult;
+  const chosen = [...document.querySelectorAll('#rules input[type=checkbox]')]
+    .filter((c) => c.checked).map((c) => d.rules[Number(c.dataset.i)]);
+  return { text: `${d.header}\n${chosen.map((r) => r.rcc).join('\n')}`, count: chosen.length };
+}
+
+async function loadLearned() {
+  const r = await api('GET', '/api/learned');
+  if (r.ok) state.learned = r.data;
+  renderLearned();
+}
+
+function renderLearned() {
+  const l = state.learned;
+  const box = $('learned-file');
+  if (!l) { box.textContent = ''; return; }
+  if (!l.exists) {
+    box.innerHTML = '<p class="hint">Not saved yet.</p>';
+    return;
+  }
+  const n = l.rules ? `${l.rules.length} rules` : 'does not parse';
+  box.innerHTML = `<p><b>${n}</b> <span class="muted small">version ${esc(l.version.slice(0, 8))}</span>
+    <button class="btn small" id="btn-reload-learned">Reload from disk</button></p>
+    ${l.error ? `<pre class="error-box">${esc(l.error)}</pre>` : ''}
+    <details><summary>Show file</summary><pre class="file">${esc(l.text)}</pre></details>`;
+  $('btn-reload-learned').onclick = async () => { await loadLearned(); toast('Reloaded learned.rcc from disk.'); };
+}
+
+async function saveRules() {
+  const { text, count } = chosenRulesText();
+  const base = state.learned ? state.learned.version : 'absent';
+  const r = await api('PUT', '/api/learned', { text, base_version: base });
+  if (r.status === 409) {
+    state.learned = r.data.current;
+    renderLearned();
+    toast(r.data.error, 'error');
+    return;
+  }
+  if (!r.ok) { toast(r.data.error, 'error'); return; }
+  state.learned = r.data;
+  renderLearned();
+  toast(`Saved ${count} rules to learned.rcc.`, 'ok');
+}
+
+// ---- synthesize pane ------------------------------------------------------------------
+
+// The rules to solve with: the ticked learned rules of this session, else learned.rcc.
+function synthRules() {
+  if (state.learnResult && state.learnResult.rules.length) {
+    const { text, count } = chosenRulesText();
+    return { text, label: `the ${count} rules ticked in Learn` };
+  }
+  if (state.learned && state.learned.exists && state.learned.rules) {
+    return { text: state.learned.text, label: `learned.rcc (${state.learned.rules.length} rules)` };
+  }
+  return null;
+}
+
+function renderSynthPane() {
+  const r = synthRules();
+  $('synth-rules').innerHTML = r ? `Rules: <b>${esc(r.label)}</b>` : 'No rules yet: run Learn first, or save learned.rcc.';
+  $('btn-synth').disabled = !r || state.job !== undefined && state.job !== null;
+}
+
+async function synthesize() {
+  const r = synthRules();
+  if (!r) return;
+  const limit = Number($('synth-limit').value) || 30;
+  const res = await api('POST', '/api/synth', { rules: r.text, time_limit: limit });
+  if (!res.ok) { toast(res.data.error, 'error'); return; }
+  state.job = res.data.job;
+  $('btn-synth').disabled = true;
+  $('btn-cancel').hidden = false;
+  $('synth-progress').hidden = false;
+  $('synth-progress-text').textContent = 'starting…';
+  pollJob();
+}
+
+async function pollJob() {
+  const id = state.job;
+  if (id === null || id === undefined) return;
+  const res = await api('GET', `/api/synth/${id}`);
+  if (!res.ok) { finishJob(); toast(res.data.error, 'error'); return; }
+  const d = res.data;
+  if (d.state === 'running') {
+    const best = d.best_score === null ? 'no layout yet' : `best score so far ${d.best_score.toFixed(3)}`;
+    $('synth-progress-text').textContent = `${d.cancelled ? 'cancelling' : 'searching'} · ${(d.elapsed_ms / 1000).toFixed(1)} s · ${best}`;
+    setTimeout(pollJob, 250);
+    return;
+  }
+  finishJob();
+  if (d.state === 'error') { toast(d.error, 'error'); return; }
+  showResult(d.result, d.cancelled);
+}
+
+function finishJob() {
+  state.job = null;
+  $('btn-cancel').hidden = true;
+  $('synth-progress').hidden = true;
+  renderSynthPane();
+}
+
+function showResult(r, cancelled) {
+  const box = $('synth-result');
+  box.hidden = false;
+  const ev = r.evaluation;
+  const score = ev ? `<div class="score"><b>${ev.score.toFixed(3)}</b><span class="muted small">score · ${fmtW(ev.satisfied_weight)} of ${fmtW(ev.total_weight)} weight</span></div>` : '';
+  let rows = '';
+  if (ev) {
+    for (const rule of ev.rules) {
+      const okAll = rule.satisfied === rule.subjects;
+      rows += `<tr class="${okAll ? 'good' : 'bad'}"><td>${okAll ? '✓' : '✗'}</td><td>${esc(rule.name)}${rule.hard ? ' <span class="pill hard">hard</span>' : ''}</td>
+        <td class="num">${rule.satisfied} / ${rule.subjects}</td></tr>`;
+    }
+  }
+  let conflict = '';
+  if (r.conflict) {
+    const c = r.conflict;
+    conflict = `<div class="error-box">${c.objects_cannot_fit ? 'The objects cannot all fit in the space.' : ''}
+      ${c.hard_rules.length ? `These hard rules cannot hold together: ${c.hard_rules.map(esc).join(', ')}` : ''}</div>`;
+  }
+  box.innerHTML = `<div class="result-head"><span class="status ${r.status}">${r.status}</span>
+      <span class="muted small">${(r.time_ms / 1000).toFixed(2)} s · ${r.stats.nodes} nodes${cancelled ? ' · cancelled' : ''}</span></div>
+    ${score}${conflict}
+    ${rows ? `<div class="rule-table-wrap"><table class="rule-table"><thead><tr><th></th><th>rule</th><th class="num">objects keeping it</th></tr></thead><tbody>${rows}</tbody></table></div>` : ''}
+    ${r.scene ? '<button class="btn small" id="btn-back">Back to the table</button>' : ''}`;
+  if (r.scene) {
+    const violators = new Map();
+    for (const rule of ev.rules) for (const id of rule.violators) {
+      if (rule.hard || !violators.has(id)) violators.set(id, rule.hard ? 'hard' : 'soft');
+    }
+    const title = `Synthesized layout · ${r.status}`;
+    const info = violators.size ? `${violators.size} objects break a rule (outlined)` : 'every object keeps every rule';
+    state.result = { scene: r.scene, violators, title, info };
+    state.boardMode = 'result';
+    $('stage-title').textContent = title;
+    $('stage-info').textContent = info;
+    renderLegend();
+    redraw();
+    $('btn-back').onclick = showEditor;
+  }
+}
+
+function fmtW(w) { return Number.isInteger(w) ? String(w) : w.toFixed(2); }
+
+// ---- tabs -------------------------------------------------------------------------
+
+function setTab(tab) {
+  state.tab = tab;
+  for (const b of document.querySelectorAll('.tab')) b.classList.toggle('active', b.dataset.tab === tab);
+  for (const p of document.querySelectorAll('.pane')) p.hidden = p.dataset.pane !== tab;
+  if (tab === 'record') showEditor();
+  if (tab === 'synth') {
+    renderSynthPane();
+    if (state.result) {
+      state.boardMode = 'result';
+      $('stage-title').textContent = state.result.title;
+      $('stage-info').textContent = state.result.info;
+      renderLegend();
+      redraw();
+    }
+  }
+}
+
+// ---- start ------------------------------------------------------------------------
+
+async function main() {
+  const r = await api('GET', '/api/task');
+  if (!r.ok) { toast(r.data.error, 'error'); return; }
+  state.task = r.data;
+  $('task-name').textContent = r.data.name;
+  document.title = `${r.data.name} · rccpack studio`;
+  $('learn-source').textContent = r.data.statements
+    ? 'Statements come from statements.rcc in the task folder.'
+    : 'No statements.rcc: candidate statements are generated from templates.';
+  renderPalette();
+  renderLegend();
+  redraw();
+  document.addEventListener('pointermove', moveDrag);
+  document.addEventListener('pointerup', endDrag);
+  $('board').addEventListener('pointerdown', (ev) => {
+    if (state.boardMode !== 'edit') return;
+    const g = ev.target.closest('.obj');
+    if (!g || g.classList.contains('fixed')) { state.selected = null; redraw(); return; }
+    const o = state.placed.find((p) => p.id === g.dataset.id);
+    if (o) startDrag(ev, o, false);
+  });
+  document.addEventListener('keydown', (ev) => {
+    if (ev.target.closest('input, textarea')) return;
+    if ((ev.key === 'Delete' || ev.key === 'Backspace') && state.selected) { ev.preventDefault(); deleteSelected(); }
+  });
+  $('btn-delete').onclick = deleteSelected;
+  $('btn-clear').onclick = () => { state.placed = []; state.selected = null; redraw(); };
+  $('btn-save').onclick = saveDemo;
+  $('btn-learn').onclick = learn;
+  $('btn-save-rules').onclick = saveRules;
+  $('btn-synth').onclick = synthesize;
+  $('btn-cancel').onclick = async () => {
+    if (state.job !== null && state.job !== undefined) await api('POST', `/api/synth/${state.job}/cancel`);
+  };
+  $('btn-all').onclick = () => document.querySelectorAll('#rules input').forEach((c) => { c.checked = true; });
+  $('btn-none').onclick = () => document.querySelectorAll('#rules input').forEach((c) => { c.checked = false; });
+  for (const b of document.querySelectorAll('.tab')) b.onclick = () => setTab(b.dataset.tab);
+  window.addEventListener('resize', redraw);
+  await Promise.all([loadDemos(), loadLearned()]);
+  document.body.dataset.ready = '1';
+}
+
+main();

@@ -1,0 +1,108 @@
+//! The studio: a small local web app to record demonstrations, learn rules
+//! from them and synthesise layouts (`rccpack studio DIR`).
+//!
+//! [`router`] builds the HTTP API and the page over a task folder `DIR`
+//! (`problem.json`, `demos.json`, optional `statements.rcc`, `learned.rcc`).
+//! The server only ever touches those fixed file names inside `DIR`; no path
+//! comes from the client. Writes are atomic (temporary file + rename) and
+//! serialised by one mutex. The page's assets are embedded in the binary.
+//! The API is described in `docs/studio-api.md`.
+
+mod api;
+pub mod storage;
+
+use crate::scene::Scene;
+use axum::extract::DefaultBodyLimit;
+use axum::routing::{get, post};
+use axum::Router;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use tower_http::limit::RequestBodyLimitLayer;
+
+/// Largest request body accepted, in bytes (1 MiB).
+pub const BODY_LIMIT: usize = 1 << 20;
+
+/// Why the studio cannot start on a folder.
+#[derive(Debug, thiserror::Error)]
+pub enum StudioError {
+    /// A file cannot be read or written.
+    #[error("{path}: {message}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
+    /// `problem.json` is not a valid scene.
+    #[error("{path}: {message}")]
+    Problem {
+        /// The file.
+        path: PathBuf,
+        /// The scene error, with its field path.
+        message: String,
+    },
+}
+
+/// Shared server state.
+pub(crate) struct AppState {
+    pub dir: PathBuf,
+    pub problem: Scene,
+    pub problem_json: serde_json::Value,
+    /// Serialises every read-modify-write of the folder's files.
+    pub write_lock: tokio::sync::Mutex<()>,
+    /// Synthesis jobs by id (the most recent few).
+    pub jobs: std::sync::Mutex<std::collections::BTreeMap<u64, api::SynthJob>>,
+    pub next_job: std::sync::atomic::AtomicU64,
+}
+
+/// Build the studio's router over the task folder `dir`: reads and checks
+/// `problem.json` and creates an empty `demos.json` when there is none.
+pub fn router(dir: &Path) -> Result<Router, StudioError> {
+    let io = |name: &'static str, e: std::io::Error| StudioError::Io {
+        path: dir.join(name),
+        message: e.to_string(),
+    };
+    let text =
+        std::fs::read_to_string(dir.join(storage::PROBLEM)).map_err(|e| StudioError::Io {
+            path: dir.join(storage::PROBLEM),
+            message: format!("cannot read file: {e} (a task folder needs a problem.json)"),
+        })?;
+    let problem = Scene::from_json(&text).map_err(|e| StudioError::Problem {
+        path: dir.join(storage::PROBLEM),
+        message: e.to_string(),
+    })?;
+    if storage::read_optional(dir, storage::DEMOS)
+        .map_err(|e| io(storage::DEMOS, e))?
+        .is_none()
+    {
+        storage::atomic_write(dir, storage::DEMOS, "[]\n").map_err(|e| io(storage::DEMOS, e))?;
+    }
+    let problem_json = serde_json::from_str(&problem.to_json()).expect("scene JSON re-parses");
+    let state = Arc::new(AppState {
+        dir: dir.to_path_buf(),
+        problem,
+        problem_json,
+        write_lock: tokio::sync::Mutex::new(()),
+        jobs: std::sync::Mutex::new(std::collections::BTreeMap::new()),
+        next_job: std::sync::atomic::AtomicU64::new(1),
+    });
+    Ok(Router::new()
+        .route("/", get(api::index))
+        .route("/assets/{name}", get(api::asset))
+        .route("/api/task", get(api::task))
+        .route("/api/demos", get(api::list_demos).post(api::save_demo))
+        .route(
+            "/api/demos/{index}",
+            get(api::get_demo).delete(api::delete_demo),
+        )
+        .route("/api/learn", post(api::learn))
+        .route("/api/learned", get(api::get_learned).put(api::put_learned))
+        .route("/api/synth", post(api::start_synth))
+        .route("/api/synth/{job}", get(api::synth_status))
+        .route("/api/synth/{job}/cancel", post(api::cancel_synth))
+        .fallback(api::not_found)
+        .layer(axum::middleware::from_fn(api::local_host_only))
+        .layer(DefaultBodyLimit::max(BODY_LIMIT))
+        .layer(RequestBodyLimitLayer::new(BODY_LIMIT))
+        .with_state(state))
+}

@@ -1,0 +1,72 @@
+//! Files of a task folder: fixed names only, atomic writes, content versions.
+
+use std::fs;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// The problem: space, fixed objects, objects to place (read only).
+pub const PROBLEM: &str = "problem.json";
+/// The demonstrations array (created when absent).
+pub const DEMOS: &str = "demos.json";
+/// Optional statement set for learning (read only).
+pub const STATEMENTS: &str = "statements.rcc";
+/// The chosen learned rules (written by the page).
+pub const LEARNED: &str = "learned.rcc";
+
+static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// The path of one of the fixed file names inside `dir`.
+pub fn file(dir: &Path, name: &'static str) -> PathBuf {
+    dir.join(name)
+}
+
+/// Write `contents` to `dir/name` atomically: a temporary file in the same
+/// folder, flushed to disk, then renamed over the target. A crash leaves
+/// either the old file or the new one, never half of one.
+pub fn atomic_write(dir: &Path, name: &'static str, contents: &str) -> std::io::Result<()> {
+    let n = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
+    let tmp = dir.join(format!(".{name}.tmp-{}-{n}", std::process::id()));
+    let result = (|| {
+        let mut f = fs::File::create(&tmp)?;
+        f.write_all(contents.as_bytes())?;
+        f.sync_all()?;
+        drop(f);
+        fs::rename(&tmp, dir.join(name))?;
+        // Make the rename itself durable.
+        if let Ok(d) = fs::File::open(dir) {
+            let _ = d.sync_all();
+        }
+        Ok(())
+    })();
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// Read `dir/name`; `Ok(None)` when it does not exist.
+pub fn read_optional(dir: &Path, name: &'static str) -> std::io::Result<Option<String>> {
+    match fs::read_to_string(dir.join(name)) {
+        Ok(s) => Ok(Some(s)),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
+/// A short version tag of a file's content (64-bit FNV-1a, hex), or
+/// `"absent"` for a missing file. Used to refuse overwriting a file that
+/// changed since the page loaded it.
+pub fn version(content: Option<&str>) -> String {
+    match content {
+        None => "absent".to_string(),
+        Some(s) => {
+            let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+            for b in s.bytes() {
+                h ^= u64::from(b);
+                h = h.wrapping_mul(0x0000_0100_0000_01b3);
+            }
+            format!("{h:016x}")
+        }
+    }
+}

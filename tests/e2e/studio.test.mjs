@@ -1,0 +1,221 @@
+// End-to-end test of `rccpack studio` in headless Chromium (system package),
+// driven by playwright-core. Run by tests/studio_browser.rs, or by hand:
+//   RCCPACK_BIN=target/debug/rccpack node tests/e2e/studio.test.mjs
+import { chromium } from 'playwright-core';
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import assert from 'node:assert/strict';
+import { fileURLToPath } from 'node:url';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const root = path.resolve(here, '..', '..');
+const bin = process.env.RCCPACK_BIN || path.join(root, 'target', 'debug', 'rccpack');
+const example = process.env.RCCPACK_EXAMPLE || path.join(root, 'examples', 'box-packing');
+const out = process.env.RCCPACK_E2E_OUT || path.join(here, 'out');
+const chromiumPath = process.env.RCCPACK_CHROMIUM || '/usr/bin/chromium';
+const synthEnabled = process.env.RCCPACK_E2E_SYNTH !== '0';
+fs.mkdirSync(out, { recursive: true });
+
+const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'rccpack-e2e-'));
+const task = path.join(tmp, 'box-packing');
+fs.mkdirSync(task);
+fs.copyFileSync(path.join(example, 'problem.json'), path.join(task, 'problem.json'));
+
+const log = (...a) => console.log('[e2e]', ...a);
+
+// Start the studio on a free port and read the URL it prints.
+const server = spawn(bin, ['studio', task, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+const url = await new Promise((resolve, reject) => {
+  let buf = '';
+  const timer = setTimeout(() => reject(new Error(`no URL from the studio; it printed: ${buf}`)), 20000);
+  server.stdout.on('data', (d) => {
+    buf += d;
+    const m = buf.match(/http:\/\/127\.0\.0\.1:\d+\//);
+    if (m) { clearTimeout(timer); resolve(m[0]); }
+  });
+  server.on('exit', (code) => reject(new Error(`studio exited with ${code}: ${buf}`)));
+});
+log('studio at', url);
+
+const userDataDir = path.join(tmp, 'chromium-profile');
+const context = await chromium.launchPersistentContext(userDataDir, {
+  executablePath: chromiumPath,
+  headless: true,
+  viewport: { width: 1280, height: 860 },
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+});
+let failed = false;
+try {
+  const page = context.pages()[0] || await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('console', (m) => { if (m.type() === 'error' && !/status of 409/.test(m.text())) errors.push(m.text()); });
+  await page.goto(url);
+  await page.waitForSelector('body[data-ready="1"]');
+  const problem = JSON.parse(fs.readFileSync(path.join(task, 'problem.json'), 'utf8'));
+
+  // Screen position of the world point (x, y) on the board (north up).
+  const screen = (x, y) => page.evaluate(([x, y]) => {
+    const svg = document.getElementById('board');
+    const vb = svg.viewBox.baseVal;
+    const m = 26; // board margin, see board.js
+    const task = window.__space;
+    const pt = svg.createSVGPoint();
+    pt.x = x - task.x + m;
+    pt.y = task.y + task.height - y + m;
+    const p = pt.matrixTransform(svg.getScreenCTM());
+    return { x: p.x, y: p.y, vb: vb.width };
+  }, [x, y]);
+  await page.evaluate((s) => { window.__space = s; }, problem.space);
+
+  const placedCount = () => page.locator('#board .obj:not(.fixed)').count();
+
+  // Drag a block of `cls` from the palette so that its min corner lands at (x, y).
+  async function place(cls, x, y) {
+    const box = await page.locator(`.kind[data-class="${cls}"]`).boundingBox();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.mouse.down();
+    const t = await screen(x + 10 + 3, y + 10 - 3); // centre of a 20×20 block, a little off-grid
+    await page.mouse.move(t.x, t.y, { steps: 6 });
+    await page.mouse.up();
+  }
+  // Drag the placed block whose min corner is at (x0, y0) to (x1, y1).
+  async function move(x0, y0, x1, y1) {
+    const a = await screen(x0 + 10, y0 + 10);
+    const b = await screen(x1 + 10, y1 + 10);
+    await page.mouse.move(a.x, a.y);
+    await page.mouse.down();
+    await page.mouse.move(b.x, b.y, { steps: 6 });
+    await page.mouse.up();
+  }
+
+  const demo1 = [['R', 200, 200], ['R', 220, 200], ['R', 200, 220],
+    ['B', 200, 360], ['B', 220, 380], ['B', 200, 380],
+    ['G', 380, 200], ['G', 380, 220], ['G', 360, 200]];
+  for (const [c, x, y] of demo1) await place(c, x, y);
+  assert.equal(await placedCount(), 9);
+
+  // A drop onto a wall is refused visibly and changes nothing.
+  await place('R', 300, 190);
+  await page.waitForSelector('.toast.show.error');
+  assert.match(await page.locator('#toast').textContent(), /refused.*overlap w_south/i);
+  assert.equal(await placedCount(), 9);
+  // Partly outside the table: refused too.
+  await place('G', 590, 590);
+  assert.match(await page.locator('#toast').textContent(), /refused.*outside/i);
+  assert.equal(await placedCount(), 9);
+
+  // Move a block, then delete one with the key and put it back.
+  await move(360, 200, 380, 240);
+  await move(200, 220, 240, 200);
+  await page.screenshot({ path: path.join(out, 'studio-record.png') });
+  const sel = await screen(240 + 10, 200 + 10);
+  await page.mouse.click(sel.x, sel.y);
+  await page.keyboard.press('Delete');
+  assert.equal(await placedCount(), 8);
+  await place('R', 200, 220);
+  assert.equal(await placedCount(), 9);
+
+  await page.click('#btn-save');
+  await page.waitForFunction(() => document.getElementById('demo-count').textContent === '1');
+  assert.equal(await placedCount(), 0, 'table cleared after saving');
+
+  const demo2 = [['R', 200, 200], ['R', 220, 200], ['R', 240, 200],
+    ['B', 200, 380], ['B', 220, 380], ['B', 240, 380],
+    ['G', 380, 200], ['G', 380, 220], ['G', 380, 240]];
+  for (const [c, x, y] of demo2) await place(c, x, y);
+  await page.click('#btn-save');
+  await page.waitForFunction(() => document.getElementById('demo-count').textContent === '2');
+  assert.equal(await page.locator('#demos .demo').count(), 2);
+
+  // demos.json on disk holds both, with the positions dropped.
+  const demos = JSON.parse(fs.readFileSync(path.join(task, 'demos.json'), 'utf8'));
+  assert.equal(demos.length, 2);
+  const blocks = (s) => s.objects.filter((o) => !o.fixed).map((o) => `${o.class}@${o.x},${o.y}`).sort();
+  const expect1 = [['R', 200, 200], ['R', 220, 200], ['R', 200, 220], ['B', 200, 360], ['B', 220, 380],
+    ['B', 200, 380], ['G', 380, 200], ['G', 380, 220], ['G', 380, 240]];
+  assert.deepEqual(blocks(demos[0]), expect1.map(([c, x, y]) => `${c}@${x},${y}`).sort());
+  assert.deepEqual(blocks(demos[1]), demo2.map(([c, x, y]) => `${c}@${x},${y}`).sort());
+  assert.equal(demos[0].objects.filter((o) => o.fixed).length, 4);
+  log('demos.json holds 2 demonstrations');
+
+  // Show a saved demonstration: a copy goes onto the table.
+  await page.locator('#demos .demo').first().getByRole('button', { name: 'Show' }).click();
+  assert.equal(await placedCount(), 9);
+
+  // Learn.
+  await page.click('#tab-learn');
+  await page.click('#btn-learn');
+  await page.waitForSelector('#rules .rule', { timeout: 120000 });
+  const nRules = await page.locator('#rules .rule').count();
+  log('learned rules:', nRules);
+  assert.ok(nRules > 0);
+  // Untick the weakest rule and save the rest.
+  await page.locator('#rules .rule input').last().uncheck();
+  await page.click('#btn-save-rules');
+  await page.waitForSelector('#learned-file details');
+  const learned = fs.readFileSync(path.join(task, 'learned.rcc'), 'utf8');
+  assert.equal((learned.match(/^rule /gm) || []).length, nRules - 1);
+  await page.screenshot({ path: path.join(out, 'studio-learn.png') });
+
+  // A hand edit on disk is not overwritten: the page reloads it.
+  fs.appendFileSync(path.join(task, 'learned.rcc'), '# my note\n');
+  await page.click('#btn-save-rules');
+  await page.waitForSelector('.toast.show.error');
+  assert.match(await page.locator('#toast').textContent(), /changed on disk/);
+  assert.match(fs.readFileSync(path.join(task, 'learned.rcc'), 'utf8'), /# my note/);
+
+  if (synthEnabled && await page.locator('#tab-synth').isVisible()) {
+    await page.click('#tab-synth');
+    await page.fill('#synth-limit', '20');
+    await page.click('#btn-synth');
+    await page.waitForSelector('#synth-result .status', { timeout: 120000 });
+    const status = await page.locator('#synth-result .status').textContent();
+    log('synthesis status:', status);
+    assert.match(status, /optimal|feasible/);
+    assert.equal(await page.locator('#board .obj:not(.fixed)').count(), 9);
+    await page.evaluate(() => { document.getElementById('toast').className = 'toast'; });
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: path.join(out, 'studio-synth.png') });
+
+    // After a reload the page solves with learned.rcc from disk. Rules that
+    // cannot both hold: every red block breaks one, and is outlined.
+    fs.writeFileSync(path.join(task, 'learned.rcc'),
+      'rule red_north_of_green: DR_N(R, G)\nrule red_south_of_green weight 2: DR_S(R, G)\n');
+    await page.reload();
+    await page.waitForSelector('body[data-ready="1"]');
+    await page.click('#tab-synth');
+    assert.match(await page.locator('#synth-rules').textContent(), /learned\.rcc \(2 rules\)/);
+    await page.click('#btn-synth');
+    await page.waitForSelector('#synth-result .status', { timeout: 120000 });
+    assert.equal(await page.locator('#board .obj .violation').count(), 3);
+    assert.match(await page.locator('#synth-result').textContent(), /0\.667/);
+    await page.screenshot({ path: path.join(out, 'studio-violations.png') });
+  } else {
+    log('synthesis: not in this build of the page');
+  }
+  // Delete a saved demonstration from the list.
+  await page.click('#tab-record');
+  page.once('dialog', (d) => d.accept());
+  await page.locator('#demos .demo').nth(1).getByRole('button', { name: 'Delete' }).click();
+  await page.waitForFunction(() => document.getElementById('demo-count').textContent === '1');
+  assert.equal(JSON.parse(fs.readFileSync(path.join(task, 'demos.json'), 'utf8')).length, 1);
+
+  assert.deepEqual(errors, [], 'no errors in the page');
+  log('ok; screenshots in', out);
+} catch (e) {
+  failed = true;
+  console.error(e);
+  try {
+    const p = context.pages()[0];
+    if (p) await p.screenshot({ path: path.join(out, 'studio-failure.png') });
+  } catch { /* ignore */ }
+} finally {
+  await context.close();
+  server.kill('SIGTERM');
+  fs.rmSync(tmp, { recursive: true, force: true });
+}
+process.exit(failed ? 1 : 0);

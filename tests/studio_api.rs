@@ -1,0 +1,548 @@
+//! The studio's HTTP API, against the router without a socket.
+
+use axum::body::Body;
+use axum::http::{Method, Request, StatusCode};
+use http_body_util::BodyExt;
+use rccpack::scene::scenes_from_json;
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+use tower::ServiceExt;
+
+/// A fresh copy of the bundled example in a temporary folder (no demos.json
+/// unless `with_demos`).
+fn task_dir(tag: &str, with_demos: bool) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rccpack-studio-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing");
+    std::fs::copy(src.join("problem.json"), dir.join("problem.json")).unwrap();
+    if with_demos {
+        std::fs::copy(src.join("demos.json"), dir.join("demos.json")).unwrap();
+    }
+    dir
+}
+
+async fn call(
+    app: &axum::Router,
+    method: Method,
+    uri: &str,
+    body: impl Into<Body>,
+) -> (StatusCode, Value) {
+    let req = Request::builder()
+        .method(method)
+        .uri(uri)
+        .header("content-type", "application/json")
+        .body(body.into())
+        .unwrap();
+    let res = app.clone().oneshot(req).await.unwrap();
+    let status = res.status();
+    let bytes = res.into_body().collect().await.unwrap().to_bytes();
+    let v = serde_json::from_slice(&bytes)
+        .unwrap_or(Value::String(String::from_utf8_lossy(&bytes).into()));
+    (status, v)
+}
+
+/// The example's walls plus `blocks` as `(class, x, y)` 20×20 objects.
+fn demo(blocks: &[(&str, i64, i64)]) -> Value {
+    let problem: Value = serde_json::from_str(
+        &std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing/problem.json"),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let mut objects: Vec<Value> = problem["objects"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|o| o["fixed"] == json!(true))
+        .cloned()
+        .collect();
+    for (i, (c, x, y)) in blocks.iter().enumerate() {
+        objects.push(json!({"id": format!("{}{}", c.to_lowercase(), i), "class": c, "x": x, "y": y, "width": 20, "height": 20}));
+    }
+    json!({"space": problem["space"], "grid": problem["grid"], "objects": objects})
+}
+
+fn demos_on_disk(dir: &Path) -> usize {
+    scenes_from_json(&std::fs::read_to_string(dir.join("demos.json")).unwrap())
+        .unwrap()
+        .len()
+}
+
+#[tokio::test]
+async fn page_and_task() {
+    let dir = task_dir("page", false);
+    let app = rccpack::studio::router(&dir).unwrap();
+    assert_eq!(
+        std::fs::read_to_string(dir.join("demos.json"))
+            .unwrap()
+            .trim(),
+        "[]"
+    );
+    let req = Request::builder().uri("/").body(Body::empty()).unwrap();
+    let res = app.clone().oneshot(req).await.unwrap();
+    assert_eq!(res.status(), StatusCode::OK);
+    assert!(res.headers()["content-type"]
+        .to_str()
+        .unwrap()
+        .starts_with("text/html"));
+    let (s, _) = call(&app, Method::GET, "/assets/app.js", Body::empty()).await;
+    assert_eq!(s, StatusCode::OK);
+    let (s, _) = call(
+        &app,
+        Method::GET,
+        "/assets/..%2Fproblem.json",
+        Body::empty(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::NOT_FOUND);
+    // Only loopback host names are answered.
+    let req = Request::builder()
+        .uri("/api/task")
+        .header("host", "evil.example:80")
+        .body(Body::empty())
+        .unwrap();
+    assert_eq!(
+        app.clone().oneshot(req).await.unwrap().status(),
+        StatusCode::FORBIDDEN
+    );
+    let req = Request::builder()
+        .uri("/api/task")
+        .header("host", "127.0.0.1:8080")
+        .body(Body::empty())
+        .unwrap();
+    assert_eq!(
+        app.clone().oneshot(req).await.unwrap().status(),
+        StatusCode::OK
+    );
+    let (s, task) = call(&app, Method::GET, "/api/task", Body::empty()).await;
+    assert_eq!(s, StatusCode::OK);
+    let kinds: Vec<&str> = task["kinds"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k["class"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["R", "G", "B"]);
+    assert_eq!(task["colours"]["R"], "#d9534f");
+    assert_eq!(task["kinds"][0]["count"], 3);
+}
+
+#[tokio::test]
+async fn save_valid_and_invalid_demonstrations() {
+    let dir = task_dir("save", false);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let good = demo(&[("R", 200, 200), ("R", 220, 200), ("B", 200, 220)]);
+    let (s, v) = call(&app, Method::POST, "/api/demos", good.to_string()).await;
+    assert_eq!(s, StatusCode::CREATED, "{v}");
+    assert_eq!(v["count"], 1);
+    assert_eq!(demos_on_disk(&dir), 1);
+
+    // Malformed JSON: 400 with the scene parser's field path.
+    let mut bad = good.clone();
+    bad["objects"][5]["x"] = json!(12.5);
+    let (s, v) = call(&app, Method::POST, "/api/demos", bad.to_string()).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert_eq!(v["path"], "objects[5].x");
+    assert!(
+        v["error"]
+            .as_str()
+            .unwrap()
+            .contains("objects[5].x: invalid type: floating point `12.5`, expected i64"),
+        "{v}"
+    );
+    // Unknown field.
+    let mut bad = good.clone();
+    bad["objects"][4]["colour"] = json!("red");
+    let (s, v) = call(&app, Method::POST, "/api/demos", bad.to_string()).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert!(
+        v["error"]
+            .as_str()
+            .unwrap()
+            .contains("unknown field `colour`"),
+        "{v}"
+    );
+    // Not JSON at all.
+    let (s, v) = call(&app, Method::POST, "/api/demos", "{\"space\": ").await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert!(
+        v["error"].as_str().unwrap().starts_with("demonstration: "),
+        "{v}"
+    );
+    // Overlap (the same check as `check`/`score`), names both objects.
+    let overlap = demo(&[("R", 200, 200), ("G", 210, 200)]);
+    let (s, v) = call(&app, Method::POST, "/api/demos", overlap.to_string()).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    let msg = v["error"].as_str().unwrap();
+    assert!(msg.contains("r0") && msg.contains("g1"), "{msg}");
+    // Out of the space.
+    let out = demo(&[("R", 590, 10)]);
+    let (s, _) = call(&app, Method::POST, "/api/demos", out.to_string()).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    // A moved wall.
+    let mut moved = good.clone();
+    moved["objects"][0]["x"] = json!(0);
+    let (s, v) = call(&app, Method::POST, "/api/demos", moved.to_string()).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert!(v["error"].as_str().unwrap().contains("w_south"), "{v}");
+    // An unplaced object.
+    let mut unplaced = good.clone();
+    unplaced["objects"][4].as_object_mut().unwrap().remove("x");
+    unplaced["objects"][4].as_object_mut().unwrap().remove("y");
+    let (s, v) = call(&app, Method::POST, "/api/demos", unplaced.to_string()).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert!(
+        v["error"].as_str().unwrap().contains("has no position"),
+        "{v}"
+    );
+    // A kind the problem does not have.
+    let odd = demo(&[("Q", 200, 200)]);
+    let (s, _) = call(&app, Method::POST, "/api/demos", odd.to_string()).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    // Nothing invalid reached the file.
+    assert_eq!(demos_on_disk(&dir), 1);
+
+    // Browse, show, delete.
+    let (s, v) = call(&app, Method::GET, "/api/demos", Body::empty()).await;
+    assert_eq!(s, StatusCode::OK);
+    assert_eq!(v["count"], 1);
+    let (s, v) = call(&app, Method::GET, "/api/demos/0", Body::empty()).await;
+    assert_eq!(s, StatusCode::OK);
+    assert_eq!(v["objects"].as_array().unwrap().len(), 7);
+    let (s, _) = call(&app, Method::GET, "/api/demos/1", Body::empty()).await;
+    assert_eq!(s, StatusCode::NOT_FOUND);
+    // A delete from a page that listed an older file is refused.
+    let (_, listed) = call(&app, Method::GET, "/api/demos", Body::empty()).await;
+    let (s, v) = call(
+        &app,
+        Method::DELETE,
+        "/api/demos/0?version=0123456789abcdef",
+        Body::empty(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::CONFLICT, "{v}");
+    assert_eq!(demos_on_disk(&dir), 1);
+    let uri = format!(
+        "/api/demos/0?version={}",
+        listed["version"].as_str().unwrap()
+    );
+    let (s, v) = call(&app, Method::DELETE, &uri, Body::empty()).await;
+    assert_eq!(s, StatusCode::OK);
+    assert_eq!(v["count"], 0);
+    assert_eq!(demos_on_disk(&dir), 0);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn concurrent_saves_lose_nothing() {
+    let dir = task_dir("concurrent", false);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let mut handles = Vec::new();
+    for i in 0..24 {
+        let app = app.clone();
+        handles.push(tokio::spawn(async move {
+            let d = demo(&[("R", 200 + 10 * (i % 18), 200), ("B", 200, 300)]);
+            call(&app, Method::POST, "/api/demos", d.to_string())
+                .await
+                .0
+        }));
+    }
+    for h in handles {
+        assert_eq!(h.await.unwrap(), StatusCode::CREATED);
+    }
+    assert_eq!(demos_on_disk(&dir), 24);
+    // No temporary file left behind.
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().contains(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty());
+}
+
+#[tokio::test]
+async fn corrupt_demos_file_is_reported_and_kept() {
+    let dir = task_dir("corrupt", false);
+    let corrupt = "[{\"space\": {\"width\": 600, \"height\": 600}, \"objects\": [ oops";
+    std::fs::write(dir.join("demos.json"), corrupt).unwrap();
+    let app = rccpack::studio::router(&dir).unwrap();
+    let (s, v) = call(&app, Method::GET, "/api/demos", Body::empty()).await;
+    assert_eq!(s, StatusCode::CONFLICT);
+    assert!(v["error"].as_str().unwrap().contains("demos.json"), "{v}");
+    assert_eq!(v["kind"], "corrupt_demos");
+    let good = demo(&[("R", 200, 200)]);
+    let (s, _) = call(&app, Method::POST, "/api/demos", good.to_string()).await;
+    assert_eq!(s, StatusCode::CONFLICT);
+    let (s, _) = call(&app, Method::DELETE, "/api/demos/0", Body::empty()).await;
+    assert_eq!(s, StatusCode::CONFLICT);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("demos.json")).unwrap(),
+        corrupt
+    );
+    // A well-formed file with an invalid scene is corrupt too.
+    std::fs::write(dir.join("demos.json"), "{\"not\": \"an array\"}").unwrap();
+    let (s, _) = call(&app, Method::POST, "/api/demos", good.to_string()).await;
+    assert_eq!(s, StatusCode::CONFLICT);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("demos.json")).unwrap(),
+        "{\"not\": \"an array\"}"
+    );
+}
+
+#[tokio::test]
+async fn oversize_body_is_refused() {
+    let dir = task_dir("oversize", false);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let big = format!("{{\"pad\": \"{}\"}}", "x".repeat(2 << 20));
+    let (s, _) = call(&app, Method::POST, "/api/demos", big.clone()).await;
+    assert_eq!(s, StatusCode::PAYLOAD_TOO_LARGE);
+    let (s, _) = call(&app, Method::PUT, "/api/learned", big).await;
+    assert_eq!(s, StatusCode::PAYLOAD_TOO_LARGE);
+    assert_eq!(demos_on_disk(&dir), 0);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn learn_and_save_learned_rules() {
+    let dir = task_dir("learn", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/learn",
+        json!({"samples": 200}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    assert_eq!(v["source"], "templates");
+    let rules = v["rules"].as_array().unwrap();
+    assert!(!rules.is_empty());
+    let posts: Vec<f64> = rules
+        .iter()
+        .map(|r| r["posterior"].as_f64().unwrap())
+        .collect();
+    assert!(
+        posts.windows(2).all(|w| w[0] <= w[1]),
+        "strongest first: {posts:?}"
+    );
+    assert!(rules
+        .iter()
+        .all(|r| !r["english"].as_str().unwrap().is_empty()));
+    // Bad parameters: 400/422 with a message, never a panic.
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/learn",
+        json!({"samples": "many"}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert_eq!(v["path"], "samples");
+
+    // Save the first two rules.
+    let (s, l) = call(&app, Method::GET, "/api/learned", Body::empty()).await;
+    assert_eq!(s, StatusCode::OK);
+    assert_eq!(l["exists"], false);
+    let text = format!(
+        "{}\n{}{}",
+        v_header(&app).await,
+        rules[0]["rcc"].as_str().unwrap(),
+        rules[1]["rcc"].as_str().unwrap()
+    );
+    let (s, saved) = call(
+        &app,
+        Method::PUT,
+        "/api/learned",
+        json!({"text": text, "base_version": l["version"]}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{saved}");
+    assert_eq!(saved["rules"].as_array().unwrap().len(), 2);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("learned.rcc")).unwrap(),
+        text
+    );
+
+    // A hand edit on disk: saving over it with the old version is refused.
+    let edited = format!("{text}rule mine hard: DR_N(B, R)\n");
+    std::fs::write(dir.join("learned.rcc"), &edited).unwrap();
+    let (s, v) = call(
+        &app,
+        Method::PUT,
+        "/api/learned",
+        json!({"text": text, "base_version": saved["version"]}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::CONFLICT);
+    assert_eq!(v["current"]["text"], edited.as_str());
+    assert_eq!(
+        std::fs::read_to_string(dir.join("learned.rcc")).unwrap(),
+        edited
+    );
+    // With the current version it goes through.
+    let (s, _) = call(
+        &app,
+        Method::PUT,
+        "/api/learned",
+        json!({"text": text, "base_version": v["current"]["version"]}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK);
+
+    // Invalid rules are refused with the CLI's located diagnostic.
+    let (s, v) = call(
+        &app,
+        Method::PUT,
+        "/api/learned",
+        json!({"text": "rule x: DR_N(B, Q)\n", "base_version": "absent"}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert!(
+        v["error"].as_str().unwrap().contains("learned.rcc:1:"),
+        "{v}"
+    );
+}
+
+async fn v_header(app: &axum::Router) -> String {
+    let (_, v) = call(
+        app,
+        Method::POST,
+        "/api/learn",
+        json!({"samples": 200}).to_string(),
+    )
+    .await;
+    v["header"].as_str().unwrap().to_string()
+}
+
+#[tokio::test]
+async fn learn_without_demonstrations_is_a_clear_error() {
+    let dir = task_dir("learn-empty", false);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let (s, v) = call(&app, Method::POST, "/api/learn", Body::empty()).await;
+    assert_eq!(s, StatusCode::UNPROCESSABLE_ENTITY);
+    assert!(
+        v["error"].as_str().unwrap().contains("no demonstrations"),
+        "{v}"
+    );
+}
+
+#[test]
+fn missing_or_bad_problem_is_an_error() {
+    let dir = task_dir("noproblem", false);
+    std::fs::remove_file(dir.join("problem.json")).unwrap();
+    let e = rccpack::studio::router(&dir).unwrap_err().to_string();
+    assert!(e.contains("problem.json"), "{e}");
+    std::fs::write(
+        dir.join("problem.json"),
+        "{\"space\": {\"width\": 1.5, \"height\": 3}, \"objects\": []}",
+    )
+    .unwrap();
+    let e = rccpack::studio::router(&dir).unwrap_err().to_string();
+    assert!(e.contains("space.width"), "{e}");
+}
+
+async fn wait_job(app: &axum::Router, job: &Value) -> Value {
+    for _ in 0..1200 {
+        let (s, v) = call(
+            app,
+            Method::GET,
+            &format!("/api/synth/{job}"),
+            Body::empty(),
+        )
+        .await;
+        assert_eq!(s, StatusCode::OK, "{v}");
+        if v["state"] != "running" {
+            return v;
+        }
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    panic!("synthesis job {job} did not finish");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn synth_on_the_bundled_example() {
+    let dir = task_dir("synth", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let pilot = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing/pilot.rcc"),
+    )
+    .unwrap();
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/synth",
+        json!({"rules": pilot, "time_limit": 60}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::ACCEPTED, "{v}");
+    let done = wait_job(&app, &v["job"]).await;
+    assert_eq!(done["state"], "done", "{done}");
+    let r = &done["result"];
+    assert_eq!(r["status"], "optimal");
+    assert_eq!(r["score"], 1.0);
+    assert_eq!(r["evaluation"]["rules"].as_array().unwrap().len(), 12);
+    let scene = rccpack::scene::Scene::from_json(&r["scene"].to_string()).unwrap();
+    assert!(scene.is_complete());
+    assert_eq!(scene.objects.len(), 13);
+
+    // Bad rules: the located diagnostic; bad limit: field path.
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/synth",
+        json!({"rules": "rule x: DR_N(B R)\n"}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert!(
+        v["error"].as_str().unwrap().contains("chosen rules:1:"),
+        "{v}"
+    );
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/synth",
+        json!({"rules": pilot, "time_limit": -1}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert_eq!(v["path"], "time_limit");
+    let (s, _) = call(&app, Method::GET, "/api/synth/999", Body::empty()).await;
+    assert_eq!(s, StatusCode::NOT_FOUND);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn synth_can_be_cancelled() {
+    let dir = task_dir("cancel", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    // Templates-style rules that are hard to prove optimal; cancel at once.
+    let rules = "rule a: EC_N(R, G) | EC_E(R, B)\nrule b: EC_W(G, R) & EC_N(G, *)\nrule c: DR_S(B, G) | EC_S(B, R)\n";
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/synth",
+        json!({"rules": rules, "time_limit": 120}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::ACCEPTED, "{v}");
+    let (s, c) = call(
+        &app,
+        Method::POST,
+        &format!("/api/synth/{}/cancel", v["job"]),
+        Body::empty(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK);
+    assert_eq!(c["cancelled"], true);
+    let started = std::time::Instant::now();
+    let done = wait_job(&app, &v["job"]).await;
+    assert!(started.elapsed().as_secs() < 30, "cancel stops the search");
+    eprintln!(
+        "cancelled job ended: {} after {:?}",
+        done["result"]["status"],
+        started.elapsed()
+    );
+    assert_eq!(done["cancelled"], true);
+    assert_eq!(done["state"], "done", "{done}");
+}
