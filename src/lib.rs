@@ -4,6 +4,7 @@
 //! objects that keep them.
 #![warn(missing_docs)]
 
+pub mod bench;
 pub mod eval;
 pub mod relations;
 pub mod render;
