@@ -11,6 +11,16 @@ use plotters::style::{register_font, FontStyle};
 use std::path::Path;
 use std::sync::Once;
 
+/// Line colours: distinct on white, in the order of the lines.
+const COLORS: [RGBColor; 6] = [
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(23, 190, 207),
+];
+
 static FONT: &[u8] = include_bytes!("DejaVuSans.ttf");
 
 fn ensure_font() {
@@ -110,7 +120,14 @@ pub fn draw(path: &Path, title: &str, lines: &[Line]) -> Result<(), String> {
             .configure_mesh()
             .x_desc("objects to place")
             .y_desc(ydesc)
-            .x_label_formatter(&|x| format!("{x:.0}"))
+            .x_labels(((xmax - xmin).round() as usize + 1).min(30))
+            .x_label_formatter(&|x| {
+                if (x - x.round()).abs() < 1e-6 {
+                    format!("{x:.0}")
+                } else {
+                    String::new()
+                }
+            })
             .y_label_formatter(&|y| {
                 if *y >= 1.0 {
                     format!("{y:.0}")
@@ -123,7 +140,7 @@ pub fn draw(path: &Path, title: &str, lines: &[Line]) -> Result<(), String> {
             .draw()
             .map_err(|x| e(&x))?;
         for (i, l) in lines.iter().enumerate() {
-            let color = Palette99::pick(i).mix(1.0);
+            let color = COLORS[i % COLORS.len()];
             let pts: Vec<(f64, f64)> = l
                 .points
                 .iter()

@@ -22,7 +22,8 @@
 
 use super::pool::{formula_text, pool_for};
 use crate::relations::Contact;
-use crate::rules::{Rule, RuleSet, Strength};
+use crate::relations::Kind;
+use crate::rules::{Formula, Rule, RuleSet, Strength, Target};
 use crate::scene::{Object, Scene, Space};
 use crate::synth::{Status, SynthError, SynthOptions, SynthResult};
 use rand::{RngExt, SeedableRng};
@@ -449,6 +450,22 @@ pub struct StudyReport {
     pub summary: Vec<Summary>,
 }
 
+/// Whether no layout of two or more objects of the subject class can let
+/// every one of them satisfy `f`: `f` is a single `DR_d(A, A)`, `EC_d(A, A)`
+/// or `DR_d(A, *)` atom (two objects cannot each lie strictly north of — or
+/// touch the north side of — the other). Draws containing such a rule are
+/// rejected without a solve; this only saves time, the engine would reject
+/// them too.
+pub fn unsatisfiable_with_two(f: &Formula) -> bool {
+    match f {
+        Formula::Atom(a) => match &a.target {
+            Target::Any => a.rel.kind == Kind::DR,
+            Target::Class(c) => c == &a.subject,
+        },
+        _ => false,
+    }
+}
+
 /// Draw rule sets until `cfg.sets` are viable (or `cfg.max_draws` were
 /// tried). Returns the sets and the number of draws.
 pub fn find_viable_sets(
@@ -474,13 +491,19 @@ pub fn find_viable_sets(
         draws += 1;
         let set = draw_set(&mut rng, cfg.rules_per_class, draws);
         let rules = set.first(cfg.rules_per_class);
-        let viable = match (engine.solve)(&scene, &rules, &opts) {
-            Ok(r) => r
-                .evaluation
-                .as_ref()
-                .is_some_and(|e| e.hard_ok() && e.score >= 1.0 - 1e-9),
-            Err(_) => false,
-        };
+        let hopeless = cfg.viability_objects_per_class >= 2
+            && rules
+                .rules
+                .iter()
+                .any(|r| unsatisfiable_with_two(&r.formula));
+        let viable = !hopeless
+            && match (engine.solve)(&scene, &rules, &opts) {
+                Ok(r) => r
+                    .evaluation
+                    .as_ref()
+                    .is_some_and(|e| e.hard_ok() && e.score >= 1.0 - 1e-9),
+                Err(_) => false,
+            };
         if viable {
             sets.push(set);
         }
@@ -736,6 +759,50 @@ mod tests {
         }
         let classes: std::collections::HashSet<String> = a.iter().map(|p| p.classes()).collect();
         assert!(classes.len() > 10, "classes vary: {classes:?}");
+    }
+
+    #[test]
+    fn self_referential_atoms_are_hopeless_for_two() {
+        use crate::bench::pool::{atom, touches};
+        use crate::relations::Dir;
+        let c = |s: &str| Target::Class(s.into());
+        assert!(unsatisfiable_with_two(&atom(
+            Kind::DR,
+            Dir::N,
+            "R",
+            &c("R")
+        )));
+        assert!(unsatisfiable_with_two(&atom(
+            Kind::EC,
+            Dir::W,
+            "R",
+            &c("R")
+        )));
+        assert!(unsatisfiable_with_two(&atom(
+            Kind::DR,
+            Dir::E,
+            "R",
+            &Target::Any
+        )));
+        assert!(!unsatisfiable_with_two(&atom(
+            Kind::EC,
+            Dir::E,
+            "R",
+            &Target::Any
+        )));
+        assert!(!unsatisfiable_with_two(&atom(
+            Kind::DR,
+            Dir::N,
+            "R",
+            &c("G")
+        )));
+        assert!(!unsatisfiable_with_two(&touches("R", &c("R"))));
+        assert!(!unsatisfiable_with_two(&Formula::not(atom(
+            Kind::DR,
+            Dir::N,
+            "R",
+            &c("R")
+        ))));
     }
 
     #[test]

@@ -3,6 +3,7 @@
 //! Exit codes (SPEC §10): 0 success; 1 bad input; 2 infeasible; 3 a limit
 //! stopped the search before any solution.
 
+mod bench;
 mod check;
 mod io;
 mod render;
@@ -30,6 +31,8 @@ enum Command {
     Score(score::ScoreArgs),
     /// Draw a scene as SVG or PNG, optionally marking rule violations.
     Render(render::RenderArgs),
+    /// Benchmarks: `bench thesis` reproduces the thesis runtime study.
+    Bench(bench::BenchArgs),
 }
 
 /// Parse arguments, run the command, map errors to exit codes.
@@ -39,6 +42,7 @@ pub fn main() -> ExitCode {
         Command::Check(a) => check::run(a),
         Command::Score(a) => score::run(a),
         Command::Render(a) => render::run(a),
+        Command::Bench(a) => bench::run(a),
     };
     match result {
         Ok(code) => code,
