@@ -1,11 +1,68 @@
 //! # rccpack
 //!
-//! Learn spatial placement rules from a few demonstrations and lay out new
-//! objects that keep them.
+//! Learn spatial placement rules from a handful of demonstrations, show them
+//! as readable `.rcc` rules, and lay out new objects so that the rules hold.
+//!
+//! The data flows one way:
+//!
+//! ```text
+//! scene JSON ─► scene ─► relations ─► rules (.rcc) ─► eval (score, SPEC §6)
+//!                                          │
+//!                  demos ─► infer ─────────┤ learned .rcc
+//!                                          ▼
+//!                problem ─► synth (model ─► engine) ─► scene
+//!                                          │
+//!                       eval re-checks every output scene
+//! ```
+//!
+//! ## A scene, some rules, a score
+//!
+//! A [`scene::Scene`] is a table (the *space*), a grid step and axis-aligned
+//! rectangles of named classes; north is +y. Rules are Boolean formulas over
+//! directional Region Connection Calculus relations lifted to classes:
+//! `DR_N(B, R)` reads "every B is north of every R", `EC_W(G, *)` "every G
+//! touches something on that thing's west side".
+//!
+//! ```
+//! use rccpack::{eval::evaluate, relations::Contact, rules::parse_rules, scene::Scene};
+//!
+//! let scene = Scene::from_json(r#"{
+//!   "space": {"width": 100, "height": 100},
+//!   "objects": [
+//!     {"id": "b1", "class": "B", "x": 0,  "y": 20, "width": 20, "height": 20},
+//!     {"id": "r1", "class": "R", "x": 0,  "y": 0,  "width": 20, "height": 20},
+//!     {"id": "r2", "class": "R", "x": 60, "y": 0,  "width": 20, "height": 20}
+//!   ]}"#)?;
+//! let rules = parse_rules(
+//!     "rule blue_north_of_red: DR_N(B, R)\n\
+//!      rule red_touches_red weight 2: EC_E(R, R) | EC_W(R, R)\n",
+//! )?;
+//! let report = evaluate(&scene, &rules, Contact::Point);
+//! // b1 keeps its rule (weight 1); neither red touches the other (2 × 2).
+//! assert_eq!((report.satisfied_weight, report.total_weight), (1.0, 5.0));
+//! println!("score {:.2}", report.score); // score 0.20
+//! assert_eq!(report.rules[1].violators, ["r1", "r2"]);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! ## Where things live
+//!
+//! - [`scene`]: geometry, the JSON format, validation with field paths.
+//! - [`relations`]: the eight relations, contact modes, one byte of relation
+//!   bits per ordered pair, class atoms.
+//! - [`rules`]: the `.rcc` language — AST, parser (grammar in
+//!   `grammar/rcc.pest`), checks, printer, diagnostics.
+//! - [`eval`]: the one evaluator and the §6 score.
+//! - [`render`]: SVG and PNG pictures.
+//! - [`synth`]: synthesis of layouts.
+//!
+//! The command-line tool `rccpack` wraps these (`check`, `score`, `render`,
+//! …); see the README.
 #![warn(missing_docs)]
 
 pub mod bench;
 pub mod eval;
+pub mod infer;
 pub mod relations;
 pub mod render;
 pub mod rules;

@@ -266,6 +266,14 @@ fn is_identifier(s: &str) -> bool {
 impl Scene {
     /// Parse and validate one scene from JSON text.
     pub fn from_json(text: &str) -> Result<Scene, SceneError> {
+        if text.trim_start().starts_with('[') {
+            return Err(SceneError::Json {
+                path: ".".into(),
+                message: "expected one scene (a JSON object), found an array; \
+                          a demonstrations file holds several scenes"
+                    .into(),
+            });
+        }
         let de = &mut serde_json::Deserializer::from_str(text);
         let raw: SceneJson = serde_path_to_error::deserialize(de).map_err(json_error)?;
         let scene = raw.into_scene();

@@ -29,6 +29,7 @@ fn scene_error(path: &Path, e: scene::SceneError) -> anyhow::Error {
 }
 
 /// Read one scene (a JSON object).
+#[allow(dead_code)] // used by `synth` once it lands
 pub fn read_scene(path: &Path) -> Result<Scene> {
     let text = read_text(path)?;
     Scene::from_json(&text).map_err(|e| scene_error(path, e))

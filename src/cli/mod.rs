@@ -6,12 +6,15 @@
 mod bench;
 mod check;
 mod io;
+mod learn;
 mod render;
 mod score;
+mod synth;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+#[allow(unused_imports)] // read_scene: used by `synth` once it lands
 pub use io::{read_rules, read_scene, read_scenes, Reported};
 
 /// Learn spatial placement rules from demonstrations and lay out new objects
@@ -29,19 +32,27 @@ enum Command {
     Check(check::CheckArgs),
     /// Score scenes against rules (SPEC §6): per rule and per object.
     Score(score::ScoreArgs),
+    /// Learn rules from demonstrations (SPEC §7).
+    Learn(learn::LearnArgs),
     /// Draw a scene as SVG or PNG, optionally marking rule violations.
     Render(render::RenderArgs),
+    /// Place the unplaced objects of a problem so that the rules hold as well
+    /// as possible (SPEC §9).
+    Synth(synth::SynthArgs),
     /// Benchmarks: `bench thesis` reproduces the thesis runtime study.
     Bench(bench::BenchArgs),
 }
 
 /// Parse arguments, run the command, map errors to exit codes.
 pub fn main() -> ExitCode {
+    restore_sigpipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check(a) => check::run(a),
         Command::Score(a) => score::run(a),
         Command::Render(a) => render::run(a),
+        Command::Learn(a) => learn::run(a),
+        Command::Synth(a) => synth::run(a),
         Command::Bench(a) => bench::run(a),
     };
     match result {
@@ -57,5 +68,16 @@ pub fn main() -> ExitCode {
             }
             ExitCode::from(1)
         }
+    }
+}
+
+/// Die quietly on a closed pipe (`rccpack score … | head`) like other Unix
+/// tools, instead of panicking in `println!`.
+fn restore_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called once at start-up, before any thread exists; resetting a
+    // signal disposition to its default has no memory-safety preconditions.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }

@@ -1,4 +1,4 @@
-use super::{read_rules, read_scene};
+use super::{read_rules, read_scenes};
 use anyhow::Result;
 use clap::Args;
 use rccpack::relations::Contact;
@@ -9,8 +9,11 @@ use std::process::ExitCode;
 /// `rccpack render SCENE [--rules R] -o out.svg|out.png`
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Scene JSON.
+    /// Scene JSON (or a demonstrations array, with `--index`).
     scene: PathBuf,
+    /// Which scene of a demonstrations array to draw (0-based).
+    #[arg(long)]
+    index: Option<usize>,
     /// Rules: objects that break one are outlined, and a legend lists them.
     #[arg(long)]
     rules: Option<PathBuf>,
@@ -26,7 +29,26 @@ pub struct RenderArgs {
 }
 
 pub fn run(a: RenderArgs) -> Result<ExitCode> {
-    let scene = read_scene(&a.scene)?;
+    let (mut scenes, is_array) = read_scenes(&a.scene)?;
+    let scene = match (is_array, a.index) {
+        (false, None | Some(0)) => scenes.remove(0),
+        (false, Some(i)) => anyhow::bail!(
+            "--index {i}: {} holds one scene, not an array",
+            a.scene.display()
+        ),
+        (true, None) => anyhow::bail!(
+            "{} is a demonstrations array of {} scenes; pick one with --index 0..{}",
+            a.scene.display(),
+            scenes.len(),
+            scenes.len().saturating_sub(1)
+        ),
+        (true, Some(i)) if i < scenes.len() => scenes.swap_remove(i),
+        (true, Some(i)) => anyhow::bail!(
+            "--index {i} is out of range: {} holds {} scenes",
+            a.scene.display(),
+            scenes.len()
+        ),
+    };
     let rules = match &a.rules {
         Some(p) => Some(read_rules(p, std::slice::from_ref(&scene))?),
         None => None,

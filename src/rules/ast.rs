@@ -86,6 +86,7 @@ pub enum Formula {
 
 impl Formula {
     /// `!f`
+    #[allow(clippy::should_implement_trait)]
     pub fn not(f: Formula) -> Formula {
         Formula::Not(Box::new(f))
     }

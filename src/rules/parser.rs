@@ -1,9 +1,446 @@
 //! The pest parser over `grammar/rcc.pest`.
+//!
+//! Parsing runs in three stages, none of which can panic or overflow the
+//! stack on any input:
+//!
+//! 1. an iterative scan rejects parenthesis nesting deeper than
+//!    [`MAX_DEPTH`] before pest (which recurses per `(`) sees the text;
+//! 2. pest parses the text; its errors are turned into user messages
+//!    (grammar rule names are renamed to what a user would type);
+//! 3. for each rule the nesting depth (parentheses and `!`) is measured
+//!    iteratively over the token stream, and only then is the formula built
+//!    by recursion; finally the semantic checks run (relation names, one
+//!    subject class per rule, unique names, modifier ranges).
 
-use super::{RuleSet, RulesError};
+use super::diagnostic::{line_col, Diagnostic};
+use super::{Atom, Formula, Rule, RuleOrigin, RuleSet, RulesError, Span, Strength, Target};
+use crate::relations::Relation;
+use pest::error::{ErrorVariant, InputLocation};
+use pest::iterators::Pair;
+use pest::Parser as _;
+use std::collections::HashMap;
+
+/// The deepest nesting of parentheses and negations a formula may have.
+pub const MAX_DEPTH: usize = 256;
+
+#[allow(missing_docs)]
+mod grammar {
+    /// The parser generated from `grammar/rcc.pest`.
+    #[derive(pest_derive::Parser)]
+    #[grammar = "grammar/rcc.pest"]
+    pub struct RccParser;
+}
+
+use grammar::{RccParser, Rule as R};
 
 /// Parse and check `.rcc` text (syntax, one subject per rule, unique names,
 /// modifier ranges).
-pub fn parse_rules(_src: &str) -> Result<RuleSet, RulesError> {
-    todo!("parser helper")
+pub fn parse_rules(src: &str) -> Result<RuleSet, RulesError> {
+    if let Some(d) = paren_depth_check(src) {
+        return Err(RulesError::new(vec![d]));
+    }
+    let mut pairs = match RccParser::parse(R::file, src) {
+        Ok(p) => p,
+        Err(e) => return Err(RulesError::new(vec![pest_diagnostic(src, &e)])),
+    };
+    let Some(file) = pairs.next() else {
+        return Err(RulesError::new(vec![Diagnostic::new(
+            Span::new(0, 0),
+            "empty parse",
+        )]));
+    };
+    let mut diags = Vec::new();
+    let mut rules = Vec::new();
+    let mut seen: HashMap<String, Span> = HashMap::new();
+    for pair in file.into_inner() {
+        if pair.as_rule() != R::rule_def {
+            continue;
+        }
+        if let Some(d) = token_depth_check(&pair) {
+            diags.push(d);
+            continue;
+        }
+        let before = diags.len();
+        let rule = build_rule(pair, &mut diags);
+        if let Some(rule) = rule {
+            let origin = rule.origin.as_ref().map(|o| o.name).unwrap_or_default();
+            if let Some(first) = seen.get(&rule.name) {
+                let (line, _) = line_col(src, first.start);
+                diags.push(Diagnostic::new(
+                    origin,
+                    format!(
+                        "duplicate rule name `{}`: it is already defined on line {line}",
+                        rule.name
+                    ),
+                ));
+            } else {
+                seen.insert(rule.name.clone(), origin);
+            }
+            if diags.len() == before {
+                rules.push(rule);
+            }
+        }
+    }
+    if diags.is_empty() {
+        Ok(RuleSet::new(rules))
+    } else {
+        diags.sort_by_key(|d| (d.span.start, d.span.end));
+        Err(RulesError::new(diags))
+    }
+}
+
+/// Stage 1: parenthesis depth over the raw text (comments skipped). An
+/// atom's own `(` adds one level, so the limit here is one above
+/// [`MAX_DEPTH`]; stage 3 measures the exact depth.
+fn paren_depth_check(src: &str) -> Option<Diagnostic> {
+    let mut depth = 0usize;
+    let mut in_comment = false;
+    for (i, b) in src.bytes().enumerate() {
+        match b {
+            b'\n' | b'\r' => in_comment = false,
+            _ if in_comment => {}
+            b'#' => in_comment = true,
+            b'(' => {
+                depth += 1;
+                if depth > MAX_DEPTH + 1 {
+                    return Some(too_deep(Span::new(i, i + 1)));
+                }
+            }
+            b')' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    None
+}
+
+fn too_deep(span: Span) -> Diagnostic {
+    Diagnostic::new(
+        span,
+        format!(
+            "formula nested too deeply: more than {MAX_DEPTH} levels of parentheses and negations"
+        ),
+    )
+}
+
+/// Stage 3a: nesting depth of one rule, iteratively over its tokens.
+fn token_depth_check(rule: &Pair<'_, R>) -> Option<Diagnostic> {
+    use pest::Token;
+    let mut depth = 0usize;
+    let mut saved: Vec<usize> = Vec::new();
+    for tok in rule.clone().tokens() {
+        match tok {
+            Token::Start { rule: R::unary, .. } => saved.push(depth),
+            Token::End { rule: R::unary, .. } => depth = saved.pop().unwrap_or(0),
+            Token::Start { rule: R::group, .. }
+            | Token::Start {
+                rule: R::not_op, ..
+            } => {
+                depth += 1;
+                if depth > MAX_DEPTH {
+                    let Token::Start { pos, .. } = tok else {
+                        unreachable!()
+                    };
+                    let s = pos.pos();
+                    return Some(too_deep(Span::new(s, s + 1)));
+                }
+            }
+            Token::End { rule: R::group, .. } => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    None
+}
+
+fn span_of(p: &Pair<'_, R>) -> Span {
+    let s = p.as_span();
+    Span::new(s.start(), s.end())
+}
+
+/// Stage 3b: build one rule and run the per-rule checks.
+fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
+    let whole = span_of(&pair);
+    let mut name = None;
+    let mut strength = Strength::default();
+    let mut modifier_span = None;
+    let mut formula = None;
+    let mut atom_spans = Vec::new();
+    let mut subjects = Vec::new();
+    for p in pair.into_inner() {
+        match p.as_rule() {
+            R::name => name = Some((p.as_str().to_string(), span_of(&p))),
+            R::modifier => {
+                modifier_span = Some(span_of(&p));
+                match modifier(p) {
+                    Ok(s) => strength = s,
+                    Err(d) => diags.push(d),
+                }
+            }
+            R::formula => {
+                let mut b = Builder {
+                    atoms: &mut atom_spans,
+                    subjects: &mut subjects,
+                    diags,
+                };
+                formula = p.into_inner().next().map(|d| b.disjunction(d));
+            }
+            _ => {}
+        }
+    }
+    let (name, name_span) = name?;
+    let formula = formula?;
+    // One subject class per rule.
+    if let Some((first, _)) = subjects.first() {
+        if let Some((other, span)) = subjects.iter().find(|(s, _)| s != first) {
+            diags.push(Diagnostic::new(
+                *span,
+                format!(
+                    "rule `{name}` mixes subject classes: this atom is about `{other}`, but the rule's first atom is about `{first}`"
+                ),
+            ));
+        }
+    }
+    let rule = Rule {
+        name,
+        strength,
+        formula,
+        comments: Vec::new(),
+        origin: Some(RuleOrigin {
+            span: whole,
+            name: name_span,
+            modifier: modifier_span,
+            atoms: atom_spans,
+        }),
+    };
+    // A rule with errors still takes part in the duplicate-name check; the
+    // caller drops it since diagnostics were recorded.
+    Some(rule)
+}
+
+fn modifier(p: Pair<'_, R>) -> Result<Strength, Diagnostic> {
+    let Some(m) = p.into_inner().next() else {
+        return Ok(Strength::default());
+    };
+    let kind = m.as_rule();
+    if kind == R::hard_mod {
+        return Ok(Strength::Hard);
+    }
+    let Some(num) = m.into_inner().find(|q| q.as_rule() == R::number) else {
+        return Ok(Strength::default());
+    };
+    let text = num.as_str();
+    let span = span_of(&num);
+    let v: f64 = match text.parse() {
+        Ok(v) => v,
+        Err(_) => {
+            return Err(Diagnostic::new(span, format!("bad number `{text}`")));
+        }
+    };
+    if kind == R::weight_mod {
+        if !v.is_finite() {
+            Err(Diagnostic::new(
+                span,
+                format!("bad weight `{text}`: it is not finite; expected a finite number > 0"),
+            ))
+        } else if v <= 0.0 {
+            Err(Diagnostic::new(
+                span,
+                format!("bad weight `{text}`: expected a finite number > 0"),
+            ))
+        } else {
+            Ok(Strength::Weight(v))
+        }
+    } else if !v.is_finite() {
+        Err(Diagnostic::new(
+            span,
+            format!("bad p `{text}`: it is not finite; expected a number with 0 < p < 1"),
+        ))
+    } else if v <= 0.0 || v >= 1.0 {
+        Err(Diagnostic::new(
+            span,
+            format!("bad p `{text}`: expected a number with 0 < p < 1"),
+        ))
+    } else {
+        Ok(Strength::P(v))
+    }
+}
+
+struct Builder<'a> {
+    atoms: &'a mut Vec<Span>,
+    subjects: &'a mut Vec<(String, Span)>,
+    diags: &'a mut Vec<Diagnostic>,
+}
+
+impl Builder<'_> {
+    fn disjunction(&mut self, p: Pair<'_, R>) -> Formula {
+        let mut out = Vec::new();
+        for c in p.into_inner().filter(|c| c.as_rule() == R::conjunction) {
+            match self.conjunction(c) {
+                Formula::Or(v) => out.extend(v),
+                f => out.push(f),
+            }
+        }
+        if out.len() == 1 {
+            out.pop().unwrap_or(Formula::Or(Vec::new()))
+        } else {
+            Formula::Or(out)
+        }
+    }
+
+    fn conjunction(&mut self, p: Pair<'_, R>) -> Formula {
+        let mut out = Vec::new();
+        for c in p.into_inner().filter(|c| c.as_rule() == R::unary) {
+            match self.unary(c) {
+                Formula::And(v) => out.extend(v),
+                f => out.push(f),
+            }
+        }
+        if out.len() == 1 {
+            out.pop().unwrap_or(Formula::And(Vec::new()))
+        } else {
+            Formula::And(out)
+        }
+    }
+
+    fn unary(&mut self, p: Pair<'_, R>) -> Formula {
+        let mut nots = 0usize;
+        let mut inner = None;
+        for c in p.into_inner() {
+            match c.as_rule() {
+                R::not_op => nots += 1,
+                R::atom => inner = Some(self.atom(c)),
+                R::group => {
+                    inner = c
+                        .into_inner()
+                        .find(|g| g.as_rule() == R::disjunction)
+                        .map(|d| self.disjunction(d))
+                }
+                _ => {}
+            }
+        }
+        let mut f = inner.unwrap_or(Formula::Or(Vec::new()));
+        for _ in 0..nots {
+            f = Formula::not(f);
+        }
+        f
+    }
+
+    fn atom(&mut self, p: Pair<'_, R>) -> Formula {
+        let span = span_of(&p);
+        self.atoms.push(span);
+        let mut rel = Relation::ALL[0];
+        let mut subject = String::new();
+        let mut target = Target::Any;
+        for c in p.into_inner() {
+            match c.as_rule() {
+                R::relation => match Relation::from_name(c.as_str()) {
+                    Some(r) => rel = r,
+                    None => {
+                        self.diags.push(Diagnostic::new(
+                            span_of(&c),
+                            format!(
+                                "unknown relation `{}`: expected one of {}",
+                                c.as_str(),
+                                Relation::ALL.map(|r| r.name()).join(", ")
+                            ),
+                        ));
+                    }
+                },
+                R::subject => {
+                    subject = c.as_str().to_string();
+                    self.subjects.push((subject.clone(), span));
+                }
+                R::target => {
+                    target = match c.as_str() {
+                        "*" => Target::Any,
+                        s => Target::Class(s.to_string()),
+                    }
+                }
+                _ => {}
+            }
+        }
+        Formula::Atom(Atom::new(rel, subject, target))
+    }
+}
+
+/// User-facing names of grammar rules, for pest's "expected ..." messages.
+fn describe(r: R) -> &'static str {
+    match r {
+        R::EOI => "end of input",
+        R::eol => "end of line",
+        R::file | R::rule_def | R::kw_rule => "a rule",
+        R::name => "a rule name",
+        R::colon => "`:`",
+        R::modifier | R::weight_mod | R::p_mod | R::hard_mod => {
+            "a modifier (`weight W`, `p P` or `hard`)"
+        }
+        R::kw_weight => "`weight`",
+        R::kw_p => "`p`",
+        R::kw_hard => "`hard`",
+        R::number => "a number",
+        R::formula | R::disjunction | R::conjunction | R::unary => "a formula",
+        R::group | R::lparen => "`(`",
+        R::rparen => "`)`",
+        R::or_op => "`|`",
+        R::and_op => "`&`",
+        R::not_op => "`!`",
+        R::atom | R::relation => "a relation such as DR_N or EC_W",
+        R::comma => "`,`",
+        R::subject => "a class name",
+        R::target => "a class name or `*`",
+        _ => "something else",
+    }
+}
+
+/// What the text holds at `pos`, for "found ..." (and the span to underline).
+fn found_at(src: &str, pos: usize) -> (String, Span) {
+    let rest = src.get(pos..).unwrap_or("");
+    let Some(c) = rest.chars().next() else {
+        return ("end of input".to_string(), Span::new(pos, pos));
+    };
+    if c == '\n' || c == '\r' {
+        return ("end of line".to_string(), Span::new(pos, pos));
+    }
+    let word_len: usize = rest
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .map(char::len_utf8)
+        .sum();
+    let len = if word_len > 0 {
+        word_len.min(64)
+    } else {
+        c.len_utf8()
+    };
+    let shown: String = rest[..len].chars().flat_map(char::escape_debug).collect();
+    (format!("`{shown}`"), Span::new(pos, pos + len))
+}
+
+fn pest_diagnostic(src: &str, e: &pest::error::Error<R>) -> Diagnostic {
+    let pos = match e.location {
+        InputLocation::Pos(p) => p,
+        InputLocation::Span((s, _)) => s,
+    };
+    let (found, span) = found_at(src, pos);
+    let message = match &e.variant {
+        ErrorVariant::ParsingError { positives, .. } if !positives.is_empty() => {
+            let mut names: Vec<&str> = Vec::new();
+            for r in positives {
+                let n = describe(*r);
+                if !names.contains(&n) {
+                    names.push(n);
+                }
+            }
+            format!("expected {}, found {found}", join_or(&names))
+        }
+        ErrorVariant::ParsingError { .. } => format!("unexpected {found}"),
+        ErrorVariant::CustomError { message } => message.to_lowercase(),
+    };
+    Diagnostic::new(span, message)
+}
+
+fn join_or(names: &[&str]) -> String {
+    match names {
+        [] => String::new(),
+        [one] => (*one).to_string(),
+        [init @ .., last] => format!("{} or {last}", init.join(", ")),
+    }
 }

@@ -12,6 +12,12 @@ use std::sync::Arc;
 use std::time::Duration;
 
 pub mod brute_force;
+pub mod engine;
+pub mod model;
+pub mod verify;
+pub mod weights;
+
+pub use engine::Strategy;
 
 /// Limits and switches for one solve.
 #[derive(Debug, Clone)]
@@ -30,6 +36,29 @@ pub struct SynthOptions {
     pub redundant: bool,
     /// Set to true (e.g. from a Ctrl-C handler) to stop the search.
     pub cancel: Option<Arc<AtomicBool>>,
+    /// The optimisation procedure (see [`Strategy`]).
+    pub strategy: Strategy,
+    /// Called with every improving layout (e.g. to print progress).
+    pub progress: Option<ProgressFn>,
+}
+
+/// An improving layout found during the search.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    /// Its §6 score (from the evaluator).
+    pub score: f64,
+    /// Time since the solve started.
+    pub elapsed: Duration,
+}
+
+/// A progress callback.
+#[derive(Clone)]
+pub struct ProgressFn(pub Arc<dyn Fn(&Progress) + Send + Sync>);
+
+impl std::fmt::Debug for ProgressFn {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("ProgressFn")
+    }
 }
 
 impl Default for SynthOptions {
@@ -42,6 +71,8 @@ impl Default for SynthOptions {
             symmetry_breaking: true,
             redundant: true,
             cancel: None,
+            strategy: Strategy::default(),
+            progress: None,
         }
     }
 }
@@ -86,7 +117,7 @@ pub struct SolveStats {
     pub time_to_best_ms: Option<f64>,
 }
 
-/// The result of [`synthesize`].
+/// The result of `synthesize`.
 #[derive(Debug, Clone)]
 pub struct SynthResult {
     /// How the search ended.
@@ -108,4 +139,253 @@ pub enum SynthError {
     /// The problem scene is not usable for synthesis.
     #[error("{0}")]
     BadProblem(String),
+}
+
+/// Largest absolute coordinate or size accepted (the engine works in `i32`).
+const MAX_COORD: i64 = 1 << 28;
+
+fn check_ranges(problem: &Scene) -> Result<(), SynthError> {
+    let sp = problem.space;
+    let mut vals = vec![
+        ("space.x", sp.x),
+        ("space.y", sp.y),
+        ("space.width", sp.width),
+        ("space.height", sp.height),
+        ("grid", problem.grid),
+    ];
+    for o in &problem.objects {
+        vals.push(("width", o.width));
+        vals.push(("height", o.height));
+        if let (Some(x), Some(y)) = (o.x, o.y) {
+            vals.push(("x", x));
+            vals.push(("y", y));
+        }
+    }
+    for (what, v) in vals {
+        if v.abs() > MAX_COORD {
+            return Err(SynthError::BadProblem(format!(
+                "{what} = {v} is too large for synthesis (at most {MAX_COORD} in absolute value)"
+            )));
+        }
+    }
+    if sp.x.abs() + sp.width > MAX_COORD || sp.y.abs() + sp.height > MAX_COORD {
+        return Err(SynthError::BadProblem(
+            "the space is too large for synthesis".into(),
+        ));
+    }
+    Ok(())
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1000.0
+}
+
+/// Synthesise a layout (SPEC §9): place every unplaced object on the grid,
+/// inside the space, without overlap, so that every hard rule holds and the
+/// §6 numerator over all objects is maximal.
+///
+/// The returned score is the evaluator's, recomputed from the output scene.
+/// Errors are reserved for unusable input; infeasibility is a [`Status`].
+pub fn synthesize(
+    problem: &Scene,
+    rules: &RuleSet,
+    opts: &SynthOptions,
+) -> Result<SynthResult, SynthError> {
+    use engine::{Engine, Limits, OptOutcome};
+    use model::{BuildOptions, Model};
+    use std::time::Instant;
+
+    let start = Instant::now();
+    problem
+        .validate()
+        .map_err(|e| SynthError::BadProblem(e.to_string()))?;
+    check_ranges(problem)?;
+    let limits = Limits {
+        deadline: opts.time_limit.map(|t| start + t),
+        node_limit: opts.node_limit,
+        cancel: opts.cancel.clone(),
+    };
+    let build = BuildOptions {
+        contact: opts.contact,
+        rules: true,
+        symmetry_breaking: opts.symmetry_breaking,
+        redundant: opts.redundant,
+    };
+    let model = Model::build(problem, rules, build);
+    let mut stats = SolveStats::default();
+    let infeasible = |conflict: Conflict, mut stats: SolveStats| {
+        stats.time_ms = ms(start.elapsed());
+        SynthResult {
+            status: Status::Infeasible,
+            scene: None,
+            evaluation: None,
+            conflict: Some(conflict),
+            stats,
+        }
+    };
+    if !model.too_large.is_empty() {
+        return Ok(infeasible(
+            Conflict {
+                objects_cannot_fit: true,
+                hard_rules: Vec::new(),
+            },
+            stats,
+        ));
+    }
+    let weights: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();
+    let coefs = weights::integer_weights(&weights).ok_or_else(|| {
+        SynthError::BadProblem("rule weights are too large for the solver".into())
+    })?;
+    let t_model = start.elapsed();
+    let mut engine = Engine::new(&model, opts.seed, false, Some(&coefs));
+    if std::env::var_os("RCCPACK_DEBUG").is_some() {
+        eprintln!(
+            "model {:.1} ms ({} vars, {} bools, {} clauses), engine {:.1} ms",
+            ms(t_model),
+            model.vars.len(),
+            model.bools.len(),
+            model.clauses.len(),
+            ms(start.elapsed() - t_model)
+        );
+    }
+    let mut first: Option<Duration> = None;
+    let mut best: Option<Duration> = None;
+    let outcome = engine.optimise(&model, &limits, opts.strategy, &mut |vals| {
+        let t = start.elapsed();
+        first.get_or_insert(t);
+        best = Some(t);
+        if let Some(p) = &opts.progress {
+            let s = model.scene(problem, vals);
+            let e = crate::eval::evaluate(&s, rules, opts.contact);
+            (p.0)(&Progress {
+                score: e.score,
+                elapsed: t,
+            });
+        }
+    });
+    stats.nodes = engine.nodes();
+    stats.conflicts = engine.conflicts();
+    stats.time_to_first_ms = first.map(ms);
+    stats.time_to_best_ms = best.map(ms);
+    drop(engine);
+    let (status, vals) = match outcome {
+        OptOutcome::Optimal(v) => (Status::Optimal, v),
+        OptOutcome::Feasible(v) => (Status::Feasible, v),
+        OptOutcome::Unknown => {
+            stats.time_ms = ms(start.elapsed());
+            return Ok(SynthResult {
+                status: Status::Unknown,
+                scene: None,
+                evaluation: None,
+                conflict: None,
+                stats,
+            });
+        }
+        OptOutcome::Infeasible => {
+            let conflict = explain(problem, rules, opts, &limits, &mut stats);
+            return Ok(infeasible(conflict, stats));
+        }
+    };
+    let scene = model.scene(problem, &vals);
+    let evaluation = crate::eval::evaluate(&scene, rules, opts.contact);
+    debug_assert!(
+        verify::verify_solution(problem, &scene, rules, opts.contact).is_ok(),
+        "{:?}",
+        verify::verify_solution(problem, &scene, rules, opts.contact)
+    );
+    stats.time_ms = ms(start.elapsed());
+    Ok(SynthResult {
+        status,
+        scene: Some(scene),
+        evaluation: Some(evaluation),
+        conflict: None,
+        stats,
+    })
+}
+
+/// Why a proved-infeasible problem is infeasible: first whether the objects
+/// fit at all, then a minimal set of hard rules (core under one assumption
+/// per hard rule, shrunk by deletion). When a limit interrupts, the set is
+/// conflicting but perhaps not minimal.
+fn explain(
+    problem: &Scene,
+    rules: &RuleSet,
+    opts: &SynthOptions,
+    limits: &engine::Limits,
+    stats: &mut SolveStats,
+) -> Conflict {
+    use engine::{Engine, Sat};
+    use model::{BuildOptions, Model};
+    let base = BuildOptions {
+        contact: opts.contact,
+        rules: false,
+        symmetry_breaking: opts.symmetry_breaking,
+        redundant: opts.redundant,
+    };
+    let all_rules = |m: &Model| -> Vec<String> {
+        m.hard
+            .iter()
+            .map(|h| rules.rules[h.rule].name.clone())
+            .collect()
+    };
+    let m0 = Model::build(problem, rules, base);
+    let mut e0 = Engine::new(&m0, opts.seed, false, None);
+    let fit = e0.satisfy(limits);
+    stats.nodes += e0.nodes();
+    stats.conflicts += e0.conflicts();
+    drop(e0);
+    let mg = Model::build(
+        problem,
+        rules,
+        BuildOptions {
+            rules: true,
+            ..base
+        },
+    );
+    match fit {
+        Sat::Unsat(_) => {
+            return Conflict {
+                objects_cannot_fit: true,
+                hard_rules: Vec::new(),
+            }
+        }
+        Sat::Unknown => {
+            return Conflict {
+                objects_cannot_fit: false,
+                hard_rules: all_rules(&mg),
+            }
+        }
+        Sat::Solution(_) => {}
+    }
+    let mut eg = Engine::new(&mg, opts.seed, true, None);
+    let all: Vec<usize> = (0..mg.hard.len()).collect();
+    let mut core = match eg.satisfy_rules(&all, limits) {
+        Sat::Unsat(c) if !c.is_empty() => c,
+        _ => all,
+    };
+    let mut i = 0;
+    while i < core.len() {
+        let trial: Vec<usize> = core
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| j != i)
+            .map(|(_, &r)| r)
+            .collect();
+        match eg.satisfy_rules(&trial, limits) {
+            // Every UNSAT subset of `trial` keeps the rules before `i`
+            // (each was needed in a superset), so `i` stays put.
+            Sat::Unsat(c) if !c.is_empty() => core = c,
+            Sat::Unsat(_) => core = trial,
+            Sat::Solution(_) | Sat::Unknown => i += 1,
+        }
+    }
+    stats.nodes += eg.nodes();
+    stats.conflicts += eg.conflicts();
+    Conflict {
+        objects_cannot_fit: false,
+        hard_rules: core
+            .iter()
+            .map(|&k| rules.rules[mg.hard[k].rule].name.clone())
+            .collect(),
+    }
 }

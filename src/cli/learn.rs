@@ -1,0 +1,133 @@
+//! `rccpack learn`: learn rules from demonstrations (SPEC §7).
+
+use super::{read_rules, read_scenes, Reported};
+use anyhow::Result;
+use clap::Args;
+use rccpack::infer::{learn, InferError, LearnParams};
+use rccpack::relations::Contact;
+use rccpack::rules::{Diagnostic, RulesError};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// `rccpack learn DEMOS.json [--statements T.rcc] [--samples N] ...`
+#[derive(Args, Debug)]
+pub struct LearnArgs {
+    /// Demonstrations: a JSON array of complete scenes.
+    demos: PathBuf,
+    /// Statement set (`.rcc`); default: generated from the templates of
+    /// SPEC §8 over the demonstrations' classes.
+    #[arg(long)]
+    statements: Option<PathBuf>,
+    /// Random scenes in the null model (at least 1).
+    #[arg(long, default_value_t = 1000)]
+    samples: usize,
+    /// Learn candidates whose posterior is below this, in (0, 1).
+    #[arg(long, default_value_t = 0.01)]
+    cutoff: f64,
+    /// Prior that a statement is not intended, in (0, 1).
+    #[arg(long, default_value_t = 0.5)]
+    prior: f64,
+    /// Floor of the chance rate, in (0, 1) [default: 0.5 / N_A per class].
+    #[arg(long)]
+    epsilon: Option<f64>,
+    /// Seed of the null model; the same seed gives the same output.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// How EC decides that two sides touch: `point` (corners count) or `edge`.
+    #[arg(long, default_value = "point")]
+    contact: Contact,
+    /// Write the learned rules here (default: standard output).
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    /// Write a JSON report of every statement here.
+    #[arg(long)]
+    report: Option<PathBuf>,
+}
+
+pub fn run(a: LearnArgs) -> Result<ExitCode> {
+    let params = LearnParams {
+        samples: a.samples,
+        cutoff: a.cutoff,
+        prior: a.prior,
+        epsilon: a.epsilon,
+        seed: a.seed,
+        contact: a.contact,
+    };
+    params
+        .validate()
+        .map_err(|e| Reported(format!("error: {e}")))?;
+    let progress = std::io::stderr().is_terminal();
+    let (demos, _) = read_scenes(&a.demos)?;
+    let (statements, text) = match &a.statements {
+        Some(p) => {
+            let set = read_rules(p, &[])?;
+            let text = std::fs::read_to_string(p).unwrap_or_default();
+            (Some(set), text)
+        }
+        None => (None, String::new()),
+    };
+    if progress {
+        eprintln!(
+            "learning from {} demonstrations with {} random scenes…",
+            demos.len(),
+            a.samples
+        );
+    }
+    let start = Instant::now();
+    let learned =
+        learn(&demos, statements.as_ref(), &params).map_err(|e| match (&e, &a.statements) {
+            (
+                InferError::UnknownClass {
+                    span: Some(span), ..
+                },
+                Some(path),
+            ) => {
+                let diag = RulesError {
+                    diagnostics: vec![Diagnostic {
+                        span: *span,
+                        message: e.to_string(),
+                    }],
+                };
+                Reported(diag.render(
+                    &path.display().to_string(),
+                    &text,
+                    std::io::stderr().is_terminal(),
+                ))
+            }
+            (InferError::UnknownClass { .. }, Some(path)) => {
+                Reported(format!("error: {}: {e}", path.display()))
+            }
+            _ => Reported(format!("error: {}: {e}", a.demos.display())),
+        })?;
+    if progress {
+        let candidates = learned.statements.iter().filter(|s| s.candidate).count();
+        eprintln!(
+            "{} statements, {} candidates, {} learned in {:.1} s",
+            learned.statements.len(),
+            candidates,
+            learned.order.len(),
+            start.elapsed().as_secs_f64()
+        );
+    }
+    let rcc = learned.to_rcc();
+    match &a.output {
+        Some(p) => {
+            std::fs::write(p, &rcc)
+                .map_err(|e| Reported(format!("error: {}: cannot write: {e}", p.display())))?;
+            if progress {
+                eprintln!("wrote {}", p.display());
+            }
+        }
+        None => print!("{rcc}"),
+    }
+    if let Some(p) = &a.report {
+        std::fs::write(p, learned.report_json())
+            .map_err(|e| Reported(format!("error: {}: cannot write: {e}", p.display())))?;
+        if progress {
+            eprintln!("wrote {}", p.display());
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,195 @@
+use super::{read_rules, read_scene, Reported};
+use anyhow::Result;
+use clap::Args;
+use rccpack::eval::RuleReport;
+use rccpack::relations::Contact;
+use rccpack::synth::{synthesize, Progress, ProgressFn, Status, SynthError, SynthOptions};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+
+/// `rccpack synth PROBLEM --rules R [-o OUT] [--report REPORT] [limits]`
+///
+/// Exit codes: 0 optimal or feasible (solution written), 1 bad input,
+/// 2 infeasible (the conflict is printed), 3 a limit stopped the search
+/// before any solution.
+#[derive(Args, Debug)]
+pub struct SynthArgs {
+    /// Problem scene JSON (objects without `x`/`y` are to be placed).
+    problem: PathBuf,
+    /// The `.rcc` rule file.
+    #[arg(long)]
+    rules: PathBuf,
+    /// Write the solution scene here (default: stdout).
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    /// Write a JSON report: status, score, weights, times, search counts,
+    /// conflict and per-rule results.
+    #[arg(long)]
+    report: Option<PathBuf>,
+    /// Stop after this many seconds and keep the best layout found.
+    #[arg(long, value_name = "SECONDS")]
+    time_limit: Option<f64>,
+    /// Stop after this many search decisions (deterministic).
+    #[arg(long, value_name = "N")]
+    node_limit: Option<u64>,
+    /// Seed of the solver's randomised choices.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// How EC decides that two sides touch: `point` (corners count) or `edge`.
+    #[arg(long, default_value = "point")]
+    contact: Contact,
+    /// No progress output.
+    #[arg(long)]
+    quiet: bool,
+    /// Do not order interchangeable objects.
+    #[arg(long)]
+    no_symmetry_breaking: bool,
+    /// Do not post the redundant cumulative relaxations.
+    #[arg(long)]
+    no_redundant: bool,
+}
+
+#[derive(serde::Serialize)]
+struct Report<'a> {
+    status: Status,
+    score: Option<f64>,
+    satisfied_weight: Option<f64>,
+    total_weight: Option<f64>,
+    time_ms: f64,
+    nodes: u64,
+    conflicts: u64,
+    time_to_first_ms: Option<f64>,
+    time_to_best_ms: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    conflict: Option<&'a rccpack::synth::Conflict>,
+    rules: &'a [RuleReport],
+}
+
+pub fn run(a: SynthArgs) -> Result<ExitCode> {
+    let problem = read_scene(&a.problem)?;
+    let rules = read_rules(&a.rules, std::slice::from_ref(&problem))?;
+    let time_limit = match a.time_limit {
+        None => None,
+        Some(t) if (0.0..1e9).contains(&t) => Some(Duration::from_secs_f64(t)),
+        Some(t) => {
+            return Err(Reported(format!(
+                "error: --time-limit {t}: expected a non-negative number of seconds"
+            ))
+            .into())
+        }
+    };
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        let c = cancel.clone();
+        // Ctrl-C stops the search; the best layout found is still written.
+        let _ = ctrlc::set_handler(move || c.store(true, Ordering::Relaxed));
+    }
+    let show = !a.quiet && std::io::stderr().is_terminal();
+    let progress = show.then(|| {
+        ProgressFn(Arc::new(|p: &Progress| {
+            eprintln!(
+                "  incumbent score {:.6} at {:.1} ms",
+                p.score,
+                p.elapsed.as_secs_f64() * 1000.0
+            );
+        }))
+    });
+    let opts = SynthOptions {
+        contact: a.contact,
+        time_limit,
+        node_limit: a.node_limit,
+        seed: a.seed,
+        symmetry_breaking: !a.no_symmetry_breaking,
+        redundant: !a.no_redundant,
+        cancel: Some(cancel),
+        progress,
+        ..SynthOptions::default()
+    };
+    let result = synthesize(&problem, &rules, &opts).map_err(|e| match e {
+        SynthError::BadProblem(m) => Reported(format!("error: {}: {m}", a.problem.display())),
+    })?;
+    let ev = result.evaluation.as_ref();
+    if let Some(path) = &a.report {
+        let report = Report {
+            status: result.status,
+            score: ev.map(|e| e.score),
+            satisfied_weight: ev.map(|e| e.satisfied_weight),
+            total_weight: ev.map(|e| e.total_weight),
+            time_ms: result.stats.time_ms,
+            nodes: result.stats.nodes,
+            conflicts: result.stats.conflicts,
+            time_to_first_ms: result.stats.time_to_first_ms,
+            time_to_best_ms: result.stats.time_to_best_ms,
+            conflict: result.conflict.as_ref(),
+            rules: ev.map(|e| e.rules.as_slice()).unwrap_or(&[]),
+        };
+        let text = serde_json::to_string_pretty(&report)? + "\n";
+        std::fs::write(path, text).map_err(|e| {
+            Reported(format!(
+                "error: {}: cannot write report: {e}",
+                path.display()
+            ))
+        })?;
+    }
+    match result.status {
+        Status::Optimal | Status::Feasible => {
+            let scene = result.scene.as_ref().expect("a solution has a scene");
+            let text = scene.to_json();
+            match &a.output {
+                Some(p) => std::fs::write(p, text).map_err(|e| {
+                    Reported(format!(
+                        "error: {}: cannot write solution: {e}",
+                        p.display()
+                    ))
+                })?,
+                None => print!("{text}"),
+            }
+            if !a.quiet {
+                let e = ev.expect("a solution has an evaluation");
+                eprintln!(
+                    "{}: score {:.6} ({} / {}), {:.1} ms, {} nodes",
+                    match result.status {
+                        Status::Optimal => "optimal",
+                        _ => "feasible (limit reached)",
+                    },
+                    e.score,
+                    e.satisfied_weight,
+                    e.total_weight,
+                    result.stats.time_ms,
+                    result.stats.nodes
+                );
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Status::Infeasible => {
+            let c = result.conflict.clone().unwrap_or_default();
+            let mut msg = String::from("infeasible:");
+            if c.objects_cannot_fit {
+                msg.push_str(" the objects cannot all be placed in the space without overlap");
+            }
+            if !c.hard_rules.is_empty() {
+                msg.push_str(&format!(
+                    " the hard rules {} cannot all hold together",
+                    c.hard_rules
+                        .iter()
+                        .map(|r| format!("`{r}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ));
+            }
+            eprintln!("{msg}");
+            Ok(ExitCode::from(2))
+        }
+        Status::Unknown => {
+            eprintln!(
+                "unknown: a limit stopped the search before any solution ({:.1} ms, {} nodes)",
+                result.stats.time_ms, result.stats.nodes
+            );
+            Ok(ExitCode::from(3))
+        }
+    }
+}

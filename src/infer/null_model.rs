@@ -1,0 +1,370 @@
+//! The null model of SPEC §7.2: random complete scenes that keep each
+//! demonstration's objects but forget where the movable ones were.
+//!
+//! # Background
+//!
+//! Random scene `i` copies demonstration `i mod d`. Fixed objects stay put;
+//! movable objects are re-placed one by one, in a random order, at uniformly
+//! random grid positions (`x = space.x + k·grid`, the whole object inside the
+//! space) whose interior overlaps nothing placed so far. An object that finds
+//! no free position in [`MAX_TRIES`] draws makes the whole scene start over;
+//! after [`MAX_RESAMPLES`] restarts the objects are declared unplaceable.
+//!
+//! # Practical
+//!
+//! * Occupancy: when every size, and every fixed object's offset from the
+//!   space's corner, is a multiple of the grid step, each object covers whole
+//!   grid cells and a try is a check of a few bits in a cell bitset
+//!   ([`Occupancy::Cells`]). Otherwise every try scans the placed rectangles
+//!   ([`Occupancy::Scan`]); both give the same answers.
+//! * Determinism: sample `i` draws from `ChaCha8Rng::seed_from_u64(seed)` on
+//!   stream `i`, so a sample does not depend on which thread makes it, and
+//!   the per-statement counts are integers summed in any order.
+
+use super::InferError;
+use crate::eval::CompiledFormula;
+use crate::relations::{ClassAtoms, ClassIndex, Contact, EMPTY_TARGET};
+use crate::scene::{Rect, Scene};
+use rand::seq::SliceRandom;
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Draws per object before the scene is started over.
+pub const MAX_TRIES: usize = 1000;
+/// Scene restarts before the objects are declared unplaceable.
+pub const MAX_RESAMPLES: usize = 100;
+
+/// A cell bitset or a list of rectangles.
+#[derive(Debug, Clone)]
+enum Occupancy {
+    /// Grid-aligned: one bit per grid cell, row-major, `words` u64 per row.
+    Cells { words: usize, bits: Vec<u64> },
+    /// Anything else: the placed rectangles.
+    Scan(Vec<Rect>),
+}
+
+/// How to re-place the objects of one demonstration.
+#[derive(Debug, Clone)]
+struct Plan {
+    grid: i64,
+    space: Rect,
+    /// Occupancy with only the fixed objects placed.
+    fixed: Occupancy,
+    /// Movable object indices and their number of grid positions along x
+    /// and y (`kx ∈ 0..nx`).
+    movable: Vec<(usize, i64, i64)>,
+}
+
+fn cell_range_free(row: &[u64], start: usize, len: usize) -> bool {
+    let mut i = start;
+    let end = start + len;
+    while i < end {
+        let w = i / 64;
+        let b = i % 64;
+        let n = (64 - b).min(end - i);
+        let mask = if n == 64 {
+            u64::MAX
+        } else {
+            ((1u64 << n) - 1) << b
+        };
+        if row[w] & mask != 0 {
+            return false;
+        }
+        i += n;
+    }
+    true
+}
+
+fn cell_range_set(row: &mut [u64], start: usize, len: usize) {
+    let mut i = start;
+    let end = start + len;
+    while i < end {
+        let w = i / 64;
+        let b = i % 64;
+        let n = (64 - b).min(end - i);
+        let mask = if n == 64 {
+            u64::MAX
+        } else {
+            ((1u64 << n) - 1) << b
+        };
+        row[w] |= mask;
+        i += n;
+    }
+}
+
+impl Occupancy {
+    /// Whether `r` (grid-aligned in cell mode) overlaps nothing placed.
+    fn free(&self, r: &Rect, plan: &Plan) -> bool {
+        match self {
+            Occupancy::Cells { words, bits } => {
+                let (cx, cy, kw, kh) = plan.cells(r);
+                (cy..cy + kh).all(|y| cell_range_free(&bits[y * words..(y + 1) * words], cx, kw))
+            }
+            Occupancy::Scan(rects) => rects.iter().all(|p| !p.interiors_overlap(r)),
+        }
+    }
+    fn mark(&mut self, r: Rect, plan: &Plan) {
+        match self {
+            Occupancy::Cells { words, bits } => {
+                let (cx, cy, kw, kh) = plan.cells(&r);
+                let words = *words;
+                for y in cy..cy + kh {
+                    cell_range_set(&mut bits[y * words..(y + 1) * words], cx, kw);
+                }
+            }
+            Occupancy::Scan(rects) => rects.push(r),
+        }
+    }
+}
+
+impl Plan {
+    fn new(demo_index: usize, scene: &Scene) -> Result<Plan, InferError> {
+        let g = scene.grid;
+        let space = scene.space.rect();
+        let mut movable = Vec::new();
+        for (i, o) in scene.objects.iter().enumerate() {
+            if o.fixed {
+                continue;
+            }
+            if o.width > space.w || o.height > space.h {
+                return Err(InferError::CannotPlace {
+                    demo: demo_index,
+                    object: o.id.clone(),
+                    reason: format!(
+                        "it is {}x{}, larger than the {}x{} space",
+                        o.width, o.height, space.w, space.h
+                    ),
+                });
+            }
+            movable.push((i, (space.w - o.width) / g + 1, (space.h - o.height) / g + 1));
+        }
+        let aligned = scene.objects.iter().all(|o| {
+            o.width % g == 0
+                && o.height % g == 0
+                && (!o.fixed
+                    || ((o.x.unwrap_or(0) - space.x) % g == 0
+                        && (o.y.unwrap_or(0) - space.y) % g == 0))
+        });
+        // Cells along each axis, rounded up (no overflow for huge spaces).
+        let nx = (space.w / g + i64::from(space.w % g != 0)) as u64;
+        let ny = (space.h / g + i64::from(space.h % g != 0)) as u64;
+        let words = nx.div_ceil(64);
+        // Cells only while the bitset stays small (≤ 512 KiB): it is copied
+        // at every scene restart.
+        let use_cells = aligned && words.checked_mul(ny).is_some_and(|c| c <= 1 << 16);
+        let (words, ny) = (words as usize, ny as usize);
+        let mut plan = Plan {
+            grid: g,
+            space,
+            fixed: if use_cells {
+                Occupancy::Cells {
+                    words,
+                    bits: vec![0; words * ny],
+                }
+            } else {
+                Occupancy::Scan(Vec::new())
+            },
+            movable,
+        };
+        let mut fixed = plan.fixed.clone();
+        for o in scene.objects.iter().filter(|o| o.fixed) {
+            if let Some(r) = o.rect() {
+                fixed.mark(r, &plan);
+            }
+        }
+        plan.fixed = fixed;
+        Ok(plan)
+    }
+
+    /// Cell coordinates and extent of a grid-aligned rectangle.
+    fn cells(&self, r: &Rect) -> (usize, usize, usize, usize) {
+        let g = self.grid;
+        (
+            ((r.x - self.space.x) / g) as usize,
+            ((r.y - self.space.y) / g) as usize,
+            (r.w / g) as usize,
+            (r.h / g) as usize,
+        )
+    }
+
+    /// Re-place the movable objects of `scene` (a copy of this plan's
+    /// demonstration) with `rng`.
+    fn place(
+        &self,
+        scene: &mut Scene,
+        rng: &mut ChaCha8Rng,
+        demo: usize,
+    ) -> Result<(), InferError> {
+        let mut order: Vec<usize> = (0..self.movable.len()).collect();
+        let mut last_failed = 0;
+        for _ in 0..MAX_RESAMPLES {
+            let mut occ = self.fixed.clone();
+            order.shuffle(rng);
+            let mut ok = true;
+            for &m in &order {
+                let (i, nx, ny) = self.movable[m];
+                let o = &scene.objects[i];
+                let (w, h) = (o.width, o.height);
+                let mut placed = None;
+                for _ in 0..MAX_TRIES {
+                    let kx = rng.random_range(0..nx);
+                    let ky = rng.random_range(0..ny);
+                    let r = Rect::new(
+                        self.space.x + kx * self.grid,
+                        self.space.y + ky * self.grid,
+                        w,
+                        h,
+                    );
+                    if occ.free(&r, self) {
+                        placed = Some(r);
+                        break;
+                    }
+                }
+                match placed {
+                    Some(r) => {
+                        occ.mark(r, self);
+                        let o = &mut scene.objects[i];
+                        o.x = Some(r.x);
+                        o.y = Some(r.y);
+                    }
+                    None => {
+                        last_failed = i;
+                        ok = false;
+                        break;
+                    }
+                }
+            }
+            if ok {
+                return Ok(());
+            }
+        }
+        Err(InferError::CannotPlace {
+            demo,
+            object: scene.objects[last_failed].id.clone(),
+            reason: format!(
+                "no free grid position found in {MAX_TRIES} tries, {MAX_RESAMPLES} times over"
+            ),
+        })
+    }
+}
+
+/// The random scenes of the null model for a set of demonstrations.
+#[derive(Debug, Clone)]
+pub struct NullModel<'a> {
+    demos: &'a [Scene],
+    plans: Vec<Plan>,
+    seed: u64,
+}
+
+impl<'a> NullModel<'a> {
+    /// Prepare the null model. Fails when a movable object is larger than
+    /// the space.
+    pub fn new(demos: &'a [Scene], seed: u64) -> Result<Self, InferError> {
+        let plans = demos
+            .iter()
+            .enumerate()
+            .map(|(i, s)| Plan::new(i, s))
+            .collect::<Result<_, _>>()?;
+        Ok(NullModel { demos, plans, seed })
+    }
+
+    /// Random scene `index` (a copy of demonstration `index mod d`).
+    pub fn scene(&self, index: usize) -> Result<Scene, InferError> {
+        let d = index % self.demos.len();
+        let mut s = self.demos[d].clone();
+        self.place_into(index, &mut s)?;
+        Ok(s)
+    }
+
+    fn rng(&self, index: usize) -> ChaCha8Rng {
+        let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
+        rng.set_stream(index as u64);
+        rng
+    }
+
+    /// Re-place into `scene`, which must be a copy of demonstration
+    /// `index mod d` (movable positions are overwritten).
+    fn place_into(&self, index: usize, scene: &mut Scene) -> Result<(), InferError> {
+        let d = index % self.demos.len();
+        self.plans[d].place(scene, &mut self.rng(index), d)
+    }
+
+    /// Over `samples` random scenes, how many subject objects satisfy each
+    /// formula. `subjects[k]` is formula `k`'s subject class index in
+    /// `classes`, which must cover every class of the demonstrations.
+    ///
+    /// Parallel over samples; the result does not depend on the number of
+    /// threads. On failure the error is the one of the lowest failing sample.
+    pub fn count(
+        &self,
+        samples: usize,
+        classes: &ClassIndex,
+        formulas: &[CompiledFormula],
+        subjects: &[usize],
+        contact: Contact,
+    ) -> Result<Vec<u64>, InferError> {
+        // Per demonstration, per class, the object indices.
+        let by_class: Vec<Vec<Vec<usize>>> = self
+            .demos
+            .iter()
+            .map(|s| {
+                let mut v = vec![Vec::new(); classes.len()];
+                for (i, o) in s.objects.iter().enumerate() {
+                    if let Some(c) = classes.get(&o.class) {
+                        v[c].push(i);
+                    }
+                }
+                v
+            })
+            .collect();
+        let first_failure = AtomicUsize::new(usize::MAX);
+        type Acc = (Vec<Scene>, Vec<u64>, Option<(usize, InferError)>);
+        let merge_err =
+            |a: Option<(usize, InferError)>, b: Option<(usize, InferError)>| match (a, b) {
+                (Some(x), Some(y)) => Some(if x.0 <= y.0 { x } else { y }),
+                (x, None) | (None, x) => x,
+            };
+        let (counts, err) = (0..samples)
+            .into_par_iter()
+            .with_min_len(16)
+            .fold(
+                || -> Acc { (self.demos.to_vec(), vec![0u64; formulas.len()], None) },
+                |(mut scratch, mut counts, err), i| {
+                    if i > first_failure.load(Ordering::Relaxed) {
+                        return (scratch, counts, err);
+                    }
+                    let d = i % self.demos.len();
+                    let scene = &mut scratch[d];
+                    if let Err(e) = self.place_into(i, scene) {
+                        first_failure.fetch_min(i, Ordering::Relaxed);
+                        return (scratch, counts, merge_err(err, Some((i, e))));
+                    }
+                    let atoms = ClassAtoms::new(scene, classes, contact);
+                    for (k, f) in formulas.iter().enumerate() {
+                        for &o in &by_class[d][subjects[k]] {
+                            if f.eval(&|t| atoms.byte(o, t).unwrap_or(EMPTY_TARGET)) {
+                                counts[k] += 1;
+                            }
+                        }
+                    }
+                    (scratch, counts, err)
+                },
+            )
+            .map(|(_, c, e)| (c, e))
+            .reduce(
+                || (vec![0u64; formulas.len()], None),
+                |(mut a, ea), (b, eb)| {
+                    for (x, y) in a.iter_mut().zip(&b) {
+                        *x += y;
+                    }
+                    (a, merge_err(ea, eb))
+                },
+            );
+        match err {
+            Some((_, e)) => Err(e),
+            None => Ok(counts),
+        }
+    }
+}

@@ -1,0 +1,125 @@
+//! Chance rates, likelihoods and posteriors (SPEC §7.3–§7.6), in log space.
+//!
+//! # Background
+//!
+//! A candidate `φ` with subject class `A` has chance rate `q` (the fraction
+//! of class-`A` objects of the random scenes that satisfy it) and
+//! `p = max(ε, q)`. The likelihood that the `n` class-`A` objects of the
+//! demonstrations satisfied it by chance is `L = pⁿ`, and the posterior that
+//! it is *not* one of the demonstrator's rules is
+//! `P = π·L / (π·L + 1 − π)`.
+//!
+//! # Practical
+//!
+//! `L` underflows a double quickly (`0.01^200`), so everything is computed as
+//! `log10`: `log10 L = n·log10 p` and
+//! `log10 P = log10 π + log10 L − log10(π·L + 1 − π)`, the last term by a
+//! stable log-sum-exp. Only when a value is *written* is it turned back into
+//! a number, floored at [`P_FLOOR`] since a `.rcc` file requires `0 < P`.
+
+/// The smallest posterior written to a `.rcc` file (SPEC §7.6).
+pub const P_FLOOR: f64 = 1e-300;
+
+/// `p = max(ε, q)`.
+pub fn chance_p(q: f64, epsilon: f64) -> f64 {
+    q.max(epsilon)
+}
+
+/// `log10 L = n·log10 p` for `0 < p ≤ 1`.
+pub fn log10_likelihood(p: f64, n: u64) -> f64 {
+    if n == 0 {
+        return 0.0;
+    }
+    n as f64 * p.log10()
+}
+
+/// `log10(10^a + 10^b)`, stable for any magnitudes.
+fn log10_sum(a: f64, b: f64) -> f64 {
+    let (hi, lo) = if a >= b { (a, b) } else { (b, a) };
+    if lo == f64::NEG_INFINITY {
+        return hi;
+    }
+    hi + (10f64.powf(lo - hi)).ln_1p() / std::f64::consts::LN_10
+}
+
+/// `log10 P` with `P = π·L / (π·L + 1 − π)`, from `log10 L` and the prior
+/// `π ∈ (0, 1)`.
+pub fn log10_posterior(log10_l: f64, prior: f64) -> f64 {
+    let a = prior.log10() + log10_l;
+    let b = (1.0 - prior).log10();
+    a - log10_sum(a, b)
+}
+
+/// The posterior as written: `10^log10_p`, at least [`P_FLOOR`].
+pub fn written_posterior(log10_p: f64) -> f64 {
+    let p = 10f64.powf(log10_p);
+    if p.is_finite() && p >= P_FLOOR {
+        p
+    } else {
+        P_FLOOR
+    }
+}
+
+/// All numbers for one candidate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Posterior {
+    /// `p = max(ε, q)`.
+    pub p: f64,
+    /// `log10 L = n·log10 p`.
+    pub log10_likelihood: f64,
+    /// `log10 P`.
+    pub log10_posterior: f64,
+}
+
+impl Posterior {
+    /// Compute from the chance rate `q`, the floor `ε`, the object count `n`
+    /// and the prior `π`.
+    pub fn new(q: f64, epsilon: f64, n: u64, prior: f64) -> Self {
+        let p = chance_p(q, epsilon);
+        let log10_likelihood = log10_likelihood(p, n);
+        Posterior {
+            p,
+            log10_likelihood,
+            log10_posterior: log10_posterior(log10_likelihood, prior),
+        }
+    }
+    /// The posterior as written (floored at [`P_FLOOR`]).
+    pub fn written(&self) -> f64 {
+        written_posterior(self.log10_posterior)
+    }
+    /// Whether the candidate is learned at `cutoff`: `P < cutoff`, decided in
+    /// log space.
+    pub fn learned(&self, cutoff: f64) -> bool {
+        self.log10_posterior < cutoff.log10()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// SPEC §7 worked check.
+    #[test]
+    fn worked_check() {
+        let cases = [
+            (0.4, 4, 0.0256, 0.0256 / 1.0256),
+            (0.01, 4, 1e-8, 1e-8 / (1.0 + 1e-8)),
+            (0.3, 3, 0.027, 0.027 / 1.027),
+        ];
+        let mut learned = Vec::new();
+        for (q, n, l, post) in cases {
+            let p = Posterior::new(q, 1e-6, n, 0.5);
+            assert!((10f64.powf(p.log10_likelihood) - l).abs() <= 1e-12 * l);
+            assert!((p.written() - post).abs() <= 1e-12 * post);
+            learned.push(p.learned(0.01));
+        }
+        assert_eq!(learned, [false, true, false]);
+    }
+
+    #[test]
+    fn log10_sum_is_stable() {
+        assert_eq!(log10_sum(-1000.0, f64::NEG_INFINITY), -1000.0);
+        assert!((log10_sum(0.0, 0.0) - 2f64.log10()).abs() < 1e-15);
+        assert!((log10_sum(-400.0, -0.301) - -0.301).abs() < 1e-15);
+    }
+}

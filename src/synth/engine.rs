@@ -1,0 +1,553 @@
+//! The Pumpkin engine: turns a [`Model`] into a Pumpkin `Solver` and runs
+//! the optimisation loop, satisfiability checks and core extraction.
+//!
+//! Everything here runs on the calling thread (Pumpkin's `Solver` is not
+//! `Send`). The brancher is created after every variable exists.
+//!
+//! # Encoding
+//!
+//! - grid variables: `new_bounded_integer(0, ub)`;
+//! - `Ge` Booleans: `new_literal_for_predicate([v ≥ k])` (no propagator);
+//! - `DiffGe` Booleans: a fresh literal reifying the linear `b − a ≤ −k`;
+//! - `And` Booleans: the usual clauses `l → lᵢ` and `⋀lᵢ → l`;
+//! - objective: `obj = Σ cᵢ·[litᵢ]` (`boolean_equals`);
+//! - symmetry: linear `≤`; redundant: `cumulative` on both axes in real units.
+//!
+//! # Optimisation
+//!
+//! [`Strategy::UpperBoundFirst`] (the default, chosen by measurement) finds a
+//! first solution, then asks for `obj ≥ hi` with `hi` the largest objective
+//! value the coefficients can reach below the proven bound; a refutation adds
+//! `obj ≤ hi − 1` and steps `hi` down to the next reachable value; the first
+//! solution found this way is optimal. [`Strategy::ImproveFromFirst`] adds
+//! `obj ≥ best + 1` after each solution until the solver refutes it.
+
+use super::model::{BoolDef, Coord, Lit, Model};
+use super::weights::SubsetSums;
+use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
+use pumpkin_constraints::{boolean_equals, cumulative, less_than_or_equals};
+use pumpkin_core::branching::{Brancher, BrancherEvent, SelectionContext};
+use pumpkin_core::options::SolverOptions;
+use pumpkin_core::predicate;
+use pumpkin_core::predicates::Predicate;
+use pumpkin_core::proof::ConstraintTag;
+use pumpkin_core::rand::rngs::SmallRng;
+use pumpkin_core::rand::SeedableRng;
+use pumpkin_core::results::{
+    ProblemSolution, SatisfactionResult, SatisfactionResultUnderAssumptions, SolutionReference,
+};
+use pumpkin_core::statistics::StatisticLogger;
+use pumpkin_core::termination::TerminationCondition;
+use pumpkin_core::variables::{AffineView, DomainId, Literal, TransformableVariable};
+use pumpkin_core::branching::branchers::autonomous_search::AutonomousSearch;
+use pumpkin_core::branching::branchers::dynamic_brancher::DynamicBrancher;
+use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
+use pumpkin_core::branching::value_selection::InDomainMin;
+use pumpkin_core::branching::variable_selection::{FirstFail, InputOrder};
+use pumpkin_core::Solver;
+use std::cell::Cell;
+use std::rc::Rc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// How to optimise.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Strategy {
+    /// First solution, then `obj ≥ hi` stepping down from the upper bound.
+    #[default]
+    UpperBoundFirst,
+    /// First solution, then `obj ≥ best + 1` until refuted.
+    ImproveFromFirst,
+}
+
+/// When to stop.
+#[derive(Debug, Clone, Default)]
+pub struct Limits {
+    /// Wall-clock deadline.
+    pub deadline: Option<Instant>,
+    /// Maximum number of decisions (over the whole engine's life).
+    pub node_limit: Option<u64>,
+    /// External stop flag.
+    pub cancel: Option<Arc<AtomicBool>>,
+}
+
+#[derive(Debug, Clone, Default)]
+struct Counters {
+    nodes: Rc<Cell<u64>>,
+    conflicts: Rc<Cell<u64>>,
+}
+
+/// Polled by Pumpkin; stops on deadline, node limit or cancel flag.
+struct Stop {
+    limits: Limits,
+    nodes: Rc<Cell<u64>>,
+    fired: Rc<Cell<bool>>,
+}
+
+impl TerminationCondition for Stop {
+    fn should_stop(&mut self) -> bool {
+        let stop = self
+            .limits
+            .node_limit
+            .is_some_and(|n| self.nodes.get() >= n)
+            || self
+                .limits
+                .cancel
+                .as_ref()
+                .is_some_and(|c| c.load(Ordering::Relaxed))
+            || self.limits.deadline.is_some_and(|d| Instant::now() >= d);
+        if stop {
+            self.fired.set(true);
+        }
+        stop
+    }
+}
+
+/// A brancher wrapper that counts decisions and conflicts.
+#[derive(Debug)]
+pub struct Counting {
+    inner: Box<dyn Brancher>,
+    nodes: Rc<Cell<u64>>,
+    conflicts: Rc<Cell<u64>>,
+}
+
+impl Brancher for Counting {
+    fn log_statistics(&self, l: StatisticLogger) {
+        self.inner.log_statistics(l)
+    }
+    fn next_decision(&mut self, context: &mut SelectionContext) -> Option<Predicate> {
+        let d = self.inner.next_decision(context);
+        if d.is_some() {
+            self.nodes.set(self.nodes.get() + 1);
+        }
+        d
+    }
+    fn on_conflict(&mut self) {
+        self.conflicts.set(self.conflicts.get() + 1);
+        self.inner.on_conflict()
+    }
+    fn on_backtrack(&mut self) {
+        self.inner.on_backtrack()
+    }
+    fn on_solution(&mut self, solution: SolutionReference) {
+        self.inner.on_solution(solution)
+    }
+    fn on_unassign_integer(&mut self, variable: DomainId, value: i32) {
+        self.inner.on_unassign_integer(variable, value)
+    }
+    fn on_appearance_in_conflict_predicate(&mut self, predicate: Predicate) {
+        self.inner.on_appearance_in_conflict_predicate(predicate)
+    }
+    fn on_restart(&mut self) {
+        self.inner.on_restart()
+    }
+    fn synchronise(&mut self, context: &mut SelectionContext) {
+        self.inner.synchronise(context)
+    }
+    fn is_restart_pointless(&mut self) -> bool {
+        self.inner.is_restart_pointless()
+    }
+    fn subscribe_to_events(&self) -> Vec<BrancherEvent> {
+        let mut v = self.inner.subscribe_to_events();
+        if !v.contains(&BrancherEvent::Conflict) {
+            v.push(BrancherEvent::Conflict);
+        }
+        v
+    }
+}
+
+/// The result of one satisfiability call.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Sat {
+    /// A solution: grid values per model variable.
+    Solution(Vec<i64>),
+    /// Proved impossible (under the assumptions: with the core as rule
+    /// indices into `Model::hard`).
+    Unsat(Vec<usize>),
+    /// A limit stopped the search.
+    Unknown,
+}
+
+/// How an optimisation ended.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum OptOutcome {
+    /// Proved optimal.
+    Optimal(Vec<i64>),
+    /// Best found before a limit.
+    Feasible(Vec<i64>),
+    /// No solution exists.
+    Infeasible,
+    /// A limit stopped the search before any solution.
+    Unknown,
+}
+
+/// A Pumpkin solver holding one model.
+pub struct Engine {
+    solver: Solver,
+    brancher: Counting,
+    resolver: ResolutionResolver,
+    vars: Vec<DomainId>,
+    guards: Vec<Literal>,
+    objective: Option<(DomainId, Vec<i64>)>,
+    counters: Counters,
+    tag: ConstraintTag,
+}
+
+impl std::fmt::Debug for Engine {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Engine")
+            .field("vars", &self.vars.len())
+            .finish()
+    }
+}
+
+impl Engine {
+    /// Post `model`. With `guarded`, every hard rule `r` is enforced only
+    /// under its assumption literal (for core extraction); otherwise hard
+    /// literals are posted as units. `coefs` are the objective coefficients
+    /// of `model.soft` (none: no objective).
+    pub fn new(model: &Model, seed: u64, guarded: bool, coefs: Option<&[i64]>) -> Engine {
+        let mut solver = Solver::with_options(SolverOptions {
+            random_generator: SmallRng::seed_from_u64(seed),
+            ..Default::default()
+        });
+        let tag = solver.new_constraint_tag();
+        let vars: Vec<DomainId> = model
+            .vars
+            .iter()
+            .map(|v| solver.new_bounded_integer(0, v.ub as i32))
+            .collect();
+        let t = solver.get_true_literal();
+        let mut lits: Vec<Literal> = Vec::with_capacity(model.bools.len());
+        let conv = |lits: &[Literal], l: Lit| -> Literal {
+            match l {
+                Lit::Const(true) => t,
+                Lit::Const(false) => !t,
+                Lit::Var { id, neg } => {
+                    let x = lits[id as usize];
+                    if neg {
+                        !x
+                    } else {
+                        x
+                    }
+                }
+            }
+        };
+        for def in &model.bools {
+            let l = match def {
+                BoolDef::Ge { var, k } => {
+                    let x = vars[*var];
+                    solver.new_literal_for_predicate(predicate![x >= *k as i32], tag)
+                }
+                BoolDef::DiffGe { a, b, k } => {
+                    let l = solver.new_literal();
+                    // a − b ≥ k  ⇔  b − a ≤ −k
+                    solver
+                        .add_constraint(less_than_or_equals(
+                            vec![vars[*b].scaled(1), vars[*a].scaled(-1)],
+                            -*k as i32,
+                            tag,
+                        ))
+                        .reify(l);
+                    l
+                }
+                BoolDef::And(children) => {
+                    let l = solver.new_literal();
+                    let cs: Vec<Literal> = children.iter().map(|&c| conv(&lits, c)).collect();
+                    for &c in &cs {
+                        solver.add_clause([(!l).get_true_predicate(), c.get_true_predicate()], tag);
+                    }
+                    let mut big: Vec<Predicate> = vec![l.get_true_predicate()];
+                    big.extend(cs.iter().map(|c| (!*c).get_true_predicate()));
+                    solver.add_clause(big, tag);
+                    l
+                }
+            };
+            lits.push(l);
+        }
+        for c in &model.clauses {
+            let c: Vec<Predicate> = c
+                .iter()
+                .map(|&l| conv(&lits, l).get_true_predicate())
+                .collect();
+            solver.add_clause(c, tag);
+        }
+        let mut guards = Vec::new();
+        for h in &model.hard {
+            let g = if guarded {
+                Some(solver.new_literal())
+            } else {
+                None
+            };
+            for &l in &h.lits {
+                let mut c = vec![conv(&lits, l).get_true_predicate()];
+                if let Some(g) = g {
+                    c.push((!g).get_true_predicate());
+                }
+                solver.add_clause(c, tag);
+            }
+            if let Some(g) = g {
+                guards.push(g);
+            }
+        }
+        for s in &model.symmetry {
+            let terms: Vec<AffineView<DomainId>> = s
+                .terms
+                .iter()
+                .map(|&(c, v)| vars[v].scaled(c as i32))
+                .collect();
+            solver
+                .add_constraint(less_than_or_equals(terms, s.rhs as i32, tag))
+                .post();
+        }
+        for cu in &model.cumulative {
+            let mut starts: Vec<AffineView<DomainId>> = Vec::new();
+            let mut durs = Vec::new();
+            let mut dems = Vec::new();
+            for &(o, dur, dem) in &cu.tasks {
+                let (cx, cy) = model.coords[o];
+                let (c, origin) = match cu.axis {
+                    super::model::Axis::X => (cx, model.origin.0),
+                    super::model::Axis::Y => (cy, model.origin.1),
+                };
+                let start = match c {
+                    Coord::Const(v) => solver.new_bounded_integer(v as i32, v as i32).scaled(1),
+                    Coord::Var(v) => vars[v].scaled(model.grid as i32).offset(origin as i32),
+                };
+                starts.push(start);
+                durs.push(dur as i32);
+                dems.push(dem as i32);
+            }
+            solver
+                .add_constraint(cumulative(starts, durs, dems, cu.capacity as i32, tag))
+                .post();
+        }
+        let mut objective = None;
+        if let Some(coefs) = coefs {
+            let mut ws = Vec::new();
+            let mut ls = Vec::new();
+            for (s, &c) in model.soft.iter().zip(coefs) {
+                if let Lit::Var { .. } = s.lit {
+                    ws.push(c);
+                    ls.push(conv(&lits, s.lit));
+                }
+            }
+            let total: i64 = ws.iter().sum();
+            let obj = solver.new_bounded_integer(0, total as i32);
+            let ws32: Vec<i32> = ws.iter().map(|&w| w as i32).collect();
+            solver
+                .add_constraint(boolean_equals(ws32, ls, obj, tag))
+                .post();
+            objective = Some((obj, ws));
+        }
+        let counters = Counters::default();
+        // The brancher only after every variable exists.
+        let inner: Box<dyn Brancher> = match std::env::var("RCCPACK_SEARCH").as_deref() {
+            Ok("vsids-ff") => Box::new(AutonomousSearch::new(IndependentVariableValueBrancher::new(
+                FirstFail::new(&vars),
+                InDomainMin,
+            ))),
+            Ok("static") => Box::new(DynamicBrancher::new(vec![
+                Box::new(IndependentVariableValueBrancher::new(
+                    FirstFail::new(&vars),
+                    InDomainMin,
+                )),
+                Box::new(solver.default_brancher()),
+            ])),
+            Ok("input") => Box::new(DynamicBrancher::new(vec![
+                Box::new(IndependentVariableValueBrancher::new(
+                    InputOrder::new(&vars),
+                    InDomainMin,
+                )),
+                Box::new(solver.default_brancher()),
+            ])),
+            _ => Box::new(solver.default_brancher()),
+        };
+        let brancher = Counting {
+            inner,
+            nodes: counters.nodes.clone(),
+            conflicts: counters.conflicts.clone(),
+        };
+        Engine {
+            solver,
+            brancher,
+            resolver: ResolutionResolver::default(),
+            vars,
+            guards,
+            objective,
+            counters,
+            tag,
+        }
+    }
+
+    /// Decisions so far.
+    pub fn nodes(&self) -> u64 {
+        self.counters.nodes.get()
+    }
+
+    /// Conflicts so far.
+    pub fn conflicts(&self) -> u64 {
+        self.counters.conflicts.get()
+    }
+
+    fn stop(&self, limits: &Limits) -> Stop {
+        Stop {
+            limits: limits.clone(),
+            nodes: self.counters.nodes.clone(),
+            fired: Rc::new(Cell::new(false)),
+        }
+    }
+
+    fn values(vars: &[DomainId], s: &impl ProblemSolution) -> Vec<i64> {
+        vars.iter()
+            .map(|&v| s.get_integer_value(v) as i64)
+            .collect()
+    }
+
+    /// Find any solution.
+    pub fn satisfy(&mut self, limits: &Limits) -> Sat {
+        let mut stop = self.stop(limits);
+        let vars = self.vars.clone();
+        match self
+            .solver
+            .satisfy(&mut self.brancher, &mut stop, &mut self.resolver)
+        {
+            SatisfactionResult::Satisfiable(s) => Sat::Solution(Self::values(&vars, &s.solution())),
+            SatisfactionResult::Unsatisfiable(..) => Sat::Unsat(Vec::new()),
+            SatisfactionResult::Unknown(..) => Sat::Unknown,
+        }
+    }
+
+    /// Solve with the guards of the hard rules in `rules` (indices into
+    /// `Model::hard`) assumed true; on failure return the rules in the core.
+    pub fn satisfy_rules(&mut self, rules: &[usize], limits: &Limits) -> Sat {
+        let assumptions: Vec<Predicate> = rules
+            .iter()
+            .map(|&r| self.guards[r].get_true_predicate())
+            .collect();
+        self.under(&assumptions, limits, true)
+    }
+
+    fn under(&mut self, assumptions: &[Predicate], limits: &Limits, want_core: bool) -> Sat {
+        let mut stop = self.stop(limits);
+        let vars = self.vars.clone();
+        let guards = self.guards.clone();
+        match self.solver.satisfy_under_assumptions(
+            &mut self.brancher,
+            &mut stop,
+            &mut self.resolver,
+            assumptions,
+        ) {
+            SatisfactionResultUnderAssumptions::Satisfiable(s) => {
+                Sat::Solution(Self::values(&vars, &s.solution()))
+            }
+            SatisfactionResultUnderAssumptions::UnsatisfiableUnderAssumptions(mut u) => {
+                if !want_core {
+                    return Sat::Unsat(Vec::new());
+                }
+                let core = u.extract_core();
+                let mut rules: Vec<usize> = guards
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, g)| core.contains(&g.get_true_predicate()))
+                    .map(|(i, _)| i)
+                    .collect();
+                rules.sort_unstable();
+                Sat::Unsat(rules)
+            }
+            SatisfactionResultUnderAssumptions::Unsatisfiable(_) => Sat::Unsat(Vec::new()),
+            SatisfactionResultUnderAssumptions::Unknown(_) => Sat::Unknown,
+        }
+    }
+
+    /// The objective value of grid values `vals` under the model's
+    /// coefficients (the variable part only).
+    fn objective_value(&self, model: &Model, vals: &[i64]) -> i64 {
+        let Some((_, coefs)) = &self.objective else {
+            return 0;
+        };
+        let bools = model.eval_bools(vals);
+        model
+            .soft
+            .iter()
+            .filter(|s| matches!(s.lit, Lit::Var { .. }))
+            .zip(coefs)
+            .filter(|(s, _)| s.lit.value(&bools))
+            .map(|(_, &c)| c)
+            .sum()
+    }
+
+    /// Maximise the objective. `on_incumbent` is called with every improving
+    /// solution.
+    pub fn optimise(
+        &mut self,
+        model: &Model,
+        limits: &Limits,
+        strategy: Strategy,
+        on_incumbent: &mut dyn FnMut(&[i64]),
+    ) -> OptOutcome {
+        let mut best = match self.satisfy(limits) {
+            Sat::Solution(v) => v,
+            Sat::Unsat(_) => return OptOutcome::Infeasible,
+            Sat::Unknown => return OptOutcome::Unknown,
+        };
+        on_incumbent(&best);
+        let Some((obj, coefs)) = self.objective.clone() else {
+            return OptOutcome::Optimal(best);
+        };
+        let mut best_val = self.objective_value(model, &best);
+        let sums = match strategy {
+            Strategy::UpperBoundFirst => SubsetSums::new(&coefs),
+            Strategy::ImproveFromFirst => None,
+        };
+        let Some(sums) = sums else {
+            // Improve from the incumbent.
+            loop {
+                let a = [predicate![obj >= (best_val + 1) as i32]];
+                match self.under(&a, limits, false) {
+                    Sat::Solution(v) => {
+                        best_val = self.objective_value(model, &v);
+                        best = v;
+                        on_incumbent(&best);
+                    }
+                    Sat::Unsat(_) => return OptOutcome::Optimal(best),
+                    Sat::Unknown => return OptOutcome::Feasible(best),
+                }
+            }
+        };
+        let total: i64 = coefs.iter().sum();
+        let mut hi = if sums.contains(total) {
+            total
+        } else {
+            sums.below(total).unwrap_or(0)
+        };
+        loop {
+            let root_ub = self.solver.upper_bound(&obj) as i64;
+            if root_ub < hi {
+                hi = if sums.contains(root_ub) {
+                    root_ub
+                } else {
+                    sums.below(root_ub).unwrap_or(0)
+                };
+            }
+            if best_val >= hi {
+                return OptOutcome::Optimal(best);
+            }
+            let a = [predicate![obj >= hi as i32]];
+            match self.under(&a, limits, false) {
+                Sat::Solution(v) => {
+                    best = v;
+                    on_incumbent(&best);
+                    return OptOutcome::Optimal(best);
+                }
+                Sat::Unsat(_) => {
+                    self.solver
+                        .add_clause([predicate![obj <= (hi - 1) as i32]], self.tag);
+                    hi = sums.below(hi).unwrap_or(0);
+                }
+                Sat::Unknown => return OptOutcome::Feasible(best),
+            }
+        }
+    }
+}

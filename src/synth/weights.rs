@@ -1,0 +1,182 @@
+//! Real rule weights → integer objective coefficients, and the set of values
+//! the integer objective can take.
+//!
+//! # Precision
+//!
+//! When every weight is an integer (the default weight 1, `weight 2`, …) the
+//! integers are used exactly (divided by their gcd). Otherwise each weight is
+//! rounded to `round(w · 10^p)` with the largest `p ≤ 6` for which the total
+//! stays below 2^30 (the solver works in `i32`), then divided by the gcd.
+//! Equal real weights always get equal coefficients. Two layouts whose real
+//! numerators differ by less than the rounding error (at most `n/2 · 10^-p`
+//! for `n` objective terms) may therefore be ordered differently than by the
+//! exact score; the reported score is always recomputed exactly by the
+//! evaluator.
+
+/// Largest total of the integer coefficients.
+const MAX_TOTAL: i64 = 1 << 30;
+
+/// Integer coefficients for `weights` (all > 0), or `None` when even
+/// `p = 0` overflows.
+pub fn integer_weights(weights: &[f64]) -> Option<Vec<i64>> {
+    if weights.is_empty() {
+        return Some(Vec::new());
+    }
+    let all_int = weights.iter().all(|w| w.fract() == 0.0 && *w < 1e12);
+    let mut ints: Option<Vec<i64>> = None;
+    if all_int {
+        let v: Vec<i64> = weights.iter().map(|&w| w as i64).collect();
+        if v.iter().sum::<i64>() <= MAX_TOTAL {
+            ints = Some(v);
+        }
+    }
+    if ints.is_none() {
+        for p in (0..=6).rev() {
+            let k = 10f64.powi(p);
+            let v: Vec<i64> = weights
+                .iter()
+                .map(|&w| ((w * k).round() as i64).max(1))
+                .collect();
+            let total: i128 = v.iter().map(|&x| x as i128).sum();
+            if total <= MAX_TOTAL as i128 {
+                ints = Some(v);
+                break;
+            }
+        }
+    }
+    let mut v = ints?;
+    let g = v.iter().fold(0, |g, &x| gcd(g, x));
+    if g > 1 {
+        for x in &mut v {
+            *x /= g;
+        }
+    }
+    Some(v)
+}
+
+fn gcd(a: i64, b: i64) -> i64 {
+    if b == 0 {
+        a
+    } else {
+        gcd(b, a % b)
+    }
+}
+
+/// Largest total for which [`SubsetSums`] is computed.
+const MAX_DP: i64 = 1 << 24;
+
+/// Which totals `Σ_{i∈S} c_i` are reachable, for stepping an upper bound
+/// down to the next achievable objective value.
+#[derive(Debug, Clone)]
+pub struct SubsetSums {
+    bits: Vec<u64>,
+}
+
+impl SubsetSums {
+    /// The reachable sums of `coefs`, or `None` when the total is too large.
+    pub fn new(coefs: &[i64]) -> Option<SubsetSums> {
+        let total: i64 = coefs.iter().sum();
+        if total > MAX_DP {
+            return None;
+        }
+        let words = (total as usize) / 64 + 1;
+        let mut bits = vec![0u64; words];
+        bits[0] = 1;
+        // Group equal coefficients; binary splitting of multiplicities.
+        let mut sorted = coefs.to_vec();
+        sorted.sort_unstable();
+        let mut i = 0;
+        while i < sorted.len() {
+            let c = sorted[i];
+            let mut j = i;
+            while j < sorted.len() && sorted[j] == c {
+                j += 1;
+            }
+            let mut count = (j - i) as i64;
+            let mut chunk = 1;
+            while count > 0 {
+                let take = chunk.min(count);
+                shift_or(&mut bits, (c * take) as usize);
+                count -= take;
+                chunk *= 2;
+            }
+            i = j;
+        }
+        Some(SubsetSums { bits })
+    }
+
+    /// Whether `v` is reachable.
+    pub fn contains(&self, v: i64) -> bool {
+        v >= 0 && {
+            let v = v as usize;
+            v / 64 < self.bits.len() && self.bits[v / 64] >> (v % 64) & 1 == 1
+        }
+    }
+
+    /// The largest reachable sum `< v`, if any.
+    pub fn below(&self, v: i64) -> Option<i64> {
+        let mut u = v - 1;
+        if u < 0 {
+            return None;
+        }
+        let max = (self.bits.len() * 64 - 1) as i64;
+        u = u.min(max);
+        while u >= 0 {
+            let w = self.bits[u as usize / 64];
+            let masked = if u % 64 == 63 {
+                w
+            } else {
+                w & ((1u64 << (u % 64 + 1)) - 1)
+            };
+            if masked != 0 {
+                return Some((u / 64) * 64 + 63 - masked.leading_zeros() as i64);
+            }
+            u = (u / 64) * 64 - 1;
+        }
+        None
+    }
+}
+
+fn shift_or(bits: &mut [u64], s: usize) {
+    let (ws, bs) = (s / 64, s % 64);
+    for i in (0..bits.len()).rev() {
+        if i < ws {
+            break;
+        }
+        let lo = bits[i - ws] << bs;
+        let hi = if bs > 0 && i > ws {
+            bits[i - ws - 1] >> (64 - bs)
+        } else {
+            0
+        };
+        bits[i] |= lo | hi;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integer_weights_exact_and_reduced() {
+        assert_eq!(integer_weights(&[1.0, 1.0, 2.0]), Some(vec![1, 1, 2]));
+        assert_eq!(integer_weights(&[2.5, 1.0]), Some(vec![5, 2]));
+        let p = [-(1e-8f64).ln(), -(0.001f64).ln()];
+        let v = integer_weights(&p).unwrap();
+        assert!((v[0] as f64 / v[1] as f64 - p[0] / p[1]).abs() < 1e-5);
+    }
+
+    #[test]
+    fn subset_sums() {
+        let s = SubsetSums::new(&[3, 5, 5, 70]).unwrap();
+        let reach: Vec<i64> = (0..=83).filter(|&v| s.contains(v)).collect();
+        assert_eq!(reach, vec![0, 3, 5, 8, 10, 13, 70, 73, 75, 78, 80, 83]);
+        assert_eq!(s.below(83), Some(80));
+        assert_eq!(s.below(70), Some(13));
+        assert_eq!(s.below(0), None);
+        assert_eq!(s.below(1000), Some(83));
+        let ones = SubsetSums::new(&vec![1; 200]).unwrap();
+        assert_eq!(ones.below(200), Some(199));
+        assert_eq!(ones.below(65), Some(64));
+    }
+}

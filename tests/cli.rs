@@ -1,0 +1,162 @@
+//! The command line as a user meets it: exit codes, messages, JSON output.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn rccpack(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rccpack"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run rccpack")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn tmp(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rccpack-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+const PILOT: &str = "examples/box-packing/pilot.rcc";
+const DEMOS: &str = "examples/box-packing/demos.json";
+const PROBLEM: &str = "examples/box-packing/problem.json";
+
+#[test]
+fn check_accepts_the_pilot_rules() {
+    let o = rccpack(&["check", PILOT, "--scene", PROBLEM]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("12 rules"));
+}
+
+#[test]
+fn check_reports_unknown_class_with_location() {
+    let rules = tmp("unknown_class.rcc", "rule q: DR_N(B, Q)\n");
+    let o = rccpack(&["check", rules.to_str().unwrap(), "--scene", PROBLEM]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.contains("unknown_class.rcc:1:9"), "{e}");
+    assert!(e.contains("`Q`"), "{e}");
+}
+
+#[test]
+fn score_json_is_an_array_for_demonstrations() {
+    let o = rccpack(&["score", DEMOS, "--rules", PILOT, "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let arr = v.as_array().expect("array for a demonstrations file");
+    assert_eq!(arr.len(), 8);
+    for s in arr {
+        assert_eq!(s["score"], 1.0);
+        assert_eq!(s["satisfied_weight"], s["total_weight"]);
+        let rules = s["rules"].as_array().unwrap();
+        assert_eq!(rules.len(), 12);
+        for key in [
+            "name",
+            "weight",
+            "hard",
+            "satisfied",
+            "subjects",
+            "violators",
+        ] {
+            assert!(rules[0].get(key).is_some(), "missing {key}");
+        }
+    }
+}
+
+#[test]
+fn score_json_is_an_object_for_one_scene_and_names_violators() {
+    let scene = tmp(
+        "one.json",
+        r#"{"space":{"width":100,"height":100},"objects":[
+        {"id":"b1","class":"B","x":0,"y":0,"width":10,"height":10},
+        {"id":"r1","class":"R","x":0,"y":50,"width":10,"height":10}]}"#,
+    );
+    let rules = tmp(
+        "one.rcc",
+        "rule north: DR_N(B, R)\nrule south hard: DR_S(B, R)\n",
+    );
+    let o = rccpack(&[
+        "score",
+        scene.to_str().unwrap(),
+        "--rules",
+        rules.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["score"], 0.0);
+    assert_eq!(v["rules"][0]["violators"][0], "b1");
+    assert_eq!(v["rules"][1]["hard"], true);
+    assert_eq!(v["hard_violations"], 0);
+    // The human table lists the violator too.
+    let o = rccpack(&[
+        "score",
+        scene.to_str().unwrap(),
+        "--rules",
+        rules.to_str().unwrap(),
+    ]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("north") && out.contains("0/1") && out.contains("b1"),
+        "{out}"
+    );
+}
+
+#[test]
+fn bad_json_names_file_and_field() {
+    let scene = tmp(
+        "float.json",
+        r#"{"space":{"width":100,"height":100},"objects":[{"class":"R","x":12.5,"y":0,"width":1,"height":1}]}"#,
+    );
+    let o = rccpack(&["score", scene.to_str().unwrap(), "--rules", PILOT]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(
+        e.contains("float.json") && e.contains("objects[0].x") && e.contains("12.5"),
+        "{e}"
+    );
+}
+
+#[test]
+fn missing_file_is_a_clear_error() {
+    let o = rccpack(&["check", "no/such/file.rcc"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("no/such/file.rcc: cannot read file"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn render_writes_svg_and_png() {
+    let dir = std::env::temp_dir().join(format!("rccpack-cli-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for ext in ["svg", "png"] {
+        let out = dir.join(format!("demo.{ext}"));
+        let o = rccpack(&[
+            "render",
+            DEMOS,
+            "--index",
+            "2",
+            "--rules",
+            PILOT,
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let bytes = std::fs::read(&out).unwrap();
+        assert!(bytes.len() > 100);
+    }
+    let o = rccpack(&["render", DEMOS, "-o", dir.join("x.png").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("--index"), "{}", stderr(&o));
+    let o = rccpack(&["render", PROBLEM, "-o", dir.join("x.gif").to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+}

@@ -1,0 +1,507 @@
+//! Learning (SPEC §7): the worked check, the null model against exact
+//! enumeration, determinism across thread counts, the box-packing example
+//! and typed errors for bad input.
+
+use rccpack::eval::Evaluator;
+use rccpack::infer::posterior::Posterior;
+use rccpack::infer::{learn, InferError, LearnParams, NullModel};
+use rccpack::relations::{Contact, Dir, Kind, Relation};
+use rccpack::rules::{parse_rules, Atom, Formula, Rule, RuleSet, Target};
+use rccpack::scene::{scenes_from_json, Object, Scene, Space};
+
+fn atom(kind: Kind, dir: Dir, s: &str, t: &str) -> Formula {
+    let target = if t == "*" {
+        Target::Any
+    } else {
+        Target::Class(t.into())
+    };
+    Formula::Atom(Atom::new(Relation::new(kind, dir), s, target))
+}
+
+fn obj(id: &str, class: &str, x: i64, y: i64, w: i64, h: i64, fixed: bool) -> Object {
+    Object {
+        id: id.into(),
+        class: class.into(),
+        x: Some(x),
+        y: Some(y),
+        width: w,
+        height: h,
+        fixed,
+    }
+}
+
+fn scene(w: i64, h: i64, objects: Vec<Object>) -> Scene {
+    Scene {
+        space: Space {
+            x: 0,
+            y: 0,
+            width: w,
+            height: h,
+        },
+        grid: 10,
+        objects,
+    }
+}
+
+/// SPEC §7 worked check: chance rates 0.4 / 0.01 / 0.3 with 4 / 4 / 3
+/// objects; only the second rule is learned at cutoff 0.01.
+#[test]
+fn worked_check_of_spec_section_7() {
+    let cases = [(0.4, 4u64), (0.01, 4), (0.3, 3)];
+    let unnormalised = [0.0256, 1e-8, 0.027];
+    let normalised = [0.0256 / 1.0256, 1e-8 / (1.0 + 1e-8), 0.027 / 1.027];
+    let mut learned = Vec::new();
+    for (i, &(q, n)) in cases.iter().enumerate() {
+        let p = Posterior::new(q, 1e-9, n, 0.5);
+        let l = 10f64.powf(p.log10_likelihood);
+        assert!(
+            (l - unnormalised[i]).abs() <= 1e-12 * unnormalised[i],
+            "L[{i}] = {l}"
+        );
+        let post = p.written();
+        assert!(
+            (post - normalised[i]).abs() <= 1e-12 * normalised[i],
+            "P[{i}] = {post}"
+        );
+        learned.push(p.learned(0.01));
+        // The unnormalised product gives the same decision.
+        assert_eq!(unnormalised[i] < 0.01, p.learned(0.01));
+    }
+    assert!((normalised[0] - 0.02496).abs() < 1e-5);
+    assert!((normalised[2] - 0.02629).abs() < 1e-5);
+    assert_eq!(learned, [false, true, false]);
+}
+
+/// One movable 10×10 `M` and one fixed 10×10 `F` in a 60×40 space.
+fn small_demo(fixed_x: i64, fixed_y: i64) -> Scene {
+    scene(
+        60,
+        40,
+        vec![
+            obj("f", "F", fixed_x, fixed_y, 10, 10, true),
+            obj("m", "M", 0, 30, 10, 10, false),
+        ],
+    )
+}
+
+/// The exact fraction of free grid positions of `m` where `f` holds.
+fn exact_fraction(demo: &Scene, f: &Formula) -> f64 {
+    let rules = RuleSet::new(vec![Rule::new("x", f.clone())]);
+    let fixed = demo.objects[0].rect().unwrap();
+    let (mut hits, mut total) = (0u32, 0u32);
+    for kx in 0..=(60 - 10) / 10 {
+        for ky in 0..=(40 - 10) / 10 {
+            let mut s = demo.clone();
+            s.objects[1].x = Some(kx * 10);
+            s.objects[1].y = Some(ky * 10);
+            if s.objects[1].rect().unwrap().interiors_overlap(&fixed) {
+                continue;
+            }
+            total += 1;
+            let ev = Evaluator::new(&s, &rules, Contact::Point);
+            if ev.satisfies(1, &ev.compile(f)) {
+                hits += 1;
+            }
+        }
+    }
+    f64::from(hits) / f64::from(total)
+}
+
+fn check_null_model(fixed_x: i64, fixed_y: i64) {
+    let demo = small_demo(fixed_x, fixed_y);
+    let statements = [
+        atom(Kind::DR, Dir::N, "M", "F"),
+        atom(Kind::EC, Dir::N, "M", "F"),
+        Formula::Or(
+            Dir::ALL
+                .iter()
+                .map(|&d| atom(Kind::EC, d, "M", "F"))
+                .collect(),
+        ),
+    ];
+    let set = RuleSet::new(
+        statements
+            .iter()
+            .enumerate()
+            .map(|(i, f)| Rule::new(format!("s{i}"), f.clone()))
+            .collect(),
+    );
+    // Score the sampled scenes directly (the demonstration itself need not
+    // satisfy the statements).
+    let samples = 20_000;
+    let model = NullModel::new(std::slice::from_ref(&demo), 7).unwrap();
+    let mut hits = vec![0u32; statements.len()];
+    for i in 0..samples {
+        let s = model.scene(i).unwrap();
+        assert_eq!(s.objects[0], demo.objects[0], "fixed objects stay");
+        let m = s.objects[1].rect().unwrap();
+        assert!(!m.interiors_overlap(&s.objects[0].rect().unwrap()));
+        assert!(m.inside(&s.space.rect()));
+        assert_eq!(m.x % 10, 0);
+        assert_eq!(m.y % 10, 0);
+        let ev = Evaluator::new(&s, &set, Contact::Point);
+        for (k, f) in statements.iter().enumerate() {
+            if ev.satisfies(1, &ev.compile(f)) {
+                hits[k] += 1;
+            }
+        }
+    }
+    for (k, f) in statements.iter().enumerate() {
+        let exact = exact_fraction(&demo, f);
+        let est = f64::from(hits[k]) / samples as f64;
+        let se = (exact * (1.0 - exact) / samples as f64).sqrt();
+        assert!(
+            (est - exact).abs() <= 4.0 * se,
+            "statement {k}: sampled {est}, exact {exact}, se {se}"
+        );
+    }
+}
+
+/// DR_N, EC_N and "touches" chance rates agree with exact enumeration
+/// (grid-aligned fixed object: the cell bitset).
+#[test]
+fn null_model_matches_exact_enumeration_on_grid() {
+    check_null_model(20, 10);
+}
+
+/// The same with a fixed object off the grid (the checked scan).
+#[test]
+fn null_model_matches_exact_enumeration_off_grid() {
+    check_null_model(25, 15);
+}
+
+/// The chance rate `q` reported by `learn` is the sampled fraction: with a
+/// demonstration that satisfies DR_N(M, F), `q` lies within 4 standard
+/// errors of the exact rate.
+#[test]
+fn learn_chance_rate_matches_exact_enumeration() {
+    let mut demo = small_demo(20, 10);
+    demo.objects[1].x = Some(20);
+    demo.objects[1].y = Some(20); // on top of F: DR_N and EC_N hold
+    let statements = [
+        atom(Kind::DR, Dir::N, "M", "F"),
+        atom(Kind::EC, Dir::N, "M", "F"),
+    ];
+    let set = RuleSet::new(vec![
+        Rule::new("m_north", statements[0].clone()),
+        Rule::new("m_on_top", statements[1].clone()),
+    ]);
+    let params = LearnParams {
+        samples: 20_000,
+        ..LearnParams::default()
+    };
+    let learned = learn(std::slice::from_ref(&demo), Some(&set), &params).unwrap();
+    for (k, f) in statements.iter().enumerate() {
+        let s = &learned.statements[k];
+        assert!(s.candidate);
+        let exact = exact_fraction(&demo, f);
+        let se = (exact * (1.0 - exact) / 20_000.0).sqrt();
+        let q = s.q.unwrap();
+        assert!(
+            (q - exact).abs() <= 4.0 * se,
+            "{}: q {q}, exact {exact}",
+            s.name
+        );
+    }
+}
+
+/// Three small demonstrations: B north of R, everything inside the walls.
+fn synthetic_demos() -> Vec<Scene> {
+    let walls = |v: &mut Vec<Object>| {
+        v.push(obj("ws", "W", 40, 40, 80, 10, true));
+        v.push(obj("wn", "W", 40, 110, 80, 10, true));
+        v.push(obj("ww", "W", 40, 50, 10, 60, true));
+        v.push(obj("we", "W", 110, 50, 10, 60, true));
+    };
+    let layouts: [&[(&str, i64, i64)]; 3] = [
+        &[("R", 50, 50), ("R", 70, 50), ("B", 50, 90), ("B", 70, 90)],
+        &[
+            ("R", 50, 50),
+            ("B", 90, 90),
+            ("B", 70, 90),
+            ("R", 90, 50),
+            ("R", 50, 70),
+        ],
+        &[("R", 70, 50), ("B", 50, 70), ("B", 50, 90)],
+    ];
+    layouts
+        .iter()
+        .map(|l| {
+            let mut v = Vec::new();
+            walls(&mut v);
+            for (i, &(c, x, y)) in l.iter().enumerate() {
+                v.push(obj(&format!("{c}{i}"), c, x, y, 20, 20, false));
+            }
+            scene(160, 160, v)
+        })
+        .collect()
+}
+
+/// Same seed ⇒ identical result, `.rcc` text and report with 1 and with 2
+/// threads.
+#[test]
+fn same_seed_same_output_with_one_and_two_threads() {
+    let demos = synthetic_demos();
+    let params = LearnParams {
+        samples: 500,
+        seed: 42,
+        ..LearnParams::default()
+    };
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| learn(&demos, None, &params).unwrap())
+    };
+    let (one, two) = (run(1), run(2));
+    assert_eq!(one, two);
+    assert_eq!(one.to_rcc(), two.to_rcc());
+    assert_eq!(one.report_json(), two.report_json());
+    // And a different seed gives different chance counts.
+    let other = learn(&demos, None, &LearnParams { seed: 43, ..params }).unwrap();
+    assert_ne!(
+        one.statements
+            .iter()
+            .map(|s| s.satisfied)
+            .collect::<Vec<_>>(),
+        other
+            .statements
+            .iter()
+            .map(|s| s.satisfied)
+            .collect::<Vec<_>>()
+    );
+}
+
+/// The learned file parses back to the same rules, strongest first, with
+/// posteriors below the cutoff.
+#[test]
+fn learned_file_parses_back() {
+    let demos = synthetic_demos();
+    let learned = learn(&demos, None, &LearnParams::default()).unwrap();
+    let text = learned.to_rcc();
+    let parsed = parse_rules(&text).unwrap();
+    assert!(parsed.same_rules(&learned.rules()), "{text}");
+    assert!(!parsed.rules.is_empty());
+    let ps: Vec<f64> = parsed
+        .rules
+        .iter()
+        .map(|r| match r.strength {
+            rccpack::rules::Strength::P(p) => p,
+            _ => panic!("p modifier expected"),
+        })
+        .collect();
+    assert!(ps.windows(2).all(|w| w[0] <= w[1]), "strongest first");
+    assert!(ps.iter().all(|&p| p > 0.0 && p < 0.01));
+    // B north of R and inside the walls are among them.
+    let names: Vec<&str> = parsed.rules.iter().map(|r| r.name.as_str()).collect();
+    for n in ["B_dr_n_R", "B_inside_W", "R_inside_W"] {
+        assert!(names.contains(&n), "{n} not learned:\n{text}");
+    }
+    // The report holds every statement.
+    let report: serde_json::Value = serde_json::from_str(&learned.report_json()).unwrap();
+    assert_eq!(
+        report["statements"].as_array().unwrap().len(),
+        learned.statements.len()
+    );
+}
+
+/// Generated template names are readable identifiers, unique, with the
+/// §8 shapes present.
+#[test]
+fn template_names_are_readable() {
+    let demos = synthetic_demos();
+    let set = rccpack::infer::templates::generate(&demos);
+    let names: Vec<&str> = set.rules.iter().map(|r| r.name.as_str()).collect();
+    for n in [
+        "B_dr_n_R",
+        "B_ec_s_B",
+        "B_touches_B",
+        "B_inside_W",
+        "B_not_dr_e_any",
+        "B_corner",
+        "R_touches_any",
+    ] {
+        assert!(names.contains(&n), "{n} missing");
+    }
+    assert!(!names.iter().any(|n| n.starts_with("W_")), "W is fixed");
+    let mut uniq = names.clone();
+    uniq.sort();
+    uniq.dedup();
+    assert_eq!(uniq.len(), names.len());
+    // 2 movable subjects × 4 targets (B, R, W, *) × (12 + 2) + 2 corners.
+    assert_eq!(names.len(), 2 * 4 * 14 + 2);
+}
+
+// ---- the bundled example ---------------------------------------------------
+
+/// On `examples/box-packing/demos.json`, with generated templates, every
+/// one of the thesis's 12 pilot rules is learned at the default cutoff.
+#[test]
+fn box_packing_example_learns_the_pilot_rules() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/box-packing/demos.json"
+    );
+    let text = std::fs::read_to_string(path).expect("examples/box-packing/demos.json");
+    let demos = scenes_from_json(&text).unwrap();
+    let learned = learn(&demos, None, &LearnParams::default()).unwrap();
+    let names: Vec<&str> = learned
+        .order
+        .iter()
+        .map(|&k| learned.statements[k].name.as_str())
+        .collect();
+    let mut pilot = vec!["B_dr_n_R", "G_dr_e_R", "G_dr_e_B"];
+    let per_class = [
+        "B_touches_B",
+        "R_touches_R",
+        "G_touches_G",
+        "B_corner",
+        "R_corner",
+        "G_corner",
+        "B_inside_W",
+        "R_inside_W",
+        "G_inside_W",
+    ];
+    pilot.extend(per_class);
+    let missing: Vec<&&str> = pilot.iter().filter(|n| !names.contains(n)).collect();
+    assert!(
+        missing.is_empty(),
+        "not learned: {missing:?}\n{}",
+        learned.to_rcc()
+    );
+    // The file parses back and scores 1 on every demonstration.
+    let rules = parse_rules(&learned.to_rcc()).unwrap();
+    for d in &demos {
+        assert_eq!(
+            rccpack::eval::evaluate(d, &rules, Contact::Point).score,
+            1.0
+        );
+    }
+}
+
+// ---- bad input -------------------------------------------------------------
+
+fn err(demos: &[Scene], set: Option<&RuleSet>) -> InferError {
+    learn(
+        demos,
+        set,
+        &LearnParams {
+            samples: 10,
+            ..LearnParams::default()
+        },
+    )
+    .unwrap_err()
+}
+
+#[test]
+fn empty_demonstrations_are_an_error() {
+    let e = err(&[], None);
+    assert_eq!(e, InferError::NoDemonstrations);
+    assert!(e.to_string().contains("no demonstrations"), "{e}");
+}
+
+#[test]
+fn incomplete_demonstration_is_an_error() {
+    let mut demos = synthetic_demos();
+    demos[1].objects[5].x = None;
+    demos[1].objects[5].y = None;
+    let e = err(&demos, None);
+    assert!(matches!(
+        e,
+        InferError::IncompleteDemonstration { demo: 1, .. }
+    ));
+    assert_eq!(
+        e.to_string(),
+        "demonstration [1] is incomplete: object `B1` has no position; every object of a demonstration must be placed"
+    );
+}
+
+#[test]
+fn demonstrations_with_different_spaces_are_an_error() {
+    let mut demos = synthetic_demos();
+    demos[2].space.width = 200;
+    let e = err(&demos, None);
+    assert_eq!(
+        e.to_string(),
+        "demonstration [2] has space 0,0 200x160, but demonstration [0] has space 0,0 160x160; all demonstrations must share one space"
+    );
+}
+
+#[test]
+fn statement_naming_an_absent_class_is_an_error() {
+    let demos = synthetic_demos();
+    let set = RuleSet::new(vec![Rule::new("q_north", atom(Kind::DR, Dir::N, "B", "Q"))]);
+    let e = err(&demos, Some(&set));
+    assert_eq!(
+        e.to_string(),
+        "rule `q_north` names class `Q`, which no demonstration has (classes: W, R, B)"
+    );
+}
+
+/// A demonstration placed off the grid whose objects fit nowhere on it:
+/// two 15-wide objects in a 30-wide space have only grid x ∈ {0, 10}.
+#[test]
+fn unplaceable_objects_are_an_error() {
+    let demo = scene(
+        30,
+        10,
+        vec![
+            obj("a", "M", 0, 0, 15, 10, false),
+            obj("b", "M", 15, 0, 15, 10, false),
+        ],
+    );
+    let e = err(std::slice::from_ref(&demo), None);
+    assert!(matches!(e, InferError::CannotPlace { demo: 0, .. }), "{e}");
+    let text = e.to_string();
+    assert!(
+        text.starts_with("the null model cannot place object `")
+            && text.ends_with("of demonstration [0] at random: no free grid position found in 1000 tries, 100 times over"),
+        "{text}"
+    );
+}
+
+#[test]
+fn bad_parameters_name_the_flag() {
+    let demos = synthetic_demos();
+    let cases: [(LearnParams, &str); 5] = [
+        (
+            LearnParams {
+                cutoff: 1.5,
+                ..Default::default()
+            },
+            "invalid --cutoff 1.5: expected a number strictly between 0 and 1",
+        ),
+        (
+            LearnParams {
+                cutoff: 0.0,
+                ..Default::default()
+            },
+            "invalid --cutoff 0: expected a number strictly between 0 and 1",
+        ),
+        (
+            LearnParams {
+                samples: 0,
+                ..Default::default()
+            },
+            "invalid --samples 0: expected a whole number of at least 1",
+        ),
+        (
+            LearnParams {
+                prior: 1.0,
+                ..Default::default()
+            },
+            "invalid --prior 1: expected a number strictly between 0 and 1",
+        ),
+        (
+            LearnParams {
+                epsilon: Some(f64::NAN),
+                ..Default::default()
+            },
+            "invalid --epsilon NaN: expected a number strictly between 0 and 1",
+        ),
+    ];
+    for (p, msg) in cases {
+        assert_eq!(learn(&demos, None, &p).unwrap_err().to_string(), msg);
+    }
+}

@@ -1,0 +1,880 @@
+//! Tests for the `.rcc` parser, checks, printer and diagnostics.
+
+use proptest::prelude::*;
+use rccpack::relations::Relation;
+use rccpack::rules::*;
+use rccpack::scene::Scene;
+
+const PILOT: &str = "\
+rule blue_north_of_red: DR_N(B, R)
+rule green_east_of_red: DR_E(G, R)
+rule green_east_of_blue: DR_E(G, B)
+rule blue_touches_blue: EC_N(B, B) | EC_S(B, B) | EC_E(B, B) | EC_W(B, B)
+rule red_touches_red: EC_N(R, R) | EC_S(R, R) | EC_E(R, R) | EC_W(R, R)
+rule green_touches_green: EC_N(G, G) | EC_S(G, G) | EC_E(G, G) | EC_W(G, G)
+rule blue_in_corner: (EC_N(B, *) & EC_W(B, *)) | (EC_W(B, *) & EC_S(B, *))
+                   | (EC_S(B, *) & EC_E(B, *)) | (EC_E(B, *) & EC_N(B, *))
+rule blue_inside: !DR_N(B, W) & !DR_S(B, W) & !DR_E(B, W) & !DR_W(B, W)
+";
+
+fn rel(n: &str) -> Relation {
+    Relation::from_name(n).unwrap()
+}
+
+fn at(r: &str, s: &str, t: &str) -> Formula {
+    let target = if t == "*" {
+        Target::Any
+    } else {
+        Target::Class(t.to_string())
+    };
+    Formula::Atom(Atom::new(rel(r), s, target))
+}
+
+/// Parse one rule's formula (panics on error: for positive tests).
+fn formula(src: &str) -> Formula {
+    match parse_rules(src) {
+        Ok(rs) => {
+            assert_eq!(rs.rules.len(), 1, "{src}");
+            rs.rules[0].formula.clone()
+        }
+        Err(e) => panic!("{src:?} failed:\n{}", e.render("t.rcc", src, false)),
+    }
+}
+
+fn ok(src: &str) -> RuleSet {
+    match parse_rules(src) {
+        Ok(rs) => rs,
+        Err(e) => panic!("{src:?} failed:\n{}", e.render("t.rcc", src, false)),
+    }
+}
+
+/// The first diagnostic's message and its (line, col).
+fn err(src: &str) -> (String, (usize, usize)) {
+    match parse_rules(src) {
+        Ok(rs) => panic!("{src:?} parsed: {rs:?}"),
+        Err(e) => (e.diagnostics[0].message.clone(), e.line_col(src)),
+    }
+}
+
+// ---- the worked example -----------------------------------------------------
+
+#[test]
+fn pilot_file_parses() {
+    let rs = ok(PILOT);
+    let names: Vec<&str> = rs.rules.iter().map(|r| r.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "blue_north_of_red",
+            "green_east_of_red",
+            "green_east_of_blue",
+            "blue_touches_blue",
+            "red_touches_red",
+            "green_touches_green",
+            "blue_in_corner",
+            "blue_inside"
+        ]
+    );
+    assert!(rs.rules.iter().all(|r| r.strength == Strength::Weight(1.0)));
+    let corner = &rs.rules[6].formula;
+    assert_eq!(
+        *corner,
+        Formula::Or(vec![
+            Formula::And(vec![at("EC_N", "B", "*"), at("EC_W", "B", "*")]),
+            Formula::And(vec![at("EC_W", "B", "*"), at("EC_S", "B", "*")]),
+            Formula::And(vec![at("EC_S", "B", "*"), at("EC_E", "B", "*")]),
+            Formula::And(vec![at("EC_E", "B", "*"), at("EC_N", "B", "*")]),
+        ])
+    );
+    let inside = &rs.rules[7].formula;
+    assert_eq!(
+        *inside,
+        Formula::And(
+            ["DR_N", "DR_S", "DR_E", "DR_W"]
+                .iter()
+                .map(|r| Formula::not(at(r, "B", "W")))
+                .collect()
+        )
+    );
+    // Origins: atom spans in atoms() order, pointing at the atom text.
+    for r in &rs.rules {
+        let o = r.origin.as_ref().unwrap();
+        assert_eq!(&PILOT[o.name.start..o.name.end], r.name);
+        let atoms = r.formula.atoms();
+        assert_eq!(atoms.len(), o.atoms.len());
+        for (a, s) in atoms.iter().zip(&o.atoms) {
+            let text: String = PILOT[s.start..s.end].split_whitespace().collect();
+            assert_eq!(text, a.to_string().replace(' ', ""));
+        }
+    }
+    // And it round-trips through the printer.
+    let again = ok(&print_rules(&rs));
+    assert!(again.same_rules(&rs));
+}
+
+#[test]
+fn spec_example_parses() {
+    let src = "\
+# blue blocks go north of red ones, and every block sits inside the box
+rule blue_north_of_red: DR_N(B, R)
+rule green_east weight 2.5: DR_E(G, R)
+rule green_east_of_blue p 1.0e-8: DR_E(G, B)
+rule red_inside hard: !DR_N(R, W) & !DR_S(R, W) & !DR_E(R, W) & !DR_W(R, W)
+";
+    let rs = ok(src);
+    assert_eq!(rs.rules[1].strength, Strength::Weight(2.5));
+    assert_eq!(rs.rules[2].strength, Strength::P(1.0e-8));
+    assert_eq!(rs.rules[3].strength, Strength::Hard);
+}
+
+// ---- one test per grammar rule ------------------------------------------
+
+#[test]
+fn grammar_file() {
+    assert_eq!(ok("").rules.len(), 0);
+    assert_eq!(ok("\n\n# only a comment\n   \n").rules.len(), 0);
+    assert_eq!(ok("rule a: DR_N(B, R)").rules.len(), 1);
+    // Two rules on one line are not a file.
+    let (m, lc) = err("rule a: DR_N(B, R) rule b: DR_N(B, R)\n");
+    assert!(m.starts_with("expected "), "{m}");
+    assert!(m.ends_with("found `rule`"), "{m}");
+    assert_eq!(lc, (1, 20));
+}
+
+#[test]
+fn grammar_eol() {
+    assert_eq!(
+        ok("rule a: DR_N(B, R)\r\nrule b: DR_S(B, R)\r\n")
+            .rules
+            .len(),
+        2
+    );
+    assert_eq!(
+        ok("\n\nrule a: DR_N(B, R)\n\n\nrule b: DR_S(B, R)")
+            .rules
+            .len(),
+        2
+    );
+    let (m, lc) = err("rule a: DR_N(B, R) DR_S(B, R)");
+    assert_eq!(
+        m,
+        "expected end of input, end of line, `|` or `&`, found `DR_S`"
+    );
+    assert_eq!(lc, (1, 20));
+}
+
+#[test]
+fn grammar_rule_def_and_kw_rule() {
+    ok("rule a: DR_N(B, R)");
+    ok("  rule\ta  :  DR_N( B ,R )  ");
+    let (m, lc) = err("rules a: DR_N(B, R)");
+    assert_eq!(m, "expected a rule, found `rules`");
+    assert_eq!(lc, (1, 1));
+    let (m, _) = err("a: DR_N(B, R)");
+    assert_eq!(m, "expected a rule, found `a`");
+}
+
+#[test]
+fn grammar_name() {
+    assert_eq!(ok("rule _a1_B: DR_N(B, R)").rules[0].name, "_a1_B");
+    // Keywords are fine as names.
+    assert_eq!(ok("rule hard hard: DR_N(B, R)").rules[0].name, "hard");
+    let (m, lc) = err("rule 1a: DR_N(B, R)");
+    assert_eq!(m, "expected a rule name, found `1a`");
+    assert_eq!(lc, (1, 6));
+}
+
+#[test]
+fn grammar_colon() {
+    ok("rule a : DR_N(B, R)");
+    let (m, lc) = err("rule a DR_N(B, R)");
+    assert_eq!(
+        m,
+        "expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`"
+    );
+    assert_eq!(lc, (1, 8));
+    let (m, _) = err("rule a hard DR_N(B, R)");
+    assert_eq!(m, "expected `:`, found `DR_N`");
+}
+
+#[test]
+fn grammar_modifier() {
+    assert_eq!(
+        ok("rule a hard: DR_N(B, R)").rules[0].strength,
+        Strength::Hard
+    );
+    // At most one modifier.
+    let (m, lc) = err("rule a hard weight 2: DR_N(B, R)");
+    assert_eq!(m, "expected `:`, found `weight`");
+    assert_eq!(lc, (1, 13));
+}
+
+#[test]
+fn grammar_weight_mod_and_kw_weight() {
+    assert_eq!(
+        ok("rule a weight 2.5: DR_N(B, R)").rules[0].strength,
+        Strength::Weight(2.5)
+    );
+    assert_eq!(
+        ok("rule a weight 1: DR_N(B, R)").rules[0].strength,
+        Strength::Weight(1.0)
+    );
+    let (m, _) = err("rule a weight: DR_N(B, R)");
+    assert_eq!(m, "expected a number, found `:`");
+    let (m, lc) = err("rule a weight 0: DR_N(B, R)");
+    assert_eq!(m, "bad weight `0`: expected a finite number > 0");
+    assert_eq!(lc, (1, 15));
+    let (m, _) = err("rule a weight -2: DR_N(B, R)");
+    assert_eq!(m, "bad weight `-2`: expected a finite number > 0");
+    let (m, _) = err("rule a weight 1e999: DR_N(B, R)");
+    assert_eq!(
+        m,
+        "bad weight `1e999`: it is not finite; expected a finite number > 0"
+    );
+    // `weights` is not the keyword.
+    let (m, _) = err("rule a weights 2: DR_N(B, R)");
+    assert!(m.contains("found `weights`"), "{m}");
+}
+
+#[test]
+fn grammar_p_mod_and_kw_p() {
+    assert_eq!(
+        ok("rule a p 0.25: DR_N(B, R)").rules[0].strength,
+        Strength::P(0.25)
+    );
+    assert_eq!(
+        ok("rule a p 1e-300: DR_N(B, R)").rules[0].strength,
+        Strength::P(1e-300)
+    );
+    let (m, lc) = err("rule a p 1.5: DR_N(B, R)");
+    assert_eq!(m, "bad p `1.5`: expected a number with 0 < p < 1");
+    assert_eq!(lc, (1, 10));
+    for bad in ["0", "1", "1.0", "-0.5", "1e-400"] {
+        let (m, _) = err(&format!("rule a p {bad}: DR_N(B, R)"));
+        assert_eq!(
+            m,
+            format!("bad p `{bad}`: expected a number with 0 < p < 1")
+        );
+    }
+    let (m, _) = err("rule a p 1e999: DR_N(B, R)");
+    assert!(m.contains("not finite"), "{m}");
+}
+
+#[test]
+fn grammar_hard_mod_and_kw_hard() {
+    assert_eq!(
+        ok("rule a hard : DR_N(B, R)").rules[0].strength,
+        Strength::Hard
+    );
+    let (m, _) = err("rule a hardly: DR_N(B, R)");
+    assert!(m.contains("found `hardly`"), "{m}");
+}
+
+#[test]
+fn grammar_number() {
+    for (t, v) in [
+        ("2.5", 2.5),
+        ("1", 1.0),
+        ("1.0e-8", 1e-8),
+        (".5", 0.5),
+        ("3.", 3.0),
+        ("2E+3", 2000.0),
+    ] {
+        let rs = ok(&format!("rule a weight {t}: DR_N(B, R)"));
+        assert_eq!(rs.rules[0].strength, Strength::Weight(v), "{t}");
+    }
+    for bad in ["x", "1.2.3", "1e", "2x", "."] {
+        assert!(
+            parse_rules(&format!("rule a weight {bad}: DR_N(B, R)")).is_err(),
+            "{bad}"
+        );
+    }
+}
+
+#[test]
+fn grammar_formula_disjunction_conjunction_precedence() {
+    let (a, b, c) = (
+        at("DR_N", "B", "R"),
+        at("DR_S", "B", "R"),
+        at("EC_E", "B", "*"),
+    );
+    assert_eq!(
+        formula("rule x: DR_N(B, R) | DR_S(B, R) & EC_E(B, *)"),
+        Formula::Or(vec![a.clone(), Formula::And(vec![b.clone(), c.clone()])])
+    );
+    assert_eq!(
+        formula("rule x: DR_N(B, R) & DR_S(B, R) | EC_E(B, *)"),
+        Formula::Or(vec![Formula::And(vec![a.clone(), b.clone()]), c.clone()])
+    );
+    assert_eq!(
+        formula("rule x: !DR_N(B, R) & DR_S(B, R)"),
+        Formula::And(vec![Formula::not(a.clone()), b.clone()])
+    );
+    // Word forms.
+    assert_eq!(
+        formula("rule x: not DR_N(B, R) and DR_S(B, R) or EC_E(B, *)"),
+        Formula::Or(vec![
+            Formula::And(vec![Formula::not(a.clone()), b.clone()]),
+            c.clone()
+        ])
+    );
+    // Flattening and vanishing parentheses.
+    assert_eq!(
+        formula("rule x: DR_N(B, R) & (DR_S(B, R) & EC_E(B, *))"),
+        Formula::And(vec![a.clone(), b.clone(), c.clone()])
+    );
+    assert_eq!(formula("rule x: ((DR_N(B, R)))"), a.clone());
+    // A missing formula.
+    let (m, lc) = err("rule x: ");
+    assert_eq!(m, "expected a formula, found end of input");
+    assert_eq!(lc, (1, 9));
+    let (m, _) = err("rule x: DR_N(B, R) |");
+    assert!(
+        m.starts_with("expected ") && m.ends_with("found end of input"),
+        "{m}"
+    );
+    let (m, _) = err("rule x: DR_N(B, R) & & DR_S(B, R)");
+    assert!(m.ends_with("found `&`"), "{m}");
+}
+
+#[test]
+fn grammar_unary_and_not_op() {
+    let a = at("DR_N", "B", "R");
+    assert_eq!(
+        formula("rule x: !!DR_N(B, R)"),
+        Formula::not(Formula::not(a.clone()))
+    );
+    assert_eq!(formula("rule x: not ! not DR_N(B, R)").depth(), 4);
+    // `not` needs a word boundary; `notDR_N` is a (bad) relation name.
+    let (m, _) = err("rule x: notDR_N(B, R)");
+    assert!(m.starts_with("unknown relation `notDR_N`"), "{m}");
+    let (m, _) = err("rule x: DR_N(B, R) !DR_S(B, R)");
+    assert!(m.ends_with("found `!`"), "{m}");
+}
+
+#[test]
+fn grammar_group_lparen_rparen() {
+    let f = formula("rule x: !(DR_N(B, R) | DR_S(B, R))");
+    assert_eq!(
+        f,
+        Formula::not(Formula::Or(vec![
+            at("DR_N", "B", "R"),
+            at("DR_S", "B", "R")
+        ]))
+    );
+    let (m, lc) = err("rule x: (DR_N(B, R)\n");
+    assert_eq!(m, "expected `)`, `|` or `&`, found end of line");
+    assert_eq!(lc, (1, 20));
+    let (m, _) = err("rule x: DR_N(B, R))");
+    assert!(m.ends_with("found `)`"), "{m}");
+    let (m, _) = err("rule x: ()");
+    assert!(m.ends_with("found `)`"), "{m}");
+}
+
+#[test]
+fn grammar_or_op_and_and_op() {
+    assert_eq!(
+        formula("rule x: DR_N(B, R) or DR_S(B, R)"),
+        formula("rule x: DR_N(B, R) | DR_S(B, R)")
+    );
+    assert_eq!(
+        formula("rule x: DR_N(B, R) and DR_S(B, R)"),
+        formula("rule x: DR_N(B, R) & DR_S(B, R)")
+    );
+    assert!(parse_rules("rule x: DR_N(B, R) || DR_S(B, R)").is_err());
+    assert!(parse_rules("rule x: DR_N(B, R) && DR_S(B, R)").is_err());
+    // `order` is not `or` followed by `der`.
+    assert!(parse_rules("rule x: DR_N(B, R) order DR_S(B, R)").is_err());
+}
+
+#[test]
+fn grammar_atom_and_relation() {
+    for r in Relation::ALL {
+        let f = formula(&format!("rule x: {}(B, R)", r.name()));
+        assert_eq!(
+            f,
+            Formula::Atom(Atom::new(r, "B", Target::Class("R".into())))
+        );
+    }
+    let (m, lc) = err("rule x: DR_X(B, R)");
+    assert_eq!(
+        m,
+        "unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W"
+    );
+    assert_eq!(lc, (1, 9));
+    let (m, _) = err("rule x: XX(B,R)");
+    assert!(m.starts_with("unknown relation `XX`"), "{m}");
+    let (m, _) = err("rule x: dr_n(B,R)");
+    assert!(m.starts_with("unknown relation `dr_n`"), "{m}");
+    let (m, lc) = err("rule x: DR_N B, R)");
+    assert_eq!(m, "expected `(`, found `B`");
+    assert_eq!(lc, (1, 14));
+}
+
+#[test]
+fn grammar_comma_subject_target() {
+    assert_eq!(formula("rule x: EC_W(B,*)"), at("EC_W", "B", "*"));
+    assert_eq!(
+        formula("rule x: EC_W( Blue_1 , red )"),
+        at("EC_W", "Blue_1", "red")
+    );
+    let (m, lc) = err("rule x: DR_N(B R)");
+    assert_eq!(m, "expected `,`, found `R`");
+    assert_eq!(lc, (1, 16));
+    let (m, _) = err("rule x: DR_N(*, R)");
+    assert_eq!(m, "expected a class name, found `*`");
+    let (m, _) = err("rule x: DR_N(B, 1)");
+    assert_eq!(m, "expected a class name or `*`, found `1`");
+}
+
+#[test]
+fn grammar_continuation() {
+    let f = formula(
+        "rule x: DR_N(B, R)\n  | DR_S(B, R)\n\t& EC_E(B, *)\n   or EC_W(B, *)\n and EC_N(B, *)",
+    );
+    assert_eq!(f.atoms().len(), 5);
+    // Blank lines before a continuation are allowed.
+    assert_eq!(
+        formula("rule x: DR_N(B, R)\n\n  | DR_S(B, R)")
+            .atoms()
+            .len(),
+        2
+    );
+    // A line starting with anything else is not a continuation.
+    assert!(parse_rules("rule x: DR_N(B, R)\n  DR_S(B, R)").is_err());
+    assert!(parse_rules("rule x: DR_N(B, R)\n  ! DR_S(B, R)").is_err());
+    // `order` at line start is not a continuation.
+    assert!(parse_rules("rule x: DR_N(B, R)\norder").is_err());
+}
+
+#[test]
+fn grammar_comment_and_whitespace() {
+    let rs =
+        ok("# head\nrule x: DR_N(B, R) # tail ( (( ((\n\t # indented\nrule y:\tDR_S( B ,\tR )#x");
+    assert_eq!(rs.rules.len(), 2);
+    // `//` is not a comment.
+    assert!(parse_rules("// no\nrule x: DR_N(B, R)").is_err());
+    // A comment cannot hide the colon.
+    assert!(parse_rules("rule x # : \n: DR_N(B, R)").is_err());
+}
+
+// ---- semantic checks ----------------------------------------------------
+
+#[test]
+fn mixed_subjects_error() {
+    let (m, lc) = err("rule a: DR_N(B, R) & (DR_S(B, R) | !DR_S(G, R))");
+    assert_eq!(
+        m,
+        "rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`"
+    );
+    assert_eq!(lc, (1, 37));
+}
+
+#[test]
+fn duplicate_names_error() {
+    let (m, lc) = err("rule a: DR_N(B, R)\n\nrule b: DR_N(B, R)\nrule a: DR_S(B, R)\n");
+    assert_eq!(
+        m,
+        "duplicate rule name `a`: it is already defined on line 1"
+    );
+    assert_eq!(lc, (4, 6));
+}
+
+#[test]
+fn several_diagnostics_collected() {
+    let src = "rule a p 2: DR_N(B, R)\nrule b: XX(B, R)\nrule b: DR_N(B, R) & DR_N(C, R)\n";
+    let e = parse_rules(src).unwrap_err();
+    assert_eq!(e.diagnostics.len(), 4);
+    let lcs: Vec<_> = e.diagnostics.iter().map(|d| d.line_col(src)).collect();
+    assert_eq!(lcs, [(1, 10), (2, 9), (3, 6), (3, 22)]);
+}
+
+fn scene_rw() -> Scene {
+    Scene::from_json(
+        r#"{"space":{"width":100,"height":100},"objects":[
+            {"class":"R","x":0,"y":0,"width":10,"height":10},
+            {"class":"W","x":20,"y":0,"width":10,"height":10}]}"#,
+    )
+    .unwrap()
+}
+
+#[test]
+fn check_classes_accepts_known_and_star() {
+    let rs = ok("rule a: DR_N(R, W) | EC_E(R, *) & !EC_N(R, R)");
+    assert!(check_classes(&rs, &scene_rw()).is_ok());
+}
+
+#[test]
+fn check_classes_rejects_unknown() {
+    let src = "rule a: DR_N(R, W)\nrule q: EC_E(R, *) & DR_S(R, Q)";
+    let rs = ok(src);
+    let e = check_classes(&rs, &scene_rw()).unwrap_err();
+    assert_eq!(e.diagnostics.len(), 1);
+    assert_eq!(
+        e.diagnostics[0].message,
+        "unknown class `Q` in rule `q`: the scene has classes R, W"
+    );
+    assert_eq!(e.line_col(src), (2, 22));
+}
+
+// ---- rendered diagnostics (exact text) ---------------------------------
+
+fn render(src: &str) -> String {
+    parse_rules(src).unwrap_err().render("x.rcc", src, false)
+}
+
+#[test]
+fn render_unknown_relation() {
+    assert_eq!(render("rule a: DR_X(B, R)\n"), UNKNOWN_RELATION);
+}
+
+#[test]
+fn render_mixed_subjects() {
+    assert_eq!(render("rule a: DR_N(B, R) & DR_S(G, R)\n"), MIXED_SUBJECTS);
+}
+
+#[test]
+fn render_missing_colon() {
+    assert_eq!(render("rule a DR_N(B, R)\n"), MISSING_COLON);
+}
+
+#[test]
+fn render_bad_p() {
+    assert_eq!(render("rule a p 1.5: DR_N(B, R)\n"), BAD_P);
+}
+
+#[test]
+fn render_duplicate_name() {
+    assert_eq!(
+        render("rule a: DR_N(B, R)\nrule a: DR_S(B, R)\n"),
+        DUPLICATE_NAME
+    );
+}
+
+#[test]
+fn render_unknown_class() {
+    let scene = Scene::from_json(
+        r#"{"space":{"width":100,"height":100},"objects":[{"class":"R","x":0,"y":0,"width":10,"height":10},{"class":"W","x":20,"y":0,"width":10,"height":10}]}"#,
+    )
+    .unwrap();
+    let src = "rule a: DR_N(B, R)\nrule b: DR_N(R, Q)\n";
+    let rs = ok(src);
+    let text = check_classes(&rs, &scene)
+        .unwrap_err()
+        .render("x.rcc", src, false);
+    assert_eq!(text, UNKNOWN_CLASS);
+}
+
+#[test]
+fn render_color_and_unicode_columns() {
+    // Columns count characters; snippets survive non-ASCII text before the span.
+    let src = "# héhé ünïcødé\nrule a: DR_N(B, R) €\n";
+    let e = parse_rules(src).unwrap_err();
+    assert_eq!(e.line_col(src), (2, 20));
+    let text = e.render("u.rcc", src, false);
+    assert!(text.contains("u.rcc:2:20"), "{text}");
+    assert!(text.contains("rule a: DR_N(B, R) €"), "{text}");
+    let src = "rule é: DR_N(B, R)";
+    let e = parse_rules(src).unwrap_err();
+    assert_eq!(e.diagnostics[0].message, "expected a rule name, found `é`");
+    let plain = e.render("f.rcc", src, false);
+    assert!(plain.contains("f.rcc:1:6"), "{plain}");
+    let colored = e.render("f.rcc", src, true);
+    assert!(colored.contains('\u{1b}'), "{colored}");
+    assert!(!plain.contains('\u{1b}'), "{plain}");
+}
+
+#[test]
+fn render_long_line_falls_back_to_plain() {
+    let src = format!("rule a: {}XX(B, R)\n", "DR_N(B, R) | ".repeat(2000));
+    let e = parse_rules(&src).unwrap_err();
+    let text = e.render("big.rcc", &src, false);
+    assert_eq!(
+        text,
+        "error: big.rcc:1:26009: unknown relation `XX`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W\n"
+    );
+}
+
+const UNKNOWN_RELATION: &str = "error: x.rcc:1:9: unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_X(B, R)\n   │         ──┬─  \n   │           ╰─── unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W\n───╯\n";
+const MIXED_SUBJECTS: &str = "error: x.rcc:1:22: rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n   ╭─[ x.rcc:1:22 ]\n   │\n 1 │ rule a: DR_N(B, R) & DR_S(G, R)\n   │                      ─────┬────  \n   │                           ╰────── rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n───╯\n";
+const MISSING_COLON: &str = "error: x.rcc:1:8: expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n   ╭─[ x.rcc:1:8 ]\n   │\n 1 │ rule a DR_N(B, R)\n   │        ──┬─  \n   │          ╰─── expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n───╯\n";
+const BAD_P: &str = "error: x.rcc:1:10: bad p `1.5`: expected a number with 0 < p < 1\n   ╭─[ x.rcc:1:10 ]\n   │\n 1 │ rule a p 1.5: DR_N(B, R)\n   │          ─┬─  \n   │           ╰─── bad p `1.5`: expected a number with 0 < p < 1\n───╯\n";
+const DUPLICATE_NAME: &str = "error: x.rcc:2:6: duplicate rule name `a`: it is already defined on line 1\n   ╭─[ x.rcc:2:6 ]\n   │\n 2 │ rule a: DR_S(B, R)\n   │      ┬  \n   │      ╰── duplicate rule name `a`: it is already defined on line 1\n───╯\n";
+const UNKNOWN_CLASS: &str = "error: x.rcc:1:9: unknown class `B` in rule `a`: the scene has classes R, W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_N(B, R)\n   │         ─────┬────  \n   │              ╰────── unknown class `B` in rule `a`: the scene has classes R, W\n───╯\nerror: x.rcc:2:9: unknown class `Q` in rule `b`: the scene has classes R, W\n   ╭─[ x.rcc:2:9 ]\n   │\n 2 │ rule b: DR_N(R, Q)\n   │         ─────┬────  \n   │              ╰────── unknown class `Q` in rule `b`: the scene has classes R, W\n───╯\n";
+
+// ---- depth and size limits -----------------------------------------------
+
+#[test]
+fn deep_parentheses_are_an_error() {
+    let src = format!(
+        "rule a: {}DR_N(B, R){}",
+        "(".repeat(10_000),
+        ")".repeat(10_000)
+    );
+    let (m, lc) = err(&src);
+    assert!(m.starts_with("formula nested too deeply"), "{m}");
+    // The atom's own `(` counts in the raw scan that runs before pest.
+    assert_eq!(lc, (1, 9 + 257));
+}
+
+#[test]
+fn many_negations_are_an_error() {
+    let src = format!("rule a: {}DR_N(B, R)", "!".repeat(100_000));
+    let (m, lc) = err(&src);
+    assert!(m.starts_with("formula nested too deeply"), "{m}");
+    assert_eq!(lc, (1, 9 + 256));
+    let src = format!("rule a: {}DR_N(B, R)", "not ".repeat(50_000));
+    assert!(parse_rules(&src).is_err());
+    // Mixed `!(` chains count both.
+    let src = format!("rule a: {}DR_N(B, R){}", "!(".repeat(200), ")".repeat(200));
+    assert!(parse_rules(&src).is_err());
+}
+
+#[test]
+fn depth_limit_boundary() {
+    let src = format!("rule a: {}DR_N(B, R){}", "(".repeat(256), ")".repeat(256));
+    assert_eq!(formula(&src), at("DR_N", "B", "R"));
+    let src = format!("rule a: {}DR_N(B, R)", "!".repeat(256));
+    assert_eq!(formula(&src).depth(), 257);
+    // Parentheses in comments do not count.
+    let src = format!("# {}\nrule a: DR_N(B, R)", "(".repeat(1000));
+    ok(&src);
+}
+
+#[test]
+fn wide_formulas_are_fine() {
+    let src = format!(
+        "rule a: DR_N(B, R){}",
+        " | DR_S(B, R) & EC_E(B, *)".repeat(20_000)
+    );
+    let f = formula(&src);
+    assert_eq!(f.atoms().len(), 40_001);
+}
+
+// ---- printer -------------------------------------------------------------
+
+#[test]
+fn printer_minimal_parentheses() {
+    let cases = [
+        "rule a: DR_N(B, R) | DR_S(B, R) & EC_E(B, *)\n",
+        "rule a: (DR_N(B, R) | DR_S(B, R)) & EC_E(B, *)\n",
+        "rule a: !(DR_N(B, R) & DR_S(B, R)) | !!EC_E(B, *)\n",
+        "rule a weight 2.5: !DR_N(B, R)\n",
+        "rule a p 1e-8: DR_N(B, R)\n",
+        "rule a hard: DR_N(B, R)\n",
+    ];
+    for c in cases {
+        assert_eq!(print_rules(&ok(c)), c);
+    }
+    assert_eq!(
+        print_rules(&ok("rule a weight 1.0: DR_N(B, R)")),
+        "rule a: DR_N(B, R)\n"
+    );
+}
+
+#[test]
+fn printer_comments_and_wrapping() {
+    let mut rs = ok(PILOT);
+    rs.rules[0].comments = vec!["learned from 3 demos".into(), "p = 0.01".into()];
+    let text = print_rules(&rs);
+    assert!(text
+        .starts_with("# learned from 3 demos\n# p = 0.01\nrule blue_north_of_red: DR_N(B, R)\n"));
+    assert!(
+        text.contains("\n                   | EC_W(B, *) & EC_S(B, *)\n"),
+        "{text}"
+    );
+    assert!(ok(&text).same_rules(&rs));
+}
+
+#[test]
+fn format_number_examples() {
+    assert_eq!(format_number(1.0), "1");
+    assert_eq!(format_number(2.5), "2.5");
+    assert_eq!(format_number(1e-8), "1e-8");
+    assert_eq!(format_number(1e-300), "1e-300");
+    assert_eq!(format_number(1e15), "1e15");
+    assert_eq!(format_number(0.0001), "0.0001");
+}
+
+// ---- properties ----------------------------------------------------------
+
+const CLASSES: [&str; 4] = ["B", "R", "G", "W"];
+
+fn atom_strategy(subject: &'static str) -> impl Strategy<Value = Formula> {
+    (0..8usize, prop::option::of(0..4usize)).prop_map(move |(r, t)| {
+        let target = match t {
+            Some(i) => Target::Class(CLASSES[i].to_string()),
+            None => Target::Any,
+        };
+        Formula::Atom(Atom::new(Relation::ALL[r], subject, target))
+    })
+}
+
+/// Flatten nested same-operator chains the way the parser does.
+fn normalize(f: Formula) -> Formula {
+    match f {
+        Formula::Atom(_) => f,
+        Formula::Not(g) => Formula::not(normalize(*g)),
+        Formula::And(v) => {
+            let mut out = Vec::new();
+            for g in v {
+                match normalize(g) {
+                    Formula::And(w) => out.extend(w),
+                    g => out.push(g),
+                }
+            }
+            Formula::And(out)
+        }
+        Formula::Or(v) => {
+            let mut out = Vec::new();
+            for g in v {
+                match normalize(g) {
+                    Formula::Or(w) => out.extend(w),
+                    g => out.push(g),
+                }
+            }
+            Formula::Or(out)
+        }
+    }
+}
+
+/// Random formulas over one subject class, in the parser's normal form.
+fn formula_strategy_for(subject: &'static str) -> impl Strategy<Value = Formula> {
+    atom_strategy(subject)
+        .prop_recursive(5, 40, 4, |inner| {
+            prop_oneof![
+                inner.clone().prop_map(Formula::not),
+                prop::collection::vec(inner.clone(), 2..4).prop_map(Formula::And),
+                prop::collection::vec(inner, 2..4).prop_map(Formula::Or),
+            ]
+        })
+        .prop_map(normalize)
+}
+
+/// Random formulas over a random subject class, in the parser's normal form.
+fn formula_strategy() -> impl Strategy<Value = Formula> {
+    prop::sample::select(CLASSES.to_vec()).prop_flat_map(formula_strategy_for)
+}
+
+fn strength_strategy() -> impl Strategy<Value = Strength> {
+    prop_oneof![
+        Just(Strength::Weight(1.0)),
+        (1e-300f64..1e300).prop_map(Strength::Weight),
+        (0.0f64..1e6)
+            .prop_filter("positive", |w| *w > 0.0)
+            .prop_map(Strength::Weight),
+        (0.0f64..1.0)
+            .prop_filter("in (0,1)", |p| *p > 0.0)
+            .prop_map(Strength::P),
+        (-700.0f64..-1e-3).prop_map(|l| Strength::P(l.exp())),
+        Just(Strength::Hard),
+    ]
+}
+
+/// Random rule sets: unique names, random subjects, strengths and formulas.
+fn ruleset_strategy() -> impl Strategy<Value = RuleSet> {
+    let rule = (0..4usize)
+        .prop_flat_map(|s| (formula_strategy_for(CLASSES[s]), strength_strategy()))
+        .prop_map(|(f, s)| Rule::new("x", f).with_strength(s));
+    (
+        prop::collection::vec(rule, 0..6),
+        prop::collection::vec("[a-z ]{0,20}", 0..6),
+    )
+        .prop_map(|(mut rules, comments)| {
+            for (i, r) in rules.iter_mut().enumerate() {
+                r.name = format!("rule_{i}");
+                if let Some(c) = comments.get(i) {
+                    r.comments = vec![c.clone()];
+                }
+            }
+            RuleSet::new(rules)
+        })
+}
+
+fn mutation_strategy() -> impl Strategy<Value = Vec<(u8, usize, char)>> {
+    prop::collection::vec(
+        (
+            0u8..3,
+            any::<usize>(),
+            prop_oneof![
+                any::<char>(),
+                prop::sample::select(vec![
+                    '(', ')', '!', '&', '|', '\n', ':', ',', '*', '#', ' ', 'e', '9', '.'
+                ])
+            ],
+        ),
+        1..8,
+    )
+}
+
+fn mutate(src: &str, muts: &[(u8, usize, char)]) -> String {
+    let mut chars: Vec<char> = src.chars().collect();
+    for &(op, at, c) in muts {
+        let i = at % (chars.len() + 1);
+        match op {
+            0 => chars.insert(i, c),
+            1 if i < chars.len() => {
+                chars.remove(i);
+            }
+            _ if i < chars.len() => chars[i] = c,
+            _ => chars.push(c),
+        }
+    }
+    chars.into_iter().collect()
+}
+
+fn no_panic(src: &str) {
+    match parse_rules(src) {
+        Ok(rs) => {
+            // Whatever parses must print and re-parse to the same rules.
+            let again = parse_rules(&print_rules(&rs)).expect("printed rules re-parse");
+            assert!(again.same_rules(&rs));
+        }
+        Err(e) => {
+            assert!(!e.diagnostics.is_empty());
+            let text = e.render("m.rcc", src, false);
+            assert!(text.contains("m.rcc:"), "{text}");
+        }
+    }
+}
+
+proptest! {
+    #[test]
+    fn formulas_print_and_reparse(f in formula_strategy()) {
+        let src = format!("rule x: {}", print_formula(&f));
+        let back = parse_rules(&src).map_err(|e| TestCaseError::fail(e.render("f.rcc", &src, false)))?;
+        prop_assert_eq!(&back.rules[0].formula, &f);
+    }
+
+    #[test]
+    fn round_trip_print_parse(rs in ruleset_strategy()) {
+        let text = print_rules(&rs);
+        let back = parse_rules(&text).map_err(|e| TestCaseError::fail(e.render("p.rcc", &text, false)))?;
+        prop_assert!(back.same_rules(&rs), "{}\n{:?}\n{:?}", text, rs, back);
+    }
+
+    #[test]
+    fn format_number_round_trips(v in any::<f64>().prop_filter("finite", |v| v.is_finite())) {
+        let s = format_number(v);
+        prop_assert_eq!(s.parse::<f64>().unwrap().to_bits(), v.to_bits(), "{}", s);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn no_panic_on_arbitrary_strings(s in any::<String>()) {
+        no_panic(&s);
+    }
+
+    #[test]
+    fn no_panic_on_rcc_like_strings(s in "(rule|[a-zA-Z_]{1,6}|[ \t\n():,*!&|#.0-9e-]|DR_N|EC_W|weight|p|hard| ){0,40}") {
+        no_panic(&s);
+    }
+
+    #[test]
+    fn no_panic_on_mutated_pilot(muts in mutation_strategy()) {
+        no_panic(&mutate(PILOT, &muts));
+    }
+}
