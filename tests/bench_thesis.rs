@@ -10,7 +10,9 @@ use std::time::Duration;
 
 #[test]
 fn tiny_quick_study_solutions_verify() {
-    let mut cfg = StudyConfig::quick(0, Duration::from_secs(5));
+    // Viable sets are rare (about 1 draw in 1000 with the full template
+    // pool); seed 22 finds its first one at draw 78, which keeps this fast.
+    let mut cfg = StudyConfig::quick(22, Duration::from_secs(5));
     cfg.sets = 1;
     cfg.max_draws = 200;
     cfg.ns = vec![2, 3];

@@ -248,7 +248,7 @@ fn run(
                         .unwrap_or_default();
                     Err(format!("panic: {msg}"))
                 })
-                .map_err(|e| format!("{e}\n{}", case.describe()));
+                .map_err(|e| format!("{e} [classes ok: {}]\n{}", rccpack::rules::check_classes(&case.rules, &case.scene).is_ok(), case.describe()));
             (i, r)
         })
         .collect();
@@ -262,7 +262,8 @@ fn run(
         match r {
             Ok(bf) => t.infeasible += usize::from(!bf.feasible),
             Err(e) => {
-                let kind: String = e.lines().next().unwrap_or("").chars().take(60).collect();
+                let l = e.lines().next().unwrap_or("");
+                let kind: String = l.chars().take(60).chain(l.chars().skip(l.len().saturating_sub(20))).collect();
                 *kinds.entry(kind).or_default() += 1;
                 t.failures.push(e)
             }

@@ -2,8 +2,9 @@
 //! median search nodes (left) and median time (right) against the number of
 //! objects, one line per number of rules per class, log y axes.
 //!
-//! Drawn with plotters' bitmap backend and an embedded DejaVu Sans (see
-//! `DejaVuSans-LICENSE.txt`), so no system font or library is needed.
+//! Drawn with plotters' bitmap backend and DejaVu Sans embedded through the
+//! `dejavu` crate (the same font the renderer embeds), so no system font or
+//! library is needed at build or run time.
 
 use super::thesis::{Series, Summary};
 use plotters::prelude::*;
@@ -21,14 +22,12 @@ const COLORS: [RGBColor; 6] = [
     RGBColor(23, 190, 207),
 ];
 
-static FONT: &[u8] = include_bytes!("DejaVuSans.ttf");
-
 fn ensure_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         // Registration only fails on a malformed font; the embedded one is
         // fine, and drawing would report FontUnavailable anyway.
-        let _ = register_font("sans-serif", FontStyle::Normal, FONT);
+        let _ = register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular());
     });
 }
 

@@ -122,7 +122,7 @@ impl StudyConfig {
             sets: 10,
             rules_per_class: 5,
             viability_objects_per_class: 2,
-            max_draws: 5000,
+            max_draws: 50_000,
             ns: (2..=6).collect(),
             ks: (1..=5).collect(),
             scale_ns: vec![8, 12, 16, 24, 32, 48],
