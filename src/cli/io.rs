@@ -19,7 +19,8 @@ impl std::fmt::Display for Reported {
 
 impl std::error::Error for Reported {}
 
-fn read_text(path: &Path) -> Result<String> {
+/// Read a whole text file, naming it in the error.
+pub fn read_text(path: &Path) -> Result<String> {
     std::fs::read_to_string(path)
         .map_err(|e| Reported(format!("error: {}: cannot read file: {e}", path.display())).into())
 }
@@ -47,11 +48,18 @@ pub fn read_scenes(path: &Path) -> Result<(Vec<Scene>, bool)> {
 /// names exists in each of them.
 pub fn read_rules(path: &Path, scenes: &[Scene]) -> Result<RuleSet> {
     let text = read_text(path)?;
+    let set = parse_rules_text(path, &text)?;
     let color = std::io::stderr().is_terminal();
     let name = path.display().to_string();
-    let set = rules::parse_rules(&text).map_err(|e| Reported(e.render(&name, &text, color)))?;
     for s in scenes {
         rules::check_classes(&set, s).map_err(|e| Reported(e.render(&name, &text, color)))?;
     }
     Ok(set)
+}
+
+/// Parse `.rcc` text read from `path`, rendering errors with carets.
+pub fn parse_rules_text(path: &Path, text: &str) -> Result<RuleSet> {
+    let color = std::io::stderr().is_terminal();
+    rules::parse_rules(text)
+        .map_err(|e| Reported(e.render(&path.display().to_string(), text, color)).into())
 }

@@ -1,13 +1,14 @@
 //! `rccpack learn`: learn rules from demonstrations (SPEC §7).
 
-use super::{read_rules, read_scenes, Reported};
+use super::io::{parse_rules_text, read_text};
+use super::{read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
-use rccpack::infer::{learn, InferError, LearnParams};
+use rccpack::infer::{learn, InferError, LearnParams, Learned};
 use rccpack::relations::Contact;
 use rccpack::rules::{Diagnostic, RulesError};
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -55,15 +56,46 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
         seed: a.seed,
         contact: a.contact,
     };
+    let progress = std::io::stderr().is_terminal();
+    let learned = learn_files(&a.demos, a.statements.as_deref(), &params, progress)?;
+    let rcc = learned.to_rcc();
+    match &a.output {
+        Some(p) => {
+            std::fs::write(p, &rcc)
+                .map_err(|e| Reported(format!("error: {}: cannot write: {e}", p.display())))?;
+            if progress {
+                eprintln!("wrote {}", p.display());
+            }
+        }
+        None => print!("{rcc}"),
+    }
+    if let Some(p) = &a.report {
+        std::fs::write(p, learned.report_json())
+            .map_err(|e| Reported(format!("error: {}: cannot write: {e}", p.display())))?;
+        if progress {
+            eprintln!("wrote {}", p.display());
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Read demonstrations (and optionally a statement file), learn, and turn
+/// every error into a message naming the file (with a caret for statement
+/// files). Shared by `learn` and `run`.
+pub fn learn_files(
+    demos_path: &Path,
+    statements_path: Option<&Path>,
+    params: &LearnParams,
+    progress: bool,
+) -> Result<Learned> {
     params
         .validate()
         .map_err(|e| Reported(format!("error: {e}")))?;
-    let progress = std::io::stderr().is_terminal();
-    let (demos, _) = read_scenes(&a.demos)?;
-    let (statements, text) = match &a.statements {
+    let (demos, _) = read_scenes(demos_path)?;
+    let (statements, text) = match statements_path {
         Some(p) => {
-            let set = read_rules(p, &[])?;
-            let text = std::fs::read_to_string(p).unwrap_or_default();
+            let text = read_text(p)?;
+            let set = parse_rules_text(p, &text)?;
             (Some(set), text)
         }
         None => (None, String::new()),
@@ -72,12 +104,12 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
         eprintln!(
             "learning from {} demonstrations with {} random scenes…",
             demos.len(),
-            a.samples
+            params.samples
         );
     }
     let start = Instant::now();
     let learned =
-        learn(&demos, statements.as_ref(), &params).map_err(|e| match (&e, &a.statements) {
+        learn(&demos, statements.as_ref(), params).map_err(|e| match (&e, statements_path) {
             (
                 InferError::UnknownClass {
                     span: Some(span), ..
@@ -99,7 +131,7 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
             (InferError::UnknownClass { .. }, Some(path)) => {
                 Reported(format!("error: {}: {e}", path.display()))
             }
-            _ => Reported(format!("error: {}: {e}", a.demos.display())),
+            _ => Reported(format!("error: {}: {e}", demos_path.display())),
         })?;
     if progress {
         let candidates = learned.statements.iter().filter(|s| s.candidate).count();
@@ -111,23 +143,5 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
             start.elapsed().as_secs_f64()
         );
     }
-    let rcc = learned.to_rcc();
-    match &a.output {
-        Some(p) => {
-            std::fs::write(p, &rcc)
-                .map_err(|e| Reported(format!("error: {}: cannot write: {e}", p.display())))?;
-            if progress {
-                eprintln!("wrote {}", p.display());
-            }
-        }
-        None => print!("{rcc}"),
-    }
-    if let Some(p) = &a.report {
-        std::fs::write(p, learned.report_json())
-            .map_err(|e| Reported(format!("error: {}: cannot write: {e}", p.display())))?;
-        if progress {
-            eprintln!("wrote {}", p.display());
-        }
-    }
-    Ok(ExitCode::SUCCESS)
+    Ok(learned)
 }
