@@ -144,19 +144,13 @@ fn box_packing_pilot_reaches_one_and_is_optimal() {
 }
 
 #[test]
-fn bundled_example_files_if_present() {
+fn bundled_example_reaches_one_and_is_optimal() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing");
-    let (Ok(p), Ok(r)) = (
-        std::fs::read_to_string(dir.join("problem.json")),
-        std::fs::read_to_string(dir.join("pilot.rcc")),
-    ) else {
-        return; // lands on main later
-    };
+    let p = std::fs::read_to_string(dir.join("problem.json")).unwrap();
+    let r = std::fs::read_to_string(dir.join("pilot.rcc")).unwrap();
     let problem = Scene::from_json(&p).unwrap();
-    let Ok(rules) = std::panic::catch_unwind(|| rccpack::rules::parse_rules(&r)) else {
-        return; // parser not merged yet
-    };
-    let rules = rules.unwrap();
+    let rules = rccpack::rules::parse_rules(&r).unwrap();
+    assert!(rules.same_rules(&pilot_rules()) || rules.rules.len() == 12);
     let r = solve(&problem, &rules, &SynthOptions::default());
     assert_eq!(r.status, Status::Optimal);
     assert_eq!(r.evaluation.unwrap().score, 1.0);
@@ -316,14 +310,13 @@ fn time_limit_returns_a_valid_layout() {
         ..Default::default()
     };
     let r = solve(&p, &rules, &opts);
+    // The greedy first phase finds a packing at once, so there is a layout.
     assert!(
-        matches!(
-            r.status,
-            Status::Feasible | Status::Optimal | Status::Unknown
-        ),
+        matches!(r.status, Status::Feasible | Status::Optimal),
         "{:?}",
         r.status
     );
+    eprintln!("time-limited status: {:?}", r.status);
     assert!(
         r.stats.time_ms < 2000.0,
         "stopped in time: {}",
@@ -546,8 +539,14 @@ fn study_problem(seed: u64) -> (Scene, RuleSet) {
     let mut p = box_problem(0);
     for i in 0..n {
         let c = ["R", "G", "B"][rng.random_range(0..3)];
-        p.objects
-            .push(obj(&format!("{}{i}", c.to_lowercase()), c, 20, 20, None, false));
+        p.objects.push(obj(
+            &format!("{}{i}", c.to_lowercase()),
+            c,
+            20,
+            20,
+            None,
+            false,
+        ));
     }
     let pilot = pilot_rules();
     let mut rules = Vec::new();
@@ -578,10 +577,35 @@ fn scale_problem(per_class: usize, inner: i64) -> Scene {
     p.space.width = inner + 2 * x0 + 20;
     p.space.height = inner + 2 * y0 + 20;
     p.objects[0] = obj("w_south", "W", inner + 20, 10, Some((x0, y0)), true);
-    p.objects[1] = obj("w_north", "W", inner + 20, 10, Some((x0, y0 + 10 + inner)), true);
+    p.objects[1] = obj(
+        "w_north",
+        "W",
+        inner + 20,
+        10,
+        Some((x0, y0 + 10 + inner)),
+        true,
+    );
     p.objects[2] = obj("w_west", "W", 10, inner, Some((x0, y0 + 10)), true);
-    p.objects[3] = obj("w_east", "W", 10, inner, Some((x0 + 10 + inner, y0 + 10)), true);
+    p.objects[3] = obj(
+        "w_east",
+        "W",
+        10,
+        inner,
+        Some((x0 + 10 + inner, y0 + 10)),
+        true,
+    );
     p
+}
+
+/// CPU time of this thread in ms (robust against a loaded machine).
+fn cpu_ms() -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid, writable timespec.
+    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
+    t.tv_sec as f64 * 1e3 + t.tv_nsec as f64 / 1e6
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -612,15 +636,30 @@ fn bench_study() {
                     time_limit: Some(Duration::from_secs(5)),
                     ..Default::default()
                 };
+                let c0 = cpu_ms();
                 let r = solve(&p, &rules, &opts);
                 if r.status != Status::Optimal {
                     not_opt += 1;
                 }
-                times.push(r.stats.time_ms);
+                let dt = cpu_ms() - c0;
+                if dt > 100.0 && std::env::var_os("BENCH_SLOW").is_some() {
+                    println!(
+                        "  slow seed {seed}: {dt:.0} ms, {} objects, nodes {}, conflicts {}, score {:?}, first {:?} ms",
+                        p.objects.len() - 4,
+                        r.stats.nodes,
+                        r.stats.conflicts,
+                        r.evaluation.as_ref().map(|e| e.score),
+                        r.stats.time_to_first_ms
+                    );
+                    for rule in &rules.rules {
+                        println!("    {}", rccpack::rules::print_rule(rule));
+                    }
+                }
+                times.push(dt);
             }
             let max = times.iter().cloned().fold(0.0, f64::max);
             println!(
-                "study {strategy:?} sym={sym} red={red}: median {:.2} ms, max {:.1} ms, not optimal {not_opt}",
+                "study {strategy:?} sym={sym} red={red}: CPU median {:.2} ms, max {:.1} ms, not optimal {not_opt}",
                 median(&mut times),
                 max
             );
@@ -660,8 +699,9 @@ fn bench_scale() {
                         time_limit: Some(Duration::from_secs(limit)),
                         ..Default::default()
                     };
+                    let c0 = cpu_ms();
                     let r = solve(&p, &pilot_rules(), &opts);
-                    times.push(r.stats.time_ms);
+                    times.push(cpu_ms() - c0);
                     scores.push(format!(
                         "{:?}/{:.4}/first {:.0}ms",
                         r.status,
@@ -670,7 +710,7 @@ fn bench_scale() {
                     ));
                 }
                 println!(
-                    "scale n={} {strategy:?} sym={sym} red={red}: median {:.1} ms {:?}",
+                    "scale n={} {strategy:?} sym={sym} red={red}: CPU median {:.1} ms {:?}",
                     per_class * 3,
                     median(&mut times),
                     scores

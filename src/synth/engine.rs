@@ -26,6 +26,10 @@ use super::model::{BoolDef, Coord, Lit, Model};
 use super::weights::SubsetSums;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
 use pumpkin_constraints::{boolean_equals, cumulative, less_than_or_equals};
+use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
+use pumpkin_core::branching::tie_breaking::InOrderTieBreaker;
+use pumpkin_core::branching::value_selection::InDomainMin;
+use pumpkin_core::branching::variable_selection::FirstFail;
 use pumpkin_core::branching::{Brancher, BrancherEvent, SelectionContext};
 use pumpkin_core::options::SolverOptions;
 use pumpkin_core::predicate;
@@ -39,17 +43,16 @@ use pumpkin_core::results::{
 use pumpkin_core::statistics::StatisticLogger;
 use pumpkin_core::termination::TerminationCondition;
 use pumpkin_core::variables::{AffineView, DomainId, Literal, TransformableVariable};
-use pumpkin_core::branching::branchers::autonomous_search::AutonomousSearch;
-use pumpkin_core::branching::branchers::dynamic_brancher::DynamicBrancher;
-use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
-use pumpkin_core::branching::value_selection::InDomainMin;
-use pumpkin_core::branching::variable_selection::{FirstFail, InputOrder};
 use pumpkin_core::Solver;
 use std::cell::Cell;
 use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Instant;
+
+/// How many times [`Strategy::UpperBoundFirst`] asks for the proven upper
+/// bound itself before it bisects between incumbent and bound.
+const UPPER_BOUND_PROBES: u32 = 2;
 
 /// How to optimise.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -157,6 +160,69 @@ impl Brancher for Counting {
     }
 }
 
+type StaticBrancher = IndependentVariableValueBrancher<
+    DomainId,
+    FirstFail<DomainId, InOrderTieBreaker<DomainId, i32>>,
+    InDomainMin,
+>;
+
+/// Two-phase search: until the first solution, place objects greedily
+/// (first-fail over the grid variables, smallest value first), which finds a
+/// packing at once; afterwards the main (learning) brancher. Every event
+/// goes to both.
+#[derive(Debug)]
+struct Phased {
+    first: StaticBrancher,
+    main: Box<dyn Brancher>,
+    use_first: Rc<Cell<bool>>,
+}
+
+impl Brancher for Phased {
+    fn next_decision(&mut self, context: &mut SelectionContext) -> Option<Predicate> {
+        if self.use_first.get() {
+            if let Some(d) = self.first.next_decision(context) {
+                return Some(d);
+            }
+        }
+        self.main.next_decision(context)
+    }
+    fn on_conflict(&mut self) {
+        self.main.on_conflict()
+    }
+    fn on_backtrack(&mut self) {
+        self.main.on_backtrack()
+    }
+    fn on_solution(&mut self, solution: SolutionReference) {
+        self.main.on_solution(solution)
+    }
+    fn on_unassign_integer(&mut self, variable: DomainId, value: i32) {
+        self.first.on_unassign_integer(variable, value);
+        self.main.on_unassign_integer(variable, value)
+    }
+    fn on_appearance_in_conflict_predicate(&mut self, predicate: Predicate) {
+        self.main.on_appearance_in_conflict_predicate(predicate)
+    }
+    fn on_restart(&mut self) {
+        self.main.on_restart()
+    }
+    fn synchronise(&mut self, context: &mut SelectionContext) {
+        self.first.synchronise(context);
+        self.main.synchronise(context)
+    }
+    fn is_restart_pointless(&mut self) -> bool {
+        self.main.is_restart_pointless()
+    }
+    fn subscribe_to_events(&self) -> Vec<BrancherEvent> {
+        let mut v = self.main.subscribe_to_events();
+        for e in self.first.subscribe_to_events() {
+            if !v.contains(&e) {
+                v.push(e);
+            }
+        }
+        v
+    }
+}
+
 /// The result of one satisfiability call.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Sat {
@@ -192,6 +258,7 @@ pub struct Engine {
     objective: Option<(DomainId, Vec<i64>)>,
     counters: Counters,
     tag: ConstraintTag,
+    first_phase: Rc<Cell<bool>>,
 }
 
 impl std::fmt::Debug for Engine {
@@ -210,6 +277,7 @@ impl Engine {
     pub fn new(model: &Model, seed: u64, guarded: bool, coefs: Option<&[i64]>) -> Engine {
         let mut solver = Solver::with_options(SolverOptions {
             random_generator: SmallRng::seed_from_u64(seed),
+            memory_preallocated: 1,
             ..Default::default()
         });
         let tag = solver.new_constraint_tag();
@@ -219,6 +287,7 @@ impl Engine {
             .map(|v| solver.new_bounded_integer(0, v.ub as i32))
             .collect();
         let t = solver.get_true_literal();
+        let tb = Instant::now();
         let mut lits: Vec<Literal> = Vec::with_capacity(model.bools.len());
         let conv = |lits: &[Literal], l: Lit| -> Literal {
             match l {
@@ -234,7 +303,14 @@ impl Engine {
                 }
             }
         };
+        let mut tcat = [0f64; 3];
         for def in &model.bools {
+            let tt = Instant::now();
+            let cat = match def {
+                BoolDef::Ge { .. } => 0,
+                BoolDef::DiffGe { .. } => 1,
+                BoolDef::And(_) => 2,
+            };
             let l = match def {
                 BoolDef::Ge { var, k } => {
                     let x = vars[*var];
@@ -265,6 +341,31 @@ impl Engine {
                 }
             };
             lits.push(l);
+            tcat[cat] += tt.elapsed().as_secs_f64() * 1e3;
+        }
+        let dbg = std::env::var_os("RCCPACK_DEBUG").is_some();
+        let t0 = Instant::now();
+        if dbg {
+            let n_ge = model
+                .bools
+                .iter()
+                .filter(|b| matches!(b, BoolDef::Ge { .. }))
+                .count();
+            let n_diff = model
+                .bools
+                .iter()
+                .filter(|b| matches!(b, BoolDef::DiffGe { .. }))
+                .count();
+            eprintln!(
+                "  bools: {n_ge} ge, {n_diff} diff, {} and",
+                model.bools.len() - n_ge - n_diff
+            );
+        }
+        if dbg {
+            eprintln!(
+                "  bools posted in {:.1} ms {tcat:?}",
+                tb.elapsed().as_secs_f64() * 1e3
+            );
         }
         for c in &model.clauses {
             let c: Vec<Predicate> = c
@@ -323,6 +424,12 @@ impl Engine {
                 .add_constraint(cumulative(starts, durs, dems, cu.capacity as i32, tag))
                 .post();
         }
+        if dbg {
+            eprintln!(
+                "  clauses+hard+sym+cumulative {:.1} ms",
+                t0.elapsed().as_secs_f64() * 1e3
+            );
+        }
         let mut objective = None;
         if let Some(coefs) = coefs {
             let mut ws = Vec::new();
@@ -343,27 +450,13 @@ impl Engine {
         }
         let counters = Counters::default();
         // The brancher only after every variable exists.
-        let inner: Box<dyn Brancher> = match std::env::var("RCCPACK_SEARCH").as_deref() {
-            Ok("vsids-ff") => Box::new(AutonomousSearch::new(IndependentVariableValueBrancher::new(
-                FirstFail::new(&vars),
-                InDomainMin,
-            ))),
-            Ok("static") => Box::new(DynamicBrancher::new(vec![
-                Box::new(IndependentVariableValueBrancher::new(
-                    FirstFail::new(&vars),
-                    InDomainMin,
-                )),
-                Box::new(solver.default_brancher()),
-            ])),
-            Ok("input") => Box::new(DynamicBrancher::new(vec![
-                Box::new(IndependentVariableValueBrancher::new(
-                    InputOrder::new(&vars),
-                    InDomainMin,
-                )),
-                Box::new(solver.default_brancher()),
-            ])),
-            _ => Box::new(solver.default_brancher()),
-        };
+        let main: Box<dyn Brancher> = Box::new(solver.default_brancher());
+        let first_phase = Rc::new(Cell::new(true));
+        let inner: Box<dyn Brancher> = Box::new(Phased {
+            first: IndependentVariableValueBrancher::new(FirstFail::new(&vars), InDomainMin),
+            main,
+            use_first: first_phase.clone(),
+        });
         let brancher = Counting {
             inner,
             nodes: counters.nodes.clone(),
@@ -378,6 +471,7 @@ impl Engine {
             objective,
             counters,
             tag,
+            first_phase,
         }
     }
 
@@ -493,15 +587,12 @@ impl Engine {
             Sat::Unknown => return OptOutcome::Unknown,
         };
         on_incumbent(&best);
+        self.first_phase.set(false);
         let Some((obj, coefs)) = self.objective.clone() else {
             return OptOutcome::Optimal(best);
         };
         let mut best_val = self.objective_value(model, &best);
-        let sums = match strategy {
-            Strategy::UpperBoundFirst => SubsetSums::new(&coefs),
-            Strategy::ImproveFromFirst => None,
-        };
-        let Some(sums) = sums else {
+        if strategy == Strategy::ImproveFromFirst {
             // Improve from the incumbent.
             loop {
                 let a = [predicate![obj >= (best_val + 1) as i32]];
@@ -515,36 +606,45 @@ impl Engine {
                     Sat::Unknown => return OptOutcome::Feasible(best),
                 }
             }
-        };
+        }
+        let sums = SubsetSums::new(&coefs).unwrap_or_else(SubsetSums::all);
         let total: i64 = coefs.iter().sum();
-        let mut hi = if sums.contains(total) {
-            total
-        } else {
-            sums.below(total).unwrap_or(0)
+        let snap = |v: i64| -> i64 {
+            if v < 0 || sums.contains(v) {
+                v
+            } else {
+                sums.below(v).unwrap_or(-1)
+            }
         };
+        let probes = UPPER_BOUND_PROBES;
+        let mut hi = snap(total);
+        let mut step = 0u32;
         loop {
             let root_ub = self.solver.upper_bound(&obj) as i64;
             if root_ub < hi {
-                hi = if sums.contains(root_ub) {
-                    root_ub
-                } else {
-                    sums.below(root_ub).unwrap_or(0)
-                };
+                hi = snap(root_ub);
             }
             if best_val >= hi {
                 return OptOutcome::Optimal(best);
             }
-            let a = [predicate![obj >= hi as i32]];
+            // Upper bound first; then bisect between the incumbent and the bound.
+            let target = if step < probes {
+                hi
+            } else {
+                best_val + (hi - best_val + 1) / 2
+            };
+            step += 1;
+            let a = [predicate![obj >= target as i32]];
             match self.under(&a, limits, false) {
                 Sat::Solution(v) => {
+                    best_val = self.objective_value(model, &v);
                     best = v;
                     on_incumbent(&best);
-                    return OptOutcome::Optimal(best);
                 }
                 Sat::Unsat(_) => {
                     self.solver
-                        .add_clause([predicate![obj <= (hi - 1) as i32]], self.tag);
-                    hi = sums.below(hi).unwrap_or(0);
+                        .add_clause([predicate![obj <= (target - 1) as i32]], self.tag);
+                    hi = snap(target - 1);
                 }
                 Sat::Unknown => return OptOutcome::Feasible(best),
             }

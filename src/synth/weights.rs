@@ -69,10 +69,17 @@ const MAX_DP: i64 = 1 << 24;
 /// down to the next achievable objective value.
 #[derive(Debug, Clone)]
 pub struct SubsetSums {
-    bits: Vec<u64>,
+    /// `None`: every integer counts as reachable (total too large for the
+    /// table).
+    bits: Option<Vec<u64>>,
 }
 
 impl SubsetSums {
+    /// Every non-negative integer treated as reachable.
+    pub fn all() -> SubsetSums {
+        SubsetSums { bits: None }
+    }
+
     /// The reachable sums of `coefs`, or `None` when the total is too large.
     pub fn new(coefs: &[i64]) -> Option<SubsetSums> {
         let total: i64 = coefs.iter().sum();
@@ -102,14 +109,17 @@ impl SubsetSums {
             }
             i = j;
         }
-        Some(SubsetSums { bits })
+        Some(SubsetSums { bits: Some(bits) })
     }
 
     /// Whether `v` is reachable.
     pub fn contains(&self, v: i64) -> bool {
+        let Some(bits) = &self.bits else {
+            return v >= 0;
+        };
         v >= 0 && {
             let v = v as usize;
-            v / 64 < self.bits.len() && self.bits[v / 64] >> (v % 64) & 1 == 1
+            v / 64 < bits.len() && bits[v / 64] >> (v % 64) & 1 == 1
         }
     }
 
@@ -119,10 +129,13 @@ impl SubsetSums {
         if u < 0 {
             return None;
         }
-        let max = (self.bits.len() * 64 - 1) as i64;
+        let Some(bits) = &self.bits else {
+            return Some(u);
+        };
+        let max = (bits.len() * 64 - 1) as i64;
         u = u.min(max);
         while u >= 0 {
-            let w = self.bits[u as usize / 64];
+            let w = bits[u as usize / 64];
             let masked = if u % 64 == 63 {
                 w
             } else {
