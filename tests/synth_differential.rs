@@ -248,7 +248,16 @@ fn run(
                         .unwrap_or_default();
                     Err(format!("panic: {msg}"))
                 })
-                .map_err(|e| format!("{e} [classes ok: {}]\n{}", rccpack::rules::check_classes(&case.rules, &case.scene).is_ok(), case.describe()));
+                .map_err(|e| {
+                    let bf = brute_force::solve(&case.scene, &case.rules, case.contact)
+                        .map(|b| b.feasible)
+                        .ok();
+                    format!(
+                        "{e} [brute force feasible: {bf:?}; rule classes all in scene: {}]\n{}",
+                        rccpack::rules::check_classes(&case.rules, &case.scene).is_ok(),
+                        case.describe()
+                    )
+                });
             (i, r)
         })
         .collect();
@@ -263,7 +272,10 @@ fn run(
             Ok(bf) => t.infeasible += usize::from(!bf.feasible),
             Err(e) => {
                 let l = e.lines().next().unwrap_or("");
-                let kind: String = l.chars().take(60).chain(l.chars().skip(l.len().saturating_sub(20))).collect();
+                let kind: String = match l.find(" [") {
+                    Some(i) => format!("{}…{}", &l[..i.min(60)], &l[i..]),
+                    None => l.chars().take(80).collect(),
+                };
                 *kinds.entry(kind).or_default() += 1;
                 t.failures.push(e)
             }
