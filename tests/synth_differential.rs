@@ -353,6 +353,59 @@ fn brute_force_best_is_consistent() {
     assert!(feasible > 50, "{feasible}");
 }
 
+/// The smallest disagreements found by the differential runs (engine at
+/// synth c839964): problems that are infeasible at the root made the engine
+/// panic inside Pumpkin ("Variables cannot be created in an inconsistent
+/// state") instead of answering `infeasible`.
+#[test]
+fn infeasible_at_root_minimal_reproducers() {
+    let block = |id: &str, class: &str, side: i64| Object {
+        id: id.into(),
+        class: class.into(),
+        x: None,
+        y: None,
+        width: side,
+        height: side,
+        fixed: false,
+    };
+    let space = Space {
+        x: 0,
+        y: 0,
+        width: 30,
+        height: 30,
+    };
+    // Two 20×20 blocks cannot both fit in a 30×30 space; no rules.
+    let no_fit = Scene {
+        space,
+        grid: 10,
+        objects: vec![block("a", "A", 20), block("b", "A", 20)],
+    };
+    // One block; the hard rule asks it to touch the west side of another A.
+    let lonely = Scene {
+        space,
+        grid: 10,
+        objects: vec![block("a", "A", 10)],
+    };
+    let hard_ec_w = RuleSet::new(vec![Rule::new(
+        "r1",
+        atom(Kind::EC, Dir::W, "A", &Target::Class("A".into())),
+    )
+    .with_strength(Strength::Hard)]);
+    for (scene, rules) in [(no_fit, RuleSet::default()), (lonely, hard_ec_w)] {
+        let bf = brute_force::solve(&scene, &rules, Contact::Point).unwrap();
+        assert!(!bf.feasible);
+        let r = std::panic::catch_unwind(|| synthesize(&scene, &rules, &SynthOptions::default()));
+        match r {
+            Ok(Ok(res)) => assert_eq!(res.status, Status::Infeasible),
+            Ok(Err(e)) => panic!("engine error: {e}"),
+            Err(_) => panic!(
+                "engine panicked on an infeasible problem:\n{}",
+                scene.to_json()
+            ),
+        }
+    }
+}
+
 #[test]
 fn engine_matches_brute_force() {
     assert_clean(run(0..600, SMALL, true, true));
