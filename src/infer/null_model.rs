@@ -15,8 +15,8 @@
 //! * Occupancy: when every size, and every fixed object's offset from the
 //!   space's corner, is a multiple of the grid step, each object covers whole
 //!   grid cells and a try is a check of a few bits in a cell bitset
-//!   ([`Occupancy::Cells`]). Otherwise every try scans the placed rectangles
-//!   ([`Occupancy::Scan`]); both give the same answers.
+//!   (`Occupancy::Cells`). Otherwise every try scans the placed rectangles
+//!   (`Occupancy::Scan`); both give the same answers.
 //! * Determinism: sample `i` draws from `ChaCha8Rng::seed_from_u64(seed)` on
 //!   stream `i`, so a sample does not depend on which thread makes it, and
 //!   the per-statement counts are integers summed in any order.

@@ -1,0 +1,151 @@
+//! `rccpack run DIR`: the whole pipeline on a task folder.
+//!
+//! `DIR/demos.json` → learn (with `DIR/statements.rcc` when present, else the
+//! templates) → `OUT/learned.rcc`; `DIR/problem.json` → synth with the learned
+//! rules → `OUT/solution.json`, `OUT/solution.png` (and `OUT/learn-report.json`); a
+//! short summary on stdout. `OUT` defaults to `DIR`.
+
+use super::learn::learn_files;
+use super::{read_scene, Reported};
+use anyhow::Result;
+use clap::Args;
+use rccpack::infer::LearnParams;
+use rccpack::relations::Contact;
+use rccpack::render::{render_to_path, RenderOptions};
+use rccpack::rules::check_classes;
+use rccpack::synth::{synthesize, Status, SynthError, SynthOptions};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Duration;
+
+/// `rccpack run DIR [--out OUT] [--samples N] [--seed S] [--time-limit SECONDS]`
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    /// Task folder with `demos.json`, `problem.json` and optionally `statements.rcc`.
+    dir: PathBuf,
+    /// Where to write `learned.rcc`, `learn-report.json`, `solution.json`, `solution.png` (default: DIR).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Random scenes in the null model.
+    #[arg(long, default_value_t = 1000)]
+    samples: usize,
+    /// Learn candidates whose posterior is below this, in (0, 1).
+    #[arg(long, default_value_t = 0.01)]
+    cutoff: f64,
+    /// Seed for learning and synthesis.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Stop the layout search after this many seconds, keeping the best found.
+    #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
+    time_limit: f64,
+    /// How EC decides that two sides touch: `point` (corners count) or `edge`.
+    #[arg(long, default_value = "point")]
+    contact: Contact,
+}
+
+fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
+    std::fs::write(path, bytes).map_err(|e| Reported(format!("error: {}: cannot write: {e}", path.display())).into())
+}
+
+pub fn run(a: RunArgs) -> Result<ExitCode> {
+    if !(a.time_limit.is_finite() && a.time_limit >= 0.0) {
+        anyhow::bail!("--time-limit {}: expected a non-negative number of seconds", a.time_limit);
+    }
+    let out = a.out.clone().unwrap_or_else(|| a.dir.clone());
+    std::fs::create_dir_all(&out)
+        .map_err(|e| Reported(format!("error: {}: cannot create folder: {e}", out.display())))?;
+    let statements = a.dir.join("statements.rcc");
+    let statements = statements.exists().then_some(statements);
+    let params = LearnParams {
+        samples: a.samples,
+        cutoff: a.cutoff,
+        seed: a.seed,
+        contact: a.contact,
+        ..LearnParams::default()
+    };
+    let learned = learn_files(&a.dir.join("demos.json"), statements.as_deref(), &params, false)?;
+    let rules = learned.rules();
+    write(&out.join("learned.rcc"), learned.to_rcc())?;
+    write(&out.join("learn-report.json"), learned.report_json())?;
+
+    let problem_path = a.dir.join("problem.json");
+    let problem = read_scene(&problem_path)?;
+    check_classes(&rules, &problem).map_err(|e| {
+        Reported(format!(
+            "error: {}: the learned rules name a class the problem lacks: {e}",
+            problem_path.display()
+        ))
+    })?;
+    let opts = SynthOptions {
+        contact: a.contact,
+        time_limit: Some(Duration::from_secs_f64(a.time_limit)),
+        seed: a.seed,
+        ..SynthOptions::default()
+    };
+    let result = synthesize(&problem, &rules, &opts).map_err(|e| match e {
+        SynthError::BadProblem(m) => Reported(format!("error: {}: {m}", problem_path.display())),
+    })?;
+
+    let candidates = learned.statements.iter().filter(|s| s.candidate).count();
+    println!(
+        "learned {} rules ({} candidates of {} statements) from {} demonstrations -> {}",
+        rules.rules.len(),
+        candidates,
+        learned.statements.len(),
+        learned.demos,
+        out.join("learned.rcc").display()
+    );
+    let code = match (&result.scene, &result.evaluation) {
+        (Some(scene), Some(ev)) => {
+            write(&out.join("solution.json"), scene.to_json())?;
+            let png = out.join("solution.png");
+            let ropts = RenderOptions {
+                contact: a.contact,
+                scale: 1.0,
+                title: Some(format!("{} — synthesised", a.dir.display())),
+            };
+            render_to_path(scene, Some(&rules), &ropts, &png)
+                .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;
+            let broken: Vec<String> = ev
+                .rules
+                .iter()
+                .filter(|r| r.satisfied < r.subjects)
+                .map(|r| format!("{} {}/{}", r.name, r.satisfied, r.subjects))
+                .collect();
+            println!(
+                "placed {} objects: {} score {:.6} (weight {:.3} / {:.3}) in {:.1} ms -> {}, {}",
+                problem.objects.iter().filter(|o| !o.is_placed()).count(),
+                match result.status {
+                    Status::Optimal => "optimal,",
+                    _ => "feasible (time limit),",
+                },
+                ev.score,
+                ev.satisfied_weight,
+                ev.total_weight,
+                result.stats.time_ms,
+                out.join("solution.json").display(),
+                png.display()
+            );
+            if broken.is_empty() {
+                println!("every placed object keeps every learned rule");
+            } else {
+                println!("rules not kept by every object: {}", broken.join(", "));
+            }
+            ExitCode::SUCCESS
+        }
+        _ if result.status == Status::Infeasible => {
+            let c = result.conflict.clone().unwrap_or_default();
+            eprintln!(
+                "infeasible: {}{}",
+                if c.objects_cannot_fit { "the objects cannot all fit in the space; " } else { "" },
+                c.hard_rules.join(", ")
+            );
+            ExitCode::from(2)
+        }
+        _ => {
+            eprintln!("unknown: the time limit stopped the search before any layout was found");
+            ExitCode::from(3)
+        }
+    };
+    Ok(code)
+}
