@@ -60,6 +60,7 @@
 //! …); see the README.
 #![warn(missing_docs)]
 
+pub mod bench;
 pub mod eval;
 pub mod infer;
 pub mod relations;

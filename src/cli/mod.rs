@@ -3,6 +3,7 @@
 //! Exit codes (SPEC §10): 0 success; 1 bad input; 2 infeasible; 3 a limit
 //! stopped the search before any solution.
 
+mod bench;
 mod check;
 mod io;
 mod learn;
@@ -43,6 +44,8 @@ enum Command {
     Synth(synth::SynthArgs),
     /// The whole pipeline on a task folder: learn, synthesise, render.
     Run(run::RunArgs),
+    /// Benchmarks: `bench thesis` reproduces the thesis runtime study.
+    Bench(bench::BenchArgs),
 }
 
 /// Parse arguments, run the command, map errors to exit codes.
@@ -57,6 +60,7 @@ pub fn main() -> ExitCode {
         Command::Synth(a) => synth::run(a),
         Command::Run(a) => run::run(a),
         Command::Studio(a) => studio::run(a),
+        Command::Bench(a) => bench::run(a),
     };
     match result {
         Ok(code) => code,

@@ -1,1 +1,402 @@
-//! Exhaustive reference solver for tiny problems (tests only).
+//! Exhaustive reference solver for **tiny** problems (tests and differential
+//! checks only).
+//!
+//! [`solve`] enumerates every assignment of grid positions to the unplaced
+//! objects — each object wholly inside the space, on the grid of SPEC §9 —
+//! skips assignments in which two interiors overlap (fixed and already-placed
+//! objects included), and asks the evaluator ([`crate::eval::Evaluator`], the
+//! one implementation of §4 and §6) whether every hard rule holds and what the
+//! §6 numerator over **all** placed objects is. It keeps the largest
+//! numerator.
+//!
+//! There is no pruning by rules and no symmetry breaking: the point is to be
+//! obviously correct, not fast. The search space is the product of the
+//! per-object domain sizes; [`solve`] refuses (returns
+//! [`BruteError::TooLarge`]) when that product exceeds [`MAX_LAYOUTS`] (or a
+//! caller-given limit through [`solve_with_limit`]).
+//!
+//! Numerators are compared with [`approx_eq`] (tolerance
+//! `1e-9·(1+|x|)`), so ties between optima are harmless: any optimum may be
+//! returned.
+
+use crate::eval::Evaluator;
+use crate::relations::Contact;
+use crate::rules::RuleSet;
+use crate::scene::{Rect, Scene};
+
+/// Default cap on the product of domain sizes (10^7).
+pub const MAX_LAYOUTS: u128 = 10_000_000;
+
+/// What the exhaustive search found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BruteResult {
+    /// Some layout places every object without overlap and keeps every hard
+    /// rule.
+    pub feasible: bool,
+    /// The largest §6 numerator (`satisfied_weight`) over feasible layouts;
+    /// `f64::NEG_INFINITY` when infeasible.
+    pub best_numerator: f64,
+    /// One optimal complete scene, when feasible.
+    pub best: Option<Scene>,
+    /// Complete non-overlapping layouts handed to the evaluator.
+    pub layouts_checked: u64,
+    /// How many of those kept every hard rule.
+    pub layouts_feasible: u64,
+}
+
+/// Why the exhaustive search refused to run.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum BruteError {
+    /// The product of domain sizes exceeds the limit.
+    #[error("search space too large for brute force: {layouts} candidate layouts > limit {limit}")]
+    TooLarge {
+        /// Product of the per-object domain sizes (saturating).
+        layouts: u128,
+        /// The limit in force.
+        limit: u128,
+    },
+    /// The problem scene is not valid (SPEC §1).
+    #[error("bad problem: {0}")]
+    BadProblem(String),
+}
+
+/// Whether two numerators are equal within `1e-9·(1+|x|)`.
+pub fn approx_eq(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs()))
+}
+
+/// Whether `a` is larger than `b` by more than the tolerance of [`approx_eq`].
+pub fn approx_gt(a: f64, b: f64) -> bool {
+    a > b && !approx_eq(a, b)
+}
+
+/// Grid positions (min corners) at which an object of size `w × h` lies
+/// wholly inside the space of `scene`, in row-major order (y, then x).
+pub fn grid_positions(scene: &Scene, w: i64, h: i64) -> Vec<(i64, i64)> {
+    let s = scene.space.rect();
+    let g = scene.grid.max(1);
+    let mut out = Vec::new();
+    let mut y = s.y;
+    while y + h <= s.y2() {
+        let mut x = s.x;
+        while x + w <= s.x2() {
+            out.push((x, y));
+            x += g;
+        }
+        y += g;
+    }
+    out
+}
+
+/// Exhaustively solve `problem` with the default limit [`MAX_LAYOUTS`].
+pub fn solve(
+    problem: &Scene,
+    rules: &RuleSet,
+    contact: Contact,
+) -> Result<BruteResult, BruteError> {
+    solve_with_limit(problem, rules, contact, MAX_LAYOUTS)
+}
+
+/// Exhaustively solve `problem`, refusing when the product of domain sizes
+/// exceeds `limit`.
+///
+/// Domains: every grid position inside the space whose interior overlaps no
+/// already-placed (fixed or not) object. Overlaps between unplaced objects
+/// are skipped during enumeration.
+pub fn solve_with_limit(
+    problem: &Scene,
+    rules: &RuleSet,
+    contact: Contact,
+    limit: u128,
+) -> Result<BruteResult, BruteError> {
+    problem
+        .validate()
+        .map_err(|e| BruteError::BadProblem(e.to_string()))?;
+    let placed: Vec<Rect> = problem.objects.iter().filter_map(|o| o.rect()).collect();
+    let free: Vec<usize> = (0..problem.objects.len())
+        .filter(|&i| !problem.objects[i].is_placed())
+        .collect();
+    let domains: Vec<Vec<Rect>> = free
+        .iter()
+        .map(|&i| {
+            let o = &problem.objects[i];
+            grid_positions(problem, o.width, o.height)
+                .into_iter()
+                .map(|(x, y)| Rect::new(x, y, o.width, o.height))
+                .filter(|r| placed.iter().all(|p| !p.interiors_overlap(r)))
+                .collect()
+        })
+        .collect();
+    let layouts = domains
+        .iter()
+        .fold(1u128, |acc, d| acc.saturating_mul(d.len() as u128));
+    if layouts > limit {
+        return Err(BruteError::TooLarge { layouts, limit });
+    }
+    let mut search = Search {
+        rules,
+        contact,
+        scene: problem.clone(),
+        free: &free,
+        domains: &domains,
+        chosen: Vec::with_capacity(free.len()),
+        result: BruteResult {
+            feasible: false,
+            best_numerator: f64::NEG_INFINITY,
+            best: None,
+            layouts_checked: 0,
+            layouts_feasible: 0,
+        },
+    };
+    search.dfs(0);
+    Ok(search.result)
+}
+
+struct Search<'a> {
+    rules: &'a RuleSet,
+    contact: Contact,
+    scene: Scene,
+    free: &'a [usize],
+    domains: &'a [Vec<Rect>],
+    chosen: Vec<Rect>,
+    result: BruteResult,
+}
+
+impl Search<'_> {
+    fn dfs(&mut self, depth: usize) {
+        if depth == self.free.len() {
+            self.leaf();
+            return;
+        }
+        let obj = self.free[depth];
+        for &r in &self.domains[depth] {
+            if self.chosen.iter().any(|c| c.interiors_overlap(&r)) {
+                continue;
+            }
+            self.scene.objects[obj].x = Some(r.x);
+            self.scene.objects[obj].y = Some(r.y);
+            self.chosen.push(r);
+            self.dfs(depth + 1);
+            self.chosen.pop();
+        }
+        self.scene.objects[obj].x = None;
+        self.scene.objects[obj].y = None;
+    }
+
+    fn leaf(&mut self) {
+        self.result.layouts_checked += 1;
+        let ev = Evaluator::new(&self.scene, self.rules, self.contact).evaluate(self.rules);
+        if !ev.hard_ok() {
+            return;
+        }
+        self.result.layouts_feasible += 1;
+        let num = ev.satisfied_weight;
+        if !self.result.feasible || approx_gt(num, self.result.best_numerator) {
+            self.result.feasible = true;
+            self.result.best_numerator = num;
+            self.result.best = Some(self.scene.clone());
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::relations::{Dir, Kind, Relation};
+    use crate::rules::{Atom, Formula, Rule, Strength, Target};
+    use crate::scene::{Object, Space};
+
+    fn obj(id: &str, class: &str, pos: Option<(i64, i64)>, w: i64, fixed: bool) -> Object {
+        Object {
+            id: id.into(),
+            class: class.into(),
+            x: pos.map(|p| p.0),
+            y: pos.map(|p| p.1),
+            width: w,
+            height: w,
+            fixed,
+        }
+    }
+
+    fn scene(w: i64, h: i64, objects: Vec<Object>) -> Scene {
+        Scene {
+            space: Space {
+                x: 0,
+                y: 0,
+                width: w,
+                height: h,
+            },
+            grid: 10,
+            objects,
+        }
+    }
+
+    fn atom(kind: Kind, dir: Dir, s: &str, t: Option<&str>) -> Formula {
+        Formula::Atom(Atom::new(
+            Relation::new(kind, dir),
+            s,
+            match t {
+                Some(c) => Target::Class(c.into()),
+                None => Target::Any,
+            },
+        ))
+    }
+
+    #[test]
+    fn grid_positions_keep_object_inside() {
+        let s = scene(30, 20, vec![]);
+        assert_eq!(
+            grid_positions(&s, 10, 10),
+            vec![(0, 0), (10, 0), (20, 0), (0, 10), (10, 10), (20, 10)]
+        );
+        assert_eq!(grid_positions(&s, 20, 20), vec![(0, 0), (10, 0)]);
+        assert!(grid_positions(&s, 40, 10).is_empty());
+    }
+
+    /// One 10×10 A in a 30×30 space (9 positions), one fixed F in the
+    /// middle (so 8 positions remain). Soft rule EC_N(A, F) weight 2: only
+    /// the three cells of the top row touch F's north side... with point
+    /// contact the corners (0,20) and (20,20) touch too, so all three top
+    /// cells qualify; numerator 2.
+    #[test]
+    fn hand_checked_one_object_one_rule() {
+        let s = scene(
+            30,
+            30,
+            vec![
+                obj("f", "F", Some((10, 10)), 10, true),
+                obj("a", "A", None, 10, false),
+            ],
+        );
+        let rules = RuleSet::new(vec![Rule::new(
+            "a_on_f",
+            atom(Kind::EC, Dir::N, "A", Some("F")),
+        )
+        .with_strength(Strength::Weight(2.0))]);
+        let r = solve(&s, &rules, Contact::Point).unwrap();
+        assert!(r.feasible);
+        assert_eq!(r.layouts_checked, 8);
+        assert_eq!(r.layouts_feasible, 8);
+        assert!(approx_eq(r.best_numerator, 2.0));
+        let best = r.best.unwrap();
+        assert_eq!(best.objects[1].y, Some(20));
+        // Edge contact: only the middle top cell (10, 20) touches; still 2.
+        let r = solve(&s, &rules, Contact::Edge).unwrap();
+        assert!(approx_eq(r.best_numerator, 2.0));
+        let best = r.best.unwrap();
+        assert_eq!((best.objects[1].x, best.objects[1].y), (Some(10), Some(20)));
+    }
+
+    /// Made hard, the same rule leaves 3 feasible layouts (point contact)
+    /// or 1 (edge contact), and the numerator is 0 (no soft rules).
+    #[test]
+    fn hand_checked_hard_rule_counts() {
+        let s = scene(
+            30,
+            30,
+            vec![
+                obj("f", "F", Some((10, 10)), 10, true),
+                obj("a", "A", None, 10, false),
+            ],
+        );
+        let rules = RuleSet::new(vec![Rule::new(
+            "a_on_f",
+            atom(Kind::EC, Dir::N, "A", Some("F")),
+        )
+        .with_strength(Strength::Hard)]);
+        let r = solve(&s, &rules, Contact::Point).unwrap();
+        assert_eq!((r.layouts_checked, r.layouts_feasible), (8, 3));
+        assert_eq!(r.best_numerator, 0.0);
+        let r = solve(&s, &rules, Contact::Edge).unwrap();
+        assert_eq!((r.layouts_checked, r.layouts_feasible), (8, 1));
+    }
+
+    /// Two A objects in a 20×10 strip: 2 ordered layouts. DR_E(A, A) can
+    /// hold for only one of them (the eastern one): numerator 1 of 2.
+    #[test]
+    fn hand_checked_two_objects_mutual_rule() {
+        let s = scene(
+            20,
+            10,
+            vec![
+                obj("a1", "A", None, 10, false),
+                obj("a2", "A", None, 10, false),
+            ],
+        );
+        let rules = RuleSet::new(vec![Rule::new(
+            "east",
+            atom(Kind::DR, Dir::E, "A", Some("A")),
+        )]);
+        let r = solve(&s, &rules, Contact::Point).unwrap();
+        assert_eq!(r.layouts_checked, 2);
+        assert!(approx_eq(r.best_numerator, 1.0));
+        // As a hard rule nothing is feasible.
+        let hard = RuleSet::new(vec![rules.rules[0].clone().with_strength(Strength::Hard)]);
+        let r = solve(&s, &hard, Contact::Point).unwrap();
+        assert!(!r.feasible);
+        assert!(r.best.is_none());
+        assert_eq!(r.best_numerator, f64::NEG_INFINITY);
+    }
+
+    /// Already-placed movable objects count in the numerator and block
+    /// positions; objects that cannot fit make the problem infeasible.
+    #[test]
+    fn placed_objects_count_and_no_fit_is_infeasible() {
+        let s = scene(
+            20,
+            10,
+            vec![
+                obj("b", "B", Some((0, 0)), 10, false),
+                obj("a", "A", None, 10, false),
+            ],
+        );
+        let rules = RuleSet::new(vec![
+            Rule::new("b_west", atom(Kind::EC, Dir::W, "B", Some("A"))),
+            Rule::new("a_east", atom(Kind::DR, Dir::E, "A", None)),
+        ]);
+        let r = solve(&s, &rules, Contact::Point).unwrap();
+        assert_eq!(r.layouts_checked, 1);
+        assert!(approx_eq(r.best_numerator, 2.0));
+        let s = scene(
+            10,
+            10,
+            vec![
+                obj("a1", "A", None, 10, false),
+                obj("a2", "A", None, 10, false),
+            ],
+        );
+        let r = solve(&s, &rules, Contact::Point).unwrap();
+        assert!(!r.feasible);
+        assert_eq!(r.layouts_checked, 0);
+    }
+
+    #[test]
+    fn refuses_large_problems() {
+        let s = scene(
+            600,
+            600,
+            vec![
+                obj("a1", "A", None, 10, false),
+                obj("a2", "A", None, 10, false),
+            ],
+        );
+        let e = solve(&s, &RuleSet::default(), Contact::Point).unwrap_err();
+        assert!(matches!(
+            e,
+            BruteError::TooLarge {
+                layouts: 12_960_000,
+                ..
+            }
+        ));
+        assert!(solve_with_limit(&s, &RuleSet::default(), Contact::Point, 100).is_err());
+    }
+
+    #[test]
+    fn tolerance() {
+        assert!(approx_eq(1.0, 1.0 + 1e-12));
+        assert!(approx_eq(1e6, 1e6 + 1e-4));
+        assert!(!approx_eq(1.0, 1.0 + 1e-6));
+        assert!(approx_gt(2.0, 1.0));
+        assert!(!approx_gt(1.0 + 1e-12, 1.0));
+    }
+}

@@ -1,0 +1,182 @@
+use anyhow::{Context, Result};
+use clap::{Args, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+use rccpack::bench::chart;
+use rccpack::bench::thesis::{self, Engine, Progress, Series, StudyConfig};
+use rccpack::relations::Contact;
+use rccpack::synth::synthesize;
+use rccpack::synth::verify::verify_solution;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Duration;
+
+/// `rccpack bench thesis [--seed S] [--time-limit SECONDS] [--quick] [--out DIR]`
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    #[command(subcommand)]
+    which: Which,
+}
+
+#[derive(Subcommand, Debug)]
+enum Which {
+    /// Reproduce the thesis runtime study (§4.1, Figure 4-1): 10 viable rule
+    /// sets, n = 2..6 objects × k = 1..5 rules per class, plus a scale series
+    /// (n up to 48, k = 3 and 5). Prints a table; writes `thesis.json` and
+    /// PNG charts to `--out`.
+    Thesis(ThesisArgs),
+}
+
+#[derive(Args, Debug)]
+struct ThesisArgs {
+    /// Seed of every random choice (rule draws, object classes, solver).
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Time limit per problem, in seconds (also for the viability solves).
+    #[arg(long = "time-limit", default_value_t = 10.0)]
+    time_limit: f64,
+    /// Smoke run: 3 rule sets and no scale series.
+    #[arg(long)]
+    quick: bool,
+    /// Number of viable rule sets (default 10, or 3 with --quick).
+    #[arg(long)]
+    sets: Option<usize>,
+    /// Skip the scale series.
+    #[arg(long = "no-scale")]
+    no_scale: bool,
+    /// Output directory for `thesis.json`, `thesis.png` and `thesis-scale.png`.
+    #[arg(long, default_value = "bench-out")]
+    out: PathBuf,
+    /// How EC decides that two sides touch: `point` (corners count) or `edge`.
+    #[arg(long, default_value = "point")]
+    contact: Contact,
+}
+
+pub fn run(a: BenchArgs) -> Result<ExitCode> {
+    match a.which {
+        Which::Thesis(t) => run_thesis(t),
+    }
+}
+
+fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
+    if !(a.time_limit.is_finite() && a.time_limit > 0.0 && a.time_limit <= 86_400.0) {
+        anyhow::bail!(
+            "--time-limit {} is out of range; expected seconds in (0, 86400]",
+            a.time_limit
+        );
+    }
+    let limit = Duration::from_secs_f64(a.time_limit);
+    let mut cfg = if a.quick {
+        StudyConfig::quick(a.seed, limit)
+    } else {
+        StudyConfig::full(a.seed, limit)
+    };
+    if let Some(s) = a.sets {
+        if s == 0 {
+            anyhow::bail!("--sets must be at least 1");
+        }
+        cfg.sets = s;
+    }
+    if a.no_scale {
+        cfg.scale_ns.clear();
+    }
+    cfg.contact = a.contact;
+    std::fs::create_dir_all(&a.out)
+        .with_context(|| format!("{}: cannot create directory", a.out.display()))?;
+
+    let bar = ProgressBar::new(cfg.sets as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{prefix:>8} [{bar:40}] {pos}/{len} {msg} ({elapsed})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    bar.set_prefix("drawing");
+    let mut solving = false;
+    let mut progress = |p: &Progress| match p {
+        Progress::Drawing {
+            draws,
+            viable,
+            wanted,
+        } => {
+            bar.set_length(*wanted as u64);
+            bar.set_position(*viable as u64);
+            bar.set_message(format!("viable sets, {draws} draws"));
+        }
+        Progress::Solving { done, total, label } => {
+            if !solving {
+                solving = true;
+                bar.set_prefix("solving");
+                bar.set_length(*total as u64);
+            }
+            bar.set_position(*done as u64);
+            bar.set_message(label.clone());
+        }
+    };
+    let engine = Engine {
+        solve: &synthesize,
+        verify: &verify_solution,
+    };
+    let report = thesis::run_study(engine, &cfg, &mut progress);
+    bar.finish_and_clear();
+
+    println!(
+        "rccpack bench thesis: seed {}, time limit {} s, {} viable sets from {} draws, {} problems",
+        cfg.seed,
+        a.time_limit,
+        report.sets.len(),
+        report.draws,
+        report.rows.len()
+    );
+    print!("{}", thesis::table_text(&report.summary));
+    let bad = report
+        .rows
+        .iter()
+        .filter(|r| r.verified == Some(false) || r.status.is_none())
+        .count();
+    if bad > 0 {
+        println!("{bad} problems failed (engine error or solution rejected by the checker): see thesis.json");
+    }
+
+    let json = a.out.join("thesis.json");
+    std::fs::write(&json, serde_json::to_string_pretty(&report)? + "\n")
+        .with_context(|| format!("{}: cannot write", json.display()))?;
+    let png = a.out.join("thesis.png");
+    chart::draw(
+        &png,
+        &format!(
+            "rccpack bench thesis: median runtime, n = 2..6 objects (seed {}, {} sets)",
+            cfg.seed,
+            report.sets.len()
+        ),
+        &chart::lines(&report.summary, &[Series::Pilot]),
+    )
+    .map_err(anyhow::Error::msg)?;
+    let mut written = vec![json, png];
+    if report.summary.iter().any(|s| s.series == Series::Scale) {
+        let png = a.out.join("thesis-scale.png");
+        let ks: Vec<usize> = cfg.scale_ks.clone();
+        let cells: Vec<_> = report
+            .summary
+            .iter()
+            .filter(|s| ks.contains(&s.k))
+            .cloned()
+            .collect();
+        chart::draw(
+            &png,
+            &format!(
+                "rccpack bench thesis: scale series, k = {:?} (seed {})",
+                ks, cfg.seed
+            ),
+            &chart::lines(&cells, &[Series::Pilot, Series::Scale]),
+        )
+        .map_err(anyhow::Error::msg)?;
+        written.push(png);
+    }
+    for p in written {
+        eprintln!("wrote {}", p.display());
+    }
+    Ok(if bad > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
