@@ -320,20 +320,68 @@ impl Engine {
             }
         };
         let mut tcat = [0f64; 3];
+        // Pumpkin panics when a variable is created after a post made the
+        // root inconsistent (e.g. objects that cannot fit at all). So create
+        // every literal and variable first, and post constraints after.
         for def in &model.bools {
+            lits.push(match def {
+                BoolDef::Ge { var, k } => {
+                    let x = vars[*var];
+                    solver.new_literal_for_predicate(predicate![x >= *k as i32], tag)
+                }
+                BoolDef::DiffGe { .. } | BoolDef::And(_) => solver.new_literal(),
+            });
+        }
+        let guard_lits: Vec<Literal> = if guarded {
+            model.hard.iter().map(|_| solver.new_literal()).collect()
+        } else {
+            Vec::new()
+        };
+        let cumulative_starts: Vec<Vec<AffineView<DomainId>>> = model
+            .cumulative
+            .iter()
+            .map(|cu| {
+                cu.tasks
+                    .iter()
+                    .map(|&(o, _, _)| {
+                        let (cx, cy) = model.coords[o];
+                        let (c, origin) = match cu.axis {
+                            super::model::Axis::X => (cx, model.origin.0),
+                            super::model::Axis::Y => (cy, model.origin.1),
+                        };
+                        match c {
+                            Coord::Const(v) => {
+                                solver.new_bounded_integer(v as i32, v as i32).scaled(1)
+                            }
+                            Coord::Var(v) => {
+                                vars[v].scaled(model.grid as i32).offset(origin as i32)
+                            }
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        let objective_var = coefs.map(|coefs| {
+            let total: i64 = model
+                .soft
+                .iter()
+                .zip(coefs)
+                .filter(|(s, _)| matches!(s.lit, Lit::Var { .. }))
+                .map(|(_, &c)| c)
+                .sum();
+            solver.new_bounded_integer(0, total as i32)
+        });
+        for (i, def) in model.bools.iter().enumerate() {
             let tt = Instant::now();
             let cat = match def {
                 BoolDef::Ge { .. } => 0,
                 BoolDef::DiffGe { .. } => 1,
                 BoolDef::And(_) => 2,
             };
-            let l = match def {
-                BoolDef::Ge { var, k } => {
-                    let x = vars[*var];
-                    solver.new_literal_for_predicate(predicate![x >= *k as i32], tag)
-                }
+            let l = lits[i];
+            match def {
+                BoolDef::Ge { .. } => {}
                 BoolDef::DiffGe { a, b, k } => {
-                    let l = solver.new_literal();
                     // a − b ≥ k  ⇔  b − a ≤ −k
                     solver
                         .add_constraint(less_than_or_equals(
@@ -342,10 +390,8 @@ impl Engine {
                             tag,
                         ))
                         .reify(l);
-                    l
                 }
                 BoolDef::And(children) => {
-                    let l = solver.new_literal();
                     let cs: Vec<Literal> = children.iter().map(|&c| conv(&lits, c)).collect();
                     for &c in &cs {
                         solver.add_clause([(!l).get_true_predicate(), c.get_true_predicate()], tag);
@@ -353,10 +399,8 @@ impl Engine {
                     let mut big: Vec<Predicate> = vec![l.get_true_predicate()];
                     big.extend(cs.iter().map(|c| (!*c).get_true_predicate()));
                     solver.add_clause(big, tag);
-                    l
                 }
-            };
-            lits.push(l);
+            }
             tcat[cat] += tt.elapsed().as_secs_f64() * 1e3;
         }
         let dbg = std::env::var_os("RCCPACK_DEBUG").is_some();
@@ -391,12 +435,8 @@ impl Engine {
             solver.add_clause(c, tag);
         }
         let mut guards = Vec::new();
-        for h in &model.hard {
-            let g = if guarded {
-                Some(solver.new_literal())
-            } else {
-                None
-            };
+        for (i, h) in model.hard.iter().enumerate() {
+            let g = guard_lits.get(i).copied();
             for &l in &h.lits {
                 let mut c = vec![conv(&lits, l).get_true_predicate()];
                 if let Some(g) = g {
@@ -418,24 +458,9 @@ impl Engine {
                 .add_constraint(less_than_or_equals(terms, s.rhs as i32, tag))
                 .post();
         }
-        for cu in &model.cumulative {
-            let mut starts: Vec<AffineView<DomainId>> = Vec::new();
-            let mut durs = Vec::new();
-            let mut dems = Vec::new();
-            for &(o, dur, dem) in &cu.tasks {
-                let (cx, cy) = model.coords[o];
-                let (c, origin) = match cu.axis {
-                    super::model::Axis::X => (cx, model.origin.0),
-                    super::model::Axis::Y => (cy, model.origin.1),
-                };
-                let start = match c {
-                    Coord::Const(v) => solver.new_bounded_integer(v as i32, v as i32).scaled(1),
-                    Coord::Var(v) => vars[v].scaled(model.grid as i32).offset(origin as i32),
-                };
-                starts.push(start);
-                durs.push(dur as i32);
-                dems.push(dem as i32);
-            }
+        for (cu, starts) in model.cumulative.iter().zip(cumulative_starts) {
+            let durs: Vec<i32> = cu.tasks.iter().map(|&(_, dur, _)| dur as i32).collect();
+            let dems: Vec<i32> = cu.tasks.iter().map(|&(_, _, dem)| dem as i32).collect();
             solver
                 .add_constraint(cumulative(starts, durs, dems, cu.capacity as i32, tag))
                 .post();
@@ -456,8 +481,7 @@ impl Engine {
                     ls.push(conv(&lits, s.lit));
                 }
             }
-            let total: i64 = ws.iter().sum();
-            let obj = solver.new_bounded_integer(0, total as i32);
+            let obj = objective_var.expect("created with the coefficients");
             let ws32: Vec<i32> = ws.iter().map(|&w| w as i32).collect();
             solver
                 .add_constraint(boolean_equals(ws32, ls, obj, tag))
