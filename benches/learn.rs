@@ -61,15 +61,7 @@ fn synthetic(n: usize) -> Vec<Scene> {
 }
 
 fn wall(id: &str, x: i64, y: i64, w: i64, h: i64) -> Object {
-    Object {
-        id: id.into(),
-        class: "W".into(),
-        x: Some(x),
-        y: Some(y),
-        width: w,
-        height: h,
-        fixed: true,
-    }
+    Object::fixed_at(id, "W", x, y, w, h)
 }
 
 fn row(case: &str, demos: &[Scene], samples: usize, runs: usize) {

@@ -76,15 +76,7 @@ fn walls() -> Vec<Object> {
         ("w_east", 400, 200, 10, 200),
     ]
     .into_iter()
-    .map(|(id, x, y, w, h)| Object {
-        id: id.into(),
-        class: "W".into(),
-        x: Some(x),
-        y: Some(y),
-        width: w,
-        height: h,
-        fixed: true,
-    })
+    .map(|(id, x, y, w, h)| Object::fixed_at(id, "W", x, y, w, h))
     .collect()
 }
 

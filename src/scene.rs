@@ -91,6 +91,19 @@ pub struct Object {
 }
 
 impl Object {
+    /// A fixed, placed object (a wall).
+    pub fn fixed_at(id: &str, class: &str, x: i64, y: i64, width: i64, height: i64) -> Self {
+        Object {
+            id: id.into(),
+            class: class.into(),
+            x: Some(x),
+            y: Some(y),
+            width,
+            height,
+            fixed: true,
+        }
+    }
+
     /// Whether the object has a position.
     pub const fn is_placed(&self) -> bool {
         self.x.is_some() && self.y.is_some()

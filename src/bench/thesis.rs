@@ -159,15 +159,7 @@ pub fn box_scene(interior: i64) -> Scene {
     let lo = MARGIN; // outer edge of the walls
     let inner = MARGIN + WALL; // first interior coordinate
     let hi = inner + interior; // first coordinate past the interior
-    let wall = |id: &str, x, y, w, h| Object {
-        id: id.into(),
-        class: "W".into(),
-        x: Some(x),
-        y: Some(y),
-        width: w,
-        height: h,
-        fixed: true,
-    };
+    let wall = |id: &str, x, y, w, h| Object::fixed_at(id, "W", x, y, w, h);
     Scene {
         space: Space {
             x: 0,

@@ -57,40 +57,34 @@ struct Plan {
     movable: Vec<(usize, i64, i64)>,
 }
 
-fn cell_range_free(row: &[u64], start: usize, len: usize) -> bool {
-    let mut i = start;
+/// The `(word, mask)` pieces of a bitset row that cover bits
+/// `start..start + len`.
+fn cell_masks(start: usize, len: usize) -> impl Iterator<Item = (usize, u64)> {
     let end = start + len;
-    while i < end {
-        let w = i / 64;
-        let b = i % 64;
+    let mut i = start;
+    std::iter::from_fn(move || {
+        if i >= end {
+            return None;
+        }
+        let (w, b) = (i / 64, i % 64);
         let n = (64 - b).min(end - i);
         let mask = if n == 64 {
             u64::MAX
         } else {
             ((1u64 << n) - 1) << b
         };
-        if row[w] & mask != 0 {
-            return false;
-        }
         i += n;
-    }
-    true
+        Some((w, mask))
+    })
+}
+
+fn cell_range_free(row: &[u64], start: usize, len: usize) -> bool {
+    cell_masks(start, len).all(|(w, mask)| row[w] & mask == 0)
 }
 
 fn cell_range_set(row: &mut [u64], start: usize, len: usize) {
-    let mut i = start;
-    let end = start + len;
-    while i < end {
-        let w = i / 64;
-        let b = i % 64;
-        let n = (64 - b).min(end - i);
-        let mask = if n == 64 {
-            u64::MAX
-        } else {
-            ((1u64 << n) - 1) << b
-        };
+    for (w, mask) in cell_masks(start, len) {
         row[w] |= mask;
-        i += n;
     }
 }
 
