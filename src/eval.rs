@@ -9,19 +9,33 @@
 //! (`O(n²)` pairs), after which every (object, rule) value is a walk over a
 //! compiled formula with one byte lookup per atom.
 
-use crate::relations::{ClassAtoms, ClassIndex, Contact, Relation};
-use crate::rules::{Formula, RuleSet, Target};
+use crate::relations::{ClassAtoms, ClassIndex, Contact, Quant, Relation};
+use crate::rules::{Formula, Rule, RuleSet, Scope, Target};
 use crate::scene::Scene;
+use serde::Serialize;
 
-/// A formula with class names resolved to indices.
+/// A compiled atom's target.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CompiledTarget {
+    /// A class index (possibly past the table: a class with no objects).
+    Class(usize),
+    /// `*`.
+    Any,
+    /// A landmark: index into [`ClassIndex::landmarks`].
+    Landmark(usize),
+}
+
+/// A formula with class names and landmark ids resolved to indices.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum CompiledFormula {
-    /// Atom: relation bit and target (`None` = `*`).
+    /// Atom: relation, quantifier and target.
     Atom {
         /// The relation.
         rel: Relation,
-        /// Target class index, `None` for `*`.
-        target: Option<usize>,
+        /// The target quantifier.
+        quant: Quant,
+        /// The target.
+        target: CompiledTarget,
     },
     /// Negation.
     Not(Box<CompiledFormula>),
@@ -32,15 +46,19 @@ pub enum CompiledFormula {
 }
 
 impl CompiledFormula {
-    /// Resolve class names through `classes`, interning unknown ones (a class
-    /// with no object: `DR` atoms hold vacuously, `EC` atoms fail).
+    /// Resolve class names and landmark ids through `classes`, interning
+    /// unknown ones (a class with no object: the default quantifier decides,
+    /// `DR` atoms hold vacuously, the others fail; likewise a landmark the
+    /// scene lacks).
     pub fn compile(f: &Formula, classes: &mut ClassIndex) -> Self {
         match f {
             Formula::Atom(a) => CompiledFormula::Atom {
                 rel: a.rel,
+                quant: a.quant,
                 target: match &a.target {
-                    Target::Any => None,
-                    Target::Class(c) => Some(classes.intern(c)),
+                    Target::Any => CompiledTarget::Any,
+                    Target::Class(c) => CompiledTarget::Class(classes.intern(c)),
+                    Target::Landmark(id) => CompiledTarget::Landmark(classes.intern_landmark(id)),
                 },
             },
             Formula::Not(g) => CompiledFormula::Not(Box::new(Self::compile(g, classes))),
@@ -53,14 +71,76 @@ impl CompiledFormula {
         }
     }
 
-    /// Evaluate for a placed object given its atom-byte lookup.
+    /// Whether placed object `obj` satisfies the formula in the scene of
+    /// `atoms` (false when `obj` is unplaced).
     #[inline]
-    pub fn eval(&self, byte: &impl Fn(Option<usize>) -> u8) -> bool {
+    pub fn eval(&self, atoms: &ClassAtoms, obj: usize) -> bool {
         match self {
-            CompiledFormula::Atom { rel, target } => byte(*target) & rel.bit() != 0,
-            CompiledFormula::Not(g) => !g.eval(byte),
-            CompiledFormula::And(v) => v.iter().all(|g| g.eval(byte)),
-            CompiledFormula::Or(v) => v.iter().any(|g| g.eval(byte)),
+            CompiledFormula::Atom { rel, quant, target } => {
+                let count = match *target {
+                    CompiledTarget::Class(t) => atoms.count(obj, Some(t)).copied(),
+                    CompiledTarget::Any => atoms.count(obj, None).copied(),
+                    CompiledTarget::Landmark(l) => atoms.landmark_count(obj, l),
+                };
+                count.is_some_and(|c| c.holds(*rel, *quant))
+            }
+            CompiledFormula::Not(g) => atoms.is_placed(obj) && !g.eval(atoms, obj),
+            CompiledFormula::And(v) => atoms.is_placed(obj) && v.iter().all(|g| g.eval(atoms, obj)),
+            CompiledFormula::Or(v) => v.iter().any(|g| g.eval(atoms, obj)),
+        }
+    }
+}
+
+/// A rule compiled for evaluation: scope, subject class index, formula.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CompiledRule {
+    /// Per object or scene-level.
+    pub scope: Scope,
+    /// Subject class index (possibly past the table: no objects).
+    pub subject: usize,
+    /// The formula.
+    pub formula: CompiledFormula,
+}
+
+impl CompiledRule {
+    /// Compile `rule` (its scope, subject and formula) through `classes`.
+    pub fn compile(rule: &Rule, classes: &mut ClassIndex) -> Self {
+        Self::compile_parts(rule.scope, &rule.formula, classes)
+    }
+
+    /// Compile a scope and formula (a statement without name or strength).
+    pub fn compile_parts(scope: Scope, f: &Formula, classes: &mut ClassIndex) -> Self {
+        let subject = classes.intern(f.subject());
+        CompiledRule {
+            scope,
+            subject,
+            formula: CompiledFormula::compile(f, classes),
+        }
+    }
+
+    /// How many placed subject objects satisfy the formula, and how many
+    /// placed subject objects there are: `(c, m)`.
+    pub fn count(&self, atoms: &ClassAtoms, objects: usize) -> (u32, u32) {
+        let (mut c, mut m) = (0u32, 0u32);
+        for o in 0..objects {
+            if atoms.is_placed(o) && atoms.class_of(o) == self.subject {
+                m += 1;
+                if self.formula.eval(atoms, o) {
+                    c += 1;
+                }
+            }
+        }
+        (c, m)
+    }
+
+    /// For a scene-level rule, whether it holds in the scene of `atoms`
+    /// (which has `objects` objects); for a per-object rule, whether every
+    /// placed subject satisfies it.
+    pub fn scene_holds(&self, atoms: &ClassAtoms, objects: usize) -> bool {
+        let (c, m) = self.count(atoms, objects);
+        match self.scope {
+            Scope::Each => c == m,
+            Scope::Scene(q) => q.holds(c, m),
         }
     }
 }
@@ -69,7 +149,7 @@ impl CompiledFormula {
 ///
 /// Serialises as `{name, weight, hard, satisfied, subjects, violators}`: a
 /// stable format read by scripts (`rccpack score --json`).
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RuleReport {
     /// Rule name.
     pub name: String,
@@ -81,15 +161,32 @@ pub struct RuleReport {
     pub subjects: usize,
     /// How many of them satisfy the rule.
     pub satisfied: usize,
-    /// Ids of the subjects that break it, in scene order.
+    /// Ids of the subjects that break it, in scene order. For a scene-level
+    /// rule (§11.4): the objects that satisfy the formula when a `no` or
+    /// `at most` rule fails, none otherwise.
     pub violators: Vec<String>,
+    /// Only for a scene-level rule: its quantifier and counts.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scene: Option<SceneRuleReport>,
+}
+
+/// The scene-level part of a [`RuleReport`] (§11.4); serialised as
+/// `{quantifier, satisfying, objects}`.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct SceneRuleReport {
+    /// The subject quantifier as written (`some`, `at least 2`, ...).
+    pub quantifier: String,
+    /// Placed subject objects that satisfy the formula (`c`).
+    pub satisfying: usize,
+    /// Placed subject objects (`m`).
+    pub objects: usize,
 }
 
 /// The result of evaluating a scene against a rule set.
 ///
 /// Serialises as `{score, satisfied_weight, total_weight, hard_violations,
 /// off_grid, rules}`: the stable format of `rccpack score --json`.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Evaluation {
     /// `satisfied_weight / total_weight`, or 1 when the denominator is 0.
     pub score: f64,
@@ -97,7 +194,8 @@ pub struct Evaluation {
     pub satisfied_weight: f64,
     /// §6 denominator: Σ over soft rules of weight × subjects.
     pub total_weight: f64,
-    /// Number of (object, hard rule) pairs that fail.
+    /// Number of (object, hard rule) pairs that fail (a failing hard
+    /// scene-level rule counts once).
     pub hard_violations: usize,
     /// Ids of placed movable objects that are not on the grid.
     pub off_grid: Vec<String>,
@@ -121,12 +219,15 @@ pub struct Evaluator<'s> {
 }
 
 impl<'s> Evaluator<'s> {
-    /// Prepare `scene`; `extra_classes` are classes named by rules that the
-    /// scene may lack (interned so that atoms over them resolve).
+    /// Prepare `scene`; classes named by `rules` that the scene lacks are
+    /// interned (they have no objects), and so are the rules' landmarks.
     pub fn new(scene: &'s Scene, rules: &RuleSet, contact: Contact) -> Self {
         let mut classes = ClassIndex::of_scene(scene);
         for c in rules.classes() {
             classes.intern(&c);
+        }
+        for l in rules.landmarks() {
+            classes.intern_landmark(&l);
         }
         let atoms = ClassAtoms::new(scene, &classes, contact);
         Evaluator {
@@ -146,25 +247,77 @@ impl<'s> Evaluator<'s> {
         &self.atoms
     }
 
-    /// Compile a formula against this evaluator's classes. Classes unknown to
-    /// both scene and rule set compile to an empty class.
+    /// Compile a formula against this evaluator's classes. Classes and
+    /// landmarks unknown to both scene and rule set compile to empty targets.
     pub fn compile(&self, f: &Formula) -> CompiledFormula {
-        // Newly interned indices lie past the table, which reads them as a
-        // class with no objects.
+        // Newly interned indices lie past the table, which reads them as
+        // targets with no objects.
         CompiledFormula::compile(f, &mut self.classes.clone())
     }
 
     /// Whether placed object `obj` (index into `scene.objects`) satisfies `f`.
     /// Unplaced objects satisfy nothing.
     pub fn satisfies(&self, obj: usize, f: &CompiledFormula) -> bool {
-        if self.atoms.byte(obj, None).is_none() {
-            return false;
+        f.eval(&self.atoms, obj)
+    }
+
+    /// Evaluate one rule: its report, its §6 numerator and denominator
+    /// terms, and its number of hard violations.
+    pub fn evaluate_rule(&self, rule: &Rule) -> RuleReport {
+        let f = self.compile(&rule.formula);
+        let subject = rule.subject();
+        let mut subjects = 0;
+        let mut satisfied = 0;
+        let mut violators = Vec::new();
+        let mut holders = Vec::new();
+        for (i, o) in self.scene.objects.iter().enumerate() {
+            if o.class != subject || !o.is_placed() {
+                continue;
+            }
+            subjects += 1;
+            if self.satisfies(i, &f) {
+                satisfied += 1;
+                holders.push(o.id.clone());
+            } else {
+                violators.push(o.id.clone());
+            }
         }
-        f.eval(&|t| {
-            self.atoms
-                .byte(obj, t)
-                .unwrap_or(crate::relations::EMPTY_TARGET)
-        })
+        let hard = rule.strength.is_hard();
+        let weight = rule.strength.weight();
+        match rule.scope {
+            Scope::Each => RuleReport {
+                name: rule.name.clone(),
+                weight,
+                hard,
+                subjects,
+                satisfied,
+                violators,
+                scene: None,
+            },
+            Scope::Scene(q) => {
+                let c = u32::try_from(satisfied).unwrap_or(u32::MAX);
+                let m = u32::try_from(subjects).unwrap_or(u32::MAX);
+                let holds = q.holds(c, m);
+                let violators = if !holds && matches!(q, Quant::No | Quant::AtMost(_)) {
+                    holders
+                } else {
+                    Vec::new()
+                };
+                RuleReport {
+                    name: rule.name.clone(),
+                    weight,
+                    hard,
+                    subjects: 1,
+                    satisfied: usize::from(holds),
+                    violators,
+                    scene: Some(SceneRuleReport {
+                        quantifier: q.to_string(),
+                        satisfying: satisfied,
+                        objects: subjects,
+                    }),
+                }
+            }
+        }
     }
 
     /// Evaluate every rule on every placed subject.
@@ -174,38 +327,14 @@ impl<'s> Evaluator<'s> {
         let mut total_weight = 0.0;
         let mut hard_violations = 0;
         for rule in &rules.rules {
-            let f = self.compile(&rule.formula);
-            let subject = rule.subject();
-            let mut subjects = 0;
-            let mut satisfied = 0;
-            let mut violators = Vec::new();
-            for (i, o) in self.scene.objects.iter().enumerate() {
-                if o.class != subject || !o.is_placed() {
-                    continue;
-                }
-                subjects += 1;
-                if self.satisfies(i, &f) {
-                    satisfied += 1;
-                } else {
-                    violators.push(o.id.clone());
-                }
-            }
-            let hard = rule.strength.is_hard();
-            let weight = rule.strength.weight();
-            if hard {
-                hard_violations += subjects - satisfied;
+            let r = self.evaluate_rule(rule);
+            if r.hard {
+                hard_violations += r.subjects - r.satisfied;
             } else {
-                satisfied_weight += weight * satisfied as f64;
-                total_weight += weight * subjects as f64;
+                satisfied_weight += r.weight * r.satisfied as f64;
+                total_weight += r.weight * r.subjects as f64;
             }
-            reports.push(RuleReport {
-                name: rule.name.clone(),
-                weight,
-                hard,
-                subjects,
-                satisfied,
-                violators,
-            });
+            reports.push(r);
         }
         let score = if total_weight > 0.0 {
             satisfied_weight / total_weight

@@ -1,30 +1,52 @@
-//! The eight directional relations between rectangles and their lifting to
-//! classes (SPEC §3–§4).
+//! The sixteen directional relations between rectangles, defined once in
+//! [`TABLE`], and their lifting to classes with target quantifiers
+//! (SPEC §3–§4, §11.1–§11.3).
 //!
 //! # Background
 //!
 //! Region Connection Calculus distinguishes regions that are *discrete*
 //! (`DR`: interiors disjoint) from regions that are *externally connected*
 //! (`EC`: they touch but interiors do not overlap). We augment each with a
-//! direction `N`, `S`, `E`, `W` (north is +y).
+//! direction `N`, `S`, `E`, `W` (north is +y). The second edition adds
+//! *flush* contact (`FL`: touching along the whole of the shorter edge) and
+//! edge *alignment* (`AL`: one edge of each on one line).
+//!
+//! # The one table
+//!
+//! [`TABLE`] holds every relation as data: its name, its default quantifier
+//! and its condition, a disjunction of conjunctions of comparisons between
+//! the edges `x, x2, y, y2` of the two rectangles, per contact mode. Every
+//! other form is derived from it or tested against it:
+//!
+//! - [`relation_bits`], the fast path used by evaluation and learning, is
+//!   written by hand and checked against [`RelationDef::holds`] on every order
+//!   type of two rectangles (`tests/relations.rs`);
+//! - the synthesis model (`synth::model`) encodes each [`Cmp`] as a bound on
+//!   a coordinate difference, so its literals are the table's conditions;
+//! - [`implies`] (used by learning to mark implied rules) is computed from
+//!   the table by enumerating every order type of two rectangles;
+//! - English readings take [`RelationDef::verb`].
 //!
 //! # Practical
 //!
-//! All eight relations between an ordered pair fit in one byte
+//! All sixteen relations between an ordered pair fit in one `u16`
 //! ([`relation_bits`], bit `Relation::index()`). A [`ClassAtoms`] table holds,
-//! per placed object and per target (a class or `*`), one byte whose bits are
-//! the *class* atoms of §4: `DR_d` bits are the AND over every other object of
-//! the target, `EC_d` bits the OR. Building it is `O(n²)`; afterwards every
-//! atom of every rule is one lookup, which is what learning needs.
+//! per placed object and per target (a class or `*`), how many target
+//! objects there are and, per relation, how many of them stand in it
+//! ([`TargetCount`]); every quantifier of §11.2 is then one comparison.
+//! Landmark targets (`@ID`) are resolved per scene to an object index and
+//! read the pair's bits directly.
 //!
 //! # How to extend
 //!
-//! A new relation takes a free bit (bits 8+ need a wider mask type), a name in
-//! [`Relation::ALL`], a case in [`relation_bits`], and its class-lifting
-//! quantifier in [`Relation::is_universal`].
+//! A new relation is one entry in [`TABLE`] (name, default quantifier,
+//! condition, English verb), a [`Kind`] variant, and its case in
+//! [`relation_bits`]; the bit test fails until the fast path agrees with the
+//! table. Seventeen or more relations need a wider mask than `u16`.
 
 use crate::scene::{Rect, Scene};
 use std::fmt;
+use std::sync::OnceLock;
 
 /// A compass direction; north is +y, east is +x.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -69,80 +91,168 @@ impl Dir {
             Dir::W => "west",
         }
     }
-}
-
-/// Discrete or externally connected.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Kind {
-    /// Discrete from, in a direction.
-    DR,
-    /// Externally connected, on a side.
-    EC,
-}
-
-/// One of the eight directional relations.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Relation {
-    /// `DR` or `EC`.
-    pub kind: Kind,
-    /// The direction.
-    pub dir: Dir,
-}
-
-impl Relation {
-    /// All eight, in bit order: `DR_N DR_S DR_E DR_W EC_N EC_S EC_E EC_W`.
-    pub const ALL: [Relation; 8] = [
-        Relation::new(Kind::DR, Dir::N),
-        Relation::new(Kind::DR, Dir::S),
-        Relation::new(Kind::DR, Dir::E),
-        Relation::new(Kind::DR, Dir::W),
-        Relation::new(Kind::EC, Dir::N),
-        Relation::new(Kind::EC, Dir::S),
-        Relation::new(Kind::EC, Dir::E),
-        Relation::new(Kind::EC, Dir::W),
-    ];
-
-    /// Build a relation.
-    pub const fn new(kind: Kind, dir: Dir) -> Self {
-        Relation { kind, dir }
-    }
-
-    /// Bit index 0..8.
+    /// Index in [`Dir::ALL`].
     pub const fn index(self) -> usize {
-        let k = match self.kind {
-            Kind::DR => 0,
-            Kind::EC => 4,
-        };
-        k + match self.dir {
+        match self {
             Dir::N => 0,
             Dir::S => 1,
             Dir::E => 2,
             Dir::W => 3,
         }
     }
+}
+
+/// The kind of a relation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Kind {
+    /// Discrete from, in a direction.
+    DR,
+    /// Externally connected, on a side.
+    EC,
+    /// Flush contact: touching along the whole of the shorter edge.
+    FL,
+    /// Edge alignment: the two edges on one side lie on one line.
+    AL,
+}
+
+impl Kind {
+    /// All four, in bit order.
+    pub const ALL: [Kind; 4] = [Kind::DR, Kind::EC, Kind::FL, Kind::AL];
+    /// Index in [`Kind::ALL`].
+    pub const fn index(self) -> usize {
+        match self {
+            Kind::DR => 0,
+            Kind::EC => 1,
+            Kind::FL => 2,
+            Kind::AL => 3,
+        }
+    }
+}
+
+/// A quantifier over the target objects of an atom (§11.2) or over the
+/// subject objects of a scene-level rule (§11.4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Quant {
+    /// `every`: all of them (true when there is none).
+    Every,
+    /// `some`: at least one.
+    Some,
+    /// `no`: none.
+    No,
+    /// `at least K`.
+    AtLeast(u32),
+    /// `at most K`.
+    AtMost(u32),
+}
+
+/// The largest `K` of `at least K` / `at most K` (SPEC §11.6).
+pub const MAX_COUNT: u32 = 65_535;
+
+impl Quant {
+    /// Whether `c` of `m` objects standing in the relation satisfies the
+    /// quantifier.
+    #[inline]
+    pub const fn holds(self, c: u32, m: u32) -> bool {
+        match self {
+            Quant::Every => c == m,
+            Quant::Some => c >= 1,
+            Quant::No => c == 0,
+            Quant::AtLeast(k) => c >= k,
+            Quant::AtMost(k) => c <= k,
+        }
+    }
+}
+
+impl fmt::Display for Quant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Quant::Every => f.write_str("every"),
+            Quant::Some => f.write_str("some"),
+            Quant::No => f.write_str("no"),
+            Quant::AtLeast(k) => write!(f, "at least {k}"),
+            Quant::AtMost(k) => write!(f, "at most {k}"),
+        }
+    }
+}
+
+/// One of the sixteen directional relations.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Relation {
+    /// `DR`, `EC`, `FL` or `AL`.
+    pub kind: Kind,
+    /// The direction.
+    pub dir: Dir,
+}
+
+/// A mask of relations, bit `Relation::index()`.
+pub type RelBits = u16;
+
+impl Relation {
+    /// All sixteen, in bit order: `DR_N DR_S DR_E DR_W EC_N … FL_N … AL_N …`.
+    pub const ALL: [Relation; 16] = {
+        let mut out = [Relation::new(Kind::DR, Dir::N); 16];
+        let mut i = 0;
+        while i < 16 {
+            out[i] = Relation::new(Kind::ALL[i / 4], Dir::ALL[i % 4]);
+            i += 1;
+        }
+        out
+    };
+
+    /// The eight relations of the first edition (`DR`, `EC`).
+    pub const FIRST_EDITION: [Relation; 8] = {
+        let mut out = [Relation::new(Kind::DR, Dir::N); 8];
+        let mut i = 0;
+        while i < 8 {
+            out[i] = Relation::ALL[i];
+            i += 1;
+        }
+        out
+    };
+
+    /// Build a relation.
+    pub const fn new(kind: Kind, dir: Dir) -> Self {
+        Relation { kind, dir }
+    }
+
+    /// Bit index 0..16.
+    pub const fn index(self) -> usize {
+        self.kind.index() * 4 + self.dir.index()
+    }
 
     /// The bit `1 << index()`.
-    pub const fn bit(self) -> u8 {
+    pub const fn bit(self) -> RelBits {
         1 << self.index()
     }
 
-    /// The converse: `DR_N(a,b) ⇔ DR_S(b,a)`.
-    pub const fn converse(self) -> Relation {
-        Relation::new(self.kind, self.dir.opposite())
+    /// Its entry in [`TABLE`].
+    pub const fn def(self) -> &'static RelationDef {
+        &TABLE[self.index()]
     }
 
-    /// Class lifting: `DR` atoms quantify over *every* target object (true when
-    /// there is none); `EC` atoms ask for *at least one*.
+    /// The converse: `DR_N(a,b) ⇔ DR_S(b,a)`, `FL_E(a,b) ⇔ FL_W(b,a)`. `AL`
+    /// is symmetric: `AL_N(a,b) ⇔ AL_N(b,a)`.
+    pub const fn converse(self) -> Relation {
+        match self.kind {
+            Kind::AL => self,
+            _ => Relation::new(self.kind, self.dir.opposite()),
+        }
+    }
+
+    /// The default quantifier of the class lifting (§11.2): `every` for
+    /// `DR`, `some` for the others.
+    pub const fn default_quant(self) -> Quant {
+        self.def().default_quant
+    }
+
+    /// Whether the default lifting is universal (`DR`).
     pub const fn is_universal(self) -> bool {
-        matches!(self.kind, Kind::DR)
+        matches!(self.default_quant(), Quant::Every)
     }
 
     /// The name as written in `.rcc` files, e.g. `DR_N`.
-    pub fn name(self) -> &'static str {
-        const NAMES: [&str; 8] = [
-            "DR_N", "DR_S", "DR_E", "DR_W", "EC_N", "EC_S", "EC_E", "EC_W",
-        ];
-        NAMES[self.index()]
+    pub const fn name(self) -> &'static str {
+        self.def().name
     }
 
     /// Parse a relation name such as `EC_W`.
@@ -167,6 +277,11 @@ pub enum Contact {
     Edge,
 }
 
+impl Contact {
+    /// Both modes.
+    pub const ALL: [Contact; 2] = [Contact::Point, Contact::Edge];
+}
+
 impl std::str::FromStr for Contact {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
@@ -189,6 +304,330 @@ impl fmt::Display for Contact {
     }
 }
 
+/// An axis of the plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Axis {
+    /// East–west.
+    X,
+    /// North–south.
+    Y,
+}
+
+/// Which rectangle of the ordered pair `(a, b)` a coordinate belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Side {
+    /// The subject `a`.
+    A,
+    /// The other object `b`.
+    B,
+}
+
+/// An edge coordinate of a rectangle: `x`, `x2 = x + width`, `y`,
+/// `y2 = y + height`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Edge {
+    /// West edge `x`.
+    X,
+    /// East edge `x2`.
+    X2,
+    /// South edge `y`.
+    Y,
+    /// North edge `y2`.
+    Y2,
+}
+
+impl Edge {
+    /// The axis the coordinate lies on.
+    pub const fn axis(self) -> Axis {
+        match self {
+            Edge::X | Edge::X2 => Axis::X,
+            Edge::Y | Edge::Y2 => Axis::Y,
+        }
+    }
+    /// Whether it is the far edge (`x2`, `y2`): the near edge plus the size.
+    pub const fn is_far(self) -> bool {
+        matches!(self, Edge::X2 | Edge::Y2)
+    }
+    /// Its value on `r`.
+    pub const fn of(self, r: &Rect) -> i64 {
+        match self {
+            Edge::X => r.x,
+            Edge::X2 => r.x2(),
+            Edge::Y => r.y,
+            Edge::Y2 => r.y2(),
+        }
+    }
+}
+
+/// A comparison operator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Op {
+    /// `>=`
+    Ge,
+    /// `>`
+    Gt,
+    /// `<=`
+    Le,
+    /// `<`
+    Lt,
+    /// `==`
+    Eq,
+}
+
+/// One comparison `lhs OP rhs` between edge coordinates of the two
+/// rectangles. Both sides always lie on the same axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Cmp {
+    /// Left-hand coordinate.
+    pub lhs: (Side, Edge),
+    /// The operator.
+    pub op: Op,
+    /// Right-hand coordinate.
+    pub rhs: (Side, Edge),
+}
+
+impl Cmp {
+    /// Whether it holds for the pair `(a, b)`.
+    pub fn holds(&self, a: &Rect, b: &Rect) -> bool {
+        let pick = |s: Side| match s {
+            Side::A => a,
+            Side::B => b,
+        };
+        let l = self.lhs.1.of(pick(self.lhs.0));
+        let r = self.rhs.1.of(pick(self.rhs.0));
+        match self.op {
+            Op::Ge => l >= r,
+            Op::Gt => l > r,
+            Op::Le => l <= r,
+            Op::Lt => l < r,
+            Op::Eq => l == r,
+        }
+    }
+}
+
+/// A condition: a disjunction of conjunctions of comparisons.
+pub type Condition = &'static [&'static [Cmp]];
+
+/// One relation's definition: the single source of its meaning.
+#[derive(Debug, Clone, Copy)]
+pub struct RelationDef {
+    /// The relation.
+    pub rel: Relation,
+    /// Its `.rcc` name.
+    pub name: &'static str,
+    /// The quantifier an atom without one uses (§11.2).
+    pub default_quant: Quant,
+    /// The condition under `point` contact.
+    pub point: Condition,
+    /// The condition under `edge` contact.
+    pub edge: Condition,
+    /// English: what the subject does to the target, `{d}` for the
+    /// direction word ("touches the {d} side of").
+    pub verb: &'static str,
+}
+
+impl RelationDef {
+    /// The condition for `contact`.
+    pub const fn condition(&self, contact: Contact) -> Condition {
+        match contact {
+            Contact::Point => self.point,
+            Contact::Edge => self.edge,
+        }
+    }
+    /// Whether `rel(a, b)` holds, read straight off the condition (the
+    /// reference that [`relation_bits`] is tested against).
+    pub fn holds(&self, a: &Rect, b: &Rect, contact: Contact) -> bool {
+        self.condition(contact)
+            .iter()
+            .any(|conj| conj.iter().all(|c| c.holds(a, b)))
+    }
+    /// The English verb phrase with the direction filled in.
+    pub fn verb_phrase(&self) -> String {
+        self.verb.replace("{d}", self.rel.dir.word())
+    }
+}
+
+const fn cmp(l: Side, le: Edge, op: Op, r: Side, re: Edge) -> Cmp {
+    Cmp {
+        lhs: (l, le),
+        op,
+        rhs: (r, re),
+    }
+}
+
+mod conditions {
+    use super::Edge::{X, X2, Y, Y2};
+    use super::Op::{Eq, Ge, Le, Lt};
+    use super::Side::{A, B};
+    use super::{cmp, Cmp};
+
+    // Projections meet (point: closed intervals share a point; edge: open
+    // intervals overlap), and one extent contains the other (flush).
+    macro_rules! meet_point {
+        ($lo:ident, $hi:ident) => {
+            [cmp(A, $lo, Le, B, $hi), cmp(B, $lo, Le, A, $hi)]
+        };
+    }
+    macro_rules! meet_edge {
+        ($lo:ident, $hi:ident) => {
+            [cmp(A, $lo, Lt, B, $hi), cmp(B, $lo, Lt, A, $hi)]
+        };
+    }
+    macro_rules! contained {
+        ($lo:ident, $hi:ident) => {
+            [cmp(B, $lo, Le, A, $lo), cmp(A, $hi, Le, B, $hi)]
+        };
+    }
+    macro_rules! contains {
+        ($lo:ident, $hi:ident) => {
+            [cmp(A, $lo, Le, B, $lo), cmp(B, $hi, Le, A, $hi)]
+        };
+    }
+    macro_rules! cat {
+        ($first:expr, $rest:expr) => {{
+            let r = $rest;
+            [$first, r[0], r[1]]
+        }};
+    }
+
+    pub const DR_N: &[&[Cmp]] = &[&[cmp(A, Y, Ge, B, Y2)]];
+    pub const DR_S: &[&[Cmp]] = &[&[cmp(A, Y2, Le, B, Y)]];
+    pub const DR_E: &[&[Cmp]] = &[&[cmp(A, X, Ge, B, X2)]];
+    pub const DR_W: &[&[Cmp]] = &[&[cmp(A, X2, Le, B, X)]];
+
+    pub const EC_N_P: &[&[Cmp]] = &[&cat!(cmp(A, Y, Eq, B, Y2), meet_point!(X, X2))];
+    pub const EC_S_P: &[&[Cmp]] = &[&cat!(cmp(A, Y2, Eq, B, Y), meet_point!(X, X2))];
+    pub const EC_E_P: &[&[Cmp]] = &[&cat!(cmp(A, X, Eq, B, X2), meet_point!(Y, Y2))];
+    pub const EC_W_P: &[&[Cmp]] = &[&cat!(cmp(A, X2, Eq, B, X), meet_point!(Y, Y2))];
+    pub const EC_N_E: &[&[Cmp]] = &[&cat!(cmp(A, Y, Eq, B, Y2), meet_edge!(X, X2))];
+    pub const EC_S_E: &[&[Cmp]] = &[&cat!(cmp(A, Y2, Eq, B, Y), meet_edge!(X, X2))];
+    pub const EC_E_E: &[&[Cmp]] = &[&cat!(cmp(A, X, Eq, B, X2), meet_edge!(Y, Y2))];
+    pub const EC_W_E: &[&[Cmp]] = &[&cat!(cmp(A, X2, Eq, B, X), meet_edge!(Y, Y2))];
+
+    pub const FL_N: &[&[Cmp]] = &[
+        &cat!(cmp(A, Y, Eq, B, Y2), contained!(X, X2)),
+        &cat!(cmp(A, Y, Eq, B, Y2), contains!(X, X2)),
+    ];
+    pub const FL_S: &[&[Cmp]] = &[
+        &cat!(cmp(A, Y2, Eq, B, Y), contained!(X, X2)),
+        &cat!(cmp(A, Y2, Eq, B, Y), contains!(X, X2)),
+    ];
+    pub const FL_E: &[&[Cmp]] = &[
+        &cat!(cmp(A, X, Eq, B, X2), contained!(Y, Y2)),
+        &cat!(cmp(A, X, Eq, B, X2), contains!(Y, Y2)),
+    ];
+    pub const FL_W: &[&[Cmp]] = &[
+        &cat!(cmp(A, X2, Eq, B, X), contained!(Y, Y2)),
+        &cat!(cmp(A, X2, Eq, B, X), contains!(Y, Y2)),
+    ];
+
+    pub const AL_N: &[&[Cmp]] = &[&[cmp(A, Y2, Eq, B, Y2)]];
+    pub const AL_S: &[&[Cmp]] = &[&[cmp(A, Y, Eq, B, Y)]];
+    pub const AL_E: &[&[Cmp]] = &[&[cmp(A, X2, Eq, B, X2)]];
+    pub const AL_W: &[&[Cmp]] = &[&[cmp(A, X, Eq, B, X)]];
+}
+
+const fn def(
+    kind: Kind,
+    dir: Dir,
+    name: &'static str,
+    point: Condition,
+    edge: Condition,
+    verb: &'static str,
+) -> RelationDef {
+    RelationDef {
+        rel: Relation::new(kind, dir),
+        name,
+        default_quant: match kind {
+            Kind::DR => Quant::Every,
+            _ => Quant::Some,
+        },
+        point,
+        edge,
+        verb,
+    }
+}
+
+/// Every relation, in bit order: the one place a relation's meaning is
+/// written (SPEC §3 and §11.1).
+pub const TABLE: [RelationDef; 16] = {
+    use conditions as c;
+    use Dir::{E, N, S, W};
+    use Kind::{AL, DR, EC, FL};
+    const DRV: &str = "is {d} of";
+    const ECV: &str = "touches the {d} side of";
+    const FLV: &str = "lies flush on the {d} side of";
+    const ALV: &str = "has its {d} edge in line with";
+    [
+        def(DR, N, "DR_N", c::DR_N, c::DR_N, DRV),
+        def(DR, S, "DR_S", c::DR_S, c::DR_S, DRV),
+        def(DR, E, "DR_E", c::DR_E, c::DR_E, DRV),
+        def(DR, W, "DR_W", c::DR_W, c::DR_W, DRV),
+        def(EC, N, "EC_N", c::EC_N_P, c::EC_N_E, ECV),
+        def(EC, S, "EC_S", c::EC_S_P, c::EC_S_E, ECV),
+        def(EC, E, "EC_E", c::EC_E_P, c::EC_E_E, ECV),
+        def(EC, W, "EC_W", c::EC_W_P, c::EC_W_E, ECV),
+        def(FL, N, "FL_N", c::FL_N, c::FL_N, FLV),
+        def(FL, S, "FL_S", c::FL_S, c::FL_S, FLV),
+        def(FL, E, "FL_E", c::FL_E, c::FL_E, FLV),
+        def(FL, W, "FL_W", c::FL_W, c::FL_W, FLV),
+        def(AL, N, "AL_N", c::AL_N, c::AL_N, ALV),
+        def(AL, S, "AL_S", c::AL_S, c::AL_S, ALV),
+        def(AL, E, "AL_E", c::AL_E, c::AL_E, ALV),
+        def(AL, W, "AL_W", c::AL_W, c::AL_W, ALV),
+    ]
+};
+
+/// Every order type of two rectangles: all pairs with coordinates in
+/// `0..4` on each axis (four edge values per axis take at most four distinct
+/// values, and every condition of [`TABLE`] compares edges only).
+pub fn order_types() -> impl Iterator<Item = (Rect, Rect)> {
+    let spans: Vec<(i64, i64)> = (0..4)
+        .flat_map(|lo| (lo + 1..4).map(move |hi| (lo, hi - lo)))
+        .collect();
+    let axis: Vec<((i64, i64), (i64, i64))> = spans
+        .iter()
+        .flat_map(|&a| spans.iter().map(move |&b| (a, b)))
+        .collect();
+    let ys = axis.clone();
+    axis.into_iter().flat_map(move |(ax, bx)| {
+        ys.clone().into_iter().map(move |(ay, by)| {
+            (
+                Rect::new(ax.0, ay.0, ax.1, ay.1),
+                Rect::new(bx.0, by.0, bx.1, by.1),
+            )
+        })
+    })
+}
+
+/// Whether `p(a, b) ⇒ q(a, b)` for every pair of rectangles under
+/// `contact`, computed from [`TABLE`] over every order type.
+pub fn implies(p: Relation, q: Relation, contact: Contact) -> bool {
+    static MATRIX: OnceLock<[[RelBits; 16]; 2]> = OnceLock::new();
+    let m = MATRIX.get_or_init(|| {
+        let mut m = [[RelBits::MAX; 16]; 2];
+        for (ci, contact) in Contact::ALL.into_iter().enumerate() {
+            for (a, b) in order_types() {
+                let bits: RelBits = TABLE
+                    .iter()
+                    .filter(|d| d.holds(&a, &b, contact))
+                    .fold(0, |acc, d| acc | d.rel.bit());
+                for r in Relation::ALL {
+                    if bits & r.bit() != 0 {
+                        m[ci][r.index()] &= bits;
+                    }
+                }
+            }
+        }
+        m
+    });
+    let ci = match contact {
+        Contact::Point => 0,
+        Contact::Edge => 1,
+    };
+    m[ci][p.index()] & q.bit() != 0
+}
+
 /// Whether intervals `[a1, a2]` and `[b1, b2]` meet under `contact`.
 #[inline]
 pub const fn projections_meet(a1: i64, a2: i64, b1: i64, b2: i64, contact: Contact) -> bool {
@@ -198,37 +637,52 @@ pub const fn projections_meet(a1: i64, a2: i64, b1: i64, b2: i64, contact: Conta
     }
 }
 
-/// All eight relations of `(a, b)` as one byte (bit `Relation::index()`).
+/// Whether one of `[a1, a2]`, `[b1, b2]` contains the other.
 #[inline]
-pub fn relation_bits(a: &Rect, b: &Rect, contact: Contact) -> u8 {
-    let mut bits = 0u8;
+const fn nested(a1: i64, a2: i64, b1: i64, b2: i64) -> bool {
+    (b1 <= a1 && a2 <= b2) || (a1 <= b1 && b2 <= a2)
+}
+
+/// All sixteen relations of `(a, b)` as one mask (bit `Relation::index()`).
+///
+/// The fast path of [`TABLE`]: `tests/relations.rs` checks it against
+/// [`RelationDef::holds`] on every order type, in both contact modes.
+#[inline]
+pub fn relation_bits(a: &Rect, b: &Rect, contact: Contact) -> RelBits {
+    let mut bits: RelBits = 0;
     let (ax2, ay2, bx2, by2) = (a.x2(), a.y2(), b.x2(), b.y2());
     if a.y >= by2 {
         bits |= 1; // DR_N
     }
     if ay2 <= b.y {
-        bits |= 2; // DR_S
+        bits |= 1 << 1; // DR_S
     }
     if a.x >= bx2 {
-        bits |= 4; // DR_E
+        bits |= 1 << 2; // DR_E
     }
     if ax2 <= b.x {
-        bits |= 8; // DR_W
+        bits |= 1 << 3; // DR_W
     }
     let xm = projections_meet(a.x, ax2, b.x, bx2, contact);
     let ym = projections_meet(a.y, ay2, b.y, by2, contact);
-    if a.y == by2 && xm {
-        bits |= 16; // EC_N
+    let xn = nested(a.x, ax2, b.x, bx2);
+    let yn = nested(a.y, ay2, b.y, by2);
+    if a.y == by2 {
+        bits |= (xm as RelBits) << 4 | (xn as RelBits) << 8; // EC_N, FL_N
     }
-    if ay2 == b.y && xm {
-        bits |= 32; // EC_S
+    if ay2 == b.y {
+        bits |= (xm as RelBits) << 5 | (xn as RelBits) << 9; // EC_S, FL_S
     }
-    if a.x == bx2 && ym {
-        bits |= 64; // EC_E
+    if a.x == bx2 {
+        bits |= (ym as RelBits) << 6 | (yn as RelBits) << 10; // EC_E, FL_E
     }
-    if ax2 == b.x && ym {
-        bits |= 128; // EC_W
+    if ax2 == b.x {
+        bits |= (ym as RelBits) << 7 | (yn as RelBits) << 11; // EC_W, FL_W
     }
+    bits |= ((ay2 == by2) as RelBits) << 12; // AL_N
+    bits |= ((a.y == b.y) as RelBits) << 13; // AL_S
+    bits |= ((ax2 == bx2) as RelBits) << 14; // AL_E
+    bits |= ((a.x == b.x) as RelBits) << 15; // AL_W
     bits
 }
 
@@ -238,26 +692,12 @@ pub fn holds(rel: Relation, a: &Rect, b: &Rect, contact: Contact) -> bool {
     relation_bits(a, b, contact) & rel.bit() != 0
 }
 
-/// Mask of the `DR` bits (the universally quantified ones).
-pub const DR_MASK: u8 = 0x0F;
-/// Mask of the `EC` bits (the existentially quantified ones).
-pub const EC_MASK: u8 = 0xF0;
-
-/// The identity of class lifting: what an atom byte is when the target has no
-/// object (all `DR` true, all `EC` false).
-pub const EMPTY_TARGET: u8 = DR_MASK;
-
-/// Combine one pair's relation byte into a running class-atom byte:
-/// `DR` bits AND, `EC` bits OR.
-#[inline]
-pub const fn lift(acc: u8, pair: u8) -> u8 {
-    (acc & (pair | EC_MASK)) | (pair & EC_MASK)
-}
-
-/// Class names interned to dense indices for one evaluation.
+/// Class names (and landmark ids) interned to dense indices for one
+/// evaluation.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct ClassIndex {
     names: Vec<String>,
+    landmarks: Vec<String>,
 }
 
 impl ClassIndex {
@@ -265,6 +705,7 @@ impl ClassIndex {
     pub fn of_scene(scene: &Scene) -> Self {
         ClassIndex {
             names: scene.classes().into_iter().map(String::from).collect(),
+            landmarks: Vec::new(),
         }
     }
     /// Intern a name (adds it when new) and return its index.
@@ -274,6 +715,16 @@ impl ClassIndex {
             None => {
                 self.names.push(name.to_string());
                 self.names.len() - 1
+            }
+        }
+    }
+    /// Intern a landmark id (adds it when new) and return its index.
+    pub fn intern_landmark(&mut self, id: &str) -> usize {
+        match self.landmarks.iter().position(|n| n == id) {
+            Some(i) => i,
+            None => {
+                self.landmarks.push(id.to_string());
+                self.landmarks.len() - 1
             }
         }
     }
@@ -297,10 +748,55 @@ impl ClassIndex {
     pub fn names(&self) -> &[String] {
         &self.names
     }
+    /// Interned landmark ids.
+    pub fn landmarks(&self) -> &[String] {
+        &self.landmarks
+    }
 }
 
-/// Per placed object and per target (every class, then `*`), the byte of
-/// class-atom values of SPEC §4.
+/// For one object and one target: how many target objects there are and,
+/// per relation, how many of them the object stands in it with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct TargetCount {
+    /// `m`: the other placed objects of the target.
+    pub total: u32,
+    /// `c` per relation (index `Relation::index()`).
+    pub hits: [u32; 16],
+}
+
+impl TargetCount {
+    /// Whether `rel(o, Q target)` holds.
+    #[inline]
+    pub fn holds(&self, rel: Relation, quant: Quant) -> bool {
+        quant.holds(self.hits[rel.index()], self.total)
+    }
+    /// The mask of relations whose default lifting holds (the first
+    /// edition's class-atom byte, widened).
+    pub fn default_bits(&self) -> RelBits {
+        Relation::ALL
+            .iter()
+            .filter(|r| self.holds(**r, r.default_quant()))
+            .fold(0, |acc, r| acc | r.bit())
+    }
+    fn add(&mut self, bits: RelBits) {
+        self.total += 1;
+        let mut b = bits;
+        while b != 0 {
+            let i = b.trailing_zeros() as usize;
+            self.hits[i] += 1;
+            b &= b - 1;
+        }
+    }
+}
+
+/// The count of a target with no objects.
+pub const EMPTY_TARGET: TargetCount = TargetCount {
+    total: 0,
+    hits: [0; 16],
+};
+
+/// Per placed object and per target (every class, then `*`), the
+/// [`TargetCount`] of SPEC §4 and §11.2; plus the scene's landmarks.
 ///
 /// Object indices are indices into `scene.objects`; unplaced objects have no
 /// row (they take no part in evaluation).
@@ -308,23 +804,29 @@ impl ClassIndex {
 pub struct ClassAtoms {
     /// Number of targets per row = classes + 1 (the last is `*`).
     stride: usize,
-    /// `row[i]`: row start of object `i` in `bytes`, or `usize::MAX` if unplaced.
+    /// `row[i]`: row start of object `i` in `counts`, or `usize::MAX` if unplaced.
     row: Vec<usize>,
     /// Class index of each object.
     class_of: Vec<usize>,
-    bytes: Vec<u8>,
+    counts: Vec<TargetCount>,
+    rects: Vec<Option<Rect>>,
+    /// Per interned landmark id: the fixed, placed object with that id.
+    landmarks: Vec<Option<usize>>,
+    contact: Contact,
 }
 
 impl ClassAtoms {
     /// Build the table for `scene` with the given class index (every class of
     /// the scene must be in it; extra classes simply have no objects).
+    /// Landmark ids interned in `classes` are resolved to this scene's fixed
+    /// objects.
     pub fn new(scene: &Scene, classes: &ClassIndex, contact: Contact) -> Self {
         let n = scene.objects.len();
         let stride = classes.len() + 1;
         let class_of: Vec<usize> = scene
             .objects
             .iter()
-            .map(|o| classes.get(&o.class).expect("class index covers the scene"))
+            .map(|o| classes.get(&o.class).unwrap_or(usize::MAX))
             .collect();
         let rects: Vec<Option<Rect>> = scene.objects.iter().map(|o| o.rect()).collect();
         let mut row = vec![usize::MAX; n];
@@ -335,7 +837,7 @@ impl ClassAtoms {
                 next += stride;
             }
         }
-        let mut bytes = vec![EMPTY_TARGET; next];
+        let mut counts = vec![EMPTY_TARGET; next];
         for i in 0..n {
             let Some(a) = rects[i] else { continue };
             let base = row[i];
@@ -345,24 +847,37 @@ impl ClassAtoms {
                 }
                 let Some(b) = rects[j] else { continue };
                 let bits = relation_bits(&a, &b, contact);
-                let t = base + class_of[j];
-                bytes[t] = lift(bytes[t], bits);
-                let any = base + stride - 1;
-                bytes[any] = lift(bytes[any], bits);
+                if class_of[j] < stride - 1 {
+                    counts[base + class_of[j]].add(bits);
+                }
+                counts[base + stride - 1].add(bits);
             }
         }
+        let landmarks = classes
+            .landmarks()
+            .iter()
+            .map(|id| {
+                scene
+                    .objects
+                    .iter()
+                    .position(|o| o.fixed && o.is_placed() && &o.id == id)
+            })
+            .collect();
         ClassAtoms {
             stride,
             row,
             class_of,
-            bytes,
+            counts,
+            rects,
+            landmarks,
+            contact,
         }
     }
 
-    /// The atom byte of object `obj` against `target` (`None` = `*`), or
+    /// The counts of object `obj` against `target` (`None` = `*`), or
     /// `None` when the object is unplaced.
     #[inline]
-    pub fn byte(&self, obj: usize, target: Option<usize>) -> Option<u8> {
+    pub fn count(&self, obj: usize, target: Option<usize>) -> Option<&TargetCount> {
         let r = *self.row.get(obj)?;
         if r == usize::MAX {
             return None;
@@ -371,20 +886,50 @@ impl ClassAtoms {
             None => self.stride - 1,
             Some(t) if t < self.stride - 1 => t,
             // A class the table does not know has no objects.
-            Some(_) => return Some(EMPTY_TARGET),
+            Some(_) => return Some(&EMPTY_TARGET),
         };
-        Some(self.bytes[r + t])
+        Some(&self.counts[r + t])
     }
 
-    /// Whether the class atom `rel(obj's class, target)` holds for `obj`.
-    /// Unplaced objects satisfy nothing.
+    /// The counts of object `obj` against landmark `lm` (an index of
+    /// [`ClassIndex::landmarks`]): one target object, or none when the
+    /// landmark is missing from the scene or is `obj` itself. `None` when
+    /// `obj` is unplaced.
+    pub fn landmark_count(&self, obj: usize, lm: usize) -> Option<TargetCount> {
+        let a = (*self.rects.get(obj)?)?;
+        let mut c = EMPTY_TARGET;
+        if let Some(Some(l)) = self.landmarks.get(lm) {
+            if *l != obj {
+                if let Some(b) = self.rects[*l] {
+                    c.add(relation_bits(&a, &b, self.contact));
+                }
+            }
+        }
+        Some(c)
+    }
+
+    /// The default-lifted bits of `obj` against `target` (§4: `DR` every,
+    /// the others some), or `None` when unplaced.
+    pub fn bits(&self, obj: usize, target: Option<usize>) -> Option<RelBits> {
+        self.count(obj, target).map(TargetCount::default_bits)
+    }
+
+    /// Whether the class atom `rel(obj's class, target)` with its default
+    /// quantifier holds for `obj`. Unplaced objects satisfy nothing.
     #[inline]
     pub fn holds(&self, obj: usize, rel: Relation, target: Option<usize>) -> bool {
-        self.byte(obj, target).is_some_and(|b| b & rel.bit() != 0)
+        self.count(obj, target)
+            .is_some_and(|c| c.holds(rel, rel.default_quant()))
     }
 
-    /// Class index of object `obj`.
+    /// Class index of object `obj` (`usize::MAX` for a class the index does
+    /// not know).
     pub fn class_of(&self, obj: usize) -> usize {
         self.class_of[obj]
+    }
+
+    /// Whether object `obj` is placed.
+    pub fn is_placed(&self, obj: usize) -> bool {
+        self.row.get(obj).is_some_and(|&r| r != usize::MAX)
     }
 }

@@ -399,7 +399,7 @@ fn grammar_atom_and_relation() {
     let (m, lc) = err("rule x: DR_X(B, R)");
     assert_eq!(
         m,
-        "unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W"
+        "unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W, FL_N, FL_S, FL_E, FL_W, AL_N, AL_S, AL_E, AL_W"
     );
     assert_eq!(lc, (1, 9));
     let (m, _) = err("rule x: XX(B,R)");
@@ -591,11 +591,11 @@ fn render_long_line_falls_back_to_plain() {
     let text = e.render("big.rcc", &src, false);
     assert_eq!(
         text,
-        "error: big.rcc:1:26009: unknown relation `XX`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W\n"
+        "error: big.rcc:1:26009: unknown relation `XX`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W, FL_N, FL_S, FL_E, FL_W, AL_N, AL_S, AL_E, AL_W\n"
     );
 }
 
-const UNKNOWN_RELATION: &str = "error: x.rcc:1:9: unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_X(B, R)\n   │         ──┬─  \n   │           ╰─── unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W\n───╯\n";
+const UNKNOWN_RELATION: &str = "error: x.rcc:1:9: unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W, FL_N, FL_S, FL_E, FL_W, AL_N, AL_S, AL_E, AL_W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_X(B, R)\n   │         ──┬─  \n   │           ╰─── unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W, FL_N, FL_S, FL_E, FL_W, AL_N, AL_S, AL_E, AL_W\n───╯\n";
 const MIXED_SUBJECTS: &str = "error: x.rcc:1:22: rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n   ╭─[ x.rcc:1:22 ]\n   │\n 1 │ rule a: DR_N(B, R) & DR_S(G, R)\n   │                      ─────┬────  \n   │                           ╰────── rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n───╯\n";
 const MISSING_COLON: &str = "error: x.rcc:1:8: expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n   ╭─[ x.rcc:1:8 ]\n   │\n 1 │ rule a DR_N(B, R)\n   │        ──┬─  \n   │          ╰─── expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n───╯\n";
 const BAD_P: &str = "error: x.rcc:1:10: bad p `1.5`: expected a number with 0 < p < 1\n   ╭─[ x.rcc:1:10 ]\n   │\n 1 │ rule a p 1.5: DR_N(B, R)\n   │          ─┬─  \n   │           ╰─── bad p `1.5`: expected a number with 0 < p < 1\n───╯\n";

@@ -21,6 +21,7 @@ fn tname(t: &Target) -> String {
     match t {
         Target::Any => "any".into(),
         Target::Class(c) => c.to_lowercase(),
+        Target::Landmark(id) => id.to_lowercase(),
     }
 }
 

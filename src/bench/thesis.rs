@@ -453,6 +453,7 @@ pub fn unsatisfiable_with_two(f: &Formula) -> bool {
         Formula::Atom(a) => match &a.target {
             Target::Any => a.rel.kind == Kind::DR,
             Target::Class(c) => c == &a.subject,
+            Target::Landmark(_) => false,
         },
         _ => false,
     }

@@ -3,7 +3,7 @@
 //! it.
 
 use crate::eval::CompiledFormula;
-use crate::relations::{ClassAtoms, ClassIndex, Contact, EMPTY_TARGET};
+use crate::relations::{ClassAtoms, ClassIndex, Contact};
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -37,9 +37,7 @@ pub fn find_candidates(
                 continue;
             }
             let broken = scene.objects.iter().enumerate().find(|(i, o)| {
-                o.is_placed()
-                    && atoms.class_of(*i) == subjects[k]
-                    && !f.eval(&|t| atoms.byte(*i, t).unwrap_or(EMPTY_TARGET))
+                o.is_placed() && atoms.class_of(*i) == subjects[k] && !f.eval(&atoms, *i)
             });
             if let Some((_, o)) = broken {
                 out[k] = Some(Provenance {

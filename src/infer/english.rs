@@ -12,22 +12,16 @@ fn target_phrase(subject: &str, t: &Target, quant: &str) -> String {
         Target::Any => format!("{quant} other object"),
         Target::Class(c) if c == subject => format!("{quant} other {c}"),
         Target::Class(c) => format!("{quant} {c}"),
+        Target::Landmark(id) => id.clone(),
     }
 }
 
 fn atom_phrase(a: &Atom) -> String {
-    match a.rel.kind {
-        Kind::DR => format!(
-            "is {} of {}",
-            a.rel.dir.word(),
-            target_phrase(&a.subject, &a.target, "every")
-        ),
-        Kind::EC => format!(
-            "touches the {} side of {}",
-            a.rel.dir.word(),
-            target_phrase(&a.subject, &a.target, "some")
-        ),
-    }
+    format!(
+        "{} {}",
+        a.rel.def().verb_phrase(),
+        target_phrase(&a.subject, &a.target, &a.quant.to_string())
+    )
 }
 
 fn atom_of(f: &Formula) -> Option<&Atom> {
@@ -129,6 +123,7 @@ pub fn reading(f: &Formula) -> String {
             Some(Target::Any) => format!("every {s} is surrounded by other objects"),
             Some(Target::Class(c)) if c == s => format!("every {s} is among the other {c}s"),
             Some(Target::Class(c)) => format!("every {s} is inside the {c}s"),
+            Some(Target::Landmark(id)) => format!("every {s} is inside {id}"),
             None => generic(f),
         },
     }

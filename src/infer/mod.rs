@@ -448,7 +448,7 @@ pub fn check_statements(set: &RuleSet, classes: &ClassIndex) -> Result<(), Infer
             }
             let target = match &a.target {
                 Target::Class(c) => Some(c),
-                Target::Any => None,
+                Target::Any | Target::Landmark(_) => None,
             };
             for c in std::iter::once(&a.subject).chain(target) {
                 if classes.get(c).is_none() {
@@ -517,6 +517,7 @@ impl Learned {
                     Rule {
                         name: s.name.clone(),
                         strength: Strength::P(post.written()),
+                        scope: crate::rules::Scope::Each,
                         formula: s.formula.clone(),
                         comments,
                         origin: None,

@@ -23,7 +23,7 @@
 
 use super::InferError;
 use crate::eval::CompiledFormula;
-use crate::relations::{ClassAtoms, ClassIndex, Contact, EMPTY_TARGET};
+use crate::relations::{ClassAtoms, ClassIndex, Contact};
 use crate::scene::{Rect, Scene};
 use rand::seq::SliceRandom;
 use rand::{RngExt, SeedableRng};
@@ -338,7 +338,7 @@ impl<'a> NullModel<'a> {
                     let atoms = ClassAtoms::new(scene, classes, contact);
                     for (k, f) in formulas.iter().enumerate() {
                         for &o in &by_class[d][subjects[k]] {
-                            if f.eval(&|t| atoms.byte(o, t).unwrap_or(EMPTY_TARGET)) {
+                            if f.eval(&atoms, o) {
                                 counts[k] += 1;
                             }
                         }

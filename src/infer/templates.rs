@@ -173,7 +173,7 @@ impl Generated {
         };
         let target_name = match target {
             Target::Any => "any",
-            Target::Class(c) => c.as_str(),
+            Target::Class(c) | Target::Landmark(c) => c.as_str(),
         };
         for &dir in dirs {
             let args = TemplateArgs {

@@ -1,10 +1,11 @@
 //! The rule AST: formulas over class-relation atoms, rules with modifiers,
-//! rule sets (SPEC §4–§5).
+//! rule sets (SPEC §4–§5, §11).
 //!
 //! Formulas carry no source spans, so two rule sets compare equal when they
 //! mean the same text-independent thing; spans live beside them in
 //! [`RuleOrigin`] for diagnostics.
 
+pub use crate::relations::Quant;
 use crate::relations::Relation;
 use std::fmt;
 
@@ -24,13 +25,16 @@ impl Span {
     }
 }
 
-/// The target of an atom: a class or `*` (every object of any class).
+/// The target of an atom: a class, `*` (every object of any class) or a
+/// landmark `@ID` (one fixed object, §11.3).
 #[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Target {
     /// A named class.
     Class(String),
     /// `*`: every other object.
     Any,
+    /// `@ID`: the fixed object with this id.
+    Landmark(String),
 }
 
 impl fmt::Display for Target {
@@ -38,35 +42,70 @@ impl fmt::Display for Target {
         match self {
             Target::Class(c) => f.write_str(c),
             Target::Any => f.write_str("*"),
+            Target::Landmark(id) => write!(f, "@{id}"),
         }
     }
 }
 
-/// A class-relation atom `REL(subject, target)`.
+/// A class-relation atom `REL(subject, [Q] target)`.
+///
+/// The quantifier is always stored resolved: an atom written without one
+/// holds the relation's default (§11.2), so `DR_N(B, R)` and
+/// `DR_N(B, every R)` are the same atom. A landmark target always has the
+/// default quantifier (a written one is an error).
 #[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Atom {
     /// The relation.
     pub rel: Relation,
     /// The subject class.
     pub subject: String,
-    /// The target class or `*`.
+    /// The target quantifier.
+    pub quant: Quant,
+    /// The target class, `*` or landmark.
     pub target: Target,
 }
 
 impl Atom {
-    /// Build an atom.
+    /// An atom with the relation's default quantifier.
     pub fn new(rel: Relation, subject: impl Into<String>, target: Target) -> Self {
         Atom {
             rel,
             subject: subject.into(),
+            quant: rel.default_quant(),
             target,
         }
+    }
+    /// An atom with an explicit quantifier.
+    pub fn quantified(
+        rel: Relation,
+        subject: impl Into<String>,
+        quant: Quant,
+        target: Target,
+    ) -> Self {
+        Atom {
+            rel,
+            subject: subject.into(),
+            quant,
+            target,
+        }
+    }
+    /// Whether the quantifier is the relation's default (printed implicitly).
+    pub fn has_default_quant(&self) -> bool {
+        self.quant == self.rel.default_quant()
     }
 }
 
 impl fmt::Display for Atom {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}({}, {})", self.rel, self.subject, self.target)
+        if self.has_default_quant() {
+            write!(f, "{}({}, {})", self.rel, self.subject, self.target)
+        } else {
+            write!(
+                f,
+                "{}({}, {} {})",
+                self.rel, self.subject, self.quant, self.target
+            )
+        }
     }
 }
 
@@ -106,14 +145,18 @@ impl Formula {
     }
 
     /// The subject class of the first atom (every atom of a checked rule has
-    /// the same one).
+    /// the same one); `""` for a formula without atoms (an empty `And`/`Or`
+    /// built in code).
     pub fn subject(&self) -> &str {
         let mut f = self;
         loop {
             match f {
                 Formula::Atom(a) => return &a.subject,
                 Formula::Not(g) => f = g,
-                Formula::And(v) | Formula::Or(v) => f = &v[0],
+                Formula::And(v) | Formula::Or(v) => match v.first() {
+                    Some(g) => f = g,
+                    None => return "",
+                },
             }
         }
     }
@@ -171,6 +214,34 @@ impl Strength {
     }
 }
 
+/// Who a rule is about (§11.4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Scope {
+    /// The ordinary rule: every object of the subject class must satisfy
+    /// the formula (one term per object in the score). `every A:` parses to
+    /// this.
+    #[default]
+    Each,
+    /// A rule about the whole scene: `Q A: FORMULA` holds when the number of
+    /// subject objects satisfying the formula meets `Q` (never
+    /// [`Quant::Every`], which is [`Scope::Each`]).
+    Scene(Quant),
+}
+
+impl Scope {
+    /// `Scope::Each` for `every`, else `Scope::Scene(q)`.
+    pub fn of(q: Quant) -> Scope {
+        match q {
+            Quant::Every => Scope::Each,
+            q => Scope::Scene(q),
+        }
+    }
+    /// Whether this is a scene-level rule.
+    pub fn is_scene(&self) -> bool {
+        matches!(self, Scope::Scene(_))
+    }
+}
+
 /// Where a parsed rule came from (absent for rules built in code).
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct RuleOrigin {
@@ -182,6 +253,8 @@ pub struct RuleOrigin {
     pub modifier: Option<Span>,
     /// Each atom's span, in [`Formula::atoms`] order.
     pub atoms: Vec<Span>,
+    /// The scene quantifier `Q A:`, if written.
+    pub scope: Option<Span>,
 }
 
 /// A named rule: `rule NAME [MODIFIER]: FORMULA`.
@@ -191,6 +264,8 @@ pub struct Rule {
     pub name: String,
     /// Weight, posterior or hard.
     pub strength: Strength,
+    /// Per object, or about the whole scene.
+    pub scope: Scope,
     /// The formula.
     pub formula: Formula,
     /// Comment lines written above the rule by the printer (without `# `).
@@ -206,10 +281,16 @@ impl Rule {
         Rule {
             name: name.into(),
             strength: Strength::default(),
+            scope: Scope::Each,
             formula,
             comments: Vec::new(),
             origin: None,
         }
+    }
+    /// The same rule with another scope.
+    pub fn with_scope(mut self, s: Scope) -> Self {
+        self.scope = s;
+        self
     }
     /// The same rule with another strength.
     pub fn with_strength(mut self, s: Strength) -> Self {
@@ -222,7 +303,10 @@ impl Rule {
     }
     /// Name, strength and formula equal (ignores spans and comments).
     pub fn same_rule(&self, other: &Rule) -> bool {
-        self.name == other.name && self.strength == other.strength && self.formula == other.formula
+        self.name == other.name
+            && self.strength == other.strength
+            && self.scope == other.scope
+            && self.formula == other.formula
     }
 }
 
@@ -247,6 +331,20 @@ impl RuleSet {
                 .iter()
                 .zip(&other.rules)
                 .all(|(a, b)| a.same_rule(b))
+    }
+    /// Every landmark id named by any atom, sorted.
+    pub fn landmarks(&self) -> Vec<String> {
+        let mut out: Vec<String> = Vec::new();
+        for r in &self.rules {
+            for a in r.formula.atoms() {
+                if let Target::Landmark(id) = &a.target {
+                    out.push(id.clone());
+                }
+            }
+        }
+        out.sort();
+        out.dedup();
+        out
     }
     /// Every class named by any atom (subjects and targets), sorted.
     pub fn classes(&self) -> Vec<String> {

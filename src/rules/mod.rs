@@ -11,7 +11,7 @@ mod diagnostic;
 mod parser;
 mod printer;
 
-pub use ast::{Atom, Formula, Rule, RuleOrigin, RuleSet, Span, Strength, Target};
+pub use ast::{Atom, Formula, Quant, Rule, RuleOrigin, RuleSet, Scope, Span, Strength, Target};
 pub use check::check_classes;
 pub use diagnostic::{Diagnostic, RulesError};
 pub use parser::parse_rules;

@@ -202,6 +202,7 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
     let rule = Rule {
         name,
         strength,
+        scope: crate::rules::Scope::Each,
         formula,
         comments: Vec::new(),
         origin: Some(RuleOrigin {
@@ -209,6 +210,7 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
             name: name_span,
             modifier: modifier_span,
             atoms: atom_spans,
+            scope: None,
         }),
     };
     // A rule with errors still takes part in the duplicate-name check; the

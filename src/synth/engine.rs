@@ -329,7 +329,9 @@ impl Engine {
                     let x = vars[*var];
                     solver.new_literal_for_predicate(predicate![x >= *k as i32], tag)
                 }
-                BoolDef::DiffGe { .. } | BoolDef::And(_) => solver.new_literal(),
+                BoolDef::DiffGe { .. } | BoolDef::And(_) | BoolDef::AtLeast { .. } => {
+                    solver.new_literal()
+                }
             });
         }
         let guard_lits: Vec<Literal> = if guarded {
@@ -376,7 +378,7 @@ impl Engine {
             let cat = match def {
                 BoolDef::Ge { .. } => 0,
                 BoolDef::DiffGe { .. } => 1,
-                BoolDef::And(_) => 2,
+                BoolDef::And(_) | BoolDef::AtLeast { .. } => 2,
             };
             let l = lits[i];
             match def {
@@ -399,6 +401,16 @@ impl Engine {
                     let mut big: Vec<Predicate> = vec![l.get_true_predicate()];
                     big.extend(cs.iter().map(|c| (!*c).get_true_predicate()));
                     solver.add_clause(big, tag);
+                }
+                BoolDef::AtLeast { lits: counted, k } => {
+                    // l ⇔ Σ counted ≥ k  ⇔  Σ −[counted] ≤ −k
+                    let terms: Vec<AffineView<DomainId>> = counted
+                        .iter()
+                        .map(|&c| conv(&lits, c).get_integer_variable().scaled(-1))
+                        .collect();
+                    solver
+                        .add_constraint(less_than_or_equals(terms, -(*k as i32), tag))
+                        .reify(l);
                 }
             }
             tcat[cat] += tt.elapsed().as_secs_f64() * 1e3;

@@ -27,37 +27,40 @@
 //! constant it is `gx_a ≥ ⌈(d + x_b − space.x)/grid⌉`; with `a` constant it is
 //! `gx_b ≤ ⌊(x_a − space.x − d)/grid⌋`. Sizes need not be multiples of the grid.
 //!
-//! # Relations (SPEC §3)
+//! - `AtLeast { lits, k }`: at least `k` of `lits` hold (a reified count).
 //!
-//! With `s_N(a,b) ⇔ a.y ≥ b.y2 + 1` ("strictly north, with a gap"):
-//! `DR_N(a,b) ⇔ a.y − b.y ≥ b.h`;
-//! `EC_N(a,b) ⇔ DR_N(a,b) ∧ ¬s_N(a,b) ∧ xmeet(a,b)` where point contact is
-//! `xmeet ⇔ ¬s_E(a,b) ∧ ¬s_W(a,b)` and edge contact is
-//! `xmeet ⇔ ¬DR_E(a,b) ∧ ¬DR_W(a,b)`. Non-overlap of a pair is the clause
-//! `DR_N ∨ DR_S ∨ DR_E ∨ DR_W` over the same literals.
+//! # Relations (SPEC §3, §11.1)
 //!
-//! # Rules (SPEC §4, §6)
+//! A pairwise relation literal is read straight off the relation's entry in
+//! [`crate::relations::TABLE`]: its condition is a disjunction of
+//! conjunctions of comparisons `lhs OP rhs` between edges of the two
+//! objects, and each comparison is a bound on a coordinate difference
+//! (`a.y ≥ b.y2` is `y_a − y_b ≥ h_b`; `a.x2 < b.x2` is
+//! `x_b − x_a ≥ w_a − w_b + 1`; `==` is both `≥` and `≤`). So the model's
+//! literals are, by construction, exactly the geometry of the table.
+//! Non-overlap of a pair is the clause `DR_N ∨ DR_S ∨ DR_E ∨ DR_W` over the
+//! same literals.
 //!
-//! A class atom of object `o` is the AND (DR) / OR (EC) over every other
-//! object of the target class, all objects counted (after synthesis every
-//! object is placed). Each (object, rule) pair is one reified formula literal.
-//! Hard rules give literals that must be true; soft rules give weighted
-//! objective terms over all objects of the subject class (already-placed
-//! ones included).
+//! # Rules (SPEC §4, §6, §11)
+//!
+//! A class atom `REL(o, Q B)` of object `o` counts the pair literals
+//! `REL(o, b)` over every other object `b` of the target (all objects
+//! counted: after synthesis every object is placed; a landmark is the one
+//! fixed object with that id): `every` is their AND, `some` their OR, `no`
+//! the AND of their negations, `at least K` an `AtLeast` count (folded to
+//! AND/OR/constants where it can be), `at most K` the negation of
+//! `at least K+1`. Each (object, rule) pair is one reified formula literal.
+//! A scene-level rule `Q A: φ` applies the same counting to the literals of
+//! `φ` over every `A` object and gives one literal. Hard rules give literals
+//! that must be true; soft rules give weighted objective terms over all
+//! objects of the subject class (already-placed ones included), or one term
+//! for a scene-level rule.
 
-use crate::relations::{Contact, Dir, Kind, Relation};
-use crate::rules::{Formula, RuleSet, Target};
+pub use crate::relations::Axis;
+use crate::relations::{Cmp, Contact, Dir, Edge, Kind, Op, Quant, Relation, Side};
+use crate::rules::{Formula, RuleSet, Scope, Target};
 use crate::scene::Scene;
 use std::collections::HashMap;
-
-/// An axis of the plane.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Axis {
-    /// East–west.
-    X,
-    /// North–south.
-    Y,
-}
 
 /// A literal: a constant or a (possibly negated) model Boolean.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -125,6 +128,15 @@ pub enum BoolDef {
     /// Conjunction of at least two non-constant, sorted, distinct literals
     /// of Booleans defined earlier.
     And(Vec<Lit>),
+    /// At least `k` of `lits` hold, with `2 ≤ k < lits.len()`; `lits` are
+    /// non-constant literals of Booleans defined earlier, sorted, repeats
+    /// counted with their multiplicity.
+    AtLeast {
+        /// The counted literals.
+        lits: Vec<Lit>,
+        /// The threshold.
+        k: u32,
+    },
 }
 
 /// An integer grid-index variable with domain `0..=ub`.
@@ -178,13 +190,14 @@ pub struct HardRule {
     pub lits: Vec<Lit>,
 }
 
-/// One objective term: `weight · [lit]` (soft rule `rule` on `object`).
+/// One objective term: `weight · [lit]` (soft rule `rule` on `object`, or
+/// on the whole scene for a scene-level rule).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SoftTerm {
     /// Index in the rule set.
     pub rule: usize,
-    /// Subject object.
-    pub object: usize,
+    /// Subject object; `None` for a scene-level rule.
+    pub object: Option<usize>,
     /// Whether the object satisfies the rule.
     pub lit: Lit,
     /// The rule's real weight.
@@ -233,6 +246,9 @@ pub struct Model {
     pub too_large: Vec<usize>,
     interned: HashMap<BoolDef, u32>,
 }
+
+/// Atom literals already built: `(object, relation, quantifier, target)`.
+type AtomCache = HashMap<(usize, Relation, Quant, Target), Lit>;
 
 fn ceil_div(a: i64, b: i64) -> i64 {
     -((-a).div_euclid(b))
@@ -425,42 +441,85 @@ impl Model {
         !self.and(neg)
     }
 
-    /// The pairwise relation `rel(a, b)` between two distinct objects.
+    /// The pairwise relation `rel(a, b)` between two distinct objects: the
+    /// relation's condition in [`crate::relations::TABLE`], literally.
     pub fn pair(&mut self, rel: Relation, a: usize, b: usize, contact: Contact) -> Lit {
-        let (axis, cross) = match rel.dir {
-            Dir::N | Dir::S => (Axis::Y, Axis::X),
-            Dir::E | Dir::W => (Axis::X, Axis::Y),
-        };
-        // "a after b on the axis" (N or E) vs "a before b" (S or W).
-        let (p, q) = match rel.dir {
-            Dir::N | Dir::E => (a, b),
-            Dir::S | Dir::W => (b, a),
-        };
-        // DR: p − q ≥ size(q)
-        let sq = self.size(q, axis);
-        let dr = self.diff_ge(axis, p, q, sq);
-        match rel.kind {
-            Kind::DR => dr,
-            Kind::EC => {
-                let gap = self.diff_ge(axis, p, q, sq + 1);
-                let meet = match contact {
-                    Contact::Point => {
-                        let (sa, sb) = (self.size(a, cross), self.size(b, cross));
-                        let g1 = self.diff_ge(cross, a, b, sb + 1);
-                        let g2 = self.diff_ge(cross, b, a, sa + 1);
-                        vec![!g1, !g2]
-                    }
-                    Contact::Edge => {
-                        let (sa, sb) = (self.size(a, cross), self.size(b, cross));
-                        let d1 = self.diff_ge(cross, a, b, sb);
-                        let d2 = self.diff_ge(cross, b, a, sa);
-                        vec![!d1, !d2]
-                    }
-                };
-                let mut all = vec![dr, !gap];
-                all.extend(meet);
-                self.and(all)
+        let cond = rel.def().condition(contact);
+        let mut disjuncts = Vec::with_capacity(cond.len());
+        for conj in cond {
+            let mut parts = Vec::with_capacity(conj.len() + 1);
+            for c in conj.iter() {
+                self.cmp(c, a, b, &mut parts);
             }
+            disjuncts.push(self.and(parts));
+        }
+        self.or(disjuncts)
+    }
+
+    /// The literals whose conjunction is comparison `c` on the pair `(a, b)`.
+    fn cmp(&mut self, c: &Cmp, a: usize, b: usize, out: &mut Vec<Lit>) {
+        let obj = |s: Side| match s {
+            Side::A => a,
+            Side::B => b,
+        };
+        let axis = c.lhs.1.axis();
+        let (p, q) = (obj(c.lhs.0), obj(c.rhs.0));
+        let off = |m: &Self, o: usize, e: Edge| if e.is_far() { m.size(o, axis) } else { 0 };
+        // lhs = coord(p) + op, rhs = coord(q) + oq.
+        let (op, oq) = (off(self, p, c.lhs.1), off(self, q, c.rhs.1));
+        match c.op {
+            Op::Ge => out.push(self.diff_ge(axis, p, q, oq - op)),
+            Op::Gt => out.push(self.diff_ge(axis, p, q, oq - op + 1)),
+            Op::Le => out.push(self.diff_ge(axis, q, p, op - oq)),
+            Op::Lt => out.push(self.diff_ge(axis, q, p, op - oq + 1)),
+            Op::Eq => {
+                out.push(self.diff_ge(axis, p, q, oq - op));
+                out.push(self.diff_ge(axis, q, p, op - oq));
+            }
+        }
+    }
+
+    /// At least `k` of `lits` (a multiset) hold, folded where it can be.
+    pub fn at_least(&mut self, lits: Vec<Lit>, k: u32) -> Lit {
+        let mut need = i64::from(k);
+        let mut v = Vec::with_capacity(lits.len());
+        for l in lits {
+            match l {
+                Lit::Const(true) => need -= 1,
+                Lit::Const(false) => {}
+                _ => v.push(l),
+            }
+        }
+        if need <= 0 {
+            return Lit::TRUE;
+        }
+        let n = v.len() as i64;
+        if need > n {
+            Lit::FALSE
+        } else if need == 1 {
+            self.or(v)
+        } else if need == n {
+            self.and(v)
+        } else {
+            v.sort_unstable();
+            self.intern(BoolDef::AtLeast {
+                lits: v,
+                k: need as u32,
+            })
+        }
+    }
+
+    /// The literal of quantifier `q` over `lits` (§11.2's table).
+    pub fn quantify(&mut self, q: Quant, lits: Vec<Lit>) -> Lit {
+        match q {
+            Quant::Every => self.and(lits),
+            Quant::Some => self.or(lits),
+            Quant::No => {
+                let neg = lits.into_iter().map(|l| !l).collect();
+                self.and(neg)
+            }
+            Quant::AtLeast(k) => self.at_least(lits, k),
+            Quant::AtMost(k) => !self.at_least(lits, k.saturating_add(1)),
         }
     }
 
@@ -520,31 +579,48 @@ impl Model {
     }
 
     fn post_rules(&mut self, problem: &Scene, rules: &RuleSet, contact: Contact) {
-        let mut cache: HashMap<(usize, Relation, Option<String>), Lit> = HashMap::new();
+        let mut cache: AtomCache = HashMap::new();
         for (ri, rule) in rules.rules.iter().enumerate() {
             let subject = rule.subject();
-            let mut hard = Vec::new();
+            let mut lits = Vec::new();
+            let mut objects = Vec::new();
             for (o, obj) in problem.objects.iter().enumerate() {
                 if obj.class != subject {
                     continue;
                 }
-                let lit = self.formula(&rule.formula, o, problem, contact, &mut cache);
-                if rule.strength.is_hard() {
-                    hard.push(lit);
-                } else {
-                    self.soft.push(SoftTerm {
-                        rule: ri,
-                        object: o,
-                        lit,
-                        weight: rule.strength.weight(),
-                    });
-                }
+                lits.push(self.formula(&rule.formula, o, problem, contact, &mut cache));
+                objects.push(o);
             }
-            if rule.strength.is_hard() {
-                self.hard.push(HardRule {
-                    rule: ri,
-                    lits: hard,
-                });
+            let hard = rule.strength.is_hard();
+            let weight = rule.strength.weight();
+            match rule.scope {
+                Scope::Each if hard => self.hard.push(HardRule { rule: ri, lits }),
+                Scope::Each => {
+                    for (lit, o) in lits.into_iter().zip(objects) {
+                        self.soft.push(SoftTerm {
+                            rule: ri,
+                            object: Some(o),
+                            lit,
+                            weight,
+                        });
+                    }
+                }
+                Scope::Scene(q) => {
+                    let lit = self.quantify(q, lits);
+                    if hard {
+                        self.hard.push(HardRule {
+                            rule: ri,
+                            lits: vec![lit],
+                        });
+                    } else {
+                        self.soft.push(SoftTerm {
+                            rule: ri,
+                            object: None,
+                            lit,
+                            weight,
+                        });
+                    }
+                }
             }
         }
     }
@@ -555,15 +631,11 @@ impl Model {
         o: usize,
         problem: &Scene,
         contact: Contact,
-        cache: &mut HashMap<(usize, Relation, Option<String>), Lit>,
+        cache: &mut AtomCache,
     ) -> Lit {
         match f {
             Formula::Atom(a) => {
-                let target = match &a.target {
-                    Target::Any => None,
-                    Target::Class(c) => Some(c.clone()),
-                };
-                let key = (o, a.rel, target);
+                let key = (o, a.rel, a.quant, a.target.clone());
                 if let Some(&l) = cache.get(&key) {
                     return l;
                 }
@@ -571,18 +643,21 @@ impl Model {
                     .objects
                     .iter()
                     .enumerate()
-                    .filter(|(b, ob)| *b != o && key.2.as_ref().is_none_or(|c| &ob.class == c))
+                    .filter(|(b, ob)| {
+                        *b != o
+                            && match &a.target {
+                                Target::Any => true,
+                                Target::Class(c) => &ob.class == c,
+                                Target::Landmark(id) => ob.fixed && &ob.id == id,
+                            }
+                    })
                     .map(|(b, _)| b)
                     .collect();
                 let lits: Vec<Lit> = others
                     .into_iter()
                     .map(|b| self.pair(a.rel, o, b, contact))
                     .collect();
-                let l = if a.rel.is_universal() {
-                    self.and(lits)
-                } else {
-                    self.or(lits)
-                };
+                let l = self.quantify(a.quant, lits);
                 cache.insert(key, l);
                 l
             }
@@ -613,6 +688,9 @@ impl Model {
                 BoolDef::Ge { var, k } => vals[*var] >= *k,
                 BoolDef::DiffGe { a, b, k } => vals[*a] - vals[*b] >= *k,
                 BoolDef::And(ls) => ls.iter().all(|l| l.value(&out)),
+                BoolDef::AtLeast { lits, k } => {
+                    lits.iter().filter(|l| l.value(&out)).count() >= *k as usize
+                }
             };
             out.push(v);
         }
