@@ -133,7 +133,8 @@ fn problem() -> Scene {
 fn main() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/shelf");
     let check = std::env::args().any(|a| a == "--check");
-    let intended_text = std::fs::read_to_string(dir.join("intended.rcc")).expect("read intended.rcc");
+    let intended_text =
+        std::fs::read_to_string(dir.join("intended.rcc")).expect("read intended.rcc");
     let intended = parse_rules(&intended_text).expect("intended.rcc parses");
     let demos = demos();
     for (i, d) in demos.iter().enumerate() {
@@ -147,7 +148,10 @@ fn main() {
                 .filter(|r| r.satisfied != r.subjects)
                 .map(|r| format!("{} {:?}", r.name, r.violators))
                 .collect();
-            assert!(broken.is_empty(), "demonstration {i} ({contact}) breaks {broken:?}");
+            assert!(
+                broken.is_empty(),
+                "demonstration {i} ({contact}) breaks {broken:?}"
+            );
         }
     }
     let problem = problem();
@@ -160,7 +164,11 @@ fn main() {
         let path = dir.join(name);
         if check {
             let old = std::fs::read_to_string(&path).unwrap_or_default();
-            assert!(old == text, "{} is stale; rerun gen_shelf_demos", path.display());
+            assert!(
+                old == text,
+                "{} is stale; rerun gen_shelf_demos",
+                path.display()
+            );
         } else {
             std::fs::write(&path, text).expect("write");
             println!("wrote {}", path.display());

@@ -65,6 +65,7 @@ pub mod eval;
 pub mod infer;
 pub mod relations;
 pub mod render;
+pub mod resemblance;
 pub mod rules;
 pub mod scene;
 pub mod studio;

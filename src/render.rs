@@ -17,6 +17,7 @@
 
 use crate::eval::{evaluate, Evaluation};
 use crate::relations::Contact;
+use crate::resemblance::Likeness;
 use crate::rules::RuleSet;
 use crate::scene::{Object, Scene};
 use std::collections::HashMap;
@@ -35,6 +36,10 @@ pub struct RenderOptions {
     pub scale: f64,
     /// A title written above the table (e.g. the scene's file name).
     pub title: Option<String>,
+    /// Positions shown in like-scenes (SPEC §12), drawn faintly under the
+    /// layout in each class's colour: a heat map of where each class was
+    /// shown.
+    pub like: Option<Likeness>,
 }
 
 impl Default for RenderOptions {
@@ -43,6 +48,7 @@ impl Default for RenderOptions {
             contact: Contact::default(),
             scale: 1.0,
             title: None,
+            like: None,
         }
     }
 }
@@ -443,6 +449,19 @@ pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) 
             });
         }
     }
+    if opts.like.is_some() {
+        lines.push(Line {
+            dy: 20.0,
+            parts: vec![text(
+                0.0,
+                11.0,
+                false,
+                "#666666",
+                false,
+                "shaded: where the demonstrations put each class".into(),
+            )],
+        });
+    }
     let mut lw: f64 = 120.0;
     for l in &lines {
         let mut w = 0.0;
@@ -562,6 +581,41 @@ pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) 
         let y = ty + (sp.y2_f() - r.y2() as f64) * s;
         Some((x, y, r.w as f64 * s, r.h as f64 * s))
     };
+    // Where the like-scenes put each class: faint, stacked (more often
+    // shown is darker), under everything else.
+    if let Some(like) = &opts.like {
+        out.push_str("<g class=\"like\">\n");
+        for (class, w, h, positions) in like.shown() {
+            let fill = colours
+                .get(class)
+                .copied()
+                .or_else(|| class_colour(class))
+                .unwrap_or(PALETTE[0]);
+            for &(x, y) in positions {
+                let probe = Object {
+                    id: String::new(),
+                    class: class.to_string(),
+                    x: Some(x),
+                    y: Some(y),
+                    width: w,
+                    height: h,
+                    fixed: false,
+                };
+                if let Some((x, y, w, h)) = to_screen(&probe) {
+                    let _ = writeln!(
+                        out,
+                        "<rect class=\"shown\" data-class=\"{}\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{fill}\" fill-opacity=\"0.16\"/>",
+                        esc(class),
+                        n(x),
+                        n(y),
+                        n(w),
+                        n(h)
+                    );
+                }
+            }
+        }
+        out.push_str("</g>\n");
+    }
     out.push_str("<g class=\"objects\">\n");
     for o in &scene.objects {
         if let Some((x, y, w, h)) = to_screen(o) {

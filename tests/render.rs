@@ -252,3 +252,38 @@ fn box_packing_pictures() {
 fn s_small() -> Scene {
     scene()
 }
+
+/// `--like`: every movable object of the like-scenes is shaded in its
+/// class's colour under the layout (a position shown twice, twice); fixed
+/// objects are not.
+#[test]
+fn like_scenes_are_shaded_under_the_layout() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing");
+    let demos =
+        scenes_from_json(&std::fs::read_to_string(dir.join("demos.json")).unwrap()).unwrap();
+    let problem =
+        Scene::from_json(&std::fs::read_to_string(dir.join("problem.json")).unwrap()).unwrap();
+    let like = rccpack::resemblance::Likeness::new(&demos);
+    let svg = render_svg(
+        &problem,
+        None,
+        &RenderOptions {
+            like: Some(like),
+            ..Default::default()
+        },
+    );
+    let movable: usize = demos
+        .iter()
+        .map(|d| d.objects.iter().filter(|o| !o.fixed).count())
+        .sum();
+    assert_eq!(svg.matches("class=\"shown\"").count(), movable);
+    for class in ["R", "G", "B"] {
+        assert!(svg.contains(&format!("data-class=\"{class}\"")));
+    }
+    assert!(!svg.contains("data-class=\"W\""));
+    assert!(svg.contains("shaded: where the demonstrations put each class"));
+    // The shading comes before (under) the objects.
+    assert!(svg.find("class=\"like\"").unwrap() < svg.find("class=\"objects\"").unwrap());
+    let plain = render_svg(&problem, None, &RenderOptions::default());
+    assert!(!plain.contains("class=\"shown\""));
+}

@@ -3,6 +3,7 @@ use anyhow::Result;
 use clap::Args;
 use rccpack::relations::Contact;
 use rccpack::render::{render_to_path, RenderOptions};
+use rccpack::resemblance::Likeness;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -26,6 +27,10 @@ pub struct RenderArgs {
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
     #[arg(long, default_value = "point")]
     contact: Contact,
+    /// Shade where these scenes (one scene or an array, usually the
+    /// demonstrations) put each class, under the layout (SPEC §12).
+    #[arg(long, value_name = "SCENES.json")]
+    like: Option<PathBuf>,
 }
 
 pub fn run(a: RenderArgs) -> Result<ExitCode> {
@@ -63,6 +68,10 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
         contact: a.contact,
         scale: a.scale,
         title: Some(a.scene.display().to_string()),
+        like: match &a.like {
+            Some(p) => Some(Likeness::new(&read_scenes(p)?.0)),
+            None => None,
+        },
     };
     render_to_path(&scene, rules.as_ref(), &opts, &a.output)
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.output.display()))?;

@@ -116,6 +116,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
                 contact: a.contact,
                 scale: 1.0,
                 title: Some(format!("{} — synthesised", a.dir.display())),
+                like: None,
             };
             render_to_path(scene, Some(&rules), &ropts, &png)
                 .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;
