@@ -13,6 +13,7 @@ use std::time::Duration;
 
 pub mod brute_force;
 pub mod engine;
+pub mod like;
 pub mod model;
 pub mod verify;
 pub mod weights;
