@@ -6,12 +6,13 @@
 //! short summary on stdout. `OUT` defaults to `DIR`.
 
 use super::learn::learn_files;
-use super::{read_scene, Reported};
+use super::{read_scene, read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::infer::LearnParams;
 use rccpack::relations::Contact;
 use rccpack::render::{render_to_path, RenderOptions};
+use rccpack::resemblance::Likeness;
 use rccpack::rules::check_classes;
 use rccpack::synth::{synthesize, Status, SynthError, SynthOptions};
 use std::path::{Path, PathBuf};
@@ -41,6 +42,10 @@ pub struct RunArgs {
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
     #[arg(long, default_value = "point")]
     contact: Contact,
+    /// Among the best-scoring layouts, prefer the one most like these scenes
+    /// (SPEC §12): by default the task's demonstrations; `none` turns it off.
+    #[arg(long, value_name = "SCENES.json|none")]
+    like: Option<PathBuf>,
 }
 
 fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
@@ -89,10 +94,16 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
             problem_path.display()
         ))
     })?;
+    let like = match a.like.as_deref() {
+        Some(p) if p == Path::new("none") => None,
+        Some(p) => Some(Likeness::new(&read_scenes(p)?.0)),
+        None => Some(Likeness::new(&read_scenes(&a.dir.join("demos.json"))?.0)),
+    };
     let opts = SynthOptions {
         contact: a.contact,
         time_limit: Some(Duration::from_secs_f64(a.time_limit)),
         seed: a.seed,
+        like: like.clone(),
         ..SynthOptions::default()
     };
     let result = synthesize(&problem, &rules, &opts).map_err(|e| match e {
@@ -116,7 +127,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
                 contact: a.contact,
                 scale: 1.0,
                 title: Some(format!("{} — synthesised", a.dir.display())),
-                like: None,
+                like,
             };
             render_to_path(scene, Some(&rules), &ropts, &png)
                 .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;
@@ -127,7 +138,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
                 .map(|r| format!("{} {}/{}", r.name, r.satisfied, r.subjects))
                 .collect();
             println!(
-                "placed {} objects: {} score {:.6} (weight {:.3} / {:.3}) in {:.1} ms -> {}, {}",
+                "placed {} objects: {} score {:.6} (weight {:.3} / {:.3}){} in {:.1} ms -> {}, {}",
                 problem.objects.iter().filter(|o| !o.is_placed()).count(),
                 match result.status {
                     Status::Optimal => "optimal,",
@@ -136,6 +147,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
                 ev.score,
                 ev.satisfied_weight,
                 ev.total_weight,
+                super::synth::resemblance_text(result.resemblance),
                 result.stats.time_ms,
                 out.join("solution.json").display(),
                 png.display()

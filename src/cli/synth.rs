@@ -1,9 +1,12 @@
-use super::{read_rules, read_scene, Reported};
+use super::{read_rules, read_scene, read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::eval::RuleReport;
 use rccpack::relations::Contact;
-use rccpack::synth::{synthesize, Progress, ProgressFn, Status, SynthError, SynthOptions};
+use rccpack::resemblance::Likeness;
+use rccpack::synth::{
+    synthesize, Progress, ProgressFn, Resemblance, Status, SynthError, SynthOptions,
+};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -51,6 +54,10 @@ pub struct SynthArgs {
     /// Do not post the redundant cumulative relaxations.
     #[arg(long)]
     no_redundant: bool,
+    /// Among the best-scoring layouts, return one most like these scenes
+    /// (one scene or an array, usually the demonstrations; SPEC §12).
+    #[arg(long, value_name = "SCENES.json")]
+    like: Option<PathBuf>,
 }
 
 #[derive(serde::Serialize)]
@@ -67,6 +74,8 @@ struct Report<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     conflict: Option<&'a rccpack::synth::Conflict>,
     rules: &'a [RuleReport],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    resemblance: Option<Resemblance>,
 }
 
 pub fn run(a: SynthArgs) -> Result<ExitCode> {
@@ -107,6 +116,10 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         redundant: !a.no_redundant,
         cancel: Some(cancel),
         progress,
+        like: match &a.like {
+            Some(p) => Some(Likeness::new(&read_scenes(p)?.0)),
+            None => None,
+        },
         ..SynthOptions::default()
     };
     let result = synthesize(&problem, &rules, &opts).map_err(|e| match e {
@@ -126,6 +139,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             time_to_best_ms: result.stats.time_to_best_ms,
             conflict: result.conflict.as_ref(),
             rules: ev.map(|e| e.rules.as_slice()).unwrap_or(&[]),
+            resemblance: result.resemblance,
         };
         let text = serde_json::to_string_pretty(&report)? + "\n";
         std::fs::write(path, text).map_err(|e| {
@@ -151,7 +165,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             if !a.quiet {
                 let e = ev.expect("a solution has an evaluation");
                 eprintln!(
-                    "{}: score {:.6} ({} / {}), {:.1} ms, {} nodes",
+                    "{}: score {:.6} ({} / {}){}, {:.1} ms, {} nodes",
                     match result.status {
                         Status::Optimal => "optimal",
                         _ => "feasible (limit reached)",
@@ -159,6 +173,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
                     e.score,
                     e.satisfied_weight,
                     e.total_weight,
+                    resemblance_text(result.resemblance),
                     result.stats.time_ms,
                     result.stats.nodes
                 );
@@ -191,5 +206,21 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             );
             Ok(ExitCode::from(3))
         }
+    }
+}
+
+/// `, resemblance cost N (proven minimal)` for the summary lines.
+pub fn resemblance_text(r: Option<Resemblance>) -> String {
+    match r {
+        None => String::new(),
+        Some(r) => format!(
+            ", resemblance cost {} ({})",
+            r.cost,
+            if r.proven {
+                "proven minimal"
+            } else {
+                "not proven minimal"
+            }
+        ),
     }
 }

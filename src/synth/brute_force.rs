@@ -21,6 +21,7 @@
 
 use crate::eval::Evaluator;
 use crate::relations::Contact;
+use crate::resemblance::Likeness;
 use crate::rules::RuleSet;
 use crate::scene::{Rect, Scene};
 
@@ -38,6 +39,10 @@ pub struct BruteResult {
     pub best_numerator: f64,
     /// One optimal complete scene, when feasible.
     pub best: Option<Scene>,
+    /// With like-scenes: the smallest resemblance cost among the layouts of
+    /// the best numerator (the lexicographic optimum of SPEC §12); 0
+    /// without.
+    pub best_cost: u64,
     /// Complete non-overlapping layouts handed to the evaluator.
     pub layouts_checked: u64,
     /// How many of those kept every hard rule.
@@ -97,6 +102,19 @@ pub fn solve(
     solve_with_limit(problem, rules, contact, MAX_LAYOUTS)
 }
 
+/// Exhaustively solve `problem` for the lexicographic objective of SPEC
+/// §12: the largest numerator, then the smallest resemblance cost
+/// ([`Likeness::cost`], the one resemblance function).
+pub fn solve_like(
+    problem: &Scene,
+    rules: &RuleSet,
+    contact: Contact,
+    like: &Likeness,
+    limit: u128,
+) -> Result<BruteResult, BruteError> {
+    run(problem, rules, contact, Some(like), limit)
+}
+
 /// Exhaustively solve `problem`, refusing when the product of domain sizes
 /// exceeds `limit`.
 ///
@@ -107,6 +125,16 @@ pub fn solve_with_limit(
     problem: &Scene,
     rules: &RuleSet,
     contact: Contact,
+    limit: u128,
+) -> Result<BruteResult, BruteError> {
+    run(problem, rules, contact, None, limit)
+}
+
+fn run(
+    problem: &Scene,
+    rules: &RuleSet,
+    contact: Contact,
+    like: Option<&Likeness>,
     limit: u128,
 ) -> Result<BruteResult, BruteError> {
     problem
@@ -136,6 +164,8 @@ pub fn solve_with_limit(
     let mut search = Search {
         rules,
         contact,
+        like,
+        problem,
         scene: problem.clone(),
         free: &free,
         domains: &domains,
@@ -144,6 +174,7 @@ pub fn solve_with_limit(
             feasible: false,
             best_numerator: f64::NEG_INFINITY,
             best: None,
+            best_cost: 0,
             layouts_checked: 0,
             layouts_feasible: 0,
         },
@@ -155,6 +186,8 @@ pub fn solve_with_limit(
 struct Search<'a> {
     rules: &'a RuleSet,
     contact: Contact,
+    like: Option<&'a Likeness>,
+    problem: &'a Scene,
     scene: Scene,
     free: &'a [usize],
     domains: &'a [Vec<Rect>],
@@ -191,9 +224,14 @@ impl Search<'_> {
         }
         self.result.layouts_feasible += 1;
         let num = ev.satisfied_weight;
-        if !self.result.feasible || approx_gt(num, self.result.best_numerator) {
+        let cost = self.like.map_or(0, |l| l.cost(self.problem, &self.scene));
+        let better = !self.result.feasible
+            || approx_gt(num, self.result.best_numerator)
+            || (approx_eq(num, self.result.best_numerator) && cost < self.result.best_cost);
+        if better {
             self.result.feasible = true;
             self.result.best_numerator = num;
+            self.result.best_cost = cost;
             self.result.best = Some(self.scene.clone());
         }
     }

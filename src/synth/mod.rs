@@ -5,6 +5,7 @@
 
 use crate::eval::Evaluation;
 use crate::relations::Contact;
+use crate::resemblance::Likeness;
 use crate::rules::RuleSet;
 use crate::scene::Scene;
 use std::sync::atomic::AtomicBool;
@@ -41,6 +42,9 @@ pub struct SynthOptions {
     pub strategy: Strategy,
     /// Called with every improving layout (e.g. to print progress).
     pub progress: Option<ProgressFn>,
+    /// The second objective (SPEC §12): among the layouts with the best
+    /// score, one most like these positions (`synth --like`).
+    pub like: Option<Likeness>,
 }
 
 /// An improving layout found during the search.
@@ -74,6 +78,7 @@ impl Default for SynthOptions {
             cancel: None,
             strategy: Strategy::default(),
             progress: None,
+            like: None,
         }
     }
 }
@@ -132,6 +137,18 @@ pub struct SynthResult {
     pub conflict: Option<Conflict>,
     /// Statistics.
     pub stats: SolveStats,
+    /// With [`SynthOptions::like`] and a layout: its resemblance cost.
+    pub resemblance: Option<Resemblance>,
+}
+
+/// The second objective's result (the report's `resemblance`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct Resemblance {
+    /// The layout's resemblance cost ([`Likeness::cost`]).
+    pub cost: u64,
+    /// Whether the cost is proven minimal among the layouts whose §6
+    /// numerator equals the returned layout's.
+    pub proven: bool,
 }
 
 /// Errors that are the input's fault (not infeasibility).
@@ -222,6 +239,7 @@ pub fn synthesize(
             evaluation: None,
             conflict: Some(conflict),
             stats,
+            resemblance: None,
         }
     };
     if !model.too_large.is_empty() {
@@ -237,8 +255,28 @@ pub fn synthesize(
     let coefs = weights::integer_weights(&weights).ok_or_else(|| {
         SynthError::BadProblem("rule weights are too large for the solver".into())
     })?;
+    let like_terms = match &opts.like {
+        Some(like) => {
+            let terms = like::like_terms(&model, problem, like)
+                .map_err(|e| SynthError::BadProblem(e.to_string()))?;
+            if !engine::like_fits(&terms) {
+                return Err(SynthError::BadProblem(
+                    "resemblance costs are too large for the solver; use a coarser grid or leave out --like"
+                        .into(),
+                ));
+            }
+            Some(terms)
+        }
+        None => None,
+    };
     let t_model = start.elapsed();
-    let mut engine = Engine::new(&model, opts.seed, false, Some(&coefs));
+    let mut engine = Engine::with_like(
+        &model,
+        opts.seed,
+        false,
+        Some(&coefs),
+        like_terms.clone().unwrap_or_default(),
+    );
     if std::env::var_os("RCCPACK_DEBUG").is_some() {
         eprintln!(
             "model {:.1} ms ({} vars, {} bools, {} clauses), engine {:.1} ms",
@@ -251,7 +289,7 @@ pub fn synthesize(
     }
     let mut first: Option<Duration> = None;
     let mut best: Option<Duration> = None;
-    let outcome = engine.optimise(&model, &limits, opts.strategy, &mut |vals| {
+    let mut on_incumbent = |vals: &[i64]| {
         let t = start.elapsed();
         first.get_or_insert(t);
         best = Some(t);
@@ -263,7 +301,23 @@ pub fn synthesize(
                 elapsed: t,
             });
         }
-    });
+    };
+    let mut outcome = engine.optimise(&model, &limits, opts.strategy, &mut on_incumbent);
+    // The second phase: with the numerator held, the cheapest layout.
+    let mut resemblance = None;
+    if let (Some(like), Some(terms)) = (&opts.like, &like_terms) {
+        if let OptOutcome::Optimal(v) | OptOutcome::Feasible(v) = &mut outcome {
+            let r = engine.minimise_cost(&model, std::mem::take(v), &limits, &mut on_incumbent);
+            debug_assert_eq!(r.cost, like::total_cost(terms, &r.values));
+            *v = r.values;
+            let cost = like.cost(problem, &model.scene(problem, v));
+            debug_assert_eq!(cost, r.cost);
+            resemblance = Some(Resemblance {
+                cost,
+                proven: r.proven,
+            });
+        }
+    }
     stats.nodes = engine.nodes();
     stats.conflicts = engine.conflicts();
     stats.time_to_first_ms = first.map(ms);
@@ -280,6 +334,7 @@ pub fn synthesize(
                 evaluation: None,
                 conflict: None,
                 stats,
+                resemblance: None,
             });
         }
         OptOutcome::Infeasible => {
@@ -301,6 +356,7 @@ pub fn synthesize(
         evaluation: Some(evaluation),
         conflict: None,
         stats,
+        resemblance,
     })
 }
 
