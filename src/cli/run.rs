@@ -12,7 +12,7 @@ use clap::Args;
 use rccpack::infer::LearnParams;
 use rccpack::relations::Contact;
 use rccpack::render::{render_to_path, RenderOptions};
-use rccpack::rules::check_classes;
+use rccpack::rules::{check_classes, check_landmarks};
 use rccpack::synth::{synthesize, Status, SynthError, SynthOptions};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -86,6 +86,12 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     check_classes(&rules, &problem).map_err(|e| {
         Reported(format!(
             "error: {}: the learned rules name a class the problem lacks: {e}",
+            problem_path.display()
+        ))
+    })?;
+    check_landmarks(&rules, &problem).map_err(|e| {
+        Reported(format!(
+            "error: {}: the learned rules name a landmark the problem lacks: {e}",
             problem_path.display()
         ))
     })?;
