@@ -934,6 +934,53 @@ fn several_diagnostics_collected() {
     assert_eq!(lcs, [(1, 10), (2, 9), (3, 6), (3, 22)]);
 }
 
+#[test]
+fn scope_subject_mismatch_error() {
+    let (m, lc) = err("rule a: at least 2 G: FL_N(G, G) | !(AL_S(G, *) & FL_S(B, G))");
+    assert_eq!(
+        m,
+        "rule `a` is about `G` (`at least 2 G:`), but this atom is about `B`: expected every atom's subject to be `G`"
+    );
+    assert_eq!(lc, (1, 51));
+    // Every atom about another class: the first one is reported, once.
+    let e = parse_rules("rule a: no G: FL_N(B, G) & FL_S(B, G)").unwrap_err();
+    assert_eq!(e.diagnostics.len(), 1);
+    assert_eq!(e.line_col("rule a: no G: FL_N(B, G) & FL_S(B, G)"), (1, 15));
+    // `every A:` fixes the subject too.
+    let (m, _) = err("rule a: every G: FL_N(B, G)");
+    assert!(m.starts_with("rule `a` is about `G` (`every G:`)"), "{m}");
+    // Without a scope the first edition's check applies.
+    let (m, _) = err("rule a: FL_N(G, G) & FL_N(B, G)");
+    assert!(m.starts_with("rule `a` mixes subject classes"), "{m}");
+}
+
+#[test]
+fn second_edition_diagnostics_collected() {
+    let src = "\
+rule a: EC_E(B, no @w) & DR_N(B, at least 1.5 G)
+rule b: some *: DR_N(@x, R)
+rule c: at most 70000 G: FL_N(G, G)
+rule d: some G: FL_N(G, G) & FL_N(R, G)
+";
+    let e = parse_rules(src).unwrap_err();
+    let got: Vec<_> = e
+        .diagnostics
+        .iter()
+        .map(|d| (d.line_col(src), d.message.split(':').next().unwrap_or("")))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ((1, 17), "quantifier `no` before landmark `@w`"),
+            ((1, 43), "bad count `1.5` after `at least`"),
+            ((2, 14), "expected a class name after `some`, found `*`"),
+            ((2, 22), "expected a class name, found `@x`"),
+            ((3, 17), "count `70000` after `at most` is too large"),
+            ((4, 30), "rule `d` is about `G` (`some G"),
+        ]
+    );
+}
+
 fn scene_rw() -> Scene {
     Scene::from_json(
         r#"{"space":{"width":100,"height":100},"objects":[
@@ -960,6 +1007,98 @@ fn check_classes_rejects_unknown() {
         "unknown class `Q` in rule `q`: the scene has classes R, W"
     );
     assert_eq!(e.line_col(src), (2, 22));
+}
+
+fn scene_walls() -> Scene {
+    // Ids as written, the §2 default `<class><index>` (W1, R4), an id that is
+    // no identifier (`w-3`) and a movable object.
+    Scene::from_json(
+        r#"{"space":{"width":100,"height":100},"objects":[
+            {"id":"w_west","class":"W","x":0,"y":0,"width":10,"height":100,"fixed":true},
+            {"class":"W","x":90,"y":0,"width":10,"height":100,"fixed":true},
+            {"id":"w-3","class":"W","x":10,"y":0,"width":80,"height":10,"fixed":true},
+            {"id":"r1","class":"R","x":20,"y":20,"width":10,"height":10},
+            {"class":"R","width":10,"height":10}]}"#,
+    )
+    .unwrap()
+}
+
+#[test]
+fn check_landmarks_accepts_fixed_objects() {
+    let rs = ok("rule a: some R: EC_E(R, @w_west) | !DR_W(R, @W1)\nrule b: DR_N(R, R)");
+    assert!(check_landmarks(&rs, &scene_walls()).is_ok());
+    // No landmarks: always fine, even without fixed objects.
+    assert!(check_landmarks(&ok(PILOT), &scene_rw()).is_ok());
+}
+
+#[test]
+fn check_landmarks_rejects_unknown_and_movable() {
+    let src = "rule a: EC_E(R, @w_west)\nrule b: FL_N(R, G) & (EC_W(R, @w_east) | EC_N(R, @r1))\n";
+    let rs = ok(src);
+    let e = check_landmarks(&rs, &scene_walls()).unwrap_err();
+    let got: Vec<_> = e
+        .diagnostics
+        .iter()
+        .map(|d| (d.line_col(src), d.message.as_str()))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            (
+                (2, 23),
+                "unknown landmark `@w_east` in rule `b`: expected the id of a fixed object; the scene's fixed objects are w_west, W1"
+            ),
+            (
+                (2, 42),
+                "landmark `@r1` in rule `b` is not a fixed object: expected the id of a fixed object; the scene's fixed objects are w_west, W1"
+            ),
+        ]
+    );
+    // The default id of a movable object is not a landmark either.
+    let e = check_landmarks(&ok("rule a: DR_N(R, @R4)"), &scene_walls()).unwrap_err();
+    assert!(e.diagnostics[0].message.starts_with("landmark `@R4` in rule `a` is not a fixed object"));
+}
+
+#[test]
+fn check_landmarks_without_fixed_objects() {
+    let rs = ok("rule a: no R: EC_E(R, @W9)");
+    let e = check_landmarks(&rs, &scene_rw()).unwrap_err();
+    assert_eq!(
+        e.diagnostics[0].message,
+        "unknown landmark `@W9` in rule `a`: expected the id of a fixed object; the scene has no fixed objects that can be landmarks"
+    );
+    assert_eq!(e.line_col("rule a: no R: EC_E(R, @W9)"), (1, 15));
+    // `W1` (the default id of scene_rw's wall) is there but movable.
+    let e = check_landmarks(&ok("rule a: EC_E(R, @W1)"), &scene_rw()).unwrap_err();
+    assert_eq!(
+        e.diagnostics[0].message,
+        "landmark `@W1` in rule `a` is not a fixed object: expected the id of a fixed object; the scene has no fixed objects that can be landmarks"
+    );
+    // An object whose id is not an identifier cannot be a landmark: it is
+    // not listed.
+    let e = check_landmarks(&ok("rule a: EC_E(R, @w_3)"), &scene_walls()).unwrap_err();
+    assert!(!e.diagnostics[0].message.contains("w-3"));
+}
+
+#[test]
+fn check_landmarks_in_code_built_rules() {
+    // Rules without an origin are reported at the start of the text.
+    let rule = Rule::new(
+        "code",
+        Formula::Atom(Atom::new(rel("EC_E"), "R", Target::Landmark("nowhere".into()))),
+    );
+    let e = check_landmarks(&RuleSet::new(vec![rule]), &scene_walls()).unwrap_err();
+    assert_eq!(e.diagnostics[0].span, Span::new(0, 0));
+    assert!(e.diagnostics[0].message.contains("`@nowhere` in rule `code`"));
+}
+
+#[test]
+fn render_unknown_landmark() {
+    let src = "rule a: some R: EC_E(R, @w_east)\n";
+    let text = check_landmarks(&ok(src), &scene_walls())
+        .unwrap_err()
+        .render("x.rcc", src, false);
+    assert_eq!(text, UNKNOWN_LANDMARK);
 }
 
 // ---- rendered diagnostics (exact text) ---------------------------------
@@ -1040,6 +1179,7 @@ fn render_long_line_falls_back_to_plain() {
     );
 }
 
+const UNKNOWN_LANDMARK: &str = "error: x.rcc:1:17: unknown landmark `@w_east` in rule `a`: expected the id of a fixed object; the scene's fixed objects are w_west, W1\n   ╭─[ x.rcc:1:17 ]\n   │\n 1 │ rule a: some R: EC_E(R, @w_east)\n   │                 ────────┬───────  \n   │                         ╰───────── unknown landmark `@w_east` in rule `a`: expected the id of a fixed object; the scene's fixed objects are w_west, W1\n───╯\n";
 const UNKNOWN_RELATION: &str = "error: x.rcc:1:9: unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W, FL_N, FL_S, FL_E, FL_W, AL_N, AL_S, AL_E, AL_W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_X(B, R)\n   │         ──┬─  \n   │           ╰─── unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W, FL_N, FL_S, FL_E, FL_W, AL_N, AL_S, AL_E, AL_W\n───╯\n";
 const MIXED_SUBJECTS: &str = "error: x.rcc:1:22: rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n   ╭─[ x.rcc:1:22 ]\n   │\n 1 │ rule a: DR_N(B, R) & DR_S(G, R)\n   │                      ─────┬────  \n   │                           ╰────── rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n───╯\n";
 const MISSING_COLON: &str = "error: x.rcc:1:8: expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n   ╭─[ x.rcc:1:8 ]\n   │\n 1 │ rule a DR_N(B, R)\n   │        ──┬─  \n   │          ╰─── expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n───╯\n";

@@ -80,7 +80,7 @@ pub fn check_landmarks(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError>
                 .as_ref()
                 .and_then(|o| o.atoms.get(i).copied())
                 .unwrap_or(Span::new(0, 0));
-            let movable = scene.objects.iter().any(|o| &o.id == id);
+            let movable = scene.objects.iter().any(|o| &o.id == id && !o.fixed);
             let message = if movable {
                 format!(
                     "landmark `@{id}` in rule `{}` is not a fixed object: expected the id of a fixed object; {listing}",
