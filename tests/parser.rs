@@ -498,10 +498,7 @@ fn spec_second_edition_example_parses_and_round_trips() {
     assert_eq!(rs.rules[3].scope, Scope::Scene(Quant::Some));
     assert_eq!(
         rs.rules[3].formula,
-        Formula::Or(vec![
-            lm("EC_E", "R", "w_west"),
-            lm("FL_E", "R", "w_west")
-        ])
+        Formula::Or(vec![lm("EC_E", "R", "w_west"), lm("FL_E", "R", "w_west")])
     );
     assert_eq!(rs.rules[4].scope, Scope::Scene(Quant::AtLeast(2)));
     assert_eq!(rs.rules[5].scope, Scope::Scene(Quant::AtMost(3)));
@@ -545,7 +542,9 @@ fn spec_second_edition_example_parses_and_round_trips() {
         "{printed}"
     );
     assert!(
-        printed.contains("rule few_west p 0.01: at most 3 B: AL_W(B, at least 1 *) & !DR_W(B, @w_east)\n"),
+        printed.contains(
+            "rule few_west p 0.01: at most 3 B: AL_W(B, at least 1 *) & !DR_W(B, @w_east)\n"
+        ),
         "{printed}"
     );
     assert!(ok(&printed).same_rules(&rs));
@@ -577,7 +576,10 @@ fn default_quantifier_is_implicit() {
 fn grammar_body() {
     // A body is an optional scope and a formula.
     assert_eq!(scope("rule x: DR_N(B, R)"), Scope::Each);
-    assert_eq!(scope("rule x: some B: DR_N(B, R)"), Scope::Scene(Quant::Some));
+    assert_eq!(
+        scope("rule x: some B: DR_N(B, R)"),
+        Scope::Scene(Quant::Some)
+    );
     // A missing body is a missing formula, with or without a scope.
     let (m, lc) = err("rule x:");
     assert_eq!(m, "expected a formula, found end of input");
@@ -799,9 +801,18 @@ fn grammar_kw_every_some_no_are_not_reserved() {
         assert!(ok(&print_rules(&rs)).same_rules(&rs));
     }
     // Words that only begin like a quantifier are classes.
-    assert_eq!(formula("rule x: DR_N(B, nothing)"), at("DR_N", "B", "nothing"));
-    assert_eq!(formula("rule x: DR_N(B, everyone)"), at("DR_N", "B", "everyone"));
-    assert_eq!(formula("rule x: DR_N(B, somebody)"), at("DR_N", "B", "somebody"));
+    assert_eq!(
+        formula("rule x: DR_N(B, nothing)"),
+        at("DR_N", "B", "nothing")
+    );
+    assert_eq!(
+        formula("rule x: DR_N(B, everyone)"),
+        at("DR_N", "B", "everyone")
+    );
+    assert_eq!(
+        formula("rule x: DR_N(B, somebody)"),
+        at("DR_N", "B", "somebody")
+    );
     let (m, _) = err("rule x: DR_N(B, no_one R)");
     assert_eq!(m, "expected `)`, found `R`");
     // A quantifier word followed by `(` at the start of a formula is a
@@ -845,7 +856,9 @@ fn grammar_count() {
         assert_eq!(f, atq("AL_N", "B", Quant::AtLeast(v), "R"), "{k}");
     }
     // Anything else is a located error at the count.
-    for bad in ["+2", "-1", "2.0", "2.", ".5", "1e1", "1E+1", "1e-1", "2x", "0x10"] {
+    for bad in [
+        "+2", "-1", "2.0", "2.", ".5", "1e1", "1E+1", "1e-1", "2x", "0x10",
+    ] {
         let src = format!("rule x: AL_N(B, at least {bad} R)");
         let (m, lc) = err(&src);
         assert_eq!(
@@ -854,7 +867,13 @@ fn grammar_count() {
         );
         assert_eq!(lc, (1, 26), "{bad}");
     }
-    for big in ["65536", "99999", "100000", "4294967296", "18446744073709551616"] {
+    for big in [
+        "65536",
+        "99999",
+        "100000",
+        "4294967296",
+        "18446744073709551616",
+    ] {
         let (m, lc) = err(&format!("rule x: AL_N(B, at most {big} R)"));
         assert_eq!(
             m,
@@ -892,7 +911,10 @@ fn all_sixteen_relations_take_every_quantifier() {
             (Quant::AtMost(5), "at most 5"),
         ] {
             let f = formula(&format!("rule x: {}(B, {text} G)", r.name()));
-            assert_eq!(f, Formula::Atom(Atom::quantified(r, "B", q, Target::Class("G".into()))));
+            assert_eq!(
+                f,
+                Formula::Atom(Atom::quantified(r, "B", q, Target::Class("G".into())))
+            );
             let printed = print_formula(&f);
             if q == r.default_quant() {
                 assert_eq!(printed, format!("{}(B, G)", r.name()));
@@ -1056,7 +1078,9 @@ fn check_landmarks_rejects_unknown_and_movable() {
     );
     // The default id of a movable object is not a landmark either.
     let e = check_landmarks(&ok("rule a: DR_N(R, @R4)"), &scene_walls()).unwrap_err();
-    assert!(e.diagnostics[0].message.starts_with("landmark `@R4` in rule `a` is not a fixed object"));
+    assert!(e.diagnostics[0]
+        .message
+        .starts_with("landmark `@R4` in rule `a` is not a fixed object"));
 }
 
 #[test]
@@ -1085,11 +1109,17 @@ fn check_landmarks_in_code_built_rules() {
     // Rules without an origin are reported at the start of the text.
     let rule = Rule::new(
         "code",
-        Formula::Atom(Atom::new(rel("EC_E"), "R", Target::Landmark("nowhere".into()))),
+        Formula::Atom(Atom::new(
+            rel("EC_E"),
+            "R",
+            Target::Landmark("nowhere".into()),
+        )),
     );
     let e = check_landmarks(&RuleSet::new(vec![rule]), &scene_walls()).unwrap_err();
     assert_eq!(e.diagnostics[0].span, Span::new(0, 0));
-    assert!(e.diagnostics[0].message.contains("`@nowhere` in rule `code`"));
+    assert!(e.diagnostics[0]
+        .message
+        .contains("`@nowhere` in rule `code`"));
 }
 
 #[test]
@@ -1189,7 +1219,10 @@ const UNKNOWN_CLASS: &str = "error: x.rcc:1:9: unknown class `B` in rule `a`: th
 
 #[test]
 fn render_quantified_landmark() {
-    assert_eq!(render("rule a: EC_E(B, some @w_west)\n"), QUANTIFIED_LANDMARK);
+    assert_eq!(
+        render("rule a: EC_E(B, some @w_west)\n"),
+        QUANTIFIED_LANDMARK
+    );
 }
 
 #[test]
@@ -1199,7 +1232,10 @@ fn render_bad_count() {
 
 #[test]
 fn render_count_too_large() {
-    assert_eq!(render("rule a: DR_N(B, at most 65536 G)\n"), COUNT_TOO_LARGE);
+    assert_eq!(
+        render("rule a: DR_N(B, at most 65536 G)\n"),
+        COUNT_TOO_LARGE
+    );
 }
 
 #[test]
@@ -1209,7 +1245,10 @@ fn render_missing_count() {
 
 #[test]
 fn render_scope_subject_mismatch() {
-    assert_eq!(render("rule a: some G: FL_N(G, G) & FL_N(B, G)\n"), SCOPE_SUBJECT_MISMATCH);
+    assert_eq!(
+        render("rule a: some G: FL_N(G, G) & FL_N(B, G)\n"),
+        SCOPE_SUBJECT_MISMATCH
+    );
 }
 
 #[test]
@@ -1229,7 +1268,10 @@ fn render_star_scope_subject() {
 
 #[test]
 fn render_landmark_scope_subject() {
-    assert_eq!(render("rule a: no @w: DR_N(B, R)\n"), LANDMARK_SCOPE_SUBJECT);
+    assert_eq!(
+        render("rule a: no @w: DR_N(B, R)\n"),
+        LANDMARK_SCOPE_SUBJECT
+    );
 }
 
 #[test]
