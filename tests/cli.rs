@@ -45,6 +45,47 @@ fn check_reports_unknown_class_with_location() {
 }
 
 #[test]
+fn check_reports_unknown_landmark_with_location() {
+    let rules = tmp(
+        "bad_landmark.rcc",
+        "rule ok: some R: EC_E(R, @w_west)\nrule far: EC_W(R, @w_far) | DR_N(R, B)\n",
+    );
+    let o = rccpack(&["check", rules.to_str().unwrap(), "--scene", PROBLEM]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.contains("bad_landmark.rcc:2:11"), "{e}");
+    assert!(e.contains("`@w_far`"), "{e}");
+    assert!(e.contains("rule `far`"), "{e}");
+    assert!(
+        e.contains("the scene's fixed objects are w_south, w_north, w_west, w_east"),
+        "{e}"
+    );
+    // The same rules pass without a scene (landmarks need one), and other
+    // commands that evaluate the rules refuse them the same way.
+    let o = rccpack(&["check", rules.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = rccpack(&["score", PROBLEM, "--rules", rules.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("bad_landmark.rcc:2:11"),
+        "{}",
+        stderr(&o)
+    );
+    // `learn --statements` checks them against each demonstration.
+    let o = rccpack(&["learn", DEMOS, "--statements", rules.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("bad_landmark.rcc:2:11"),
+        "{}",
+        stderr(&o)
+    );
+    // A good landmark is fine.
+    let good = tmp("good_landmark.rcc", "rule ok: some R: EC_E(R, @w_west)\n");
+    let o = rccpack(&["check", good.to_str().unwrap(), "--scene", PROBLEM]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+#[test]
 fn score_json_is_an_array_for_demonstrations() {
     let o = rccpack(&["score", DEMOS, "--rules", PILOT, "--json"]);
     assert!(o.status.success(), "{}", stderr(&o));

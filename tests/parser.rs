@@ -458,6 +458,473 @@ fn grammar_comment_and_whitespace() {
     assert!(parse_rules("rule x # : \n: DR_N(B, R)").is_err());
 }
 
+// ---- second edition (§11): one test per new grammar rule ------------------
+
+const SECOND: &str = "\
+rule blue_row:        AL_S(B, every B) & (FL_E(B, B) | FL_W(B, B))
+rule blue_flush:      (!EC_N(B, B) | FL_N(B, B)) & (!EC_S(B, B) | FL_S(B, B))
+                    & (!EC_E(B, B) | FL_E(B, B)) & (!EC_W(B, B) | FL_W(B, B))
+rule red_apart_green: EC_N(R, no G) & EC_S(R, no G) & EC_E(R, no G) & EC_W(R, no G)
+rule one_red_west:    some R: EC_E(R, @w_west) | FL_E(R, @w_west)
+rule two_stacked:     at least 2 G: FL_N(G, G)
+rule few_west p 0.01: at most 3 B: AL_W(B, at least 1 *) & !DR_W(B, @w_east)
+";
+
+fn atq(r: &str, s: &str, q: Quant, t: &str) -> Formula {
+    Formula::Atom(Atom::quantified(rel(r), s, q, Target::Class(t.to_string())))
+}
+
+fn lm(r: &str, s: &str, id: &str) -> Formula {
+    Formula::Atom(Atom::new(rel(r), s, Target::Landmark(id.to_string())))
+}
+
+/// The first rule's scope.
+fn scope(src: &str) -> Scope {
+    ok(src).rules[0].scope
+}
+
+#[test]
+fn spec_second_edition_example_parses_and_round_trips() {
+    let rs = ok(SECOND);
+    assert_eq!(rs.rules.len(), 6);
+    assert_eq!(
+        rs.rules[0].formula,
+        Formula::And(vec![
+            atq("AL_S", "B", Quant::Every, "B"),
+            Formula::Or(vec![at("FL_E", "B", "B"), at("FL_W", "B", "B")]),
+        ])
+    );
+    assert_eq!(rs.rules[2].formula.atoms()[0].quant, Quant::No);
+    assert_eq!(rs.rules[3].scope, Scope::Scene(Quant::Some));
+    assert_eq!(
+        rs.rules[3].formula,
+        Formula::Or(vec![lm("EC_E", "R", "w_west"), lm("FL_E", "R", "w_west")])
+    );
+    assert_eq!(rs.rules[4].scope, Scope::Scene(Quant::AtLeast(2)));
+    assert_eq!(rs.rules[5].scope, Scope::Scene(Quant::AtMost(3)));
+    assert_eq!(rs.rules[5].strength, Strength::P(0.01));
+    assert_eq!(rs.rules[0].scope, Scope::Each);
+    assert_eq!(rs.landmarks(), ["w_east", "w_west"]);
+    // Origins: atom spans cover the atom text, the scope span `Q A:`.
+    for r in &rs.rules {
+        let o = r.origin.as_ref().unwrap();
+        for (a, s) in r.formula.atoms().iter().zip(&o.atoms) {
+            let text: String = SECOND[s.start..s.end].split_whitespace().collect();
+            assert_eq!(text, a.to_string().replace(' ', ""));
+        }
+    }
+    let scopes: Vec<Option<&str>> = rs
+        .rules
+        .iter()
+        .map(|r| {
+            let o = r.origin.as_ref().unwrap();
+            o.scope.map(|s| &SECOND[s.start..s.end])
+        })
+        .collect();
+    assert_eq!(
+        scopes,
+        [
+            None,
+            None,
+            None,
+            Some("some R:"),
+            Some("at least 2 G:"),
+            Some("at most 3 B:")
+        ]
+    );
+    let printed = print_rules(&rs);
+    assert!(
+        printed.contains("rule one_red_west: some R: EC_E(R, @w_west) | FL_E(R, @w_west)\n"),
+        "{printed}"
+    );
+    assert!(
+        printed.contains("rule two_stacked: at least 2 G: FL_N(G, G)\n"),
+        "{printed}"
+    );
+    assert!(
+        printed.contains(
+            "rule few_west p 0.01: at most 3 B: AL_W(B, at least 1 *) & !DR_W(B, @w_east)\n"
+        ),
+        "{printed}"
+    );
+    assert!(ok(&printed).same_rules(&rs));
+}
+
+#[test]
+fn default_quantifier_is_implicit() {
+    // `DR_N(B, every R)` is `DR_N(B, R)` and prints as it.
+    let explicit = ok("rule x: DR_N(B, every R)");
+    let implicit = ok("rule x: DR_N(B, R)");
+    assert!(explicit.same_rules(&implicit));
+    assert_eq!(explicit.rules[0].formula, at("DR_N", "B", "R"));
+    assert_eq!(print_rules(&explicit), "rule x: DR_N(B, R)\n");
+    // Likewise `some` for EC, FL and AL.
+    for r in ["EC_N", "FL_S", "AL_E"] {
+        let rs = ok(&format!("rule x: {r}(B, some *)"));
+        assert_eq!(rs.rules[0].formula, at(r, "B", "*"));
+        assert_eq!(print_rules(&rs), format!("rule x: {r}(B, *)\n"));
+    }
+    // A non-default quantifier is written out.
+    let rs = ok("rule x: DR_N(B, some R) & EC_N(B, every R)");
+    assert_eq!(
+        print_rules(&rs),
+        "rule x: DR_N(B, some R) & EC_N(B, every R)\n"
+    );
+}
+
+#[test]
+fn grammar_body() {
+    // A body is an optional scope and a formula.
+    assert_eq!(scope("rule x: DR_N(B, R)"), Scope::Each);
+    assert_eq!(
+        scope("rule x: some B: DR_N(B, R)"),
+        Scope::Scene(Quant::Some)
+    );
+    // A missing body is a missing formula, with or without a scope.
+    let (m, lc) = err("rule x:");
+    assert_eq!(m, "expected a formula, found end of input");
+    assert_eq!(lc, (1, 8));
+    let (m, lc) = err("rule x: no B:\n");
+    assert_eq!(m, "expected a formula, found end of line");
+    assert_eq!(lc, (1, 14));
+}
+
+#[test]
+fn grammar_scope() {
+    for (q, want) in [
+        ("some", Scope::Scene(Quant::Some)),
+        ("no", Scope::Scene(Quant::No)),
+        ("at least 2", Scope::Scene(Quant::AtLeast(2))),
+        ("at most 0", Scope::Scene(Quant::AtMost(0))),
+        ("at  least\t65535", Scope::Scene(Quant::AtLeast(65535))),
+        // `every A:` is the ordinary per-object rule.
+        ("every", Scope::Each),
+    ] {
+        let src = format!("rule x weight 2: {q} G: FL_N(G, G) | !AL_S(G, *)");
+        let rs = ok(&src);
+        assert_eq!(rs.rules[0].scope, want, "{src}");
+        assert_eq!(rs.rules[0].strength, Strength::Weight(2.0));
+        let o = rs.rules[0].origin.as_ref().unwrap();
+        let s = o.scope.unwrap();
+        assert_eq!(&src[s.start..s.end], format!("{q} G:"));
+    }
+    // `every G:` is written as nothing.
+    assert_eq!(
+        print_rules(&ok("rule x: every G: FL_N(G, G)")),
+        "rule x: FL_N(G, G)\n"
+    );
+    assert!(ok("rule x: every G: FL_N(G, G)").same_rules(&ok("rule x: FL_N(G, G)")));
+    // A scope whose quantifier word is followed by no class is a relation.
+    let (m, _) = err("rule x: some(B, R)");
+    assert!(m.starts_with("unknown relation `some`"), "{m}");
+    let (m, lc) = err("rule x: some B EC_N(B, R)");
+    assert_eq!(m, "expected `:`, found `EC_N`");
+    assert_eq!(lc, (1, 16));
+}
+
+#[test]
+fn grammar_scope_colon() {
+    ok("rule x: some G :FL_N(G, G)");
+    ok("rule x: some G:FL_N(G, G)");
+    let (m, _) = err("rule x: some G; FL_N(G, G)");
+    assert_eq!(m, "expected `:`, found `;`");
+    // One scope only.
+    let (m, lc) = err("rule x: some G: no G: FL_N(G, G)");
+    assert_eq!(m, "expected `(`, found `G`");
+    assert_eq!(lc, (1, 20));
+}
+
+#[test]
+fn grammar_subject() {
+    assert_eq!(formula("rule x: FL_N( Blue , R )"), at("FL_N", "Blue", "R"));
+    // `*` and landmarks are parsed but are not subjects (§11.6).
+    let (m, lc) = err("rule x: DR_N(*, R)");
+    assert_eq!(m, "expected a class name, found `*`");
+    assert_eq!(lc, (1, 14));
+    let (m, lc) = err("rule x: DR_N(@w_west, R)");
+    assert_eq!(
+        m,
+        "expected a class name, found `@w_west`: the subject of an atom is a class, not a landmark"
+    );
+    assert_eq!(lc, (1, 14));
+    let (m, lc) = err("rule x: some *: DR_N(B, R)");
+    assert_eq!(
+        m,
+        "expected a class name after `some`, found `*`: a scene scope counts the objects of one class"
+    );
+    assert_eq!(lc, (1, 14));
+    let (m, lc) = err("rule x: at least 2 @w: DR_N(B, R)");
+    assert_eq!(
+        m,
+        "expected a class name after `at least 2`, found `@w`: a scene scope counts the objects of one class, not a landmark"
+    );
+    assert_eq!(lc, (1, 20));
+    let (m, _) = err("rule x: DR_N(1, R)");
+    assert_eq!(m, "expected a class name, found `1`");
+}
+
+#[test]
+fn grammar_target_and_object() {
+    assert_eq!(
+        formula("rule x: EC_N(B, no G)"),
+        atq("EC_N", "B", Quant::No, "G")
+    );
+    assert_eq!(
+        formula("rule x: EC_N(B, at most 2 *)"),
+        Formula::Atom(Atom::quantified(
+            rel("EC_N"),
+            "B",
+            Quant::AtMost(2),
+            Target::Any
+        ))
+    );
+    assert_eq!(formula("rule x: EC_N(B,@w)"), lm("EC_N", "B", "w"));
+    let (m, lc) = err("rule x: DR_N(B, )");
+    assert_eq!(m, "expected a class name or `*`, found `)`");
+    assert_eq!(lc, (1, 17));
+    // After a quantifier the object is still missing.
+    let (m, lc) = err("rule x: DR_N(B, at most 2)");
+    assert_eq!(m, "expected a class name or `*`, found `)`");
+    assert_eq!(lc, (1, 26));
+    // Two quantifiers are not a target.
+    let (m, lc) = err("rule x: DR_N(B, some no R)");
+    assert_eq!(m, "expected `)`, found `R`");
+    assert_eq!(lc, (1, 25));
+}
+
+#[test]
+fn grammar_class_and_any() {
+    assert_eq!(formula("rule x: AL_S(_b1, R_2)"), at("AL_S", "_b1", "R_2"));
+    assert_eq!(formula("rule x: AL_S(B, *)"), at("AL_S", "B", "*"));
+    assert_eq!(formula("rule x: AL_S(B, every *)"), {
+        Formula::Atom(Atom::quantified(
+            rel("AL_S"),
+            "B",
+            Quant::Every,
+            Target::Any,
+        ))
+    });
+    let (m, _) = err("rule x: AL_S(B, **)");
+    assert_eq!(m, "expected `)`, found `*`");
+}
+
+#[test]
+fn grammar_landmark_and_landmark_id() {
+    assert_eq!(
+        formula("rule x: EC_E(B, @w_west) & !DR_N(B, @_1)"),
+        Formula::And(vec![
+            lm("EC_E", "B", "w_west"),
+            Formula::not(lm("DR_N", "B", "_1"))
+        ])
+    );
+    // A landmark atom has the relation's default quantifier.
+    let f = formula("rule x: DR_N(B, @w)");
+    assert!(f.atoms()[0].has_default_quant());
+    assert_eq!(print_formula(&f), "DR_N(B, @w)");
+    // `@` is followed directly by an identifier.
+    let (m, lc) = err("rule x: EC_E(B, @ w_west)");
+    assert_eq!(m, "expected an object id right after `@`, found ` `");
+    assert_eq!(lc, (1, 18));
+    let (m, _) = err("rule x: EC_E(B, @1)");
+    assert_eq!(m, "expected an object id right after `@`, found `1`");
+    let (m, _) = err("rule x: EC_E(B, @)");
+    assert_eq!(m, "expected an object id right after `@`, found `)`");
+    let (m, _) = err("rule x: EC_E(B, @w-1)");
+    assert_eq!(m, "expected `)`, found `-`");
+    // No quantifier before a landmark.
+    for q in ["every", "some", "no", "at least 1", "at most 0"] {
+        let src = format!("rule x: EC_E(B, {q} @w_west)");
+        let (m, lc) = err(&src);
+        assert_eq!(
+            m,
+            format!("quantifier `{q}` before landmark `@w_west`: a landmark takes no quantifier; expected `@w_west` alone"),
+        );
+        assert_eq!(lc, (1, 17));
+    }
+}
+
+#[test]
+fn grammar_quant() {
+    for (q, want) in [
+        ("every", Quant::Every),
+        ("some", Quant::Some),
+        ("no", Quant::No),
+        ("at least 0", Quant::AtLeast(0)),
+        ("at least 3", Quant::AtLeast(3)),
+        ("at most 65535", Quant::AtMost(65535)),
+        ("at most 007", Quant::AtMost(7)),
+        ("at\tleast  2", Quant::AtLeast(2)),
+    ] {
+        let f = formula(&format!("rule x: FL_W(B, {q} R)"));
+        assert_eq!(f, atq("FL_W", "B", want, "R"), "{q}");
+    }
+    // Quantifiers print in their normal form.
+    assert_eq!(
+        print_formula(&formula("rule x: FL_W(B, at\tleast  002 R)")),
+        "FL_W(B, at least 2 R)"
+    );
+}
+
+#[test]
+fn grammar_kw_every_some_no_are_not_reserved() {
+    // A quantifier word with no class, `*` or `@` after it is a class name.
+    for (w, q) in [
+        ("every", Quant::Every),
+        ("some", Quant::Some),
+        ("no", Quant::No),
+    ] {
+        assert_eq!(
+            formula(&format!("rule x: DR_N(B, {w})")),
+            at("DR_N", "B", w)
+        );
+        assert_eq!(
+            formula(&format!("rule x: DR_N({w}, R)")),
+            at("DR_N", w, "R")
+        );
+        // ... and a quantifier before a class of that name.
+        assert_eq!(
+            formula(&format!("rule x: EC_N(B, {w} {w})")),
+            atq("EC_N", "B", q, w)
+        );
+        assert_eq!(
+            formula(&format!("rule x: EC_N(B, {w}\t*)")),
+            Formula::Atom(Atom::quantified(rel("EC_N"), "B", q, Target::Any))
+        );
+        // As the subject class of a scope, and the same word as its
+        // quantifier.
+        let rs = ok(&format!("rule x: no {w}: EC_N({w}, R)"));
+        assert_eq!(rs.rules[0].scope, Scope::Scene(Quant::No));
+        assert_eq!(rs.rules[0].subject(), w);
+        assert!(ok(&print_rules(&rs)).same_rules(&rs));
+        let rs = ok(&format!("rule x: {w} {w}: EC_N({w}, {w} {w})"));
+        assert_eq!(rs.rules[0].scope, Scope::of(q));
+        assert!(ok(&print_rules(&rs)).same_rules(&rs));
+    }
+    // Words that only begin like a quantifier are classes.
+    assert_eq!(
+        formula("rule x: DR_N(B, nothing)"),
+        at("DR_N", "B", "nothing")
+    );
+    assert_eq!(
+        formula("rule x: DR_N(B, everyone)"),
+        at("DR_N", "B", "everyone")
+    );
+    assert_eq!(
+        formula("rule x: DR_N(B, somebody)"),
+        at("DR_N", "B", "somebody")
+    );
+    let (m, _) = err("rule x: DR_N(B, no_one R)");
+    assert_eq!(m, "expected `)`, found `R`");
+    // A quantifier word followed by `(` at the start of a formula is a
+    // (bad) relation name.
+    let (m, _) = err("rule x: no(B, R)");
+    assert!(m.starts_with("unknown relation `no`"), "{m}");
+}
+
+#[test]
+fn grammar_kw_at_least_most() {
+    // `at` is a quantifier only when `least` or `most` follows.
+    assert_eq!(formula("rule x: DR_N(B, at)"), at("DR_N", "B", "at"));
+    assert_eq!(formula("rule x: DR_N(at, R)"), at("DR_N", "at", "R"));
+    assert_eq!(
+        formula("rule x: DR_N(B, at least 2 at)"),
+        atq("DR_N", "B", Quant::AtLeast(2), "at")
+    );
+    assert_eq!(
+        formula("rule x: DR_N(B, at most 1 least)"),
+        atq("DR_N", "B", Quant::AtMost(1), "least")
+    );
+    let rs = ok("rule x: at least 1 at: DR_N(at, at most 2 most)");
+    assert_eq!(rs.rules[0].scope, Scope::Scene(Quant::AtLeast(1)));
+    assert!(ok(&print_rules(&rs)).same_rules(&rs));
+    let (m, lc) = err("rule x: DR_N(B, at x)");
+    assert_eq!(m, "expected `)`, `least` or `most`, found `x`");
+    assert_eq!(lc, (1, 20));
+    // `atleast` and `at leastwise` are not the words.
+    let (m, _) = err("rule x: DR_N(B, atleast 2 R)");
+    assert_eq!(m, "expected `)`, found `2`");
+    let (m, _) = err("rule x: DR_N(B, at leastwise 2 R)");
+    assert_eq!(m, "expected `)`, `least` or `most`, found `leastwise`");
+    let (m, _) = err("rule x: at(B, R)");
+    assert!(m.starts_with("unknown relation `at`"), "{m}");
+}
+
+#[test]
+fn grammar_count() {
+    for (k, v) in [("0", 0), ("1", 1), ("65535", 65535), ("000065535", 65535)] {
+        let f = formula(&format!("rule x: AL_N(B, at least {k} R)"));
+        assert_eq!(f, atq("AL_N", "B", Quant::AtLeast(v), "R"), "{k}");
+    }
+    // Anything else is a located error at the count.
+    for bad in [
+        "+2", "-1", "2.0", "2.", ".5", "1e1", "1E+1", "1e-1", "2x", "0x10",
+    ] {
+        let src = format!("rule x: AL_N(B, at least {bad} R)");
+        let (m, lc) = err(&src);
+        assert_eq!(
+            m,
+            format!("bad count `{bad}` after `at least`: expected a whole number in decimal digits, such as `at least 2`"),
+        );
+        assert_eq!(lc, (1, 26), "{bad}");
+    }
+    for big in [
+        "65536",
+        "99999",
+        "100000",
+        "4294967296",
+        "18446744073709551616",
+    ] {
+        let (m, lc) = err(&format!("rule x: AL_N(B, at most {big} R)"));
+        assert_eq!(
+            m,
+            format!("count `{big}` after `at most` is too large: expected a whole number from 0 to 65535"),
+        );
+        assert_eq!(lc, (1, 25));
+    }
+    // Missing.
+    let (m, lc) = err("rule x: AL_N(B, at least R)");
+    assert_eq!(m, "expected a count (a whole number such as 2), found `R`");
+    assert_eq!(lc, (1, 26));
+    let (m, _) = err("rule x: at most : AL_N(B, R)");
+    assert_eq!(m, "expected a count (a whole number such as 2), found `:`");
+    // Ten thousand digits: the limit error, shortened, no overflow.
+    let src = format!("rule x: AL_N(B, at least 1{} R)", "0".repeat(9_999));
+    let (m, lc) = err(&src);
+    assert_eq!(
+        m,
+        "count `10000000000000000000…` (10000 digits) after `at least` is too large: expected a whole number from 0 to 65535"
+    );
+    assert_eq!(lc, (1, 26));
+    // Leading zeros do not make a small count large.
+    let src = format!("rule x: AL_N(B, at least {}7 R)", "0".repeat(10_000));
+    assert_eq!(formula(&src), atq("AL_N", "B", Quant::AtLeast(7), "R"));
+}
+
+#[test]
+fn all_sixteen_relations_take_every_quantifier() {
+    for r in Relation::ALL {
+        for (q, text) in [
+            (Quant::Every, "every"),
+            (Quant::Some, "some"),
+            (Quant::No, "no"),
+            (Quant::AtLeast(4), "at least 4"),
+            (Quant::AtMost(5), "at most 5"),
+        ] {
+            let f = formula(&format!("rule x: {}(B, {text} G)", r.name()));
+            assert_eq!(
+                f,
+                Formula::Atom(Atom::quantified(r, "B", q, Target::Class("G".into())))
+            );
+            let printed = print_formula(&f);
+            if q == r.default_quant() {
+                assert_eq!(printed, format!("{}(B, G)", r.name()));
+            } else {
+                assert_eq!(printed, format!("{}(B, {text} G)", r.name()));
+            }
+        }
+    }
+}
+
 // ---- semantic checks ----------------------------------------------------
 
 #[test]
@@ -489,6 +956,53 @@ fn several_diagnostics_collected() {
     assert_eq!(lcs, [(1, 10), (2, 9), (3, 6), (3, 22)]);
 }
 
+#[test]
+fn scope_subject_mismatch_error() {
+    let (m, lc) = err("rule a: at least 2 G: FL_N(G, G) | !(AL_S(G, *) & FL_S(B, G))");
+    assert_eq!(
+        m,
+        "rule `a` is about `G` (`at least 2 G:`), but this atom is about `B`: expected every atom's subject to be `G`"
+    );
+    assert_eq!(lc, (1, 51));
+    // Every atom about another class: the first one is reported, once.
+    let e = parse_rules("rule a: no G: FL_N(B, G) & FL_S(B, G)").unwrap_err();
+    assert_eq!(e.diagnostics.len(), 1);
+    assert_eq!(e.line_col("rule a: no G: FL_N(B, G) & FL_S(B, G)"), (1, 15));
+    // `every A:` fixes the subject too.
+    let (m, _) = err("rule a: every G: FL_N(B, G)");
+    assert!(m.starts_with("rule `a` is about `G` (`every G:`)"), "{m}");
+    // Without a scope the first edition's check applies.
+    let (m, _) = err("rule a: FL_N(G, G) & FL_N(B, G)");
+    assert!(m.starts_with("rule `a` mixes subject classes"), "{m}");
+}
+
+#[test]
+fn second_edition_diagnostics_collected() {
+    let src = "\
+rule a: EC_E(B, no @w) & DR_N(B, at least 1.5 G)
+rule b: some *: DR_N(@x, R)
+rule c: at most 70000 G: FL_N(G, G)
+rule d: some G: FL_N(G, G) & FL_N(R, G)
+";
+    let e = parse_rules(src).unwrap_err();
+    let got: Vec<_> = e
+        .diagnostics
+        .iter()
+        .map(|d| (d.line_col(src), d.message.split(':').next().unwrap_or("")))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ((1, 17), "quantifier `no` before landmark `@w`"),
+            ((1, 43), "bad count `1.5` after `at least`"),
+            ((2, 14), "expected a class name after `some`, found `*`"),
+            ((2, 22), "expected a class name, found `@x`"),
+            ((3, 17), "count `70000` after `at most` is too large"),
+            ((4, 30), "rule `d` is about `G` (`some G"),
+        ]
+    );
+}
+
 fn scene_rw() -> Scene {
     Scene::from_json(
         r#"{"space":{"width":100,"height":100},"objects":[
@@ -515,6 +1029,106 @@ fn check_classes_rejects_unknown() {
         "unknown class `Q` in rule `q`: the scene has classes R, W"
     );
     assert_eq!(e.line_col(src), (2, 22));
+}
+
+fn scene_walls() -> Scene {
+    // Ids as written, the §2 default `<class><index>` (W1, R4), an id that is
+    // no identifier (`w-3`) and a movable object.
+    Scene::from_json(
+        r#"{"space":{"width":100,"height":100},"objects":[
+            {"id":"w_west","class":"W","x":0,"y":0,"width":10,"height":100,"fixed":true},
+            {"class":"W","x":90,"y":0,"width":10,"height":100,"fixed":true},
+            {"id":"w-3","class":"W","x":10,"y":0,"width":80,"height":10,"fixed":true},
+            {"id":"r1","class":"R","x":20,"y":20,"width":10,"height":10},
+            {"class":"R","width":10,"height":10}]}"#,
+    )
+    .unwrap()
+}
+
+#[test]
+fn check_landmarks_accepts_fixed_objects() {
+    let rs = ok("rule a: some R: EC_E(R, @w_west) | !DR_W(R, @W1)\nrule b: DR_N(R, R)");
+    assert!(check_landmarks(&rs, &scene_walls()).is_ok());
+    // No landmarks: always fine, even without fixed objects.
+    assert!(check_landmarks(&ok(PILOT), &scene_rw()).is_ok());
+}
+
+#[test]
+fn check_landmarks_rejects_unknown_and_movable() {
+    let src = "rule a: EC_E(R, @w_west)\nrule b: FL_N(R, G) & (EC_W(R, @w_east) | EC_N(R, @r1))\n";
+    let rs = ok(src);
+    let e = check_landmarks(&rs, &scene_walls()).unwrap_err();
+    let got: Vec<_> = e
+        .diagnostics
+        .iter()
+        .map(|d| (d.line_col(src), d.message.as_str()))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            (
+                (2, 23),
+                "unknown landmark `@w_east` in rule `b`: expected the id of a fixed object; the scene's fixed objects are w_west, W1"
+            ),
+            (
+                (2, 42),
+                "landmark `@r1` in rule `b` is not a fixed object: expected the id of a fixed object; the scene's fixed objects are w_west, W1"
+            ),
+        ]
+    );
+    // The default id of a movable object is not a landmark either.
+    let e = check_landmarks(&ok("rule a: DR_N(R, @R4)"), &scene_walls()).unwrap_err();
+    assert!(e.diagnostics[0]
+        .message
+        .starts_with("landmark `@R4` in rule `a` is not a fixed object"));
+}
+
+#[test]
+fn check_landmarks_without_fixed_objects() {
+    let rs = ok("rule a: no R: EC_E(R, @W9)");
+    let e = check_landmarks(&rs, &scene_rw()).unwrap_err();
+    assert_eq!(
+        e.diagnostics[0].message,
+        "unknown landmark `@W9` in rule `a`: expected the id of a fixed object; the scene has no fixed objects that can be landmarks"
+    );
+    assert_eq!(e.line_col("rule a: no R: EC_E(R, @W9)"), (1, 15));
+    // `W1` (the default id of scene_rw's wall) is there but movable.
+    let e = check_landmarks(&ok("rule a: EC_E(R, @W1)"), &scene_rw()).unwrap_err();
+    assert_eq!(
+        e.diagnostics[0].message,
+        "landmark `@W1` in rule `a` is not a fixed object: expected the id of a fixed object; the scene has no fixed objects that can be landmarks"
+    );
+    // An object whose id is not an identifier cannot be a landmark: it is
+    // not listed.
+    let e = check_landmarks(&ok("rule a: EC_E(R, @w_3)"), &scene_walls()).unwrap_err();
+    assert!(!e.diagnostics[0].message.contains("w-3"));
+}
+
+#[test]
+fn check_landmarks_in_code_built_rules() {
+    // Rules without an origin are reported at the start of the text.
+    let rule = Rule::new(
+        "code",
+        Formula::Atom(Atom::new(
+            rel("EC_E"),
+            "R",
+            Target::Landmark("nowhere".into()),
+        )),
+    );
+    let e = check_landmarks(&RuleSet::new(vec![rule]), &scene_walls()).unwrap_err();
+    assert_eq!(e.diagnostics[0].span, Span::new(0, 0));
+    assert!(e.diagnostics[0]
+        .message
+        .contains("`@nowhere` in rule `code`"));
+}
+
+#[test]
+fn render_unknown_landmark() {
+    let src = "rule a: some R: EC_E(R, @w_east)\n";
+    let text = check_landmarks(&ok(src), &scene_walls())
+        .unwrap_err()
+        .render("x.rcc", src, false);
+    assert_eq!(text, UNKNOWN_LANDMARK);
 }
 
 // ---- rendered diagnostics (exact text) ---------------------------------
@@ -595,12 +1209,95 @@ fn render_long_line_falls_back_to_plain() {
     );
 }
 
+const UNKNOWN_LANDMARK: &str = "error: x.rcc:1:17: unknown landmark `@w_east` in rule `a`: expected the id of a fixed object; the scene's fixed objects are w_west, W1\n   ╭─[ x.rcc:1:17 ]\n   │\n 1 │ rule a: some R: EC_E(R, @w_east)\n   │                 ────────┬───────  \n   │                         ╰───────── unknown landmark `@w_east` in rule `a`: expected the id of a fixed object; the scene's fixed objects are w_west, W1\n───╯\n";
 const UNKNOWN_RELATION: &str = "error: x.rcc:1:9: unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W, FL_N, FL_S, FL_E, FL_W, AL_N, AL_S, AL_E, AL_W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_X(B, R)\n   │         ──┬─  \n   │           ╰─── unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W, FL_N, FL_S, FL_E, FL_W, AL_N, AL_S, AL_E, AL_W\n───╯\n";
 const MIXED_SUBJECTS: &str = "error: x.rcc:1:22: rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n   ╭─[ x.rcc:1:22 ]\n   │\n 1 │ rule a: DR_N(B, R) & DR_S(G, R)\n   │                      ─────┬────  \n   │                           ╰────── rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n───╯\n";
 const MISSING_COLON: &str = "error: x.rcc:1:8: expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n   ╭─[ x.rcc:1:8 ]\n   │\n 1 │ rule a DR_N(B, R)\n   │        ──┬─  \n   │          ╰─── expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n───╯\n";
 const BAD_P: &str = "error: x.rcc:1:10: bad p `1.5`: expected a number with 0 < p < 1\n   ╭─[ x.rcc:1:10 ]\n   │\n 1 │ rule a p 1.5: DR_N(B, R)\n   │          ─┬─  \n   │           ╰─── bad p `1.5`: expected a number with 0 < p < 1\n───╯\n";
 const DUPLICATE_NAME: &str = "error: x.rcc:2:6: duplicate rule name `a`: it is already defined on line 1\n   ╭─[ x.rcc:2:6 ]\n   │\n 2 │ rule a: DR_S(B, R)\n   │      ┬  \n   │      ╰── duplicate rule name `a`: it is already defined on line 1\n───╯\n";
 const UNKNOWN_CLASS: &str = "error: x.rcc:1:9: unknown class `B` in rule `a`: the scene has classes R, W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_N(B, R)\n   │         ─────┬────  \n   │              ╰────── unknown class `B` in rule `a`: the scene has classes R, W\n───╯\nerror: x.rcc:2:9: unknown class `Q` in rule `b`: the scene has classes R, W\n   ╭─[ x.rcc:2:9 ]\n   │\n 2 │ rule b: DR_N(R, Q)\n   │         ─────┬────  \n   │              ╰────── unknown class `Q` in rule `b`: the scene has classes R, W\n───╯\n";
+
+#[test]
+fn render_quantified_landmark() {
+    assert_eq!(
+        render("rule a: EC_E(B, some @w_west)\n"),
+        QUANTIFIED_LANDMARK
+    );
+}
+
+#[test]
+fn render_bad_count() {
+    assert_eq!(render("rule a: DR_N(B, at least 2.0 G)\n"), BAD_COUNT);
+}
+
+#[test]
+fn render_count_too_large() {
+    assert_eq!(
+        render("rule a: DR_N(B, at most 65536 G)\n"),
+        COUNT_TOO_LARGE
+    );
+}
+
+#[test]
+fn render_missing_count() {
+    assert_eq!(render("rule a: DR_N(B, at least G)\n"), MISSING_COUNT);
+}
+
+#[test]
+fn render_scope_subject_mismatch() {
+    assert_eq!(
+        render("rule a: some G: FL_N(G, G) & FL_N(B, G)\n"),
+        SCOPE_SUBJECT_MISMATCH
+    );
+}
+
+#[test]
+fn render_star_subject() {
+    assert_eq!(render("rule a: DR_N(*, R)\n"), STAR_SUBJECT);
+}
+
+#[test]
+fn render_landmark_subject() {
+    assert_eq!(render("rule a: DR_N(@w, R)\n"), LANDMARK_SUBJECT);
+}
+
+#[test]
+fn render_star_scope_subject() {
+    assert_eq!(render("rule a: some *: DR_N(B, R)\n"), STAR_SCOPE_SUBJECT);
+}
+
+#[test]
+fn render_landmark_scope_subject() {
+    assert_eq!(
+        render("rule a: no @w: DR_N(B, R)\n"),
+        LANDMARK_SCOPE_SUBJECT
+    );
+}
+
+#[test]
+fn render_landmark_space() {
+    assert_eq!(render("rule a: DR_N(B, @ w)\n"), LANDMARK_SPACE);
+}
+
+#[test]
+fn render_ten_thousand_digit_count_falls_back_to_plain() {
+    let src = format!("rule a: DR_N(B, at least 9{} G)\n", "9".repeat(9_999));
+    assert_eq!(
+        render(&src),
+        "error: x.rcc:1:26: count `99999999999999999999…` (10000 digits) after `at least` is too large: expected a whole number from 0 to 65535\n"
+    );
+}
+
+const QUANTIFIED_LANDMARK: &str = "error: x.rcc:1:17: quantifier `some` before landmark `@w_west`: a landmark takes no quantifier; expected `@w_west` alone\n   ╭─[ x.rcc:1:17 ]\n   │\n 1 │ rule a: EC_E(B, some @w_west)\n   │                 ──┬─  \n   │                   ╰─── quantifier `some` before landmark `@w_west`: a landmark takes no quantifier; expected `@w_west` alone\n───╯\n";
+const BAD_COUNT: &str = "error: x.rcc:1:26: bad count `2.0` after `at least`: expected a whole number in decimal digits, such as `at least 2`\n   ╭─[ x.rcc:1:26 ]\n   │\n 1 │ rule a: DR_N(B, at least 2.0 G)\n   │                          ─┬─  \n   │                           ╰─── bad count `2.0` after `at least`: expected a whole number in decimal digits, such as `at least 2`\n───╯\n";
+const COUNT_TOO_LARGE: &str = "error: x.rcc:1:25: count `65536` after `at most` is too large: expected a whole number from 0 to 65535\n   ╭─[ x.rcc:1:25 ]\n   │\n 1 │ rule a: DR_N(B, at most 65536 G)\n   │                         ──┬──  \n   │                           ╰──── count `65536` after `at most` is too large: expected a whole number from 0 to 65535\n───╯\n";
+const MISSING_COUNT: &str = "error: x.rcc:1:26: expected a count (a whole number such as 2), found `G`\n   ╭─[ x.rcc:1:26 ]\n   │\n 1 │ rule a: DR_N(B, at least G)\n   │                          ┬  \n   │                          ╰── expected a count (a whole number such as 2), found `G`\n───╯\n";
+const SCOPE_SUBJECT_MISMATCH: &str = "error: x.rcc:1:30: rule `a` is about `G` (`some G:`), but this atom is about `B`: expected every atom's subject to be `G`\n   ╭─[ x.rcc:1:30 ]\n   │\n 1 │ rule a: some G: FL_N(G, G) & FL_N(B, G)\n   │                              ─────┬────  \n   │                                   ╰────── rule `a` is about `G` (`some G:`), but this atom is about `B`: expected every atom's subject to be `G`\n───╯\n";
+const STAR_SUBJECT: &str = "error: x.rcc:1:14: expected a class name, found `*`\n   ╭─[ x.rcc:1:14 ]\n   │\n 1 │ rule a: DR_N(*, R)\n   │              ┬  \n   │              ╰── expected a class name, found `*`\n───╯\n";
+const LANDMARK_SUBJECT: &str = "error: x.rcc:1:14: expected a class name, found `@w`: the subject of an atom is a class, not a landmark\n   ╭─[ x.rcc:1:14 ]\n   │\n 1 │ rule a: DR_N(@w, R)\n   │              ─┬  \n   │               ╰── expected a class name, found `@w`: the subject of an atom is a class, not a landmark\n───╯\n";
+const STAR_SCOPE_SUBJECT: &str = "error: x.rcc:1:14: expected a class name after `some`, found `*`: a scene scope counts the objects of one class\n   ╭─[ x.rcc:1:14 ]\n   │\n 1 │ rule a: some *: DR_N(B, R)\n   │              ┬  \n   │              ╰── expected a class name after `some`, found `*`: a scene scope counts the objects of one class\n───╯\n";
+const LANDMARK_SCOPE_SUBJECT: &str = "error: x.rcc:1:12: expected a class name after `no`, found `@w`: a scene scope counts the objects of one class, not a landmark\n   ╭─[ x.rcc:1:12 ]\n   │\n 1 │ rule a: no @w: DR_N(B, R)\n   │            ─┬  \n   │             ╰── expected a class name after `no`, found `@w`: a scene scope counts the objects of one class, not a landmark\n───╯\n";
+const LANDMARK_SPACE: &str = "error: x.rcc:1:18: expected an object id right after `@`, found ` `\n   ╭─[ x.rcc:1:18 ]\n   │\n 1 │ rule a: DR_N(B, @ w)\n   │                  ┬  \n   │                  ╰── expected an object id right after `@`, found ` `\n───╯\n";
 
 // ---- depth and size limits -----------------------------------------------
 
@@ -698,16 +1395,51 @@ fn format_number_examples() {
 
 // ---- properties ----------------------------------------------------------
 
-const CLASSES: [&str; 4] = ["B", "R", "G", "W"];
+/// Classes, including the quantifier words, which are not reserved (§11.6).
+const CLASSES: [&str; 10] = [
+    "B", "R", "G", "W", "no", "some", "every", "at", "least", "most",
+];
+
+/// Landmark ids, including quantifier words.
+const LANDMARKS: [&str; 5] = ["w_west", "w1", "_x", "no", "at"];
+
+/// Every quantifier, with the boundary counts 0 and 65 535.
+fn quant_strategy() -> impl Strategy<Value = Quant> {
+    prop_oneof![
+        Just(Quant::Every),
+        Just(Quant::Some),
+        Just(Quant::No),
+        prop_oneof![Just(0u32), Just(65_535u32), 0u32..=65_535].prop_map(Quant::AtLeast),
+        prop_oneof![Just(0u32), Just(65_535u32), 0u32..=65_535].prop_map(Quant::AtMost),
+    ]
+}
+
+/// Every scope: the ordinary rule or a scene-level one (never
+/// `Scene(Every)`, which is `Each`).
+fn scope_strategy() -> impl Strategy<Value = Scope> {
+    prop_oneof![Just(Scope::Each), quant_strategy().prop_map(Scope::of)]
+}
 
 fn atom_strategy(subject: &'static str) -> impl Strategy<Value = Formula> {
-    (0..8usize, prop::option::of(0..4usize)).prop_map(move |(r, t)| {
-        let target = match t {
-            Some(i) => Target::Class(CLASSES[i].to_string()),
-            None => Target::Any,
-        };
-        Formula::Atom(Atom::new(Relation::ALL[r], subject, target))
-    })
+    let target = prop_oneof![
+        3 => prop::sample::select(CLASSES.to_vec()).prop_map(|c| Target::Class(c.to_string())),
+        1 => Just(Target::Any),
+        1 => prop::sample::select(LANDMARKS.to_vec()).prop_map(|l| Target::Landmark(l.to_string())),
+    ];
+    (
+        prop::sample::select(Relation::ALL.to_vec()),
+        prop::option::of(quant_strategy()),
+        target,
+    )
+        .prop_map(move |(r, q, target)| {
+            Formula::Atom(match (q, &target) {
+                // A landmark takes no quantifier.
+                (Some(q), Target::Class(_) | Target::Any) => {
+                    Atom::quantified(r, subject, q, target)
+                }
+                _ => Atom::new(r, subject, target),
+            })
+        })
 }
 
 /// Flatten nested same-operator chains the way the parser does.
@@ -771,11 +1503,18 @@ fn strength_strategy() -> impl Strategy<Value = Strength> {
     ]
 }
 
-/// Random rule sets: unique names, random subjects, strengths and formulas.
+/// Random rule sets: unique names, random subjects, strengths, scopes and
+/// formulas.
 fn ruleset_strategy() -> impl Strategy<Value = RuleSet> {
-    let rule = (0..4usize)
-        .prop_flat_map(|s| (formula_strategy_for(CLASSES[s]), strength_strategy()))
-        .prop_map(|(f, s)| Rule::new("x", f).with_strength(s));
+    let rule = (0..CLASSES.len())
+        .prop_flat_map(|s| {
+            (
+                formula_strategy_for(CLASSES[s]),
+                strength_strategy(),
+                scope_strategy(),
+            )
+        })
+        .prop_map(|(f, s, q)| Rule::new("x", f).with_strength(s).with_scope(q));
     (
         prop::collection::vec(rule, 0..6),
         prop::collection::vec("[a-z ]{0,20}", 0..6),
@@ -799,7 +1538,8 @@ fn mutation_strategy() -> impl Strategy<Value = Vec<(u8, usize, char)>> {
             prop_oneof![
                 any::<char>(),
                 prop::sample::select(vec![
-                    '(', ')', '!', '&', '|', '\n', ':', ',', '*', '#', ' ', 'e', '9', '.'
+                    '(', ')', '!', '&', '|', '\n', ':', ',', '*', '#', ' ', 'e', '9', '.', '@',
+                    '0', '+', '-', '_'
                 ])
             ],
         ),
@@ -869,12 +1609,29 @@ proptest! {
     }
 
     #[test]
-    fn no_panic_on_rcc_like_strings(s in "(rule|[a-zA-Z_]{1,6}|[ \t\n():,*!&|#.0-9e-]|DR_N|EC_W|weight|p|hard| ){0,40}") {
+    fn no_panic_on_rcc_like_strings(s in "(rule|[a-zA-Z_]{1,6}|[ \t\n():,*!&|#.0-9e@+-]|DR_N|EC_W|FL_S|AL_E|weight|p|hard|every|some|no|at|least|most|at least|at most|some A:|at least 2 G:|@w_west|[0-9]{1,7}| ){0,40}") {
         no_panic(&s);
     }
 
     #[test]
     fn no_panic_on_mutated_pilot(muts in mutation_strategy()) {
         no_panic(&mutate(PILOT, &muts));
+    }
+
+    #[test]
+    fn no_panic_on_mutated_second_edition(muts in mutation_strategy()) {
+        no_panic(&mutate(SECOND, &muts));
+    }
+
+    #[test]
+    fn no_panic_on_second_edition_atoms(
+        q in "(every|some|no|at least|at most|at|least|most|)",
+        k in "([0-9]{0,8}|[+-]?[0-9]*[.eE]?[+-]?[0-9]*|[0-9]{300})",
+        t in "(@?[a-z_]{0,3}|\\*|@|@@|[0-9]{0,2})",
+        s in "(some|no|every|at least|at most|)",
+        c in "([A-Z]{0,2}|\\*|@w|no|at)",
+    ) {
+        no_panic(&format!("rule x: {s} {c}: EC_N({c}, {q} {k} {t})"));
+        no_panic(&format!("rule x: {q} {k} {c}: EC_N({c}, {t})"));
     }
 }

@@ -44,7 +44,8 @@ pub fn read_scenes(path: &Path) -> Result<(Vec<Scene>, bool)> {
 }
 
 /// Read and check a `.rcc` file; with scenes, also check that every class it
-/// names exists in each of them.
+/// names exists in each of them and that every landmark `@ID` names a fixed
+/// object of each of them.
 pub fn read_rules(path: &Path, scenes: &[Scene]) -> Result<RuleSet> {
     let text = read_text(path)?;
     let set = parse_rules_text(path, &text)?;
@@ -52,6 +53,7 @@ pub fn read_rules(path: &Path, scenes: &[Scene]) -> Result<RuleSet> {
     let name = path.display().to_string();
     for s in scenes {
         rules::check_classes(&set, s).map_err(|e| Reported(e.render(&name, &text, color)))?;
+        rules::check_landmarks(&set, s).map_err(|e| Reported(e.render(&name, &text, color)))?;
     }
     Ok(set)
 }

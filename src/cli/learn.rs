@@ -96,6 +96,15 @@ pub fn learn_files(
         Some(p) => {
             let text = read_text(p)?;
             let set = parse_rules_text(p, &text)?;
+            for demo in &demos {
+                rccpack::rules::check_landmarks(&set, demo).map_err(|e| {
+                    Reported(e.render(
+                        &p.display().to_string(),
+                        &text,
+                        std::io::stderr().is_terminal(),
+                    ))
+                })?;
+            }
             (Some(set), text)
         }
         None => (None, String::new()),

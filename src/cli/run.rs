@@ -13,7 +13,7 @@ use rccpack::infer::LearnParams;
 use rccpack::relations::Contact;
 use rccpack::render::{render_to_path, RenderOptions};
 use rccpack::resemblance::Likeness;
-use rccpack::rules::check_classes;
+use rccpack::rules::{check_classes, check_landmarks};
 use rccpack::synth::{synthesize, Status, SynthError, SynthOptions};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -99,6 +99,12 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         Some(p) => Some(Likeness::new(&read_scenes(p)?.0)),
         None => Some(Likeness::new(&read_scenes(&a.dir.join("demos.json"))?.0)),
     };
+    check_landmarks(&rules, &problem).map_err(|e| {
+        Reported(format!(
+            "error: {}: the learned rules name a landmark the problem lacks: {e}",
+            problem_path.display()
+        ))
+    })?;
     let opts = SynthOptions {
         contact: a.contact,
         time_limit: Some(Duration::from_secs_f64(a.time_limit)),

@@ -1,4 +1,5 @@
-//! Semantic checks that need a scene (classes named by rules exist in it).
+//! Semantic checks that need a scene (classes named by rules exist in it;
+//! landmarks name fixed objects of it).
 
 use super::{Diagnostic, RuleSet, RulesError, Span, Target};
 use crate::scene::Scene;
@@ -43,4 +44,68 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
     } else {
         Err(RulesError::new(diags))
     }
+}
+
+/// Check that every landmark `@ID` named by `rules` is a fixed object of
+/// `scene` (SPEC §11.3, §11.6).
+///
+/// Ids are as written in the scene or the §2 default `<class><index>`
+/// (already filled in by [`Scene::from_json`]); an object whose id is not
+/// an identifier cannot be a landmark. Reports every atom naming a missing
+/// or movable object, at the atom's span when the rule was parsed, naming
+/// the rule and the id and listing the scene's fixed objects.
+pub fn check_landmarks(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
+    let fixed: Vec<&str> = scene
+        .objects
+        .iter()
+        .filter(|o| o.fixed && o.is_placed() && is_identifier(&o.id))
+        .map(|o| o.id.as_str())
+        .collect();
+    let listing = if fixed.is_empty() {
+        "the scene has no fixed objects that can be landmarks".to_string()
+    } else {
+        format!("the scene's fixed objects are {}", fixed.join(", "))
+    };
+    let mut diags = Vec::new();
+    for rule in &rules.rules {
+        for (i, atom) in rule.formula.atoms().into_iter().enumerate() {
+            let Target::Landmark(id) = &atom.target else {
+                continue;
+            };
+            if fixed.contains(&id.as_str()) {
+                continue;
+            }
+            let span = rule
+                .origin
+                .as_ref()
+                .and_then(|o| o.atoms.get(i).copied())
+                .unwrap_or(Span::new(0, 0));
+            let movable = scene.objects.iter().any(|o| &o.id == id && !o.fixed);
+            let message = if movable {
+                format!(
+                    "landmark `@{id}` in rule `{}` is not a fixed object: expected the id of a fixed object; {listing}",
+                    rule.name
+                )
+            } else {
+                format!(
+                    "unknown landmark `@{id}` in rule `{}`: expected the id of a fixed object; {listing}",
+                    rule.name
+                )
+            };
+            diags.push(Diagnostic::new(span, message));
+        }
+    }
+    if diags.is_empty() {
+        Ok(())
+    } else {
+        Err(RulesError::new(diags))
+    }
+}
+
+/// Whether `s` is an identifier `[A-Za-z_][A-Za-z0-9_]*` (only such ids can
+/// be written after `@`).
+fn is_identifier(s: &str) -> bool {
+    let mut chars = s.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }

@@ -10,11 +10,14 @@
 //! 3. for each rule the nesting depth (parentheses and `!`) is measured
 //!    iteratively over the token stream, and only then is the formula built
 //!    by recursion; finally the semantic checks run (relation names, one
-//!    subject class per rule, unique names, modifier ranges).
+//!    subject class per rule, or the scene scope's class; quantifier counts;
+//!    no quantifier before a landmark; unique names, modifier ranges).
 
 use super::diagnostic::{line_col, Diagnostic};
-use super::{Atom, Formula, Rule, RuleOrigin, RuleSet, RulesError, Span, Strength, Target};
-use crate::relations::Relation;
+use super::{
+    Atom, Formula, Quant, Rule, RuleOrigin, RuleSet, RulesError, Scope, Span, Strength, Target,
+};
+use crate::relations::{Relation, MAX_COUNT};
 use pest::error::{ErrorVariant, InputLocation};
 use pest::iterators::Pair;
 use pest::Parser as _;
@@ -162,6 +165,9 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
     let mut name = None;
     let mut strength = Strength::default();
     let mut modifier_span = None;
+    let mut scope = Scope::Each;
+    let mut scope_written: Option<(String, String)> = None;
+    let mut scope_span = None;
     let mut formula = None;
     let mut atom_spans = Vec::new();
     let mut subjects = Vec::new();
@@ -175,21 +181,47 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
                     Err(d) => diags.push(d),
                 }
             }
-            R::formula => {
-                let mut b = Builder {
-                    atoms: &mut atom_spans,
-                    subjects: &mut subjects,
-                    diags,
-                };
-                formula = p.into_inner().next().map(|d| b.disjunction(d));
+            R::body => {
+                for b in p.into_inner() {
+                    match b.as_rule() {
+                        R::scope => {
+                            scope_span = Some(span_of(&b));
+                            if let Some((q, written, class)) = scene_scope(b, diags) {
+                                scope = Scope::of(q);
+                                if let Some(class) = class {
+                                    scope_written = Some((written, class));
+                                }
+                            }
+                        }
+                        R::formula => {
+                            let mut builder = Builder {
+                                atoms: &mut atom_spans,
+                                subjects: &mut subjects,
+                                diags,
+                            };
+                            formula = b.into_inner().next().map(|d| builder.disjunction(d));
+                        }
+                        _ => {}
+                    }
+                }
             }
             _ => {}
         }
     }
     let (name, name_span) = name?;
     let formula = formula?;
-    // One subject class per rule.
-    if let Some((first, _)) = subjects.first() {
+    if let Some((written, class)) = &scope_written {
+        // A scene scope fixes the subject class of every atom.
+        if let Some((other, span)) = subjects.iter().find(|(s, _)| s != class) {
+            diags.push(Diagnostic::new(
+                *span,
+                format!(
+                    "rule `{name}` is about `{class}` (`{written} {class}:`), but this atom is about `{other}`: expected every atom's subject to be `{class}`"
+                ),
+            ));
+        }
+    } else if let Some((first, _)) = subjects.first() {
+        // One subject class per rule.
         if let Some((other, span)) = subjects.iter().find(|(s, _)| s != first) {
             diags.push(Diagnostic::new(
                 *span,
@@ -202,7 +234,7 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
     let rule = Rule {
         name,
         strength,
-        scope: crate::rules::Scope::Each,
+        scope,
         formula,
         comments: Vec::new(),
         origin: Some(RuleOrigin {
@@ -210,12 +242,161 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
             name: name_span,
             modifier: modifier_span,
             atoms: atom_spans,
-            scope: None,
+            scope: scope_span,
         }),
     };
     // A rule with errors still takes part in the duplicate-name check; the
     // caller drops it since diagnostics were recorded.
     Some(rule)
+}
+
+/// A scene scope `Q A:`: the quantifier (when valid), how it was written and
+/// the class (when it is one). Problems are pushed to `diags`.
+fn scene_scope(
+    p: Pair<'_, R>,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<(Quant, String, Option<String>)> {
+    let mut q = None;
+    let mut written = String::new();
+    let mut class = None;
+    for c in p.into_inner() {
+        match c.as_rule() {
+            R::quant => {
+                written = written_text(c.as_str());
+                match quant(c) {
+                    Ok(v) => q = Some(v),
+                    Err(d) => diags.push(d),
+                }
+            }
+            R::subject => match subject_kind(c) {
+                Subject::Class(s) => class = Some(s),
+                Subject::Other(text, span, landmark) => {
+                    let why = if landmark {
+                        "a scene scope counts the objects of one class, not a landmark"
+                    } else {
+                        "a scene scope counts the objects of one class"
+                    };
+                    diags.push(Diagnostic::new(
+                        span,
+                        format!("expected a class name after `{written}`, found `{text}`: {why}"),
+                    ));
+                }
+            },
+            _ => {}
+        }
+    }
+    Some((q?, written, class))
+}
+
+/// What a `subject` pair names.
+enum Subject {
+    /// A class name.
+    Class(String),
+    /// `*` or `@ID` (text, span, whether a landmark).
+    Other(String, Span, bool),
+}
+
+fn subject_kind(p: Pair<'_, R>) -> Subject {
+    let span = span_of(&p);
+    let text = p.as_str().to_string();
+    match p.into_inner().next().map(|c| c.as_rule()) {
+        Some(R::class) => Subject::Class(text),
+        Some(R::landmark) => Subject::Other(text, span, true),
+        _ => Subject::Other(text, span, false),
+    }
+}
+
+/// The span of a quantifier's words and count, without the whitespace that
+/// `every`/`some`/`no`'s lookahead skipped.
+fn words_span(p: &Pair<'_, R>) -> Span {
+    let start = p.as_span().start();
+    let end = p
+        .clone()
+        .into_inner()
+        .last()
+        .map_or(p.as_span().end(), |c| c.as_span().end());
+    Span::new(start, end)
+}
+
+/// Text as written with whitespace runs collapsed, shortened when long.
+fn written_text(s: &str) -> String {
+    let joined = s.split_whitespace().collect::<Vec<_>>().join(" ");
+    shorten(&joined)
+}
+
+/// At most [`SHOWN`] characters of `s` (with `…` when cut).
+fn shorten(s: &str) -> String {
+    if s.chars().count() <= SHOWN {
+        s.to_string()
+    } else {
+        let mut out: String = s.chars().take(SHOWN - 4).collect();
+        out.push('…');
+        out
+    }
+}
+
+/// The longest bad value quoted in full in a message.
+const SHOWN: usize = 24;
+
+/// A quantifier pair: `every`, `some`, `no`, `at least K`, `at most K`.
+fn quant(p: Pair<'_, R>) -> Result<Quant, Diagnostic> {
+    let whole = span_of(&p);
+    let mut least = true;
+    let mut count = None;
+    for c in p.into_inner() {
+        match c.as_rule() {
+            R::kw_every => return Ok(Quant::Every),
+            R::kw_some => return Ok(Quant::Some),
+            R::kw_no => return Ok(Quant::No),
+            R::kw_least => least = true,
+            R::kw_most => least = false,
+            R::count => count = Some(c),
+            _ => {}
+        }
+    }
+    let words = if least { "at least" } else { "at most" };
+    let Some(c) = count else {
+        // The grammar requires a count; kept as an error, not a panic.
+        return Err(Diagnostic::new(
+            whole,
+            format!("missing count after `{words}`: expected a whole number from 0 to {MAX_COUNT}"),
+        ));
+    };
+    let k = parse_count(c.as_str(), words).map_err(|m| Diagnostic::new(span_of(&c), m))?;
+    Ok(if least {
+        Quant::AtLeast(k)
+    } else {
+        Quant::AtMost(k)
+    })
+}
+
+/// `K` of `at least K` / `at most K`: decimal digits, at most
+/// [`MAX_COUNT`]. Never overflows, whatever the length.
+fn parse_count(text: &str, words: &str) -> Result<u32, String> {
+    if text.is_empty() || !text.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(format!(
+            "bad count `{}` after `{words}`: expected a whole number in decimal digits, such as `{words} 2`",
+            shorten(text)
+        ));
+    }
+    let significant = text.trim_start_matches('0');
+    let value = if significant.len() > 5 {
+        None
+    } else if significant.is_empty() {
+        Some(0)
+    } else {
+        significant.parse::<u32>().ok().filter(|v| *v <= MAX_COUNT)
+    };
+    value.ok_or_else(|| {
+        let shown = if text.len() > SHOWN {
+            format!("`{}` ({} digits)", shorten(text), text.len())
+        } else {
+            format!("`{text}`")
+        };
+        format!(
+            "count {shown} after `{words}` is too large: expected a whole number from 0 to {MAX_COUNT}"
+        )
+    })
 }
 
 fn modifier(p: Pair<'_, R>) -> Result<Strength, Diagnostic> {
@@ -331,6 +512,7 @@ impl Builder<'_> {
         self.atoms.push(span);
         let mut rel = Relation::ALL[0];
         let mut subject = String::new();
+        let mut quant = None;
         let mut target = Target::Any;
         for c in p.into_inner() {
             match c.as_rule() {
@@ -347,20 +529,77 @@ impl Builder<'_> {
                         ));
                     }
                 },
-                R::subject => {
-                    subject = c.as_str().to_string();
-                    self.subjects.push((subject.clone(), span));
-                }
-                R::target => {
-                    target = match c.as_str() {
-                        "*" => Target::Any,
-                        s => Target::Class(s.to_string()),
+                R::subject => match subject_kind(c) {
+                    Subject::Class(s) => {
+                        subject = s;
+                        self.subjects.push((subject.clone(), span));
                     }
+                    Subject::Other(text, at, landmark) => {
+                        let message = if landmark {
+                            format!("expected a class name, found `{text}`: the subject of an atom is a class, not a landmark")
+                        } else {
+                            // The first edition's (syntax) message, kept.
+                            format!("expected a class name, found `{text}`")
+                        };
+                        self.diags.push(Diagnostic::new(at, message));
+                    }
+                },
+                R::target => {
+                    let (q, t) = self.target(c);
+                    quant = q;
+                    target = t;
                 }
                 _ => {}
             }
         }
-        Formula::Atom(Atom::new(rel, subject, target))
+        Formula::Atom(match quant {
+            Some(q) => Atom::quantified(rel, subject, q, target),
+            None => Atom::new(rel, subject, target),
+        })
+    }
+
+    /// An atom's target: the written quantifier (if valid) and the object.
+    fn target(&mut self, p: Pair<'_, R>) -> (Option<Quant>, Target) {
+        let mut quant_pair = None;
+        let mut target = Target::Any;
+        for c in p.into_inner() {
+            match c.as_rule() {
+                R::quant => quant_pair = Some(c),
+                R::object => {
+                    let text = c.as_str();
+                    target = match c.into_inner().next().map(|o| o.as_rule()) {
+                        Some(R::landmark) => {
+                            Target::Landmark(text.strip_prefix('@').unwrap_or(text).to_string())
+                        }
+                        Some(R::class) => Target::Class(text.to_string()),
+                        _ => Target::Any,
+                    };
+                }
+                _ => {}
+            }
+        }
+        let Some(qp) = quant_pair else {
+            return (None, target);
+        };
+        let written = written_text(qp.as_str());
+        let qspan = words_span(&qp);
+        let q = match quant(qp) {
+            Ok(q) => Some(q),
+            Err(d) => {
+                self.diags.push(d);
+                None
+            }
+        };
+        if let Target::Landmark(id) = &target {
+            self.diags.push(Diagnostic::new(
+                qspan,
+                format!(
+                    "quantifier `{written}` before landmark `@{id}`: a landmark takes no quantifier; expected `@{id}` alone"
+                ),
+            ));
+            return (None, target);
+        }
+        (q, target)
     }
 }
 
@@ -387,8 +626,17 @@ fn describe(r: R) -> &'static str {
         R::not_op => "`!`",
         R::atom | R::relation => "a relation such as DR_N or EC_W",
         R::comma => "`,`",
-        R::subject => "a class name",
-        R::target => "a class name or `*`",
+        R::subject | R::class => "a class name",
+        R::target | R::object => "a class name or `*`",
+        R::body | R::scope => "a formula",
+        R::scope_colon => "`:`",
+        R::any => "`*`",
+        R::landmark => "a landmark `@ID`",
+        R::landmark_id => "an object id right after `@`",
+        R::quant | R::kw_every | R::kw_some | R::kw_no | R::kw_at => "a quantifier",
+        R::kw_least => "`least`",
+        R::kw_most => "`most`",
+        R::count => "a count (a whole number such as 2)",
         _ => "something else",
     }
 }

@@ -1,6 +1,10 @@
 //! Pretty-printer whose output re-parses to the same rule set.
+//!
+//! Default target quantifiers are written implicitly (`DR_N(B, R)`, not
+//! `DR_N(B, every R)`), so a first-edition rule set prints as it always did;
+//! a scene-level rule prints its scope `Q A: ` before the formula.
 
-use super::{Formula, Rule, RuleSet, Strength};
+use super::{Formula, Rule, RuleSet, Scope, Strength};
 
 /// Formulas whose one-line form is longer than this are wrapped: each
 /// top-level disjunct after the first goes on a continuation line.
@@ -98,10 +102,14 @@ pub fn print_rule(r: &Rule) -> String {
             }
         }
     }
-    let head = match strength_text(&r.strength) {
+    let mut head = match strength_text(&r.strength) {
         Some(m) => format!("rule {} {m}: ", r.name),
         None => format!("rule {}: ", r.name),
     };
+    // `Scope::Each` is the ordinary rule: no `every A:` is written.
+    if let Scope::Scene(q) = r.scope {
+        head.push_str(&format!("{q} {}: ", r.formula.subject()));
+    }
     out.push_str(&head);
     let one_line = print_formula(&r.formula);
     match &r.formula {

@@ -4,7 +4,9 @@
 use super::storage::{self, DEMOS, LEARNED, STATEMENTS};
 use super::AppState;
 use crate::infer::{learn as run_learn, LearnParams, StatementSource};
-use crate::rules::{check_classes, parse_rules, print_formula, print_rule, RuleSet};
+use crate::rules::{
+    check_classes, check_landmarks, parse_rules, print_formula, print_rule, RuleSet,
+};
 use crate::scene::{scenes_from_json, scenes_to_json, Scene};
 use crate::synth::{synthesize, Progress, ProgressFn, SynthOptions, SynthResult};
 use axum::body::Bytes;
@@ -497,7 +499,11 @@ fn learned_value(st: &AppState, text: Option<&str>) -> Value {
         "version": storage::version(text),
     });
     if let Some(t) = text {
-        match parse_rules(t).and_then(|set| check_classes(&set, &st.problem).map(|_| set)) {
+        match parse_rules(t).and_then(|set| {
+            check_classes(&set, &st.problem)?;
+            check_landmarks(&set, &st.problem)?;
+            Ok(set)
+        }) {
             Ok(set) => v["rules"] = rule_summary(&set),
             Err(e) => v["error"] = json!(e.render(LEARNED, t, false)),
         }
@@ -532,6 +538,7 @@ pub(crate) async fn put_learned(State(st): St, body: Bytes) -> ApiResult {
     let b: PutLearned = parse_body(&body)?;
     let set = parse_rules(&b.text).map_err(|e| rules_error(LEARNED, &b.text, e))?;
     check_classes(&set, &st.problem).map_err(|e| rules_error(LEARNED, &b.text, e))?;
+    check_landmarks(&set, &st.problem).map_err(|e| rules_error(LEARNED, &b.text, e))?;
     let _guard = st.write_lock.lock().await;
     let current = storage::read_optional(&st.dir, LEARNED).map_err(|e| ApiError::io(LEARNED, e))?;
     if storage::version(current.as_deref()) != b.base_version {
@@ -574,6 +581,7 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
     let b: SynthBody = parse_body(&body)?;
     let set = parse_rules(&b.rules).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
     check_classes(&set, &st.problem).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
+    check_landmarks(&set, &st.problem).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
     let limit = b.time_limit.unwrap_or(30.0);
     if !(limit.is_finite() && limit > 0.0 && limit <= 600.0) {
         return Err(ApiError::bad(format!(
