@@ -485,6 +485,28 @@ async fn synth_on_the_bundled_example() {
     let scene = rccpack::scene::Scene::from_json(&r["scene"].to_string()).unwrap();
     assert!(scene.is_complete());
     assert_eq!(scene.objects.len(), 13);
+    // The saved demonstrations are the like-scenes by default (SPEC §12).
+    let demos =
+        rccpack::scene::scenes_from_json(&std::fs::read_to_string(dir.join("demos.json")).unwrap())
+            .unwrap();
+    let problem = rccpack::scene::Scene::from_json(
+        &std::fs::read_to_string(dir.join("problem.json")).unwrap(),
+    )
+    .unwrap();
+    let cost = rccpack::resemblance::Likeness::new(&demos).cost(&problem, &scene);
+    assert_eq!(r["resemblance"]["cost"], cost, "{r}");
+    assert_eq!(r["resemblance"]["proven"], true);
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/synth",
+        json!({"rules": pilot, "like": false}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::ACCEPTED, "{v}");
+    let done = wait_job(&app, &v["job"]).await;
+    assert!(done["result"]["resemblance"].is_null(), "{done}");
+    assert_eq!(done["result"]["score"], 1.0);
 
     // Bad rules: the located diagnostic; bad limit: field path.
     let (s, v) = call(

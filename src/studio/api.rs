@@ -4,6 +4,7 @@
 use super::storage::{self, DEMOS, LEARNED, STATEMENTS};
 use super::AppState;
 use crate::infer::{learn as run_learn, LearnParams, StatementSource};
+use crate::resemblance::Likeness;
 use crate::rules::{
     check_classes, check_landmarks, parse_rules, print_formula, print_rule, RuleSet,
 };
@@ -573,6 +574,9 @@ struct SynthBody {
     /// Seconds (default 30, at most 600).
     time_limit: Option<f64>,
     seed: Option<u64>,
+    /// Prefer layouts like the saved demonstrations (SPEC §12; default
+    /// true).
+    like: Option<bool>,
 }
 
 const CHOSEN: &str = "chosen rules";
@@ -589,6 +593,10 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
         ))
         .at("time_limit"));
     }
+    let like = match b.like.unwrap_or(true) {
+        true => Some(Likeness::new(&read_demos(&st)?)),
+        false => None,
+    };
     let cancel = Arc::new(AtomicBool::new(false));
     let best = Arc::new(Mutex::new(None));
     let id = st.next_job.fetch_add(1, Ordering::Relaxed);
@@ -618,6 +626,7 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
         progress: Some(ProgressFn(Arc::new(move |p: &Progress| {
             *progress_best.lock().expect("best lock") = Some(p.score);
         }))),
+        like,
         ..SynthOptions::default()
     };
     let st2 = st.clone();
@@ -650,6 +659,7 @@ fn synth_value(r: &SynthResult) -> Value {
         "scene": r.scene.as_ref().map(scene_value),
         "evaluation": e,
         "conflict": r.conflict,
+        "resemblance": r.resemblance,
     })
 }
 
