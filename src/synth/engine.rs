@@ -866,14 +866,18 @@ fn post_like(
     let (nx, ny) = (t.map.nx as usize, t.map.ny as usize);
     let lo = t.map.min();
     let at = |a: usize, b: usize| t.map.cost[b * nx + a];
-    for a in 0..nx {
-        let m = (0..ny).map(|b| at(a, b)).min().unwrap_or(lo);
+    let col: Vec<u64> = (0..nx)
+        .map(|a| (0..ny).map(|b| at(a, b)).min().unwrap_or(lo))
+        .collect();
+    let row: Vec<u64> = (0..ny)
+        .map(|b| (0..nx).map(|a| at(a, b)).min().unwrap_or(lo))
+        .collect();
+    for (a, &m) in col.iter().enumerate() {
         if m > lo {
             solver.add_clause([predicate![gx != a as i32], predicate![c >= m as i32]], tag);
         }
     }
-    for b in 0..ny {
-        let m = (0..nx).map(|a| at(a, b)).min().unwrap_or(lo);
+    for (b, &m) in row.iter().enumerate() {
         if m > lo {
             solver.add_clause([predicate![gy != b as i32], predicate![c >= m as i32]], tag);
         }
@@ -881,7 +885,9 @@ fn post_like(
     for b in 0..ny {
         for a in 0..nx {
             let v = at(a, b);
-            if v > lo {
+            // Cells whose cost the column or row clause already gives need
+            // no clause of their own.
+            if v > col[a].max(row[b]) {
                 solver.add_clause(
                     [
                         predicate![gx != a as i32],
