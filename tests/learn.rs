@@ -206,6 +206,225 @@ fn learn_chance_rate_matches_exact_enumeration() {
     }
 }
 
+/// A fixed 10×10 `f` and two movable `M` of different sizes (10×10 and
+/// 20×10) in a 70×40 space: the two placement orders differ.
+fn scene_level_demo() -> Scene {
+    scene(
+        70,
+        40,
+        vec![
+            obj("f", "F", 30, 20, 10, 10, true),
+            obj("m1", "M", 40, 20, 10, 10, false),
+            obj("m2", "M", 0, 0, 20, 10, false),
+        ],
+    )
+}
+
+fn scene_level_statements() -> RuleSet {
+    use rccpack::infer::templates::{atom as t_atom, touches};
+    use rccpack::relations::Quant;
+    let f = Target::Landmark("f".into());
+    let any = Target::Any;
+    RuleSet::new(vec![
+        Rule::new("some_touch", touches("M", &f)).with_scope(Scope::Scene(Quant::Some)),
+        Rule::new("none_touch", touches("M", &f)).with_scope(Scope::Scene(Quant::No)),
+        Rule::new("both_touch", touches("M", &f)).with_scope(Scope::Scene(Quant::AtLeast(2))),
+        Rule::new("one_east", t_atom(Kind::EC, Dir::E, "M", &any))
+            .with_scope(Scope::Scene(Quant::AtMost(1))),
+        Rule::new("some_flush_east", t_atom(Kind::FL, Dir::E, "M", &any))
+            .with_scope(Scope::Scene(Quant::Some)),
+    ])
+}
+
+/// The exact probability, under the null model of §7.2 (a random order of
+/// the movable objects, each at a uniformly random free grid position), that
+/// each scene-level rule of `rules` holds.
+fn exact_scene_rates(demo: &Scene, rules: &RuleSet) -> Vec<f64> {
+    let space = demo.space.rect();
+    let positions = |s: &Scene, i: usize| -> Vec<(i64, i64)> {
+        let o = &s.objects[i];
+        let mut out = Vec::new();
+        for kx in 0..=(space.w - o.width) / s.grid {
+            for ky in 0..=(space.h - o.height) / s.grid {
+                let r = rccpack::scene::Rect::new(kx * s.grid, ky * s.grid, o.width, o.height);
+                let free = s
+                    .objects
+                    .iter()
+                    .enumerate()
+                    .filter(|&(j, p)| j != i && p.is_placed())
+                    .all(|(_, p)| !p.rect().unwrap().interiors_overlap(&r));
+                if free {
+                    out.push((r.x, r.y));
+                }
+            }
+        }
+        out
+    };
+    let mut rates = vec![0.0; rules.rules.len()];
+    for order in [[1usize, 2], [2, 1]] {
+        let mut s = demo.clone();
+        for &i in &order {
+            s.objects[i].x = None;
+            s.objects[i].y = None;
+        }
+        let firsts = positions(&s, order[0]);
+        for &(x, y) in &firsts {
+            let mut s1 = s.clone();
+            s1.objects[order[0]].x = Some(x);
+            s1.objects[order[0]].y = Some(y);
+            let seconds = positions(&s1, order[1]);
+            for &(x2, y2) in &seconds {
+                let mut s2 = s1.clone();
+                s2.objects[order[1]].x = Some(x2);
+                s2.objects[order[1]].y = Some(y2);
+                let ev = Evaluator::new(&s2, rules, Contact::Point);
+                let w = 0.5 / firsts.len() as f64 / seconds.len() as f64;
+                for (k, r) in rules.rules.iter().enumerate() {
+                    if ev.evaluate_rule(r).satisfied == 1 {
+                        rates[k] += w;
+                    }
+                }
+            }
+        }
+    }
+    rates
+}
+
+/// §11.5: the chance rate of a scene-level statement is the fraction of
+/// null scenes in which it holds — checked against exact enumeration of the
+/// null model on a tiny scene, both through the null model's counts and
+/// through `learn`'s reported `q` (with `n = d`, `p = max(0.5 / d_r, q)`).
+#[test]
+fn scene_level_chance_rate_matches_exact_enumeration() {
+    let demo = scene_level_demo();
+    let rules = scene_level_statements();
+    let exact = exact_scene_rates(&demo, &rules);
+    assert!(exact.iter().all(|&e| e > 0.0 && e < 1.0), "{exact:?}");
+    let samples = 20_000;
+    let mut classes = rccpack::relations::ClassIndex::of_scene(&demo);
+    classes.intern_landmark("f");
+    let compiled: Vec<rccpack::eval::CompiledRule> = rules
+        .rules
+        .iter()
+        .map(|r| rccpack::eval::CompiledRule::compile(r, &mut classes.clone()))
+        .collect();
+    let model = NullModel::new(std::slice::from_ref(&demo), 11).unwrap();
+    let counts = model
+        .count(samples, &classes, &compiled, Contact::Point)
+        .unwrap();
+    for (k, r) in rules.rules.iter().enumerate() {
+        let est = counts[k] as f64 / samples as f64;
+        let se = (exact[k] * (1.0 - exact[k]) / samples as f64).sqrt();
+        assert!(
+            (est - exact[k]).abs() <= 4.0 * se,
+            "{}: sampled {est}, exact {}, se {se}",
+            r.name,
+            exact[k]
+        );
+    }
+    // Through `learn`: the demonstration satisfies some_touch, one_east
+    // and some_flush_east (m1 lies flush on f's east side; m2 is alone).
+    let learned = learn(
+        std::slice::from_ref(&demo),
+        Some(&rules),
+        &LearnParams {
+            samples,
+            seed: 11,
+            ..LearnParams::default()
+        },
+    )
+    .unwrap();
+    let cands: Vec<&str> = learned
+        .statements
+        .iter()
+        .filter(|s| s.candidate)
+        .map(|s| s.name.as_str())
+        .collect();
+    assert_eq!(cands, ["some_touch", "one_east", "some_flush_east"]);
+    for (k, s) in learned.statements.iter().enumerate() {
+        assert_eq!(s.n, 1, "n = d for a scene-level statement");
+        if let Some(q) = s.q {
+            assert_eq!(s.satisfied, Some(counts[k]), "the same null scenes");
+            assert_eq!(q, counts[k] as f64 / samples as f64);
+            let p = s.posterior.unwrap().p;
+            assert_eq!(p, q.max(0.5 / samples as f64));
+        }
+    }
+    assert_eq!(learned.scene_epsilon, 0.5 / samples as f64);
+}
+
+/// A broken scene-level statement names its demonstration, and an object
+/// only where one is to blame: for `no`, the first object that satisfies
+/// the formula; for `some`, none.
+#[test]
+fn broken_scene_level_statements_name_the_demonstration() {
+    let mut other = scene_level_demo();
+    other.objects[1].x = Some(60); // m1 leaves f: nothing touches f
+    other.objects[1].y = Some(30);
+    let demos = [scene_level_demo(), other];
+    let rules = scene_level_statements();
+    let learned = learn(
+        &demos,
+        Some(&rules),
+        &LearnParams {
+            samples: 20,
+            ..LearnParams::default()
+        },
+    )
+    .unwrap();
+    let by = |name: &str| {
+        learned
+            .statements
+            .iter()
+            .find(|s| s.name == name)
+            .unwrap()
+            .broken_by
+            .clone()
+    };
+    let prov = |demo: usize, object: Option<&str>| {
+        Some(rccpack::infer::Provenance {
+            demo,
+            object: object.map(String::from),
+        })
+    };
+    assert_eq!(by("some_touch"), prov(1, None));
+    assert_eq!(by("none_touch"), prov(0, Some("m1")));
+    assert_eq!(by("both_touch"), prov(0, None));
+    assert_eq!(by("one_east"), None);
+    let report: serde_json::Value = serde_json::from_str(&learned.report_json()).unwrap();
+    let st = &report["statements"];
+    assert_eq!(st[0]["broken_by"], serde_json::json!({"demo": 1}));
+    assert_eq!(
+        st[1]["broken_by"],
+        serde_json::json!({"demo": 0, "object": "m1"})
+    );
+    assert_eq!(st[0]["scope"], "some");
+    assert_eq!(st[2]["scope"], "at least 2");
+    assert_eq!(st[3]["n"], 2);
+    assert_eq!(
+        st[0]["formula"],
+        "some M: EC_N(M, @f) | EC_S(M, @f) | EC_E(M, @f) | EC_W(M, @f)"
+    );
+    assert_eq!(st[0]["english"], "at least one M touches f");
+}
+
+/// A given statement naming a landmark that some demonstration lacks is bad
+/// input naming the rule, the id and the demonstration.
+#[test]
+fn statement_naming_an_absent_landmark_is_an_error() {
+    let demos = synthetic_demos();
+    let f = Target::Landmark("nope".into());
+    let set = RuleSet::new(vec![Rule::new(
+        "x",
+        rccpack::infer::templates::touches("B", &f),
+    )]);
+    let e = err(&demos, Some(&set));
+    assert_eq!(
+        e.to_string(),
+        "rule `x` names landmark `@nope`, which is not a fixed object of demonstration [0]"
+    );
+}
+
 /// Three small demonstrations: B north of R, everything inside the walls.
 fn synthetic_demos() -> Vec<Scene> {
     let walls = |v: &mut Vec<Object>| {
@@ -259,6 +478,12 @@ fn same_seed_same_output_with_one_and_two_threads() {
     assert_eq!(one, two);
     assert_eq!(one.to_rcc(), two.to_rcc());
     assert_eq!(one.report_json(), two.report_json());
+    // The second-edition templates are in use, scene-level ones included.
+    assert!(one
+        .statements
+        .iter()
+        .any(|s| s.scope.is_scene() && s.candidate && s.satisfied.is_some()));
+    assert!(one.statements.iter().any(|s| s.name == "B_row"));
     // And a different seed gives different chance counts.
     let other = learn(&demos, None, &LearnParams { seed: 43, ..params }).unwrap();
     assert_ne!(
@@ -274,12 +499,37 @@ fn same_seed_same_output_with_one_and_two_threads() {
     );
 }
 
+/// The bundled example with the second-edition templates: the same output
+/// with 1 and 2 threads.
+#[test]
+fn box_packing_same_output_with_one_and_two_threads() {
+    let demos = box_packing_demos();
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| learn(&demos, None, &LearnParams::default()).unwrap())
+    };
+    let (one, two) = (run(1), run(2));
+    assert_eq!(one, two);
+    assert_eq!(one.report_json(), two.report_json());
+}
+
 /// The learned file parses back to the same rules, strongest first, with
 /// posteriors below the cutoff.
 #[test]
 fn learned_file_parses_back() {
     let demos = synthetic_demos();
-    let learned = learn(&demos, None, &LearnParams::default()).unwrap();
+    let params = LearnParams {
+        templates: if parser_reads_second_edition() {
+            Templates::Second
+        } else {
+            Templates::First
+        },
+        ..LearnParams::default()
+    };
+    let learned = learn(&demos, None, &params).unwrap();
     let text = learned.to_rcc();
     let parsed = parse_rules(&text).unwrap();
     assert!(parsed.same_rules(&learned.rules()), "{text}");
