@@ -889,3 +889,38 @@ fn bad_parameters_name_the_flag() {
         assert_eq!(learn(&demos, None, &p).unwrap_err().to_string(), msg);
     }
 }
+
+/// A learned scene-level rule is written with its `Q A:` after the head
+/// (comments and line wrapping kept), exactly once.
+#[test]
+fn learned_scene_level_rules_are_written_with_their_quantifier() {
+    use rccpack::infer::{print_learned_rule, statement_text};
+    use rccpack::relations::Quant;
+    let f = Target::Landmark("w_south".into());
+    let mut rule = Rule::new(
+        "R_some_touch_w_south",
+        rccpack::infer::templates::touches("R", &f),
+    )
+    .with_scope(Scope::Scene(Quant::Some))
+    .with_strength(rccpack::rules::Strength::P(1e-10));
+    rule.comments = vec!["at least one R touches w_south".into(), "a: b".into()];
+    let text = print_learned_rule(&rule);
+    assert!(
+        text.starts_with(
+            "# at least one R touches w_south\n# a: b\nrule R_some_touch_w_south p 1e-10: some R: EC_N(R, @w_south)"
+        ),
+        "{text}"
+    );
+    assert_eq!(text.matches("some R:").count(), 1);
+    assert_eq!(
+        print_learned_rule(&rule.clone().with_scope(Scope::Each)),
+        rccpack::rules::print_rule(&rule.with_scope(Scope::Each))
+    );
+    assert_eq!(
+        statement_text(
+            Scope::Scene(Quant::AtLeast(2)),
+            &atom(Kind::FL, Dir::N, "G", "G")
+        ),
+        "at least 2 G: FL_N(G, G)"
+    );
+}
