@@ -163,13 +163,7 @@ fn contacts_flush(v: &[Formula]) -> Option<&Target> {
 
 /// Two atoms of `kind` and quantifier `quant` (`None`: default), one
 /// target, directions `{a, b}` in any order.
-fn pair_of<'f>(
-    v: &'f [Formula],
-    kind: Kind,
-    quant: Option<Quant>,
-    a: Dir,
-    b: Dir,
-) -> Option<&'f Target> {
+fn pair_of(v: &[Formula], kind: Kind, quant: Option<Quant>, a: Dir, b: Dir) -> Option<&Target> {
     let [x, y] = v else { return None };
     let (x, y) = (atom_of(x)?, atom_of(y)?);
     let quant_ok = |t: &Atom| match quant {
