@@ -2,10 +2,11 @@
 //!
 //! A hand-written timing harness (median of several runs, wall clock): the
 //! bundled box-packing demonstrations with generated templates at 1000
-//! samples, growth with samples (1k, 10k, 100k) and growth with objects per
-//! scene (10, 40, 160; synthetic scenes in a 1200×1200 space).
+//! samples (first- and second-edition templates), growth with samples (1k,
+//! 10k, 100k) and growth with objects per scene (10, 40, 160; synthetic
+//! scenes in a 1200×1200 space), with the second-edition templates.
 
-use rccpack::infer::{learn, LearnParams, Learned};
+use rccpack::infer::{learn, LearnParams, Learned, Templates};
 use rccpack::scene::{scenes_from_json, Object, Scene, Space};
 use std::time::{Duration, Instant};
 
@@ -64,16 +65,17 @@ fn wall(id: &str, x: i64, y: i64, w: i64, h: i64) -> Object {
     Object::fixed_at(id, "W", x, y, w, h)
 }
 
-fn row(case: &str, demos: &[Scene], samples: usize, runs: usize) {
+fn row(case: &str, demos: &[Scene], templates: Templates, samples: usize, runs: usize) {
     let params = LearnParams {
         samples,
+        templates,
         ..LearnParams::default()
     };
     let (t, l) = median_time(runs, || learn(demos, None, &params).expect("learn"));
     let objects = demos.iter().map(|s| s.objects.len()).sum::<usize>() as f64 / demos.len() as f64;
     let candidates = l.statements.iter().filter(|s| s.candidate).count();
     println!(
-        "{case:<22} {samples:>8} {objects:>9.1} {:>10} {candidates:>10} {:>7} {:>10.2}",
+        "{case:<22} {templates:>9} {samples:>8} {objects:>9.1} {:>10} {candidates:>10} {:>7} {:>10.2}",
         l.statements.len(),
         l.order.len(),
         t.as_secs_f64() * 1e3
@@ -91,13 +93,21 @@ fn main() {
         rayon::current_num_threads()
     );
     println!(
-        "{:<22} {:>8} {:>9} {:>10} {:>10} {:>7} {:>10}",
-        "case", "samples", "objects", "statements", "candidates", "learned", "ms"
+        "{:<22} {:>9} {:>8} {:>9} {:>10} {:>10} {:>7} {:>10}",
+        "case", "templates", "samples", "objects", "statements", "candidates", "learned", "ms"
     );
-    row("box-packing", &demos, 1_000, 21);
-    row("box-packing", &demos, 10_000, 5);
-    row("box-packing", &demos, 100_000, 3);
+    let (first, second) = (Templates::First, Templates::Second);
+    row("box-packing", &demos, first, 1_000, 21);
+    row("box-packing", &demos, second, 1_000, 21);
+    row("box-packing", &demos, second, 10_000, 5);
+    row("box-packing", &demos, second, 100_000, 3);
     for n in [10, 40, 160] {
-        row(&format!("synthetic {n} blocks"), &synthetic(n), 1_000, 5);
+        row(
+            &format!("synthetic {n} blocks"),
+            &synthetic(n),
+            second,
+            1_000,
+            5,
+        );
     }
 }

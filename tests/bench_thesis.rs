@@ -59,3 +59,27 @@ fn tiny_quick_study_solutions_verify() {
     let json = serde_json::to_string(&report).unwrap();
     assert!(json.contains("\"rows\""));
 }
+
+/// The study's rule pool (names, formulas, order) is the one the seeded
+/// draws were made from: `tests/fixtures/thesis-pool.txt`, written by the
+/// pool's own copies of the statement builders before they moved into
+/// `infer::templates`. Regenerate with `RCCPACK_BLESS=1` only on purpose.
+#[test]
+fn thesis_pool_is_unchanged() {
+    use rccpack::bench::pool::{formula_text, pool_for};
+    let mut text = String::new();
+    for c in rccpack::bench::thesis::CLASSES {
+        for r in pool_for(c) {
+            text.push_str(&format!("{}: {}\n", r.name, formula_text(&r.formula)));
+        }
+    }
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/thesis-pool.txt"
+    );
+    if std::env::var_os("RCCPACK_BLESS").is_some() {
+        std::fs::write(path, &text).unwrap();
+    }
+    let want = std::fs::read_to_string(path).expect("tests/fixtures/thesis-pool.txt");
+    assert_eq!(text, want);
+}

@@ -4,9 +4,10 @@
 
 use rccpack::eval::Evaluator;
 use rccpack::infer::posterior::Posterior;
-use rccpack::infer::{learn, InferError, LearnParams, NullModel};
+use rccpack::infer::templates::generate_set;
+use rccpack::infer::{learn, InferError, LearnParams, NullModel, Templates};
 use rccpack::relations::{Contact, Dir, Kind, Relation};
-use rccpack::rules::{parse_rules, Atom, Formula, Rule, RuleSet, Target};
+use rccpack::rules::{parse_rules, Atom, Formula, Rule, RuleSet, Scope, Target};
 use rccpack::scene::{scenes_from_json, Object, Scene, Space};
 
 fn atom(kind: Kind, dir: Dir, s: &str, t: &str) -> Formula {
@@ -205,6 +206,225 @@ fn learn_chance_rate_matches_exact_enumeration() {
     }
 }
 
+/// A fixed 10×10 `f` and two movable `M` of different sizes (10×10 and
+/// 20×10) in a 70×40 space: the two placement orders differ.
+fn scene_level_demo() -> Scene {
+    scene(
+        70,
+        40,
+        vec![
+            obj("f", "F", 30, 20, 10, 10, true),
+            obj("m1", "M", 40, 20, 10, 10, false),
+            obj("m2", "M", 0, 0, 20, 10, false),
+        ],
+    )
+}
+
+fn scene_level_statements() -> RuleSet {
+    use rccpack::infer::templates::{atom as t_atom, touches};
+    use rccpack::relations::Quant;
+    let f = Target::Landmark("f".into());
+    let any = Target::Any;
+    RuleSet::new(vec![
+        Rule::new("some_touch", touches("M", &f)).with_scope(Scope::Scene(Quant::Some)),
+        Rule::new("none_touch", touches("M", &f)).with_scope(Scope::Scene(Quant::No)),
+        Rule::new("both_touch", touches("M", &f)).with_scope(Scope::Scene(Quant::AtLeast(2))),
+        Rule::new("one_east", t_atom(Kind::EC, Dir::E, "M", &any))
+            .with_scope(Scope::Scene(Quant::AtMost(1))),
+        Rule::new("some_flush_east", t_atom(Kind::FL, Dir::E, "M", &any))
+            .with_scope(Scope::Scene(Quant::Some)),
+    ])
+}
+
+/// The exact probability, under the null model of §7.2 (a random order of
+/// the movable objects, each at a uniformly random free grid position), that
+/// each scene-level rule of `rules` holds.
+fn exact_scene_rates(demo: &Scene, rules: &RuleSet) -> Vec<f64> {
+    let space = demo.space.rect();
+    let positions = |s: &Scene, i: usize| -> Vec<(i64, i64)> {
+        let o = &s.objects[i];
+        let mut out = Vec::new();
+        for kx in 0..=(space.w - o.width) / s.grid {
+            for ky in 0..=(space.h - o.height) / s.grid {
+                let r = rccpack::scene::Rect::new(kx * s.grid, ky * s.grid, o.width, o.height);
+                let free = s
+                    .objects
+                    .iter()
+                    .enumerate()
+                    .filter(|&(j, p)| j != i && p.is_placed())
+                    .all(|(_, p)| !p.rect().unwrap().interiors_overlap(&r));
+                if free {
+                    out.push((r.x, r.y));
+                }
+            }
+        }
+        out
+    };
+    let mut rates = vec![0.0; rules.rules.len()];
+    for order in [[1usize, 2], [2, 1]] {
+        let mut s = demo.clone();
+        for &i in &order {
+            s.objects[i].x = None;
+            s.objects[i].y = None;
+        }
+        let firsts = positions(&s, order[0]);
+        for &(x, y) in &firsts {
+            let mut s1 = s.clone();
+            s1.objects[order[0]].x = Some(x);
+            s1.objects[order[0]].y = Some(y);
+            let seconds = positions(&s1, order[1]);
+            for &(x2, y2) in &seconds {
+                let mut s2 = s1.clone();
+                s2.objects[order[1]].x = Some(x2);
+                s2.objects[order[1]].y = Some(y2);
+                let ev = Evaluator::new(&s2, rules, Contact::Point);
+                let w = 0.5 / firsts.len() as f64 / seconds.len() as f64;
+                for (k, r) in rules.rules.iter().enumerate() {
+                    if ev.evaluate_rule(r).satisfied == 1 {
+                        rates[k] += w;
+                    }
+                }
+            }
+        }
+    }
+    rates
+}
+
+/// §11.5: the chance rate of a scene-level statement is the fraction of
+/// null scenes in which it holds — checked against exact enumeration of the
+/// null model on a tiny scene, both through the null model's counts and
+/// through `learn`'s reported `q` (with `n = d`, `p = max(0.5 / d_r, q)`).
+#[test]
+fn scene_level_chance_rate_matches_exact_enumeration() {
+    let demo = scene_level_demo();
+    let rules = scene_level_statements();
+    let exact = exact_scene_rates(&demo, &rules);
+    assert!(exact.iter().all(|&e| e > 0.0 && e < 1.0), "{exact:?}");
+    let samples = 20_000;
+    let mut classes = rccpack::relations::ClassIndex::of_scene(&demo);
+    classes.intern_landmark("f");
+    let compiled: Vec<rccpack::eval::CompiledRule> = rules
+        .rules
+        .iter()
+        .map(|r| rccpack::eval::CompiledRule::compile(r, &mut classes.clone()))
+        .collect();
+    let model = NullModel::new(std::slice::from_ref(&demo), 11).unwrap();
+    let counts = model
+        .count(samples, &classes, &compiled, Contact::Point)
+        .unwrap();
+    for (k, r) in rules.rules.iter().enumerate() {
+        let est = counts[k] as f64 / samples as f64;
+        let se = (exact[k] * (1.0 - exact[k]) / samples as f64).sqrt();
+        assert!(
+            (est - exact[k]).abs() <= 4.0 * se,
+            "{}: sampled {est}, exact {}, se {se}",
+            r.name,
+            exact[k]
+        );
+    }
+    // Through `learn`: the demonstration satisfies some_touch, one_east
+    // and some_flush_east (m1 lies flush on f's east side; m2 is alone).
+    let learned = learn(
+        std::slice::from_ref(&demo),
+        Some(&rules),
+        &LearnParams {
+            samples,
+            seed: 11,
+            ..LearnParams::default()
+        },
+    )
+    .unwrap();
+    let cands: Vec<&str> = learned
+        .statements
+        .iter()
+        .filter(|s| s.candidate)
+        .map(|s| s.name.as_str())
+        .collect();
+    assert_eq!(cands, ["some_touch", "one_east", "some_flush_east"]);
+    for (k, s) in learned.statements.iter().enumerate() {
+        assert_eq!(s.n, 1, "n = d for a scene-level statement");
+        if let Some(q) = s.q {
+            assert_eq!(s.satisfied, Some(counts[k]), "the same null scenes");
+            assert_eq!(q, counts[k] as f64 / samples as f64);
+            let p = s.posterior.unwrap().p;
+            assert_eq!(p, q.max(0.5 / samples as f64));
+        }
+    }
+    assert_eq!(learned.scene_epsilon, 0.5 / samples as f64);
+}
+
+/// A broken scene-level statement names its demonstration, and an object
+/// only where one is to blame: for `no`, the first object that satisfies
+/// the formula; for `some`, none.
+#[test]
+fn broken_scene_level_statements_name_the_demonstration() {
+    let mut other = scene_level_demo();
+    other.objects[1].x = Some(60); // m1 leaves f: nothing touches f
+    other.objects[1].y = Some(30);
+    let demos = [scene_level_demo(), other];
+    let rules = scene_level_statements();
+    let learned = learn(
+        &demos,
+        Some(&rules),
+        &LearnParams {
+            samples: 20,
+            ..LearnParams::default()
+        },
+    )
+    .unwrap();
+    let by = |name: &str| {
+        learned
+            .statements
+            .iter()
+            .find(|s| s.name == name)
+            .unwrap()
+            .broken_by
+            .clone()
+    };
+    let prov = |demo: usize, object: Option<&str>| {
+        Some(rccpack::infer::Provenance {
+            demo,
+            object: object.map(String::from),
+        })
+    };
+    assert_eq!(by("some_touch"), prov(1, None));
+    assert_eq!(by("none_touch"), prov(0, Some("m1")));
+    assert_eq!(by("both_touch"), prov(0, None));
+    assert_eq!(by("one_east"), None);
+    let report: serde_json::Value = serde_json::from_str(&learned.report_json()).unwrap();
+    let st = &report["statements"];
+    assert_eq!(st[0]["broken_by"], serde_json::json!({"demo": 1}));
+    assert_eq!(
+        st[1]["broken_by"],
+        serde_json::json!({"demo": 0, "object": "m1"})
+    );
+    assert_eq!(st[0]["scope"], "some");
+    assert_eq!(st[2]["scope"], "at least 2");
+    assert_eq!(st[3]["n"], 2);
+    assert_eq!(
+        st[0]["formula"],
+        "some M: EC_N(M, @f) | EC_S(M, @f) | EC_E(M, @f) | EC_W(M, @f)"
+    );
+    assert_eq!(st[0]["english"], "at least one M touches f");
+}
+
+/// A given statement naming a landmark that some demonstration lacks is bad
+/// input naming the rule, the id and the demonstration.
+#[test]
+fn statement_naming_an_absent_landmark_is_an_error() {
+    let demos = synthetic_demos();
+    let f = Target::Landmark("nope".into());
+    let set = RuleSet::new(vec![Rule::new(
+        "x",
+        rccpack::infer::templates::touches("B", &f),
+    )]);
+    let e = err(&demos, Some(&set));
+    assert_eq!(
+        e.to_string(),
+        "rule `x` names landmark `@nope`, which is not a fixed object of demonstration [0]"
+    );
+}
+
 /// Three small demonstrations: B north of R, everything inside the walls.
 fn synthetic_demos() -> Vec<Scene> {
     let walls = |v: &mut Vec<Object>| {
@@ -258,6 +478,12 @@ fn same_seed_same_output_with_one_and_two_threads() {
     assert_eq!(one, two);
     assert_eq!(one.to_rcc(), two.to_rcc());
     assert_eq!(one.report_json(), two.report_json());
+    // The second-edition templates are in use, scene-level ones included.
+    assert!(one
+        .statements
+        .iter()
+        .any(|s| s.scope.is_scene() && s.candidate && s.satisfied.is_some()));
+    assert!(one.statements.iter().any(|s| s.name == "B_row"));
     // And a different seed gives different chance counts.
     let other = learn(&demos, None, &LearnParams { seed: 43, ..params }).unwrap();
     assert_ne!(
@@ -273,12 +499,33 @@ fn same_seed_same_output_with_one_and_two_threads() {
     );
 }
 
+/// The bundled example with the second-edition templates: the same output
+/// with 1 and 2 threads.
+#[test]
+fn box_packing_same_output_with_one_and_two_threads() {
+    let demos = box_packing_demos();
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| learn(&demos, None, &LearnParams::default()).unwrap())
+    };
+    let (one, two) = (run(1), run(2));
+    assert_eq!(one, two);
+    assert_eq!(one.report_json(), two.report_json());
+}
+
 /// The learned file parses back to the same rules, strongest first, with
 /// posteriors below the cutoff.
 #[test]
 fn learned_file_parses_back() {
     let demos = synthetic_demos();
-    let learned = learn(&demos, None, &LearnParams::default()).unwrap();
+    let params = LearnParams {
+        templates: Templates::Second,
+        ..LearnParams::default()
+    };
+    let learned = learn(&demos, None, &params).unwrap();
     let text = learned.to_rcc();
     let parsed = parse_rules(&text).unwrap();
     assert!(parsed.same_rules(&learned.rules()), "{text}");
@@ -307,45 +554,164 @@ fn learned_file_parses_back() {
 }
 
 /// Generated template names are readable identifiers, unique, with the
-/// §8 shapes present.
+/// §8 shapes present (both editions) and the §11.5 shapes present in the
+/// second.
 #[test]
 fn template_names_are_readable() {
     let demos = synthetic_demos();
-    let set = rccpack::infer::templates::generate(&demos);
-    let names: Vec<&str> = set.rules.iter().map(|r| r.name.as_str()).collect();
-    for n in [
-        "B_dr_n_R",
-        "B_ec_s_B",
-        "B_touches_B",
-        "B_inside_W",
-        "B_not_dr_e_any",
-        "B_corner",
-        "R_touches_any",
-    ] {
-        assert!(names.contains(&n), "{n} missing");
+    for which in [Templates::First, Templates::Second] {
+        let set = generate_set(&demos, which);
+        let names: Vec<&str> = set.rules.iter().map(|r| r.name.as_str()).collect();
+        for n in [
+            "B_dr_n_R",
+            "B_ec_s_B",
+            "B_touches_B",
+            "B_inside_W",
+            "B_not_dr_e_any",
+            "B_corner",
+            "R_touches_any",
+        ] {
+            assert!(names.contains(&n), "{n} missing");
+        }
+        assert!(!names.iter().any(|n| n.starts_with("W_")), "W is fixed");
+        assert!(names
+            .iter()
+            .all(|n| rccpack::infer::templates::is_identifier(n)));
+        let mut uniq = names.clone();
+        uniq.sort();
+        uniq.dedup();
+        assert_eq!(uniq.len(), names.len());
+        let second = [
+            "B_fl_n_R",
+            "B_touches_flush_B",
+            "B_contacts_flush_B",
+            "R_apart_B",
+            "B_row",
+            "B_column",
+            "B_neighbour_ew",
+            "B_neighbour_ns",
+            "B_some_touch_ws",
+            "R_none_touch_we",
+        ];
+        match which {
+            // 2 movable subjects × 4 targets (B, R, W, *) × (12 + 2) + 2 corners.
+            Templates::First => {
+                assert_eq!(names.len(), 2 * 4 * 14 + 2);
+                assert!(second.iter().all(|n| !names.contains(n)));
+                assert!(set.rules.iter().all(|r| r.scope == Scope::Each));
+            }
+            // … + 2 × 4 × (4 FL + flush + contacts flush + apart)
+            //   + 2 × (row, column, 2 neighbours) + 2 × 4 walls × (some, no).
+            Templates::Second => {
+                assert_eq!(names.len(), 2 * 4 * 14 + 2 + 2 * 4 * 7 + 2 * 4 + 2 * 4 * 2);
+                for n in second {
+                    assert!(names.contains(&n), "{n} missing");
+                }
+            }
+        }
     }
-    assert!(!names.iter().any(|n| n.starts_with("W_")), "W is fixed");
-    let mut uniq = names.clone();
-    uniq.sort();
-    uniq.dedup();
-    assert_eq!(uniq.len(), names.len());
-    // 2 movable subjects × 4 targets (B, R, W, *) × (12 + 2) + 2 corners.
-    assert_eq!(names.len(), 2 * 4 * 14 + 2);
+}
+
+/// The second edition keeps every first-edition statement (§8: "it must
+/// keep these"), with the same name, scope and formula, in the same
+/// relative order.
+#[test]
+fn second_edition_templates_keep_the_first() {
+    for demos in [synthetic_demos(), box_packing_demos()] {
+        let first = generate_set(&demos, Templates::First);
+        let second = generate_set(&demos, Templates::Second);
+        let positions: Vec<usize> = first
+            .rules
+            .iter()
+            .map(|r| {
+                second
+                    .rules
+                    .iter()
+                    .position(|s| s.same_rule(r))
+                    .unwrap_or_else(|| panic!("{} missing", r.name))
+            })
+            .collect();
+        assert!(positions.windows(2).all(|w| w[0] < w[1]));
+        // No two statements share scope and formula.
+        let mut seen = std::collections::HashSet::new();
+        for r in &second.rules {
+            assert!(
+                seen.insert((r.scope, r.formula.clone())),
+                "{} repeats",
+                r.name
+            );
+        }
+    }
+}
+
+/// Landmark templates use the fixed objects present, fixed, with that id in
+/// every demonstration, whose id is an identifier.
+#[test]
+fn landmarks_are_the_shared_fixed_objects() {
+    let mut demos = synthetic_demos();
+    // `wn` has another id in demonstration 1, `we` is missing from 2, and
+    // demonstration 0 has an extra wall with an id that is no identifier.
+    demos[1].objects[1].id = "wn1".into();
+    demos[2].objects.remove(3);
+    demos[0]
+        .objects
+        .push(obj("w-x", "W", 140, 140, 10, 10, true));
+    assert_eq!(
+        rccpack::infer::templates::demo_landmarks(&demos),
+        ["ws", "ww"]
+    );
+    let set = generate_set(&demos, Templates::Second);
+    let lm: Vec<String> = set.landmarks();
+    assert_eq!(lm, ["ws", "ww"]);
+    let scene_level: Vec<&str> = set
+        .rules
+        .iter()
+        .filter(|r| r.scope.is_scene())
+        .map(|r| r.name.as_str())
+        .collect();
+    assert_eq!(
+        scene_level,
+        [
+            "R_some_touch_ws",
+            "R_none_touch_ws",
+            "R_some_touch_ww",
+            "R_none_touch_ww",
+            "B_some_touch_ws",
+            "B_none_touch_ws",
+            "B_some_touch_ww",
+            "B_none_touch_ww"
+        ]
+    );
 }
 
 // ---- the bundled example ---------------------------------------------------
 
-/// On `examples/box-packing/demos.json`, with generated templates, every
-/// one of the thesis's 12 pilot rules is learned at the default cutoff.
-#[test]
-fn box_packing_example_learns_the_pilot_rules() {
+fn box_packing_demos() -> Vec<Scene> {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/examples/box-packing/demos.json"
     );
     let text = std::fs::read_to_string(path).expect("examples/box-packing/demos.json");
-    let demos = scenes_from_json(&text).unwrap();
-    let learned = learn(&demos, None, &LearnParams::default()).unwrap();
+    scenes_from_json(&text).unwrap()
+}
+
+/// On `examples/box-packing/demos.json`, with generated templates of both
+/// editions, every one of the thesis's 12 pilot rules is learned at the
+/// default cutoff.
+#[test]
+fn box_packing_example_learns_the_pilot_rules() {
+    let demos = box_packing_demos();
+    for which in [Templates::Second, Templates::First] {
+        box_packing_learns_the_pilot_rules(&demos, which);
+    }
+}
+
+fn box_packing_learns_the_pilot_rules(demos: &[Scene], which: Templates) {
+    let params = LearnParams {
+        templates: which,
+        ..LearnParams::default()
+    };
+    let learned = learn(demos, None, &params).unwrap();
     let names: Vec<&str> = learned
         .order
         .iter()
@@ -370,14 +736,17 @@ fn box_packing_example_learns_the_pilot_rules() {
         "not learned: {missing:?}\n{}",
         learned.to_rcc()
     );
-    // The file parses back and scores 1 on every demonstration.
-    let rules = parse_rules(&learned.to_rcc()).unwrap();
-    for d in &demos {
+    // The learned rules score 1 on every demonstration; so does the file,
+    // which parses back to them.
+    let rules = learned.rules();
+    for d in demos {
         assert_eq!(
             rccpack::eval::evaluate(d, &rules, Contact::Point).score,
             1.0
         );
     }
+    let parsed = parse_rules(&learned.to_rcc()).unwrap();
+    assert!(parsed.same_rules(&rules));
 }
 
 // ---- bad input -------------------------------------------------------------
@@ -504,4 +873,40 @@ fn bad_parameters_name_the_flag() {
     for (p, msg) in cases {
         assert_eq!(learn(&demos, None, &p).unwrap_err().to_string(), msg);
     }
+}
+
+/// A learned scene-level rule is written with its `Q A:` after the head
+/// (comments and line wrapping kept), exactly once.
+#[test]
+fn learned_scene_level_rules_are_written_with_their_quantifier() {
+    use rccpack::infer::statement_text;
+    use rccpack::relations::Quant;
+    use rccpack::rules::print_rule;
+    let f = Target::Landmark("w_south".into());
+    let mut rule = Rule::new(
+        "R_some_touch_w_south",
+        rccpack::infer::templates::touches("R", &f),
+    )
+    .with_scope(Scope::Scene(Quant::Some))
+    .with_strength(rccpack::rules::Strength::P(1e-10));
+    rule.comments = vec!["at least one R touches w_south".into(), "a: b".into()];
+    let text = print_rule(&rule);
+    assert!(
+        text.starts_with(
+            "# at least one R touches w_south\n# a: b\nrule R_some_touch_w_south p 1e-10: some R: EC_N(R, @w_south)"
+        ),
+        "{text}"
+    );
+    assert_eq!(text.matches("some R:").count(), 1);
+    assert_eq!(
+        print_rule(&rule.clone().with_scope(Scope::Each)),
+        rccpack::rules::print_rule(&rule.with_scope(Scope::Each))
+    );
+    assert_eq!(
+        statement_text(
+            Scope::Scene(Quant::AtLeast(2)),
+            &atom(Kind::FL, Dir::N, "G", "G")
+        ),
+        "at least 2 G: FL_N(G, G)"
+    );
 }

@@ -38,6 +38,8 @@ fn learn_writes_rules_and_report_that_score_reads() {
         &demos(),
         "--samples",
         "200",
+        "--templates",
+        "second",
         "-o",
         out.to_str().unwrap(),
         "--report",
@@ -78,7 +80,16 @@ fn learn_writes_rules_and_report_that_score_reads() {
 
 #[test]
 fn learn_prints_to_stdout_without_output_flag() {
-    let o = rccpack(&["learn", &demos(), "--samples", "100", "--seed", "3"]);
+    let o = rccpack(&[
+        "learn",
+        &demos(),
+        "--samples",
+        "100",
+        "--seed",
+        "3",
+        "--templates",
+        "second",
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(text.starts_with("# learned by rccpack from 8 demonstrations"));
@@ -151,4 +162,100 @@ fn empty_demonstrations_exit_1() {
     let o = rccpack(&["learn", p.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("no demonstrations"), "{}", stderr(&o));
+}
+
+fn fixture(name: &str) -> String {
+    let p = format!(
+        "{}/tests/fixtures/first-edition/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{p}: {e}"))
+}
+
+/// `--templates first` keeps the first edition's output byte for byte: the
+/// goldens in `tests/fixtures/first-edition/` were written by the binary
+/// of commit 03cf7e0 (before the second-edition templates).
+#[test]
+fn templates_first_is_byte_identical_to_the_first_edition() {
+    let cases: [(&[&str], &str, &str); 2] = [
+        (&[], "learned.rcc", "report.json"),
+        (
+            &["--contact", "edge", "--seed", "3", "--samples", "300"],
+            "learned-edge-s3.rcc",
+            "report-edge-s3.json",
+        ),
+    ];
+    for (i, (extra, rcc, report)) in cases.into_iter().enumerate() {
+        let out = tmp(&format!("first-{i}.rcc"));
+        let rep = tmp(&format!("first-{i}.json"));
+        let d = demos();
+        let mut args = vec![
+            "learn",
+            d.as_str(),
+            "--templates",
+            "first",
+            "-o",
+            out.to_str().unwrap(),
+            "--report",
+            rep.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = rccpack(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(
+            std::fs::read_to_string(&out).unwrap() == fixture(rcc),
+            "{rcc} differs"
+        );
+        assert!(
+            std::fs::read_to_string(&rep).unwrap() == fixture(report),
+            "{report} differs"
+        );
+    }
+}
+
+/// `run --templates first` learns the same file as `learn --templates first`.
+#[test]
+fn run_accepts_templates_first() {
+    let dir = tmp("run-task");
+    std::fs::create_dir_all(&dir).unwrap();
+    let ex = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing");
+    for f in ["demos.json", "problem.json"] {
+        std::fs::copy(format!("{ex}/{f}"), dir.join(f)).unwrap();
+    }
+    let o = rccpack(&[
+        "run",
+        dir.to_str().unwrap(),
+        "--templates",
+        "first",
+        "--time-limit",
+        "1",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::read_to_string(dir.join("learned.rcc")).unwrap() == fixture("learned.rcc"));
+    assert!(
+        std::fs::read_to_string(dir.join("learn-report.json")).unwrap() == fixture("report.json")
+    );
+}
+
+/// The default is the second edition (`--templates second` says so
+/// explicitly); an unknown set is refused.
+#[test]
+fn templates_second_is_the_default() {
+    let d = demos();
+    let a = rccpack(&["learn", &d, "--samples", "100"]);
+    let b = rccpack(&["learn", &d, "--samples", "100", "--templates", "second"]);
+    assert!(a.status.success() && b.status.success(), "{}", stderr(&a));
+    assert_eq!(a.stdout, b.stdout);
+    let text = String::from_utf8(a.stdout).unwrap();
+    assert!(
+        text.lines()
+            .next()
+            .unwrap()
+            .ends_with("(templates, second edition)"),
+        "{text}"
+    );
+    assert!(text.contains(", scene-level 0.005\n"), "{text}");
+    let o = rccpack(&["learn", &d, "--templates", "third"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("third"), "{}", stderr(&o));
 }

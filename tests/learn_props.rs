@@ -2,8 +2,11 @@
 //! property tests with named strategies.
 
 use proptest::prelude::*;
+use rccpack::eval::evaluate;
 use rccpack::infer::posterior::{chance_p, log10_posterior, Posterior, P_FLOOR};
 use rccpack::infer::{learn, LearnParams};
+use rccpack::relations::Contact;
+use rccpack::rules::{Rule, RuleSet};
 use rccpack::scene::{Object, Scene, Space};
 use std::collections::BTreeMap;
 
@@ -81,6 +84,16 @@ fn build(cells: &[((i64, i64), usize)]) -> Scene {
             fixed: c == 2,
         })
         .collect();
+    // One landmark shared by every demonstration (scene-level templates).
+    objects.push(Object {
+        id: "w_land".into(),
+        class: "W".into(),
+        x: Some(90),
+        y: Some(50),
+        width: 10,
+        height: 10,
+        fixed: true,
+    });
     // Every demonstration has every class (a movable A and B somewhere).
     for (k, c) in ["A", "B", "W"].iter().enumerate() {
         if !objects.iter().any(|o| o.class == *c) {
@@ -202,5 +215,60 @@ proptest! {
                 .collect()
         };
         prop_assert_eq!(key(&scenes), key(&permuted));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// Law: candidates are what the evaluator says — every candidate
+    /// (per-object or scene-level) holds in every demonstration, and every
+    /// other statement fails in the demonstration its provenance names,
+    /// where the object named (if any) is one the evaluator names as a
+    /// violator. And the numbers add up: `satisfied ≤` the trials (`N_A`
+    /// objects, or `d_r` scenes for a scene-level statement), `q` is their
+    /// ratio, `p = max(ε, q)`, and `n = d` for a scene-level statement.
+    #[test]
+    fn candidates_agree_with_the_evaluator((demos, _) in demo_set(), samples in 1..40usize) {
+        let scenes: Vec<Scene> = demos.iter().map(|d| build(d)).collect();
+        let params = LearnParams { samples, ..LearnParams::default() };
+        let learned = learn(&scenes, None, &params).unwrap();
+        prop_assert!(learned.statements.iter().any(|s| s.scope.is_scene()));
+        for s in &learned.statements {
+            let rule = Rule::new(s.name.clone(), s.formula.clone()).with_scope(s.scope);
+            let set = RuleSet::new(vec![rule]);
+            match &s.broken_by {
+                None => {
+                    for d in &scenes {
+                        let ev = evaluate(d, &set, Contact::Point);
+                        prop_assert_eq!(ev.rules[0].satisfied, ev.rules[0].subjects, "{}", s.name);
+                    }
+                }
+                Some(p) => {
+                    for d in &scenes[..p.demo] {
+                        let ev = evaluate(d, &set, Contact::Point);
+                        prop_assert_eq!(ev.rules[0].satisfied, ev.rules[0].subjects, "{}", s.name);
+                    }
+                    let ev = evaluate(&scenes[p.demo], &set, Contact::Point);
+                    prop_assert!(ev.rules[0].satisfied < ev.rules[0].subjects, "{}", s.name);
+                    if let Some(o) = &p.object {
+                        prop_assert_eq!(ev.rules[0].violators.first(), Some(o), "{}", s.name);
+                    }
+                }
+            }
+            if let (Some(sat), Some(q), Some(post)) = (s.satisfied, s.q, s.posterior) {
+                let (trials, eps) = if s.scope.is_scene() {
+                    prop_assert_eq!(s.n, scenes.len() as u64);
+                    (samples as u64, learned.scene_epsilon)
+                } else {
+                    let c = learned.classes.iter().find(|c| c.class == s.subject).unwrap();
+                    prop_assert_eq!(s.n, c.demo_objects);
+                    (c.sample_objects, c.epsilon)
+                };
+                prop_assert!(sat <= trials);
+                prop_assert_eq!(q, sat as f64 / trials.max(1) as f64);
+                prop_assert_eq!(post.p, q.max(eps));
+            }
+        }
     }
 }

@@ -1,13 +1,15 @@
 //! The statement pool of the runtime study: the 12 pilot-study rules of the
-//! thesis (§4.2) plus the SPEC §8 template statements, built through the AST.
+//! thesis (§4.2) plus the SPEC §8 template statements, built with the
+//! builders of [`crate::infer::templates`].
+//!
+//! The pool keeps its own names and order (`dr_n_b_r`, `ec_n_b_r`,
+//! `not_dr_n_b_r` per direction, …), which the seeded draws of the study
+//! depend on; only the formulas come from the templates module.
 
-use crate::relations::{Dir, Kind, Relation};
-use crate::rules::{Atom, Formula, Rule, Target};
+use crate::relations::{Dir, Kind};
+use crate::rules::{Formula, Rule, Target};
 
-/// `REL(subject, target)` as a formula.
-pub fn atom(kind: Kind, dir: Dir, subject: &str, target: &Target) -> Formula {
-    Formula::Atom(Atom::new(Relation::new(kind, dir), subject, target.clone()))
-}
+pub use crate::infer::templates::{atom, corner, inside as among, touches};
 
 fn target(t: &str) -> Target {
     if t == "*" {
@@ -23,44 +25,6 @@ fn tname(t: &Target) -> String {
         Target::Class(c) => c.to_lowercase(),
         Target::Landmark(id) => id.to_lowercase(),
     }
-}
-
-/// `EC_N(A,B) | EC_S(A,B) | EC_E(A,B) | EC_W(A,B)`: touches some `B`.
-pub fn touches(subject: &str, t: &Target) -> Formula {
-    Formula::Or(
-        Dir::ALL
-            .iter()
-            .map(|&d| atom(Kind::EC, d, subject, t))
-            .collect(),
-    )
-}
-
-/// `!DR_N(A,B) & !DR_S(A,B) & !DR_E(A,B) & !DR_W(A,B)`: among the `B`s.
-pub fn among(subject: &str, t: &Target) -> Formula {
-    Formula::And(
-        Dir::ALL
-            .iter()
-            .map(|&d| Formula::not(atom(Kind::DR, d, subject, t)))
-            .collect(),
-    )
-}
-
-/// Contact on two adjacent sides:
-/// `(EC_N(A,*) & EC_W(A,*)) | (EC_W(A,*) & EC_S(A,*)) | (EC_S(A,*) & EC_E(A,*)) | (EC_E(A,*) & EC_N(A,*))`.
-pub fn corner(subject: &str) -> Formula {
-    let any = Target::Any;
-    let pair = |a: Dir, b: Dir| {
-        Formula::And(vec![
-            atom(Kind::EC, a, subject, &any),
-            atom(Kind::EC, b, subject, &any),
-        ])
-    };
-    Formula::Or(vec![
-        pair(Dir::N, Dir::W),
-        pair(Dir::W, Dir::S),
-        pair(Dir::S, Dir::E),
-        pair(Dir::E, Dir::N),
-    ])
 }
 
 /// The twelve ground-truth rules of the thesis's pilot study (weight 1):

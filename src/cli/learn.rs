@@ -4,7 +4,7 @@ use super::io::{parse_rules_text, read_text};
 use super::{read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
-use rccpack::infer::{learn, InferError, LearnParams, Learned};
+use rccpack::infer::{learn, InferError, LearnParams, Learned, Templates};
 use rccpack::relations::Contact;
 use rccpack::rules::{Diagnostic, RulesError};
 use std::io::IsTerminal;
@@ -17,10 +17,15 @@ use std::time::Instant;
 pub struct LearnArgs {
     /// Demonstrations: a JSON array of complete scenes.
     demos: PathBuf,
-    /// Statement set (`.rcc`); default: generated from the templates of
-    /// SPEC §8 over the demonstrations' classes.
+    /// Statement set (`.rcc`); default: generated from the templates over
+    /// the demonstrations' classes and fixed objects.
     #[arg(long)]
     statements: Option<PathBuf>,
+    /// Which templates to generate without `--statements`: `second` (SPEC
+    /// §11.5, flush contact, alignment, landmarks) or `first` (exactly the
+    /// first edition's SPEC §8 set).
+    #[arg(long, default_value = "second", value_name = "first|second")]
+    templates: Templates,
     /// Random scenes in the null model (at least 1).
     #[arg(long, default_value_t = 1000)]
     samples: usize,
@@ -55,6 +60,7 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
         epsilon: a.epsilon,
         seed: a.seed,
         contact: a.contact,
+        templates: a.templates,
     };
     let progress = std::io::stderr().is_terminal();
     let learned = learn_files(&a.demos, a.statements.as_deref(), &params, progress)?;
@@ -122,6 +128,9 @@ pub fn learn_files(
             (
                 InferError::UnknownClass {
                     span: Some(span), ..
+                }
+                | InferError::UnknownLandmark {
+                    span: Some(span), ..
                 },
                 Some(path),
             ) => {
@@ -137,7 +146,7 @@ pub fn learn_files(
                     std::io::stderr().is_terminal(),
                 ))
             }
-            (InferError::UnknownClass { .. }, Some(path)) => {
+            (InferError::UnknownClass { .. } | InferError::UnknownLandmark { .. }, Some(path)) => {
                 Reported(format!("error: {}: {e}", path.display()))
             }
             _ => Reported(format!("error: {}: {e}", demos_path.display())),

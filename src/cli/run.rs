@@ -9,7 +9,7 @@ use super::learn::learn_files;
 use super::{read_scene, read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
-use rccpack::infer::LearnParams;
+use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
 use rccpack::render::{render_to_path, RenderOptions};
 use rccpack::resemblance::Likeness;
@@ -46,6 +46,10 @@ pub struct RunArgs {
     /// (SPEC §12): by default the task's demonstrations; `none` turns it off.
     #[arg(long, value_name = "SCENES.json|none")]
     like: Option<PathBuf>,
+    /// Which templates to learn with when there is no `statements.rcc`:
+    /// `second` (SPEC §11.5) or `first` (exactly SPEC §8).
+    #[arg(long, default_value = "second", value_name = "first|second")]
+    templates: Templates,
 }
 
 fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
@@ -74,6 +78,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         cutoff: a.cutoff,
         seed: a.seed,
         contact: a.contact,
+        templates: a.templates,
         ..LearnParams::default()
     };
     let learned = learn_files(

@@ -1,9 +1,17 @@
-//! Candidates (SPEC §7.1): the statements every demonstration satisfies, and
-//! for every other statement the first demonstration and object that break
-//! it.
+//! Candidates (SPEC §7.1, §11.5): the statements every demonstration
+//! satisfies, and for every other statement where it is first broken.
+//!
+//! A per-object statement is broken by an object of its subject class that
+//! does not satisfy it. A scene-level statement (`Q A: φ`) is broken by a
+//! demonstration in which the number of `A` objects satisfying `φ` does not
+//! meet `Q`; the object named then is the one `score` names as a violator
+//! (§11.4): for `no` and `at most`, the first object (in file order) that
+//! satisfies `φ`; for `some` and `at least`, none — no single object is to
+//! blame for a missing one.
 
-use crate::eval::CompiledFormula;
-use crate::relations::{ClassAtoms, ClassIndex, Contact};
+use crate::eval::CompiledRule;
+use crate::relations::{ClassAtoms, ClassIndex, Contact, Quant};
+use crate::rules::Scope;
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -13,37 +21,55 @@ use serde::Serialize;
 pub struct Provenance {
     /// Index of the demonstration (0-based).
     pub demo: usize,
-    /// Id of the object that does not satisfy the statement.
-    pub object: String,
+    /// Id of the object that does not satisfy a per-object statement, or
+    /// that satisfies the formula of a broken `no` / `at most` scene-level
+    /// statement; `None` (not serialised) for a broken `some` / `at least`
+    /// scene-level statement.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub object: Option<String>,
 }
 
-/// For each formula, `None` when every demonstration satisfies it (a
-/// candidate), else the first object that breaks it.
+/// For each statement, `None` when every demonstration satisfies it (a
+/// candidate), else where it is first broken.
 ///
-/// `subjects[k]` is formula `k`'s subject class index in `classes`, which
-/// must cover every class of the demonstrations.
+/// `classes` must cover every class of the demonstrations and every
+/// landmark of the statements.
 pub fn find_candidates(
     demos: &[Scene],
     classes: &ClassIndex,
-    formulas: &[CompiledFormula],
-    subjects: &[usize],
+    rules: &[CompiledRule],
     contact: Contact,
 ) -> Vec<Option<Provenance>> {
-    let mut out: Vec<Option<Provenance>> = vec![None; formulas.len()];
+    let mut out: Vec<Option<Provenance>> = vec![None; rules.len()];
     for (d, scene) in demos.iter().enumerate() {
         let atoms = ClassAtoms::new(scene, classes, contact);
-        for (k, f) in formulas.iter().enumerate() {
+        for (k, r) in rules.iter().enumerate() {
             if out[k].is_some() {
                 continue;
             }
-            let broken = scene.objects.iter().enumerate().find(|(i, o)| {
-                o.is_placed() && atoms.class_of(*i) == subjects[k] && !f.eval(&atoms, *i)
-            });
-            if let Some((_, o)) = broken {
-                out[k] = Some(Provenance {
-                    demo: d,
-                    object: o.id.clone(),
-                });
+            let mut of_class = (0..scene.objects.len())
+                .filter(|&i| atoms.is_placed(i) && atoms.class_of(i) == r.subject);
+            match r.scope {
+                Scope::Each => {
+                    if let Some(i) = of_class.find(|&i| !r.formula.eval(&atoms, i)) {
+                        out[k] = Some(Provenance {
+                            demo: d,
+                            object: Some(scene.objects[i].id.clone()),
+                        });
+                    }
+                }
+                Scope::Scene(q) => {
+                    let (c, m) = r.count(&atoms, scene.objects.len());
+                    if !q.holds(c, m) {
+                        let object = match q {
+                            Quant::No | Quant::AtMost(_) => of_class
+                                .find(|&i| r.formula.eval(&atoms, i))
+                                .map(|i| scene.objects[i].id.clone()),
+                            _ => None,
+                        };
+                        out[k] = Some(Provenance { demo: d, object });
+                    }
+                }
             }
         }
     }

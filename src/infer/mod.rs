@@ -38,10 +38,13 @@ pub mod templates;
 pub use candidates::{find_candidates, Provenance};
 pub use null_model::NullModel;
 pub use posterior::{Posterior, P_FLOOR};
+pub use templates::Templates;
 
-use crate::eval::CompiledFormula;
+use crate::eval::CompiledRule;
 use crate::relations::{ClassIndex, Contact};
-use crate::rules::{print_formula, print_rules, Formula, Rule, RuleSet, Span, Strength, Target};
+use crate::rules::{
+    print_formula, print_rule, Formula, Rule, RuleSet, Scope, Span, Strength, Target,
+};
 use crate::scene::{Scene, SceneError, Space};
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -100,6 +103,19 @@ pub enum InferError {
         /// Source span of the offending atom, when the rule was parsed.
         span: Option<Span>,
     },
+    /// A statement names a landmark that is not a fixed object of every
+    /// demonstration.
+    #[error("rule `{rule}` names landmark `@{id}`, which is not a fixed object of demonstration [{demo}]")]
+    UnknownLandmark {
+        /// Rule name.
+        rule: String,
+        /// The landmark id.
+        id: String,
+        /// The first demonstration without it.
+        demo: usize,
+        /// Source span of the offending atom, when the rule was parsed.
+        span: Option<Span>,
+    },
     /// A statement whose atoms have different subject classes.
     #[error("rule `{rule}` mixes subject classes `{first}` and `{other}`; every atom of a rule must have the same subject")]
     MixedSubjects {
@@ -144,6 +160,9 @@ pub struct LearnParams {
     pub seed: u64,
     /// Contact mode of `EC` (default point).
     pub contact: Contact,
+    /// The template set used when no statements are given (default: the
+    /// second edition, §11.5).
+    pub templates: Templates,
 }
 
 impl Default for LearnParams {
@@ -155,6 +174,7 @@ impl Default for LearnParams {
             epsilon: None,
             seed: 0,
             contact: Contact::Point,
+            templates: Templates::Second,
         }
     }
 }
@@ -211,17 +231,23 @@ pub struct StatementResult {
     pub name: String,
     /// Formula.
     pub formula: Formula,
+    /// Per object, or about the whole scene (§11.4).
+    pub scope: Scope,
     /// Subject class.
     pub subject: String,
     /// Whether every demonstration satisfies it.
     pub candidate: bool,
-    /// For a non-candidate, the first demonstration and object breaking it.
+    /// For a non-candidate, the first demonstration (and object) breaking
+    /// it.
     pub broken_by: Option<Provenance>,
-    /// `n`: subject objects over the demonstrations.
+    /// `n`: subject objects over the demonstrations; for a scene-level
+    /// statement the number of demonstrations `d` (§11.5).
     pub n: u64,
-    /// Candidates only: subject objects of the random scenes satisfying it.
+    /// Candidates only: subject objects of the random scenes satisfying it;
+    /// for a scene-level statement the random scenes in which it holds.
     pub satisfied: Option<u64>,
-    /// Candidates only: chance rate `q`.
+    /// Candidates only: chance rate `q` (per object, or per scene for a
+    /// scene-level statement).
     pub q: Option<f64>,
     /// Candidates only: `p`, `log10 L`, `log10 P`.
     pub posterior: Option<Posterior>,
@@ -254,6 +280,8 @@ pub struct Learned {
     pub source: StatementSource,
     /// Per class that is the subject of some statement, in class order.
     pub classes: Vec<ClassStats>,
+    /// `ε_s` for scene-level statements: `0.5 / d_r`, or the fixed ε.
+    pub scene_epsilon: f64,
     /// Every statement, in statement order.
     pub statements: Vec<StatementResult>,
     /// Indices into `statements` of the learned rules, strongest first
@@ -262,8 +290,9 @@ pub struct Learned {
 }
 
 /// Learn rules from `demos`. `statements`: the statement set, or `None` for
-/// the §8 templates over the demonstrations' classes. Strengths and
-/// comments of given statements are ignored.
+/// the templates `params.templates` (§8, §11.5) over the demonstrations'
+/// classes and landmarks. Strengths and comments of given statements are
+/// ignored.
 pub fn learn(
     demos: &[Scene],
     statements: Option<&RuleSet>,
@@ -280,38 +309,39 @@ pub fn learn(
     let (set, source) = match statements {
         Some(s) => {
             check_statements(s, &classes)?;
+            check_landmarks(s, demos)?;
             (s, StatementSource::Given)
         }
         None => {
-            generated = templates::generate(demos);
+            generated = templates::generate_set(demos, params.templates);
             (&generated, StatementSource::Templates)
         }
     };
-    let formulas: Vec<CompiledFormula> = set
+    // Every landmark is interned before compiling, so that each scene's
+    // atom table resolves it.
+    for id in set.landmarks() {
+        classes.intern_landmark(&id);
+    }
+    let compiled: Vec<CompiledRule> = set
         .rules
         .iter()
-        .map(|r| CompiledFormula::compile(&r.formula, &mut classes.clone()))
+        .map(|r| CompiledRule::compile(r, &mut classes.clone()))
         .collect();
-    let subjects: Vec<usize> = set
-        .rules
-        .iter()
-        .map(|r| classes.get(r.subject()).expect("checked"))
-        .collect();
+    let subjects: Vec<usize> = compiled.iter().map(|r| r.subject).collect();
+    debug_assert!(subjects.iter().all(|&c| c < classes.len()), "checked");
 
-    let broken = find_candidates(demos, &classes, &formulas, &subjects, params.contact);
-    let cand: Vec<usize> = (0..formulas.len())
+    let broken = find_candidates(demos, &classes, &compiled, params.contact);
+    let cand: Vec<CompiledRule> = (0..compiled.len())
         .filter(|&k| broken[k].is_none())
+        .map(|k| compiled[k].clone())
         .collect();
-    let cand_formulas: Vec<CompiledFormula> = cand.iter().map(|&k| formulas[k].clone()).collect();
-    let cand_subjects: Vec<usize> = cand.iter().map(|&k| subjects[k]).collect();
     let counts = if cand.is_empty() {
         Vec::new()
     } else {
         NullModel::new(demos, params.seed)?.count(
             params.samples,
             &classes,
-            &cand_formulas,
-            &cand_subjects,
+            &cand,
             params.contact,
         )?
     };
@@ -344,31 +374,38 @@ pub fn learn(
             }
         })
         .collect();
+    // Scene-level statements (§11.5): q per random scene, n = d.
+    let scene_epsilon = params.epsilon.unwrap_or(0.5 / params.samples as f64);
 
     let mut results: Vec<StatementResult> = Vec::with_capacity(set.rules.len());
     let mut ci = 0;
     for (k, rule) in set.rules.iter().enumerate() {
         let st = &stats[subjects[k]];
+        let (n, trials, epsilon) = match rule.scope {
+            Scope::Each => (st.demo_objects, st.sample_objects, st.epsilon),
+            Scope::Scene(_) => (d as u64, params.samples as u64, scene_epsilon),
+        };
         let mut r = StatementResult {
             index: k,
             name: rule.name.clone(),
             formula: rule.formula.clone(),
+            scope: rule.scope,
             subject: rule.subject().to_string(),
             candidate: broken[k].is_none(),
             broken_by: broken[k].clone(),
-            n: st.demo_objects,
+            n,
             satisfied: None,
             q: None,
             posterior: None,
             learned: false,
             implied_by: None,
-            english: english::reading(&rule.formula),
+            english: english::statement_reading(rule.scope, &rule.formula),
         };
         if r.candidate {
             let sat = counts[ci];
             ci += 1;
-            let q = sat as f64 / st.sample_objects.max(1) as f64;
-            let post = Posterior::new(q, st.epsilon, r.n, params.prior);
+            let q = sat as f64 / trials.max(1) as f64;
+            let post = Posterior::new(q, epsilon, r.n, params.prior);
             r.satisfied = Some(sat);
             r.q = Some(q);
             r.learned = post.learned(params.cutoff);
@@ -380,11 +417,19 @@ pub fn learn(
     let key = |k: usize| results[k].posterior.map_or(0.0, |p| p.log10_posterior);
     order.sort_by(|&a, &b| key(a).total_cmp(&key(b)).then(a.cmp(&b)));
     for (i, &k) in order.iter().enumerate() {
-        let implied = order[..i]
+        let (rk, implied) = (&results[k], &order[..i]);
+        let by = implied
             .iter()
-            .find(|&&s| english::implies(&results[s].formula, &results[k].formula))
+            .find(|&&s| {
+                let rs = &results[s];
+                english::rule_implies(
+                    (rs.scope, &rs.formula),
+                    (rk.scope, &rk.formula),
+                    params.contact,
+                )
+            })
             .map(|&s| results[s].name.clone());
-        results[k].implied_by = implied;
+        results[k].implied_by = by;
     }
     let used: Vec<bool> = (0..classes.len()).map(|c| subjects.contains(&c)).collect();
     Ok(Learned {
@@ -396,6 +441,7 @@ pub fn learn(
             .zip(used)
             .filter_map(|(s, u)| u.then_some(s))
             .collect(),
+        scene_epsilon,
         statements: results,
         order,
     })
@@ -465,6 +511,51 @@ pub fn check_statements(set: &RuleSet, classes: &ClassIndex) -> Result<(), Infer
     Ok(())
 }
 
+/// Landmarks of given statements: every `@ID` must be a fixed, placed
+/// object of every demonstration (SPEC §11.3: evaluating a rule whose
+/// landmark the scene lacks is bad input).
+pub fn check_landmarks(set: &RuleSet, demos: &[Scene]) -> Result<(), InferError> {
+    for rule in &set.rules {
+        for (i, a) in rule.formula.atoms().into_iter().enumerate() {
+            let Target::Landmark(id) = &a.target else {
+                continue;
+            };
+            let missing = demos.iter().position(|s| {
+                !s.objects
+                    .iter()
+                    .any(|o| &o.id == id && o.fixed && o.is_placed())
+            });
+            if let Some(demo) = missing {
+                return Err(InferError::UnknownLandmark {
+                    rule: rule.name.clone(),
+                    id: id.clone(),
+                    demo,
+                    span: rule.origin.as_ref().and_then(|o| o.atoms.get(i).copied()),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `Q A: ` for a scene-level rule about `subject`, `""` for a per-object one.
+pub fn scope_prefix(scope: Scope, subject: &str) -> String {
+    match scope {
+        Scope::Each => String::new(),
+        Scope::Scene(q) => format!("{q} {subject}: "),
+    }
+}
+
+/// A statement as `.rcc` text after `rule NAME:`: the formula, preceded by
+/// `Q A: ` for a scene-level statement.
+pub fn statement_text(scope: Scope, formula: &Formula) -> String {
+    format!(
+        "{}{}",
+        scope_prefix(scope, formula.subject()),
+        print_formula(formula)
+    )
+}
+
 /// Format a number for a comment: 4 significant digits.
 fn short(v: f64) -> String {
     if v == 0.0 {
@@ -498,9 +589,8 @@ impl Learned {
                         .iter()
                         .find(|c| c.class == s.subject)
                         .expect("subject stats");
-                    let mut comments = vec![
-                        s.english.clone(),
-                        format!(
+                    let numbers = match s.scope {
+                        Scope::Each => format!(
                             "q = {} ({} of {} {} objects in {} random scenes), n = {}, log10 L = {}",
                             short(s.q.unwrap_or(0.0)),
                             s.satisfied.unwrap_or(0),
@@ -510,14 +600,23 @@ impl Learned {
                             s.n,
                             short(post.log10_likelihood)
                         ),
-                    ];
+                        Scope::Scene(_) => format!(
+                            "q = {} (holds in {} of {} random scenes), n = {} demonstrations, log10 L = {}",
+                            short(s.q.unwrap_or(0.0)),
+                            s.satisfied.unwrap_or(0),
+                            self.params.samples,
+                            s.n,
+                            short(post.log10_likelihood)
+                        ),
+                    };
+                    let mut comments = vec![s.english.clone(), numbers];
                     if let Some(by) = &s.implied_by {
                         comments.push(format!("implied by {by}"));
                     }
                     Rule {
                         name: s.name.clone(),
                         strength: Strength::P(post.written()),
-                        scope: crate::rules::Scope::Each,
+                        scope: s.scope,
                         formula: s.formula.clone(),
                         comments,
                         origin: None,
@@ -540,9 +639,10 @@ impl Learned {
             self.order.len(),
             candidates,
             self.statements.len(),
-            match self.source {
-                StatementSource::Given => "given",
-                StatementSource::Templates => "templates",
+            match (self.source, self.params.templates) {
+                (StatementSource::Given, _) => "given",
+                (StatementSource::Templates, Templates::First) => "templates",
+                (StatementSource::Templates, Templates::Second) => "templates, second edition",
             }
         );
         let _ = writeln!(
@@ -550,14 +650,19 @@ impl Learned {
             "# samples {}, seed {}, cutoff {}, prior {}, contact {}",
             p.samples, p.seed, p.cutoff, p.prior, p.contact
         );
-        let eps: Vec<String> = self
+        let mut eps: Vec<String> = self
             .classes
             .iter()
             .map(|c| format!("{} {}", c.class, short(c.epsilon)))
             .collect();
+        if self.statements.iter().any(|s| s.scope.is_scene()) {
+            eps.push(format!("scene-level {}", short(self.scene_epsilon)));
+        }
         let _ = writeln!(s, "# epsilon: {}", eps.join(", "));
         s.push('\n');
-        s.push_str(&print_rules(&self.rules()));
+        for r in &self.rules().rules {
+            s.push_str(&print_rule(r));
+        }
         s
     }
 
@@ -571,16 +676,29 @@ impl Learned {
                 epsilon: self.params.epsilon,
                 seed: self.params.seed,
                 contact: self.params.contact.to_string(),
+                templates: match (self.source, self.params.templates) {
+                    (StatementSource::Templates, Templates::Second) => Some("second".into()),
+                    _ => None,
+                },
             },
             demonstrations: self.demos,
             source: self.source,
             classes: self.classes.clone(),
+            scene_epsilon: self
+                .statements
+                .iter()
+                .any(|s| s.scope.is_scene())
+                .then_some(self.scene_epsilon),
             statements: self
                 .statements
                 .iter()
                 .map(|s| ReportStatement {
                     name: s.name.clone(),
-                    formula: print_formula(&s.formula),
+                    formula: statement_text(s.scope, &s.formula),
+                    scope: match s.scope {
+                        Scope::Each => None,
+                        Scope::Scene(q) => Some(q.to_string()),
+                    },
                     subject: s.subject.clone(),
                     english: s.english.clone(),
                     candidate: s.candidate,
@@ -619,6 +737,10 @@ pub struct Report {
     pub source: StatementSource,
     /// Per subject class: `n_A`, `N_A`, `ε`.
     pub classes: Vec<ClassStats>,
+    /// `ε_s` of the scene-level statements (§11.5); absent when there are
+    /// none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scene_epsilon: Option<f64>,
     /// Every statement, in statement order.
     pub statements: Vec<ReportStatement>,
 }
@@ -638,6 +760,10 @@ pub struct ReportParams {
     pub seed: u64,
     /// `point` or `edge`.
     pub contact: String,
+    /// `second` when the second-edition templates were used; absent for
+    /// the first edition's templates and for given statements.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub templates: Option<String>,
 }
 
 /// One statement in the report. Chance numbers are null for non-candidates.
@@ -645,8 +771,13 @@ pub struct ReportParams {
 pub struct ReportStatement {
     /// Name.
     pub name: String,
-    /// Formula as `.rcc` text.
+    /// The statement as `.rcc` text after `rule NAME:` (with `Q A: ` for a
+    /// scene-level statement).
     pub formula: String,
+    /// The subject quantifier of a scene-level statement (`some`, `no`,
+    /// `at least 2`, …); absent for a per-object statement.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scope: Option<String>,
     /// Subject class.
     pub subject: String,
     /// English reading.
@@ -655,13 +786,15 @@ pub struct ReportStatement {
     pub candidate: bool,
     /// First demonstration and object breaking it (non-candidates).
     pub broken_by: Option<Provenance>,
-    /// `n`: subject objects over the demonstrations.
+    /// `n`: subject objects over the demonstrations (scene-level: the
+    /// number of demonstrations).
     pub n: u64,
-    /// Subject objects of the random scenes that satisfy it.
+    /// Subject objects of the random scenes that satisfy it (scene-level:
+    /// random scenes in which it holds).
     pub satisfied: Option<u64>,
     /// Chance rate `q`.
     pub q: Option<f64>,
-    /// `p = max(ε, q)`.
+    /// `p = max(ε, q)` (scene-level: `max(ε_s, q)`).
     pub p: Option<f64>,
     /// `log10 L`.
     pub log10_likelihood: Option<f64>,

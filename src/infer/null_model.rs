@@ -20,10 +20,16 @@
 //! * Determinism: sample `i` draws from `ChaCha8Rng::seed_from_u64(seed)` on
 //!   stream `i`, so a sample does not depend on which thread makes it, and
 //!   the per-statement counts are integers summed in any order.
+//! * Counts: a per-object statement counts the subject objects that satisfy
+//!   it, a scene-level statement the scenes in which it holds (§11.5).
+//!   Landmarks are resolved by id in each scene's copy of its
+//!   demonstration (fixed objects never move, so every random copy of a
+//!   demonstration has the same landmarks).
 
 use super::InferError;
-use crate::eval::CompiledFormula;
+use crate::eval::CompiledRule;
 use crate::relations::{ClassAtoms, ClassIndex, Contact};
+use crate::rules::Scope;
 use crate::scene::{Rect, Scene};
 use rand::seq::SliceRandom;
 use rand::{RngExt, SeedableRng};
@@ -285,18 +291,20 @@ impl<'a> NullModel<'a> {
         self.plans[d].place(scene, &mut self.rng(index), d)
     }
 
-    /// Over `samples` random scenes, how many subject objects satisfy each
-    /// formula. `subjects[k]` is formula `k`'s subject class index in
-    /// `classes`, which must cover every class of the demonstrations.
+    /// Over `samples` random scenes, per statement: for a per-object
+    /// statement, how many subject objects satisfy it; for a scene-level
+    /// statement (§11.5), in how many scenes it holds. `classes` must cover
+    /// every class of the demonstrations and every landmark of the
+    /// statements (landmarks are resolved per scene, by id).
     ///
-    /// Parallel over samples; the result does not depend on the number of
-    /// threads. On failure the error is the one of the lowest failing sample.
+    /// Parallel over samples; the counts are integers, so the result does
+    /// not depend on the number of threads. On failure the error is the one
+    /// of the lowest failing sample.
     pub fn count(
         &self,
         samples: usize,
         classes: &ClassIndex,
-        formulas: &[CompiledFormula],
-        subjects: &[usize],
+        rules: &[CompiledRule],
         contact: Contact,
     ) -> Result<Vec<u64>, InferError> {
         // Per demonstration, per class, the object indices.
@@ -313,6 +321,10 @@ impl<'a> NullModel<'a> {
                 v
             })
             .collect();
+        let none: Vec<usize> = Vec::new();
+        let subjects_of = |d: usize, r: &CompiledRule| -> &[usize] {
+            by_class[d].get(r.subject).unwrap_or(&none)
+        };
         let first_failure = AtomicUsize::new(usize::MAX);
         type Acc = (Vec<Scene>, Vec<u64>, Option<(usize, InferError)>);
         let merge_err =
@@ -324,7 +336,7 @@ impl<'a> NullModel<'a> {
             .into_par_iter()
             .with_min_len(16)
             .fold(
-                || -> Acc { (self.demos.to_vec(), vec![0u64; formulas.len()], None) },
+                || -> Acc { (self.demos.to_vec(), vec![0u64; rules.len()], None) },
                 |(mut scratch, mut counts, err), i| {
                     if i > first_failure.load(Ordering::Relaxed) {
                         return (scratch, counts, err);
@@ -336,19 +348,23 @@ impl<'a> NullModel<'a> {
                         return (scratch, counts, merge_err(err, Some((i, e))));
                     }
                     let atoms = ClassAtoms::new(scene, classes, contact);
-                    for (k, f) in formulas.iter().enumerate() {
-                        for &o in &by_class[d][subjects[k]] {
-                            if f.eval(&atoms, o) {
-                                counts[k] += 1;
-                            }
-                        }
+                    for (k, r) in rules.iter().enumerate() {
+                        let objects = subjects_of(d, r);
+                        let c = objects
+                            .iter()
+                            .filter(|&&o| r.formula.eval(&atoms, o))
+                            .count() as u64;
+                        counts[k] += match r.scope {
+                            Scope::Each => c,
+                            Scope::Scene(q) => u64::from(q.holds(c as u32, objects.len() as u32)),
+                        };
                     }
                     (scratch, counts, err)
                 },
             )
             .map(|(_, c, e)| (c, e))
             .reduce(
-                || (vec![0u64; formulas.len()], None),
+                || (vec![0u64; rules.len()], None),
                 |(mut a, ea), (b, eb)| {
                     for (x, y) in a.iter_mut().zip(&b) {
                         *x += y;

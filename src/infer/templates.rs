@@ -1,33 +1,231 @@
-//! Statement templates (SPEC §8): the statement set used when the user gives
-//! none, generated from the classes of the demonstrations.
+//! Statement templates (SPEC §8, §11.5): the statement set used when the user
+//! gives none, generated from the classes (and fixed objects) of the
+//! demonstrations.
+//!
+//! # Background
+//!
+//! The first edition (§8) instantiates, per movable subject class `A` and
+//! target `B`, the single atoms `DR_d`, `EC_d`, `!DR_d`, "touches some B" and
+//! "among the Bs", plus "in a corner" per subject. The second edition
+//! (§11.5) keeps all of these and adds flush contact, "touches no B", rows,
+//! columns, flush neighbours and, per fixed object `f`, the scene-level
+//! statements `some A: touches(f)` and `no A: touches(f)`.
 //!
 //! # Practical
 //!
-//! Templates are data: [`PAIR_TEMPLATES`] are instantiated for every movable
-//! subject class `A` and every target (`A` itself, every other class, fixed
-//! ones included, and `*`), [`SUBJECT_TEMPLATES`] once per movable subject.
-//! A template whose name contains `{d}` is expanded over the four directions.
-//! Generated statements with the same formula as an earlier one are dropped,
-//! and names stay unique (a clash gets a numeric suffix).
+//! Templates are data. Per movable subject `A`, in this order:
+//!
+//! 1. for every target (`A` itself, every other class, fixed ones included,
+//!    then `*`): [`PAIR_TEMPLATES`], then (second edition)
+//!    [`FLUSH_PAIR_TEMPLATES`];
+//! 2. (second edition) [`SELF_TEMPLATES`] with target `A`;
+//! 3. [`SUBJECT_TEMPLATES`];
+//! 4. (second edition) [`LANDMARK_TEMPLATES`] for every landmark of
+//!    [`demo_landmarks`], in the order of the first demonstration.
+//!
+//! A template whose name contains `{d}` is expanded over the four
+//! directions. Generated statements with the same scope and formula as an
+//! earlier one are dropped, and names stay unique (a clash gets a numeric
+//! suffix). With [`Templates::First`] the output is exactly the first
+//! edition's set: same statements, names and order.
+//!
+//! The formulas are built by the public builders of this module
+//! ([`atom`], [`touches`], [`inside`], [`corner`], …), which the runtime
+//! study's pool (`bench::pool`) uses too.
 //!
 //! # How to extend
 //!
 //! Add an entry to one of the tables: a name pattern (`{A}` subject, `{B}`
-//! target — `any` for `*` —, `{d}` lower-case direction letter) and a
-//! function building the formula from [`TemplateArgs`]. Order in the table is
+//! target — `any` for `*`, the id for a landmark —, `{d}` lower-case
+//! direction letter), a scope, and a function building the formula from
+//! [`TemplateArgs`] (preferably through a builder). Order in the table is
 //! the order of the generated statements.
 
-use crate::relations::{Dir, Kind, Relation};
-use crate::rules::{Atom, Formula, Rule, RuleSet, Target};
+use crate::relations::{Dir, Kind, Quant, Relation};
+use crate::rules::{Atom, Formula, Rule, RuleSet, Scope, Target};
 use crate::scene::Scene;
 use std::collections::HashSet;
+use std::fmt;
+
+/// Which template set to generate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Templates {
+    /// The first edition's set (SPEC §8), exactly.
+    First,
+    /// The second edition's set (SPEC §11.5): the first edition's and more.
+    #[default]
+    Second,
+}
+
+impl Templates {
+    /// Whether this is the first edition.
+    pub fn is_first(&self) -> bool {
+        matches!(self, Templates::First)
+    }
+}
+
+impl std::str::FromStr for Templates {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "first" => Ok(Templates::First),
+            "second" => Ok(Templates::Second),
+            _ => Err(format!(
+                "unknown template set `{s}`; expected `first` or `second`"
+            )),
+        }
+    }
+}
+
+impl fmt::Display for Templates {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Templates::First => "first",
+            Templates::Second => "second",
+        })
+    }
+}
+
+// ---- builders -------------------------------------------------------------
+
+/// `REL(subject, target)` with the relation's default quantifier.
+pub fn atom(kind: Kind, dir: Dir, subject: &str, target: &Target) -> Formula {
+    Formula::Atom(Atom::new(Relation::new(kind, dir), subject, target.clone()))
+}
+
+/// `REL(subject, Q target)`.
+pub fn quantified(kind: Kind, dir: Dir, subject: &str, quant: Quant, target: &Target) -> Formula {
+    Formula::Atom(Atom::quantified(
+        Relation::new(kind, dir),
+        subject,
+        quant,
+        target.clone(),
+    ))
+}
+
+/// `K_N(A,B) | K_S(A,B) | K_E(A,B) | K_W(A,B)`.
+pub fn any_side(kind: Kind, subject: &str, target: &Target) -> Formula {
+    Formula::Or(
+        Dir::ALL
+            .iter()
+            .map(|&d| atom(kind, d, subject, target))
+            .collect(),
+    )
+}
+
+/// `EC_N(A,B) | EC_S(A,B) | EC_E(A,B) | EC_W(A,B)`: touches some `B`.
+pub fn touches(subject: &str, target: &Target) -> Formula {
+    any_side(Kind::EC, subject, target)
+}
+
+/// `FL_N(A,B) | FL_S(A,B) | FL_E(A,B) | FL_W(A,B)`: touches some `B` flush.
+pub fn touches_flush(subject: &str, target: &Target) -> Formula {
+    any_side(Kind::FL, subject, target)
+}
+
+/// `!DR_N(A,B) & !DR_S(A,B) & !DR_E(A,B) & !DR_W(A,B)`: among the `B`s
+/// (e.g. inside a box).
+pub fn inside(subject: &str, target: &Target) -> Formula {
+    Formula::And(
+        Dir::ALL
+            .iter()
+            .map(|&d| Formula::not(atom(Kind::DR, d, subject, target)))
+            .collect(),
+    )
+}
+
+/// `EC_N(A, no B) & EC_S(A, no B) & EC_E(A, no B) & EC_W(A, no B)`:
+/// touches no `B`.
+pub fn apart(subject: &str, target: &Target) -> Formula {
+    Formula::And(
+        Dir::ALL
+            .iter()
+            .map(|&d| quantified(Kind::EC, d, subject, Quant::No, target))
+            .collect(),
+    )
+}
+
+/// `(!EC_N(A,B) | FL_N(A,B)) & … & (!EC_W(A,B) | FL_W(A,B))`: every
+/// contact with a `B` is flush.
+pub fn contacts_flush(subject: &str, target: &Target) -> Formula {
+    Formula::And(
+        Dir::ALL
+            .iter()
+            .map(|&d| {
+                Formula::Or(vec![
+                    Formula::not(atom(Kind::EC, d, subject, target)),
+                    atom(Kind::FL, d, subject, target),
+                ])
+            })
+            .collect(),
+    )
+}
+
+/// `AL_a(A, every A) & AL_b(A, every A)`.
+fn aligned_with_all(subject: &str, a: Dir, b: Dir) -> Formula {
+    let own = Target::Class(subject.to_string());
+    Formula::And(vec![
+        quantified(Kind::AL, a, subject, Quant::Every, &own),
+        quantified(Kind::AL, b, subject, Quant::Every, &own),
+    ])
+}
+
+/// `AL_S(A, every A) & AL_N(A, every A)`: in one row with the other `A`s.
+pub fn row(subject: &str) -> Formula {
+    aligned_with_all(subject, Dir::S, Dir::N)
+}
+
+/// `AL_W(A, every A) & AL_E(A, every A)`: in one column with the other `A`s.
+pub fn column(subject: &str) -> Formula {
+    aligned_with_all(subject, Dir::W, Dir::E)
+}
+
+/// `FL_a(A,A) | FL_b(A,A)`.
+fn flush_neighbour(subject: &str, a: Dir, b: Dir) -> Formula {
+    let own = Target::Class(subject.to_string());
+    Formula::Or(vec![
+        atom(Kind::FL, a, subject, &own),
+        atom(Kind::FL, b, subject, &own),
+    ])
+}
+
+/// `FL_E(A,A) | FL_W(A,A)`: a flush neighbour east or west.
+pub fn flush_neighbour_ew(subject: &str) -> Formula {
+    flush_neighbour(subject, Dir::E, Dir::W)
+}
+
+/// `FL_N(A,A) | FL_S(A,A)`: a flush neighbour north or south.
+pub fn flush_neighbour_ns(subject: &str) -> Formula {
+    flush_neighbour(subject, Dir::N, Dir::S)
+}
+
+/// Contact on two adjacent sides:
+/// `(EC_N(A,*) & EC_W(A,*)) | (EC_W(A,*) & EC_S(A,*)) | (EC_S(A,*) & EC_E(A,*)) | (EC_E(A,*) & EC_N(A,*))`.
+pub fn corner(subject: &str) -> Formula {
+    let any = Target::Any;
+    let pair = |a: Dir, b: Dir| {
+        Formula::And(vec![
+            atom(Kind::EC, a, subject, &any),
+            atom(Kind::EC, b, subject, &any),
+        ])
+    };
+    Formula::Or(vec![
+        pair(Dir::N, Dir::W),
+        pair(Dir::W, Dir::S),
+        pair(Dir::S, Dir::E),
+        pair(Dir::E, Dir::N),
+    ])
+}
+
+// ---- tables ---------------------------------------------------------------
 
 /// What a template is instantiated with.
 #[derive(Debug, Clone)]
 pub struct TemplateArgs<'a> {
     /// The subject class.
     pub subject: &'a str,
-    /// The target (for subject-only templates: `*`).
+    /// The target (for subject-only templates: `*`; for self templates the
+    /// subject class; for landmark templates the landmark).
     pub target: &'a Target,
     /// The direction (for templates without `{d}`: north).
     pub dir: Dir,
@@ -36,11 +234,11 @@ pub struct TemplateArgs<'a> {
 impl TemplateArgs<'_> {
     /// The atom `rel(subject, target)` with this instance's subject and target.
     pub fn atom(&self, kind: Kind, dir: Dir) -> Formula {
-        self.atom_to(kind, dir, self.target.clone())
+        atom(kind, dir, self.subject, self.target)
     }
     /// The atom `rel(subject, target)` with an explicit target.
     pub fn atom_to(&self, kind: Kind, dir: Dir, target: Target) -> Formula {
-        Formula::Atom(Atom::new(Relation::new(kind, dir), self.subject, target))
+        atom(kind, dir, self.subject, &target)
     }
 }
 
@@ -50,6 +248,8 @@ pub struct Template {
     /// Name pattern: `{A}` subject, `{B}` target (`any` for `*`), `{d}`
     /// direction letter (lower case; the template is expanded over `N S E W`).
     pub name: &'static str,
+    /// Per object, or about the whole scene.
+    pub scope: Scope,
     /// Builds the formula.
     pub build: fn(&TemplateArgs) -> Formula,
 }
@@ -60,34 +260,83 @@ impl Template {
     }
 }
 
+const EACH: Scope = Scope::Each;
+
 /// Templates over a subject class and a target (§8).
 pub const PAIR_TEMPLATES: &[Template] = &[
     Template {
         name: "{A}_dr_{d}_{B}",
+        scope: EACH,
         build: |t| t.atom(Kind::DR, t.dir),
     },
     Template {
         name: "{A}_ec_{d}_{B}",
+        scope: EACH,
         build: |t| t.atom(Kind::EC, t.dir),
     },
     Template {
         name: "{A}_not_dr_{d}_{B}",
+        scope: EACH,
         build: |t| Formula::not(t.atom(Kind::DR, t.dir)),
     },
     Template {
         name: "{A}_touches_{B}",
-        build: |t| Formula::Or(Dir::ALL.iter().map(|&d| t.atom(Kind::EC, d)).collect()),
+        scope: EACH,
+        build: |t| touches(t.subject, t.target),
     },
     Template {
         name: "{A}_inside_{B}",
-        build: |t| {
-            Formula::And(
-                Dir::ALL
-                    .iter()
-                    .map(|&d| Formula::not(t.atom(Kind::DR, d)))
-                    .collect(),
-            )
-        },
+        scope: EACH,
+        build: |t| inside(t.subject, t.target),
+    },
+];
+
+/// Second-edition templates over a subject class and a target (§11.5).
+pub const FLUSH_PAIR_TEMPLATES: &[Template] = &[
+    Template {
+        name: "{A}_fl_{d}_{B}",
+        scope: EACH,
+        build: |t| t.atom(Kind::FL, t.dir),
+    },
+    Template {
+        name: "{A}_touches_flush_{B}",
+        scope: EACH,
+        build: |t| touches_flush(t.subject, t.target),
+    },
+    Template {
+        name: "{A}_contacts_flush_{B}",
+        scope: EACH,
+        build: |t| contacts_flush(t.subject, t.target),
+    },
+    Template {
+        name: "{A}_apart_{B}",
+        scope: EACH,
+        build: |t| apart(t.subject, t.target),
+    },
+];
+
+/// Second-edition templates about a subject class and its own objects
+/// (§11.5, `B = A`).
+pub const SELF_TEMPLATES: &[Template] = &[
+    Template {
+        name: "{A}_row",
+        scope: EACH,
+        build: |t| row(t.subject),
+    },
+    Template {
+        name: "{A}_column",
+        scope: EACH,
+        build: |t| column(t.subject),
+    },
+    Template {
+        name: "{A}_neighbour_ew",
+        scope: EACH,
+        build: |t| flush_neighbour_ew(t.subject),
+    },
+    Template {
+        name: "{A}_neighbour_ns",
+        scope: EACH,
+        build: |t| flush_neighbour_ns(t.subject),
     },
 ];
 
@@ -95,26 +344,24 @@ pub const PAIR_TEMPLATES: &[Template] = &[
 pub const SUBJECT_TEMPLATES: &[Template] = &[Template {
     // Contact on two adjacent sides: NW | WS | SE | EN.
     name: "{A}_corner",
-    build: |t| {
-        let pairs = [
-            (Dir::N, Dir::W),
-            (Dir::W, Dir::S),
-            (Dir::S, Dir::E),
-            (Dir::E, Dir::N),
-        ];
-        Formula::Or(
-            pairs
-                .iter()
-                .map(|&(a, b)| {
-                    Formula::And(vec![
-                        t.atom_to(Kind::EC, a, Target::Any),
-                        t.atom_to(Kind::EC, b, Target::Any),
-                    ])
-                })
-                .collect(),
-        )
-    },
+    scope: EACH,
+    build: |t| corner(t.subject),
 }];
+
+/// Second-edition scene-level templates over a subject class and a landmark
+/// `f` (§11.5): `some A: touches(f)` and `no A: touches(f)`.
+pub const LANDMARK_TEMPLATES: &[Template] = &[
+    Template {
+        name: "{A}_some_touch_{B}",
+        scope: Scope::Scene(Quant::Some),
+        build: |t| touches(t.subject, t.target),
+    },
+    Template {
+        name: "{A}_none_touch_{B}",
+        scope: Scope::Scene(Quant::No),
+        build: |t| touches(t.subject, t.target),
+    },
+];
 
 /// The classes of the demonstrations in order of first appearance, and
 /// whether each is movable (has at least one object that is not fixed).
@@ -131,15 +378,60 @@ pub fn demo_classes(demos: &[Scene]) -> Vec<(String, bool)> {
     out
 }
 
-/// Generate the §8 statement set for the classes of `demos`: every rule has
-/// the default weight and no comments.
+/// Whether `s` is an identifier `[A-Za-z_][A-Za-z0-9_]*` (a landmark id).
+pub fn is_identifier(s: &str) -> bool {
+    let mut c = s.chars();
+    c.next()
+        .is_some_and(|f| f.is_ascii_alphabetic() || f == '_')
+        && c.all(|x| x.is_ascii_alphanumeric() || x == '_')
+}
+
+/// The landmarks the templates use (§11.5): the ids of the first
+/// demonstration's fixed, placed objects that every demonstration has as a
+/// fixed, placed object, whose id is an identifier; in the first
+/// demonstration's order.
+pub fn demo_landmarks(demos: &[Scene]) -> Vec<String> {
+    let Some(first) = demos.first() else {
+        return Vec::new();
+    };
+    let is_landmark = |s: &Scene, id: &str| {
+        s.objects
+            .iter()
+            .any(|o| o.id == id && o.fixed && o.is_placed())
+    };
+    first
+        .objects
+        .iter()
+        .filter(|o| o.fixed && o.is_placed() && is_identifier(&o.id))
+        .map(|o| o.id.clone())
+        .filter(|id| demos.iter().all(|s| is_landmark(s, id)))
+        .collect()
+}
+
+/// Generate the default (second-edition) statement set for `demos`.
 pub fn generate(demos: &[Scene]) -> RuleSet {
+    generate_set(demos, Templates::Second)
+}
+
+/// Generate the statement set `which` for the classes (and, for the second
+/// edition, the landmarks) of `demos`: every rule has the default weight and
+/// no comments.
+pub fn generate_set(demos: &[Scene], which: Templates) -> RuleSet {
+    let second = which == Templates::Second;
     let classes = demo_classes(demos);
     let mut targets: Vec<Target> = classes
         .iter()
         .map(|(c, _)| Target::Class(c.clone()))
         .collect();
     targets.push(Target::Any);
+    let landmarks: Vec<Target> = if second {
+        demo_landmarks(demos)
+            .into_iter()
+            .map(Target::Landmark)
+            .collect()
+    } else {
+        Vec::new()
+    };
     let mut out = Generated::default();
     for (subject, movable) in &classes {
         if !movable {
@@ -149,9 +441,25 @@ pub fn generate(demos: &[Scene]) -> RuleSet {
             for t in PAIR_TEMPLATES {
                 out.expand(t, subject, target);
             }
+            if second {
+                for t in FLUSH_PAIR_TEMPLATES {
+                    out.expand(t, subject, target);
+                }
+            }
+        }
+        if second {
+            let own = Target::Class(subject.clone());
+            for t in SELF_TEMPLATES {
+                out.expand(t, subject, &own);
+            }
         }
         for t in SUBJECT_TEMPLATES {
             out.expand(t, subject, &Target::Any);
+        }
+        for f in &landmarks {
+            for t in LANDMARK_TEMPLATES {
+                out.expand(t, subject, f);
+            }
         }
     }
     RuleSet::new(out.rules)
@@ -161,7 +469,7 @@ pub fn generate(demos: &[Scene]) -> RuleSet {
 struct Generated {
     rules: Vec<Rule>,
     names: HashSet<String>,
-    formulas: HashSet<Formula>,
+    statements: HashSet<(Scope, Formula)>,
 }
 
 impl Generated {
@@ -182,7 +490,7 @@ impl Generated {
                 dir,
             };
             let formula = (t.build)(&args);
-            if !self.formulas.insert(formula.clone()) {
+            if !self.statements.insert((t.scope, formula.clone())) {
                 continue;
             }
             let base = t
@@ -197,7 +505,8 @@ impl Generated {
                 k += 1;
             }
             self.names.insert(name.clone());
-            self.rules.push(Rule::new(name, formula));
+            self.rules
+                .push(Rule::new(name, formula).with_scope(t.scope));
         }
     }
 }
@@ -217,5 +526,25 @@ mod tests {
         g.expand(&PAIR_TEMPLATES[0], "B", &Target::Class("any".into()));
         let names: Vec<&str> = g.rules.iter().map(|r| r.name.as_str()).collect();
         assert!(names.contains(&"B_dr_n_any") && names.contains(&"B_dr_n_any_2"));
+    }
+
+    #[test]
+    fn same_formula_with_another_scope_is_kept() {
+        let mut g = Generated::default();
+        let f = Target::Landmark("w".into());
+        for t in LANDMARK_TEMPLATES {
+            g.expand(t, "B", &f);
+            g.expand(t, "B", &f);
+        }
+        let names: Vec<&str> = g.rules.iter().map(|r| r.name.as_str()).collect();
+        assert_eq!(names, ["B_some_touch_w", "B_none_touch_w"]);
+        assert_eq!(g.rules[0].formula, g.rules[1].formula);
+        assert_ne!(g.rules[0].scope, g.rules[1].scope);
+    }
+
+    #[test]
+    fn identifiers() {
+        assert!(is_identifier("w_west") && is_identifier("_a1"));
+        assert!(!is_identifier("1w") && !is_identifier("w-west") && !is_identifier(""));
     }
 }

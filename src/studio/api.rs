@@ -3,11 +3,9 @@
 
 use super::storage::{self, DEMOS, LEARNED, STATEMENTS};
 use super::AppState;
-use crate::infer::{learn as run_learn, LearnParams, StatementSource};
+use crate::infer::{learn as run_learn, statement_text, LearnParams, StatementSource};
 use crate::resemblance::Likeness;
-use crate::rules::{
-    check_classes, check_landmarks, parse_rules, print_formula, print_rule, RuleSet,
-};
+use crate::rules::{check_classes, check_landmarks, parse_rules, RuleSet};
 use crate::scene::{scenes_from_json, scenes_to_json, Scene};
 use crate::synth::{synthesize, Progress, ProgressFn, SynthOptions, SynthResult};
 use axum::body::Bytes;
@@ -469,7 +467,7 @@ pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
             json!({
                 "name": s.name,
                 "subject": s.subject,
-                "formula": print_formula(&s.formula),
+                "formula": statement_text(s.scope, &s.formula),
                 "english": s.english,
                 "posterior": post.written(),
                 "log10_posterior": post.log10_posterior,
@@ -478,7 +476,7 @@ pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
                 "n": s.n,
                 "weight": rule.strength.weight(),
                 "implied_by": s.implied_by,
-                "rcc": print_rule(rule),
+                "rcc": crate::rules::print_rule(rule),
             })
         })
         .collect();
@@ -516,7 +514,7 @@ fn rule_summary(set: &RuleSet) -> Value {
     set.rules
         .iter()
         .map(|r| {
-            json!({"name": r.name, "subject": r.subject(), "formula": print_formula(&r.formula),
+            json!({"name": r.name, "subject": r.subject(), "formula": statement_text(r.scope, &r.formula),
                    "weight": r.strength.weight(), "hard": r.strength.is_hard()})
         })
         .collect()

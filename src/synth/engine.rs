@@ -882,12 +882,12 @@ fn post_like(
             solver.add_clause([predicate![gy != b as i32], predicate![c >= m as i32]], tag);
         }
     }
-    for b in 0..ny {
-        for a in 0..nx {
+    for (b, &rb) in row.iter().enumerate() {
+        for (a, &ca) in col.iter().enumerate() {
             let v = at(a, b);
             // Cells whose cost the column or row clause already gives need
             // no clause of their own.
-            if v > col[a].max(row[b]) {
+            if v > ca.max(rb) {
                 solver.add_clause(
                     [
                         predicate![gx != a as i32],
