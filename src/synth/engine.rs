@@ -10,6 +10,11 @@
 //! - `Ge` Booleans: `new_literal_for_predicate([v ≥ k])` (no propagator);
 //! - `DiffGe` Booleans: a fresh literal reifying the linear `b − a ≤ −k`;
 //! - `And` Booleans: the usual clauses `l → lᵢ` and `⋀lᵢ → l`;
+//! - `AtLeast` Booleans: a fresh literal reifying the linear
+//!   `Σ −mᵢ·[lᵢ] ≤ −k` over the distinct counted literals `lᵢ` (each a 0/1
+//!   view, `1 − x` for a negated one) with multiplicities `mᵢ`; the reified
+//!   linear propagator explains both directions, so it is sound under
+//!   assumptions and in cores like every other reified constraint;
 //! - objective: `obj = Σ cᵢ·[litᵢ]` (`boolean_equals`);
 //! - symmetry: linear `≤`; redundant: `cumulative` on both axes in real units.
 //!
@@ -403,13 +408,23 @@ impl Engine {
                     solver.add_clause(big, tag);
                 }
                 BoolDef::AtLeast { lits: counted, k } => {
-                    // l ⇔ Σ counted ≥ k  ⇔  Σ −[counted] ≤ −k
+                    // l ⇔ Σ counted ≥ k  ⇔  Σ −[counted] ≤ −k. A literal
+                    // counted m times is one term with coefficient −m (the
+                    // model keeps one polarity per Boolean), so no solver
+                    // variable appears twice in the sum.
                     let terms: Vec<AffineView<DomainId>> = counted
-                        .iter()
-                        .map(|&c| conv(&lits, c).get_integer_variable().scaled(-1))
+                        .chunk_by(|a, b| a == b)
+                        .map(|g| {
+                            let m = i32::try_from(g.len()).unwrap_or(i32::MAX);
+                            conv(&lits, g[0]).get_integer_variable().scaled(-m)
+                        })
                         .collect();
                     solver
-                        .add_constraint(less_than_or_equals(terms, -(*k as i32), tag))
+                        .add_constraint(less_than_or_equals(
+                            terms,
+                            -i32::try_from(*k).unwrap_or(i32::MAX),
+                            tag,
+                        ))
                         .reify(l);
                 }
             }
