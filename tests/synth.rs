@@ -755,7 +755,8 @@ fn strip() -> Scene {
 #[test]
 fn hard_scene_level_rules_hold_exactly() {
     let touches_w = qatom("EC_E", "A", Quant::Some, lm("w"));
-    let cases: [(Quant, fn(usize) -> bool); 5] = [
+    type Holds = fn(usize) -> bool;
+    let cases: [(Quant, Holds); 5] = [
         (Quant::Some, |c: usize| c >= 1),
         (Quant::No, |c: usize| c == 0),
         (Quant::AtLeast(2), |c: usize| c >= 2),
@@ -939,7 +940,10 @@ fn synth_report_keeps_first_edition_format() {
     let report = dir.join("report.json");
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_rccpack"))
         .arg("synth")
-        .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing/problem.json"))
+        .arg(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/examples/box-packing/problem.json"
+        ))
         .arg("--rules")
         .arg(&rules)
         .arg("--report")
@@ -949,7 +953,11 @@ fn synth_report_keeps_first_edition_format() {
         .arg("--quiet")
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = std::fs::read_to_string(&report).unwrap();
     let keys = |indent: usize| -> Vec<String> {
         let pre = " ".repeat(indent) + "\"";
@@ -973,7 +981,14 @@ fn synth_report_keeps_first_edition_format() {
             "rules"
         ]
     );
-    let entry = ["name", "weight", "hard", "subjects", "satisfied", "violators"];
+    let entry = [
+        "name",
+        "weight",
+        "hard",
+        "subjects",
+        "satisfied",
+        "violators",
+    ];
     let rule_keys = keys(6);
     assert_eq!(rule_keys.len(), 3 * entry.len(), "{text}");
     for chunk in rule_keys.chunks(entry.len()) {

@@ -268,7 +268,12 @@ fn random_formula2(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
                 .collect(),
         ),
         // "touches some B flush"
-        9 => Formula::Or(Dir::ALL.iter().map(|&d| some(Kind::FL, d, &target)).collect()),
+        9 => Formula::Or(
+            Dir::ALL
+                .iter()
+                .map(|&d| some(Kind::FL, d, &target))
+                .collect(),
+        ),
         // "has a flush neighbour east or west" / "north or south"
         10 => {
             let (a, b) = pick(rng, &[(Dir::E, Dir::W), (Dir::N, Dir::S)]);
@@ -522,7 +527,10 @@ fn check(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<BruteR
                 bf.layouts_checked, r.status
             ));
         }
-        let c = r.conflict.as_ref().ok_or("engine: infeasible without a conflict")?;
+        let c = r
+            .conflict
+            .as_ref()
+            .ok_or("engine: infeasible without a conflict")?;
         check_conflict(case, c).map_err(|e| format!("conflict: {e}"))?;
         return Ok(bf);
     }
@@ -545,7 +553,10 @@ fn check(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<BruteR
             bf.best.as_ref().map(Scene::to_json).unwrap_or_default()
         ));
     }
-    let rev = r.evaluation.as_ref().ok_or("engine: optimal without an evaluation")?;
+    let rev = r
+        .evaluation
+        .as_ref()
+        .ok_or("engine: optimal without an evaluation")?;
     if rev != &ev {
         return Err(format!(
             "reported evaluation {rev:?} differs from the evaluator's {ev:?}"
@@ -818,7 +829,10 @@ fn second_edition_generator_covers_the_language() {
         }
     }
     eprintln!("cases with a reified count: {counted} of {n}");
-    assert!(counted >= 80, "only {counted} cases exercise the engine's AtLeast");
+    assert!(
+        counted >= 80,
+        "only {counted} cases exercise the engine's AtLeast"
+    );
     assert_eq!(rels.len(), 16, "{rels:?}");
     assert_eq!(quants.len(), 5);
     assert_eq!(ks, (0..=4).collect());
@@ -828,10 +842,16 @@ fn second_edition_generator_covers_the_language() {
         assert!(scene_quants.contains(&Quant::AtMost(k)), "at most {k}");
     }
     assert!(lm_fixed > 300 && lm_empty > 100, "{lm_fixed} {lm_empty}");
-    assert!(scene_soft > 300 && scene_hard > 100, "{scene_soft} {scene_hard}");
+    assert!(
+        scene_soft > 300 && scene_hard > 100,
+        "{scene_soft} {scene_hard}"
+    );
     assert!(edge > 500 && edge < 1000, "{edge}");
     assert!(hard > 300 && hard < 1200, "{hard}");
-    assert!(two_fixed > 200 && placed > 100 && rect > 300, "{two_fixed} {placed} {rect}");
+    assert!(
+        two_fixed > 200 && placed > 100 && rect > 300,
+        "{two_fixed} {placed} {rect}"
+    );
 }
 
 #[test]
@@ -861,7 +881,11 @@ fn engine_matches_brute_force_second_edition() {
     let t = run(0..4000, SMALL2, true, true);
     // The run must include infeasible problems (checked conflicts) and
     // feasible ones.
-    assert!(t.infeasible > 400 && t.infeasible < 2500, "{}", t.infeasible);
+    assert!(
+        t.infeasible > 400 && t.infeasible < 2500,
+        "{}",
+        t.infeasible
+    );
     assert_clean(t);
 }
 

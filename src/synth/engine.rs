@@ -718,3 +718,131 @@ impl Engine {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::relations::{Contact, Dir, Kind, Quant, Relation};
+    use crate::rules::{Atom, Formula, Rule, RuleSet, Scope, Target};
+    use crate::scene::{Object, Scene, Space};
+    use crate::synth::model::{BuildOptions, HardRule};
+
+    /// Every literal of every soft term (reified counts among them), made
+    /// hard under one guard in either polarity: the engine finds a solution
+    /// iff some layout satisfies it (enumerated over the definitions), the
+    /// solution does satisfy it, and a refutation's core is that guard. So
+    /// the `AtLeast` encoding (and every other) is exact under assumptions.
+    #[test]
+    fn guarded_literals_match_the_definitions() {
+        let scene = Scene {
+            space: Space {
+                x: 0,
+                y: 0,
+                width: 30,
+                height: 20,
+            },
+            grid: 10,
+            objects: (0..4)
+                .map(|i| Object {
+                    id: format!("a{i}"),
+                    class: "A".into(),
+                    x: None,
+                    y: None,
+                    width: 10,
+                    height: 10,
+                    fixed: false,
+                })
+                .chain([Object::fixed_at("f", "F", 20, 10, 10, 10)])
+                .collect(),
+        };
+        let q =
+            |rel: Relation, quant, t: Target| Formula::Atom(Atom::quantified(rel, "A", quant, t));
+        let al_s = Relation::new(Kind::AL, Dir::S);
+        let ec_e = Relation::new(Kind::EC, Dir::E);
+        let dr_n = Relation::new(Kind::DR, Dir::N);
+        let rules = RuleSet::new(vec![
+            Rule::new("r0", q(al_s, Quant::AtLeast(2), Target::Any)),
+            Rule::new("r1", q(ec_e, Quant::AtMost(1), Target::Any)),
+            Rule::new("r2", q(dr_n, Quant::Some, Target::Any))
+                .with_scope(Scope::Scene(Quant::AtLeast(2))),
+            Rule::new("r3", q(al_s, Quant::AtLeast(2), Target::Class("A".into())))
+                .with_scope(Scope::Scene(Quant::AtMost(2))),
+            // Impossible: the four A cannot all share their row with two
+            // other objects (3 + 1 leaves one alone with `f`, 2 + 2 leaves
+            // each of the bottom two with one).
+            Rule::new("r4", q(al_s, Quant::AtLeast(2), Target::Any))
+                .with_scope(Scope::Scene(Quant::AtLeast(4))),
+            Rule::new("r5", q(al_s, Quant::AtLeast(2), Target::Any))
+                .with_scope(Scope::Scene(Quant::AtLeast(3))),
+        ]);
+        let m = Model::build(
+            &scene,
+            &rules,
+            BuildOptions {
+                contact: Contact::Point,
+                rules: true,
+                symmetry_breaking: false,
+                redundant: false,
+            },
+        );
+        let counts = m
+            .bools
+            .iter()
+            .filter(|b| matches!(b, BoolDef::AtLeast { .. }))
+            .count();
+        assert!(counts >= 4, "{counts} reified counts");
+        // Every assignment: the clause values and the bools.
+        let ub: Vec<i64> = m.vars.iter().map(|v| v.ub).collect();
+        let mut all: Vec<(Vec<i64>, Vec<bool>)> = Vec::new();
+        let mut vals = vec![0i64; ub.len()];
+        'outer: loop {
+            let bools = m.eval_bools(&vals);
+            if m.clauses.iter().all(|c| c.iter().any(|l| l.value(&bools))) {
+                all.push((vals.clone(), bools));
+            }
+            let mut i = 0;
+            loop {
+                if i == vals.len() {
+                    break 'outer;
+                }
+                vals[i] += 1;
+                if vals[i] > ub[i] {
+                    vals[i] = 0;
+                    i += 1;
+                } else {
+                    break;
+                }
+            }
+        }
+        let mut sat = 0;
+        let mut unsat = 0;
+        for t in &m.soft {
+            for lit in [t.lit, !t.lit] {
+                let mut mh = m.clone();
+                mh.soft.clear();
+                mh.hard = vec![HardRule {
+                    rule: 0,
+                    lits: vec![lit],
+                }];
+                let possible = all.iter().any(|(_, b)| lit.value(b));
+                let mut e = Engine::new(&mh, 0, true, None);
+                match e.satisfy_rules(&[0], &Limits::default()) {
+                    Sat::Solution(v) => {
+                        assert!(possible, "engine found {v:?} for the impossible {lit:?}");
+                        let b = m.eval_bools(&v);
+                        assert!(lit.value(&b), "{lit:?} false in the engine's {v:?}");
+                        assert!(m.clauses.iter().all(|c| c.iter().any(|l| l.value(&b))));
+                        sat += 1;
+                    }
+                    Sat::Unsat(core) => {
+                        assert!(!possible, "engine refuted the possible {lit:?}");
+                        assert!(core.is_empty() || core == vec![0], "{core:?}");
+                        unsat += 1;
+                    }
+                    Sat::Unknown => panic!("no limit, yet unknown"),
+                }
+            }
+        }
+        assert!(sat > 0 && unsat > 0, "{sat} sat, {unsat} unsat");
+    }
+}

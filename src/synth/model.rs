@@ -805,7 +805,11 @@ mod tests {
                     panic!("every object is placed in the model's scene");
                 };
                 let want = relation_bits(&ra, &rb, contact) & rel.bit() != 0;
-                assert_eq!(l.value(&bools), want, "{rel}({a},{b}) {contact} at {vals:?}");
+                assert_eq!(
+                    l.value(&bools),
+                    want,
+                    "{rel}({a},{b}) {contact} at {vals:?}"
+                );
                 let e = &mut seen[rel.index()];
                 if want {
                     e.0 = true;
@@ -916,7 +920,10 @@ mod tests {
             // blue_row
             Formula::And(vec![
                 al(Dir::S, Quant::Every, &a),
-                Formula::Or(vec![fl(Dir::E, Quant::Some, &a), fl(Dir::W, Quant::Some, &a)]),
+                Formula::Or(vec![
+                    fl(Dir::E, Quant::Some, &a),
+                    fl(Dir::W, Quant::Some, &a),
+                ]),
             ]),
             // blue_flush
             Formula::And(
@@ -949,7 +956,11 @@ mod tests {
             rules.push(
                 Rule::new(format!("r{}", rules.len()), f.clone()).with_strength(Strength::Hard),
             );
-            for q in QUANTS.into_iter().skip(1).chain([Quant::AtLeast(4), Quant::AtMost(3)]) {
+            for q in QUANTS
+                .into_iter()
+                .skip(1)
+                .chain([Quant::AtLeast(4), Quant::AtMost(3)])
+            {
                 for strength in [Strength::Weight(1.5), Strength::Hard] {
                     rules.push(
                         Rule::new(format!("r{}", rules.len()), f.clone())
@@ -1106,8 +1117,7 @@ mod tests {
                 assert!(*k >= 2 && (*k as usize) < lits.len(), "{b:?}");
                 for w in lits.windows(2) {
                     assert!(w[0] <= w[1]);
-                    if let (Lit::Var { id: i, neg: p }, Lit::Var { id: j, neg: q }) = (w[0], w[1])
-                    {
+                    if let (Lit::Var { id: i, neg: p }, Lit::Var { id: j, neg: q }) = (w[0], w[1]) {
                         assert!(i != j || p == q, "complements left in {b:?}");
                     }
                 }
