@@ -6,7 +6,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rccpack::eval::evaluate;
 use rccpack::relations::{Contact, Relation};
-use rccpack::rules::{Atom, Formula, Rule, RuleSet, Strength, Target};
+use rccpack::rules::{Atom, Formula, Quant, Rule, RuleSet, Scope, Strength, Target};
 use rccpack::scene::{Object, Scene, Space};
 use rccpack::synth::verify::verify_solution;
 use rccpack::synth::{synthesize, Status, SynthOptions, SynthResult};
@@ -718,4 +718,281 @@ fn bench_scale() {
             }
         }
     }
+}
+
+// ---- Second edition (SPEC §11) ----
+
+fn qatom(rel: &str, s: &str, q: Quant, t: Target) -> Formula {
+    Formula::Atom(Atom::quantified(Relation::from_name(rel).unwrap(), s, q, t))
+}
+
+fn lm(id: &str) -> Target {
+    Target::Landmark(id.into())
+}
+
+/// A 60×30 strip with a fixed west wall `w` (10×30 at x = 0) and three
+/// unplaced 10×10 `A` blocks.
+fn strip() -> Scene {
+    let mut objects = vec![obj("w", "W", 10, 30, Some((0, 0)), true)];
+    for i in 0..3 {
+        objects.push(obj(&format!("a{i}"), "A", 10, 10, None, false));
+    }
+    Scene {
+        space: Space {
+            x: 0,
+            y: 0,
+            width: 60,
+            height: 30,
+        },
+        grid: 10,
+        objects,
+    }
+}
+
+/// Hard scene-level rules with every subject quantifier are kept exactly:
+/// the count of blocks touching the wall is what the rule asks, and the
+/// report shows each scene-level rule with one subject.
+#[test]
+fn hard_scene_level_rules_hold_exactly() {
+    let touches_w = qatom("EC_E", "A", Quant::Some, lm("w"));
+    type Holds = fn(usize) -> bool;
+    let cases: [(Quant, Holds); 5] = [
+        (Quant::Some, |c: usize| c >= 1),
+        (Quant::No, |c: usize| c == 0),
+        (Quant::AtLeast(2), |c: usize| c >= 2),
+        (Quant::AtLeast(3), |c: usize| c >= 3),
+        (Quant::AtMost(1), |c: usize| c <= 1),
+    ];
+    for (q, ok) in cases {
+        // Soft pull the other way, so the hard rule decides.
+        let soft = if matches!(q, Quant::No | Quant::AtMost(_)) {
+            Rule::new("pull", touches_w.clone())
+        } else {
+            Rule::new("push", Formula::not(touches_w.clone()))
+        };
+        let rules = RuleSet::new(vec![
+            Rule::new("count", touches_w.clone())
+                .with_scope(Scope::Scene(q))
+                .with_strength(Strength::Hard),
+            soft,
+        ]);
+        let r = solve(&strip(), &rules, &SynthOptions::default());
+        assert_eq!(r.status, Status::Optimal, "{q}");
+        let s = r.scene.unwrap();
+        let c = s
+            .objects
+            .iter()
+            .filter(|o| o.class == "A" && o.x == Some(10))
+            .count();
+        assert!(ok(c), "{q}: {c} blocks touch the wall");
+        let e = r.evaluation.unwrap();
+        assert!(e.hard_ok());
+        assert_eq!(e.rules[0].subjects, 1);
+        assert_eq!(e.rules[0].satisfied, 1);
+        // The soft per-object rule gets as many of the three as the hard
+        // rule allows.
+        let best = match q {
+            Quant::Some | Quant::AtLeast(_) => 3 - c,
+            _ => c,
+        };
+        assert_eq!(e.satisfied_weight, best as f64, "{q}");
+    }
+}
+
+/// A soft scene-level rule is one term: weight 2.5 for `at least 2 A:
+/// touches w` against weight 1 for each block that stays off the wall;
+/// the optimum takes the 2.5 and leaves one block off (numerator 3.5, not
+/// 3 with every block off).
+#[test]
+fn soft_scene_level_rule_is_one_term() {
+    let touches_w = qatom("EC_E", "A", Quant::Some, lm("w"));
+    let rules = RuleSet::new(vec![
+        Rule::new("two_on_wall", touches_w.clone())
+            .with_scope(Scope::Scene(Quant::AtLeast(2)))
+            .with_strength(Strength::Weight(2.5)),
+        Rule::new("off_wall", Formula::not(touches_w)),
+    ]);
+    let r = solve(&strip(), &rules, &SynthOptions::default());
+    assert_eq!(r.status, Status::Optimal);
+    let e = r.evaluation.unwrap();
+    assert_eq!(e.satisfied_weight, 3.5);
+    assert_eq!(e.total_weight, 2.5 + 3.0);
+    assert_eq!((e.rules[0].subjects, e.rules[0].satisfied), (1, 1));
+}
+
+/// A hard scene-level rule in a conflict is named like any other rule (a
+/// conflict lists rule names, never objects); the unrelated hard rule is
+/// left out.
+#[test]
+fn hard_scene_level_rule_in_conflict_is_named() {
+    let soft = Rule::new(
+        "soft",
+        qatom("AL_S", "A", Quant::Every, Target::Class("A".into())),
+    );
+    let one_on_wall = Rule::new("one_on_wall", qatom("EC_E", "A", Quant::Some, lm("w")))
+        .with_scope(Scope::Scene(Quant::Some))
+        .with_strength(Strength::Hard);
+    // Feasible: every A has its south edge in line with another A.
+    let unrelated = Rule::new(
+        "unrelated",
+        qatom("AL_S", "A", Quant::AtLeast(1), Target::Class("A".into())),
+    )
+    .with_strength(Strength::Hard);
+    // Every A lies east of the wall (it is the strip's west edge), so
+    // `off_wall` alone is infeasible.
+    let off_wall = Rule::new(
+        "off_wall",
+        Formula::not(qatom("DR_E", "A", Quant::Every, lm("w"))),
+    )
+    .with_strength(Strength::Hard);
+    let rules = RuleSet::new(vec![
+        soft.clone(),
+        one_on_wall.clone(),
+        unrelated.clone(),
+        off_wall,
+    ]);
+    let r = solve(&strip(), &rules, &SynthOptions::default());
+    assert_eq!(r.status, Status::Infeasible);
+    assert_eq!(r.conflict.unwrap().hard_rules, vec!["off_wall"]);
+    // No A may touch the wall, but some A must.
+    let apart = Rule::new(
+        "apart",
+        Formula::not(qatom("EC_E", "A", Quant::Some, lm("w"))),
+    )
+    .with_strength(Strength::Hard);
+    let rules = RuleSet::new(vec![soft, one_on_wall, unrelated, apart]);
+    let r = solve(&strip(), &rules, &SynthOptions::default());
+    assert_eq!(r.status, Status::Infeasible);
+    let c = r.conflict.unwrap();
+    assert!(!c.objects_cannot_fit);
+    assert_eq!(c.hard_rules, vec!["one_on_wall", "apart"]);
+}
+
+/// `some A: …` with no `A` at all cannot hold: infeasible, rule named.
+#[test]
+fn hard_some_rule_without_subjects_is_infeasible() {
+    let mut p = strip();
+    p.objects.retain(|o| o.class != "A");
+    p.objects.push(obj("b", "B", 10, 10, None, false));
+    let rules = RuleSet::new(vec![Rule::new(
+        "some_a",
+        qatom("EC_E", "A", Quant::Some, lm("w")),
+    )
+    .with_scope(Scope::Scene(Quant::Some))
+    .with_strength(Strength::Hard)]);
+    let r = solve(&p, &rules, &SynthOptions::default());
+    assert_eq!(r.status, Status::Infeasible);
+    assert_eq!(r.conflict.unwrap().hard_rules, vec!["some_a"]);
+}
+
+/// `verify_solution` rejects a layout that breaks a hard scene-level rule,
+/// although no object "violates" it (a failing `some` rule has none).
+#[test]
+fn verify_rejects_a_broken_hard_scene_level_rule() {
+    let p = strip();
+    let rules = RuleSet::new(vec![Rule::new(
+        "one_on_wall",
+        qatom("EC_E", "A", Quant::Some, lm("w")),
+    )
+    .with_scope(Scope::Scene(Quant::Some))
+    .with_strength(Strength::Hard)]);
+    let mut s = p.clone();
+    for (i, o) in s.objects.iter_mut().skip(1).enumerate() {
+        o.x = Some(30 + 10 * i as i64);
+        o.y = Some(0);
+    }
+    let e = verify_solution(&p, &s, &rules, Contact::Point).unwrap_err();
+    assert!(e.contains("one_on_wall"), "{e}");
+    s.objects[1].x = Some(10);
+    verify_solution(&p, &s, &rules, Contact::Point).unwrap();
+}
+
+/// Landmarks that are not fixed objects are empty targets in synthesis as
+/// in evaluation: `EC_E(A, @a1)` never holds (default `some`), `DR_E(A,
+/// @nope)` always does (default `every`).
+#[test]
+fn landmark_on_a_movable_or_missing_object_is_an_empty_target() {
+    let rules = RuleSet::new(vec![
+        Rule::new("on_a1", qatom("EC_E", "A", Quant::Some, lm("a1"))),
+        Rule::new("east_of_nope", qatom("DR_E", "A", Quant::Every, lm("nope"))),
+    ]);
+    let r = solve(&strip(), &rules, &SynthOptions::default());
+    assert_eq!(r.status, Status::Optimal);
+    let e = r.evaluation.unwrap();
+    assert_eq!(e.satisfied_weight, 3.0);
+    assert_eq!(e.rules[0].satisfied, 0);
+}
+
+/// `rccpack synth --report` keeps the first edition's format for a
+/// first-edition rule set: the same keys in the same order, and rule
+/// entries without the scene-level `scene` part (checked on the text, so
+/// key order counts).
+#[test]
+fn synth_report_keeps_first_edition_format() {
+    let dir = std::env::temp_dir().join(format!("rccpack-synth-report-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let rules = dir.join("r.rcc");
+    std::fs::write(
+        &rules,
+        "rule north: DR_N(B, R)\nrule east weight 2.5: DR_E(G, R)\nrule inside hard: !DR_N(R, W) & !DR_S(R, W) & !DR_E(R, W) & !DR_W(R, W)\n",
+    )
+    .unwrap();
+    let report = dir.join("report.json");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rccpack"))
+        .arg("synth")
+        .arg(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/examples/box-packing/problem.json"
+        ))
+        .arg("--rules")
+        .arg(&rules)
+        .arg("--report")
+        .arg(&report)
+        .arg("-o")
+        .arg(dir.join("sol.json"))
+        .arg("--quiet")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&report).unwrap();
+    let keys = |indent: usize| -> Vec<String> {
+        let pre = " ".repeat(indent) + "\"";
+        text.lines()
+            .filter(|l| l.starts_with(&pre) && !l[pre.len()..].starts_with(' '))
+            .filter_map(|l| l[pre.len()..].split('"').next().map(String::from))
+            .collect()
+    };
+    assert_eq!(
+        keys(2),
+        [
+            "status",
+            "score",
+            "satisfied_weight",
+            "total_weight",
+            "time_ms",
+            "nodes",
+            "conflicts",
+            "time_to_first_ms",
+            "time_to_best_ms",
+            "rules"
+        ]
+    );
+    let entry = [
+        "name",
+        "weight",
+        "hard",
+        "subjects",
+        "satisfied",
+        "violators",
+    ];
+    let rule_keys = keys(6);
+    assert_eq!(rule_keys.len(), 3 * entry.len(), "{text}");
+    for chunk in rule_keys.chunks(entry.len()) {
+        assert_eq!(chunk, entry);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

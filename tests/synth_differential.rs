@@ -3,29 +3,50 @@
 //!
 //! Each case is drawn from a seeded generator (case `i` of a run uses
 //! `ChaCha8Rng::seed_from_u64(BASE)` on stream `i`, so any failure is
-//! reproducible alone): a space of at most 60×60, grid 10, 2–3 unplaced
-//! blocks (10×10 or 20×20) of classes A/B, optionally one fixed block F, and
-//! 1–4 random SPEC §8-shaped rules over random subject/target (`*`
-//! included), each soft (weight 0.5, 1, 2 or 2.5) or hard, in a random
-//! contact mode.
+//! reproducible alone; [`random_case`] prints nothing, [`Case::describe`]
+//! gives the whole problem as text).
+//!
+//! **First edition** ([`Language::First`], SPEC §3–§9): a space of at most
+//! 60×60, grid 10, 2–3 unplaced blocks (10×10 or 20×20) of classes A/B,
+//! optionally one fixed block F, and 1–4 random SPEC §8-shaped rules over
+//! random subject/target (`*` included), each soft (weight 0.5, 1, 2 or 2.5)
+//! or hard, in a random contact mode.
+//!
+//! **Second edition** ([`Language::Second`], SPEC §11): the same, plus
+//! rectangles (10×20, 20×10), up to two fixed objects `f`, `g` (classes F or
+//! W, any of the four sizes), now and then one or two already-placed movable
+//! objects,
+//! and rules drawn from random formulas over all sixteen relations with
+//! every target quantifier (`every`, `some`, `no`, `at least K`,
+//! `at most K` with K in 0..=4, around the object count), landmark targets
+//! (`@f`, `@g` — fixed; `@a1` — movable, and `@f` when there is no `f`:
+//! empty targets) and the §11.4 example shapes, about 30 % of them
+//! scene-level (`some`, `no`, `at least K`, `at most K` with K in 0..=3),
+//! soft or hard.
 //!
 //! For each case the engine must agree with brute force: `infeasible` iff no
-//! layout keeps the hard rules; otherwise `optimal`, a solution that passes
-//! `verify_solution`, and an evaluator numerator equal to the brute-force
-//! optimum (tolerance `1e-9·(1+|x|)`).
+//! layout keeps the hard rules, and then its conflict is right (objects that
+//! cannot fit even without rules, or a set of hard rules that brute force
+//! confirms is infeasible on its own and feasible after dropping any one of
+//! them); otherwise `optimal`, a solution that passes `verify_solution`, and
+//! an evaluator numerator equal to the brute-force optimum (tolerance
+//! `1e-9·(1+|x|)`), with the reported evaluation equal to the evaluator's.
 //!
-//! Default run: 600 cases with symmetry breaking and redundant constraints
-//! on, 300 with both off. `cargo test --release --test synth_differential --
-//! --ignored` runs 5000 + 2000 cases in spaces up to 60×60.
+//! Default run: 600 + 300 first-edition cases (symmetry breaking and
+//! redundant constraints on, then both off) and 4000 + 1500 second-edition
+//! cases. `cargo test --release --test synth_differential -- --ignored` runs
+//! 5000 + 2000 first-edition and 10000 + 4000 second-edition cases in
+//! spaces up to 60×60.
 
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rccpack::bench::pool::{among, atom, corner, formula_text, touches};
 use rccpack::eval::evaluate;
-use rccpack::relations::{Contact, Dir, Kind};
-use rccpack::rules::{Formula, Rule, RuleSet, Strength, Target};
+use rccpack::relations::{Contact, Dir, Kind, Quant, Relation};
+use rccpack::rules::{Atom, Formula, Rule, RuleSet, Scope, Strength, Target};
 use rccpack::scene::{Object, Scene, Space};
 use rccpack::synth::brute_force::{self, approx_eq, BruteResult};
+use rccpack::synth::model::{BoolDef, BuildOptions, Model};
 use rccpack::synth::verify::verify_solution;
 use rccpack::synth::{synthesize, Status, SynthOptions};
 use std::time::Duration;
@@ -56,8 +77,12 @@ impl Case {
                 Strength::Weight(w) if w != 1.0 => format!(" weight {w}"),
                 _ => String::new(),
             };
+            let scope = match r.scope {
+                Scope::Each => String::new(),
+                Scope::Scene(q) => format!("{q} {}: ", r.subject()),
+            };
             s.push_str(&format!(
-                "rule {}{}: {}\n",
+                "rule {}{}: {scope}{}\n",
                 r.name,
                 m,
                 formula_text(&r.formula)
@@ -67,17 +92,38 @@ impl Case {
     }
 }
 
-/// Size of the problems a run draws.
+/// Which rule language a run draws from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Language {
+    /// SPEC §3–§9 only (the generator of the first differential runs,
+    /// unchanged: the same stream gives the same case).
+    First,
+    /// Everything of SPEC §11 too.
+    Second,
+}
+
+/// What a run draws.
 #[derive(Clone, Copy)]
 struct Sizes {
     spaces: &'static [(i64, i64)],
+    language: Language,
 }
 
 const SMALL: Sizes = Sizes {
     spaces: &[(30, 30), (40, 30), (40, 40), (50, 30)],
+    language: Language::First,
 };
 const LARGE: Sizes = Sizes {
     spaces: &[(30, 30), (40, 40), (50, 30), (60, 40), (60, 60)],
+    language: Language::First,
+};
+const SMALL2: Sizes = Sizes {
+    language: Language::Second,
+    ..SMALL
+};
+const LARGE2: Sizes = Sizes {
+    language: Language::Second,
+    ..LARGE
 };
 
 fn pick<T: Copy>(rng: &mut ChaCha8Rng, v: &[T]) -> T {
@@ -102,39 +148,259 @@ fn random_formula(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
     }
 }
 
+/// Second edition: a random quantifier for an atom (the default about
+/// half the time; `K` in 0..=4, around the number of target objects).
+fn random_quant(rng: &mut ChaCha8Rng, rel: Relation) -> Quant {
+    let k = rng.random_range(0..=4u32);
+    match rng.random_range(0..10) {
+        0..=4 => rel.default_quant(),
+        5 => Quant::Every,
+        6 => Quant::Some,
+        7 => Quant::No,
+        8 => Quant::AtLeast(k),
+        _ => Quant::AtMost(k),
+    }
+}
+
+/// Second edition: a random target. Landmarks: `@f`, `@g` (fixed objects
+/// when the case has them, else missing) and `@a1` (never fixed): the
+/// latter two are empty targets.
+fn random_target(rng: &mut ChaCha8Rng) -> Target {
+    match rng.random_range(0..12) {
+        0..=2 => Target::Class("A".into()),
+        3..=4 => Target::Class("B".into()),
+        5 => Target::Class("F".into()),
+        6..=7 => Target::Any,
+        8..=9 => Target::Landmark("f".into()),
+        10 => Target::Landmark("g".into()),
+        _ => Target::Landmark("a1".into()),
+    }
+}
+
+/// Second edition: one random atom of `subject` (a landmark keeps the
+/// default quantifier, SPEC §11.3).
+fn random_atom(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
+    let rel = pick(rng, &Relation::ALL);
+    let target = random_target(rng);
+    let quant = match target {
+        Target::Landmark(_) => rel.default_quant(),
+        _ => random_quant(rng, rel),
+    };
+    Formula::Atom(Atom::quantified(rel, subject, quant, target))
+}
+
+/// Second edition: a random formula of depth at most `depth`.
+fn random_tree(rng: &mut ChaCha8Rng, subject: &str, depth: u32) -> Formula {
+    if depth <= 1 {
+        return random_atom(rng, subject);
+    }
+    match rng.random_range(0..6) {
+        0 | 1 => random_atom(rng, subject),
+        2 => Formula::not(random_tree(rng, subject, depth - 1)),
+        k => {
+            let n = rng.random_range(2..=3);
+            let v = (0..n)
+                .map(|_| random_tree(rng, subject, depth - 1))
+                .collect();
+            if k == 3 {
+                Formula::And(v)
+            } else {
+                Formula::Or(v)
+            }
+        }
+    }
+}
+
+fn q_atom(kind: Kind, dir: Dir, subject: &str, quant: Quant, target: &Target) -> Formula {
+    Formula::Atom(Atom::quantified(
+        Relation::new(kind, dir),
+        subject,
+        quant,
+        target.clone(),
+    ))
+}
+
+/// Second edition: a random formula: a random tree, a SPEC §11.4/§11.5
+/// shape, or a first-edition shape.
+fn random_formula2(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
+    let own = Target::Class(subject.into());
+    let target = random_target(rng);
+    let dir = pick(rng, &Dir::ALL);
+    let some = |kind, d, t: &Target| q_atom(kind, d, subject, Quant::Some, t);
+    match rng.random_range(0..16) {
+        0..=4 => {
+            let depth = rng.random_range(1..=3);
+            random_tree(rng, subject, depth)
+        }
+        // "in one row with the other As" / "in one column"
+        5 => {
+            let (a, b) = pick(rng, &[(Dir::S, Dir::N), (Dir::W, Dir::E)]);
+            Formula::And(vec![
+                q_atom(Kind::AL, a, subject, Quant::Every, &own),
+                q_atom(Kind::AL, b, subject, Quant::Every, &own),
+            ])
+        }
+        // blue_row
+        6 => Formula::And(vec![
+            q_atom(Kind::AL, Dir::S, subject, Quant::Every, &own),
+            Formula::Or(vec![
+                some(Kind::FL, Dir::E, &own),
+                some(Kind::FL, Dir::W, &own),
+            ]),
+        ]),
+        // "every contact with a B is flush"
+        7 => Formula::And(
+            Dir::ALL
+                .iter()
+                .map(|&d| {
+                    Formula::Or(vec![
+                        Formula::not(some(Kind::EC, d, &target)),
+                        some(Kind::FL, d, &target),
+                    ])
+                })
+                .collect(),
+        ),
+        // "touches no B" (red_apart_green)
+        8 => Formula::And(
+            Dir::ALL
+                .iter()
+                .map(|&d| q_atom(Kind::EC, d, subject, Quant::No, &target))
+                .collect(),
+        ),
+        // "touches some B flush"
+        9 => Formula::Or(
+            Dir::ALL
+                .iter()
+                .map(|&d| some(Kind::FL, d, &target))
+                .collect(),
+        ),
+        // "has a flush neighbour east or west" / "north or south"
+        10 => {
+            let (a, b) = pick(rng, &[(Dir::E, Dir::W), (Dir::N, Dir::S)]);
+            Formula::Or(vec![some(Kind::FL, a, &own), some(Kind::FL, b, &own)])
+        }
+        // touches(f) of SPEC §11.5
+        11 => touches(subject, &Target::Landmark(pick(rng, &["f", "g"]).into())),
+        12 => q_atom(Kind::FL, dir, subject, Quant::Some, &target),
+        // A count over many objects: `REL(A, at least K *)`,
+        // `REL(A, at most K *)`, K in 1..=3.
+        13 | 14 => {
+            let rel = pick(rng, &Relation::ALL);
+            let k = rng.random_range(1..=3u32);
+            let q = if rng.random_range(0..2) == 0 {
+                Quant::AtLeast(k)
+            } else {
+                Quant::AtMost(k)
+            };
+            let t = if rng.random_range(0..3) == 0 {
+                Target::Class(subject.into())
+            } else {
+                Target::Any
+            };
+            Formula::Atom(Atom::quantified(rel, subject, q, t))
+        }
+        _ => random_formula(rng, subject),
+    }
+}
+
+const SIDES2: [(i64, i64); 4] = [(10, 10), (20, 10), (10, 20), (20, 20)];
+
 fn random_case(index: u64, sizes: Sizes) -> Case {
     let mut rng = ChaCha8Rng::seed_from_u64(BASE_SEED);
     rng.set_stream(index);
+    let second = sizes.language == Language::Second;
     let (w, h) = pick(&mut rng, sizes.spaces);
-    let mut objects = Vec::new();
-    if rng.random_range(0..2) == 0 {
-        let side = pick(&mut rng, &[10, 20]);
-        let x = 10 * rng.random_range(0..=(w - side) / 10);
-        let y = 10 * rng.random_range(0..=(h - side) / 10);
-        objects.push(Object {
-            id: "f".into(),
-            class: "F".into(),
-            x: Some(x),
-            y: Some(y),
-            width: side,
-            height: side,
-            fixed: true,
+    let mut objects: Vec<Object> = Vec::new();
+    let n_fixed = if second {
+        pick(&mut rng, &[0, 1, 1, 2])
+    } else {
+        usize::from(rng.random_range(0..2) == 0)
+    };
+    for id in ["f", "g"].into_iter().take(n_fixed) {
+        let (fw, fh) = if second {
+            pick(&mut rng, &SIDES2)
+        } else {
+            let side = pick(&mut rng, &[10, 20]);
+            (side, side)
+        };
+        let class = if second {
+            pick(&mut rng, &["F", "W"])
+        } else {
+            "F"
+        };
+        let x = 10 * rng.random_range(0..=(w - fw) / 10);
+        let y = 10 * rng.random_range(0..=(h - fh) / 10);
+        let o = Object::fixed_at(id, class, x, y, fw, fh);
+        // Keep the scene valid: a second fixed object that overlaps the
+        // first is dropped.
+        let clash = objects.iter().any(|p| match (p.rect(), o.rect()) {
+            (Some(a), Some(b)) => a.interiors_overlap(&b),
+            _ => false,
         });
+        if !clash {
+            objects.push(o);
+        }
     }
-    let movable = rng.random_range(2..=3);
+    let movable = if second && w * h <= 1200 && rng.random_range(0..4) == 0 {
+        // Four blocks only in the smallest spaces (brute force grows as
+        // the product of the domains).
+        4
+    } else {
+        rng.random_range(2..=3)
+    };
     for i in 0..movable {
         let class = pick(&mut rng, &["A", "B"]);
-        // 20×20 blocks only now and then: they shrink the domains a lot.
-        let side = if rng.random_range(0..4) == 0 { 20 } else { 10 };
+        // Large blocks only now and then: they shrink the domains a lot.
+        let (bw, bh) = if second {
+            match rng.random_range(0..8) {
+                0 => (20, 20),
+                1 => (20, 10),
+                2 => (10, 20),
+                _ => (10, 10),
+            }
+        } else {
+            let side = if rng.random_range(0..4) == 0 { 20 } else { 10 };
+            (side, side)
+        };
         objects.push(Object {
             id: format!("{}{}", class.to_lowercase(), i),
             class: class.into(),
             x: None,
             y: None,
-            width: side,
-            height: side,
+            width: bw,
+            height: bh,
             fixed: false,
         });
+    }
+    // Already-placed movable objects (subjects and targets that do not
+    // move, but no landmarks), where they fit: they make the counts of
+    // `at least K` / `at most K` and of scene-level rules larger without
+    // growing the search.
+    let n_placed = if second {
+        pick(&mut rng, &[0, 0, 1, 2])
+    } else {
+        0
+    };
+    for i in 0..n_placed {
+        let class = pick(&mut rng, &["A", "B"]);
+        let x = 10 * rng.random_range(0..w / 10);
+        let y = 10 * rng.random_range(0..h / 10);
+        let o = Object {
+            id: format!("p{i}"),
+            class: class.into(),
+            x: Some(x),
+            y: Some(y),
+            width: 10,
+            height: 10,
+            fixed: false,
+        };
+        let clash = objects.iter().any(|p| match (p.rect(), o.rect()) {
+            (Some(a), Some(b)) => a.interiors_overlap(&b),
+            _ => false,
+        });
+        if !clash {
+            objects.push(o);
+        }
     }
     let scene = Scene {
         space: Space {
@@ -154,7 +420,25 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
                 0 | 1 => Strength::Hard,
                 _ => Strength::Weight(pick(&mut rng, &[0.5, 1.0, 2.0, 2.5])),
             };
-            Rule::new(format!("r{i}"), random_formula(&mut rng, subject)).with_strength(strength)
+            if !second {
+                return Rule::new(format!("r{i}"), random_formula(&mut rng, subject))
+                    .with_strength(strength);
+            }
+            let scope = match rng.random_range(0..10) {
+                0..=6 => Scope::Each,
+                s => {
+                    let k = rng.random_range(0..=3u32);
+                    Scope::Scene(match (s, rng.random_range(0..4)) {
+                        (7, _) => Quant::Some,
+                        (8, 0) => Quant::No,
+                        (8, _) => Quant::AtLeast(k),
+                        _ => Quant::AtMost(k),
+                    })
+                }
+            };
+            Rule::new(format!("r{i}"), random_formula2(&mut rng, subject))
+                .with_strength(strength)
+                .with_scope(scope)
         })
         .collect();
     let contact = if rng.random_range(0..2) == 0 {
@@ -168,6 +452,59 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
         rules: RuleSet::new(rules),
         contact,
     }
+}
+
+/// Only the hard rules of `rules` named in `names`.
+fn hard_subset(rules: &RuleSet, names: &[&str]) -> RuleSet {
+    RuleSet::new(
+        rules
+            .rules
+            .iter()
+            .filter(|r| r.strength.is_hard() && names.contains(&r.name.as_str()))
+            .cloned()
+            .collect(),
+    )
+}
+
+/// An infeasible case's conflict, checked by brute force: objects that
+/// cannot fit cannot fit without any rule; otherwise the named hard rules
+/// are infeasible on their own and each is needed.
+fn check_conflict(case: &Case, c: &rccpack::synth::Conflict) -> Result<(), String> {
+    let feasible = |rules: &RuleSet| -> Result<bool, String> {
+        brute_force::solve(&case.scene, rules, case.contact)
+            .map(|b| b.feasible)
+            .map_err(|e| format!("brute force: {e}"))
+    };
+    if c.objects_cannot_fit {
+        if feasible(&RuleSet::default())? {
+            return Err("conflict says the objects cannot fit, but they fit".into());
+        }
+        return Ok(());
+    }
+    let names: Vec<&str> = c.hard_rules.iter().map(String::as_str).collect();
+    if names.is_empty() {
+        return Err("infeasible with an empty conflict".into());
+    }
+    if feasible(&hard_subset(&case.rules, &names))? {
+        return Err(format!(
+            "conflict {names:?} is feasible on its own (not a conflict)"
+        ));
+    }
+    for i in 0..names.len() {
+        let rest: Vec<&str> = names
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| j != i)
+            .map(|(_, &n)| n)
+            .collect();
+        if !feasible(&hard_subset(&case.rules, &rest))? {
+            return Err(format!(
+                "conflict {names:?} is not minimal: it stays infeasible without `{}`",
+                names[i]
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Run the engine on `case` and compare with brute force.
@@ -190,6 +527,11 @@ fn check(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<BruteR
                 bf.layouts_checked, r.status
             ));
         }
+        let c = r
+            .conflict
+            .as_ref()
+            .ok_or("engine: infeasible without a conflict")?;
+        check_conflict(case, c).map_err(|e| format!("conflict: {e}"))?;
         return Ok(bf);
     }
     if r.status != Status::Optimal {
@@ -211,11 +553,20 @@ fn check(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<BruteR
             bf.best.as_ref().map(Scene::to_json).unwrap_or_default()
         ));
     }
-    if let Some(rev) = &r.evaluation {
-        if !approx_eq(rev.satisfied_weight, ev.satisfied_weight) {
+    let rev = r
+        .evaluation
+        .as_ref()
+        .ok_or("engine: optimal without an evaluation")?;
+    if rev != &ev {
+        return Err(format!(
+            "reported evaluation {rev:?} differs from the evaluator's {ev:?}"
+        ));
+    }
+    for (rule, rep) in case.rules.rules.iter().zip(&ev.rules) {
+        if rule.scope.is_scene() && (rep.subjects != 1 || rep.scene.is_none()) {
             return Err(format!(
-                "reported evaluation {} differs from the evaluator's {}",
-                rev.satisfied_weight, ev.satisfied_weight
+                "scene-level rule `{}` reported with {} subjects",
+                rule.name, rep.subjects
             ));
         }
     }
@@ -406,6 +757,103 @@ fn infeasible_at_root_minimal_reproducers() {
     }
 }
 
+/// What the second-edition generator covers, counted over the cases of the
+/// default run: every relation, every atom quantifier (and `K` from 0 to 4),
+/// landmark targets on fixed and on non-fixed/missing objects, scene-level
+/// rules with every subject quantifier, soft and hard, both contact modes,
+/// rectangles, two fixed objects, already-placed movable objects, and
+/// models with reified counts.
+#[test]
+fn second_edition_generator_covers_the_language() {
+    use std::collections::BTreeSet;
+    let mut rels = BTreeSet::new();
+    let mut quants = BTreeSet::new();
+    let mut ks = BTreeSet::new();
+    let mut scene_quants = BTreeSet::new();
+    let (mut lm_fixed, mut lm_empty, mut scene_soft, mut scene_hard) = (0, 0, 0, 0);
+    let (mut edge, mut hard, mut two_fixed, mut placed, mut rect) = (0, 0, 0, 0, 0);
+    // Cases whose model has a reified count (`at least K` that does not
+    // fold to AND/OR/constants): the engine's `AtLeast` encoding.
+    let mut counted = 0;
+    let n = 1500;
+    for i in 0..n {
+        let c = random_case(i, SMALL2);
+        let c2 = random_case(i, SMALL2);
+        assert_eq!(c.scene, c2.scene);
+        assert!(c.rules.same_rules(&c2.rules));
+        c.scene.validate().unwrap();
+        edge += usize::from(c.contact == Contact::Edge);
+        hard += usize::from(c.rules.rules.iter().any(|r| r.strength.is_hard()));
+        two_fixed += usize::from(c.scene.objects.iter().filter(|o| o.fixed).count() == 2);
+        placed += usize::from(c.scene.objects.iter().any(|o| !o.fixed && o.is_placed()));
+        rect += usize::from(c.scene.objects.iter().any(|o| o.width != o.height));
+        let m = Model::build(
+            &c.scene,
+            &c.rules,
+            BuildOptions {
+                contact: c.contact,
+                rules: true,
+                symmetry_breaking: true,
+                redundant: true,
+            },
+        );
+        counted += usize::from(m.bools.iter().any(|b| matches!(b, BoolDef::AtLeast { .. })));
+        for r in &c.rules.rules {
+            if let Scope::Scene(q) = r.scope {
+                scene_quants.insert(q);
+                if r.strength.is_hard() {
+                    scene_hard += 1;
+                } else {
+                    scene_soft += 1;
+                }
+            }
+            for a in r.formula.atoms() {
+                rels.insert(a.rel);
+                quants.insert(match a.quant {
+                    Quant::AtLeast(_) => Quant::AtLeast(0),
+                    Quant::AtMost(_) => Quant::AtMost(0),
+                    q => q,
+                });
+                if let Quant::AtLeast(k) | Quant::AtMost(k) = a.quant {
+                    ks.insert(k);
+                }
+                if let Target::Landmark(id) = &a.target {
+                    let fixed = c.scene.objects.iter().any(|o| o.fixed && &o.id == id);
+                    if fixed {
+                        lm_fixed += 1;
+                    } else {
+                        lm_empty += 1;
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("cases with a reified count: {counted} of {n}");
+    assert!(
+        counted >= 80,
+        "only {counted} cases exercise the engine's AtLeast"
+    );
+    assert_eq!(rels.len(), 16, "{rels:?}");
+    assert_eq!(quants.len(), 5);
+    assert_eq!(ks, (0..=4).collect());
+    assert!(scene_quants.contains(&Quant::Some) && scene_quants.contains(&Quant::No));
+    for k in 0..=3 {
+        assert!(scene_quants.contains(&Quant::AtLeast(k)), "at least {k}");
+        assert!(scene_quants.contains(&Quant::AtMost(k)), "at most {k}");
+    }
+    assert!(lm_fixed > 300 && lm_empty > 100, "{lm_fixed} {lm_empty}");
+    assert!(
+        scene_soft > 300 && scene_hard > 100,
+        "{scene_soft} {scene_hard}"
+    );
+    assert!(edge > 500 && edge < 1000, "{edge}");
+    assert!(hard > 300 && hard < 1200, "{hard}");
+    assert!(
+        two_fixed > 200 && placed > 100 && rect > 300,
+        "{two_fixed} {placed} {rect}"
+    );
+}
+
 #[test]
 fn engine_matches_brute_force() {
     assert_clean(run(0..600, SMALL, true, true));
@@ -426,4 +874,34 @@ fn engine_matches_brute_force_large() {
 #[ignore = "slow: run with `cargo test --release --test synth_differential -- --ignored`"]
 fn engine_matches_brute_force_large_plain() {
     assert_clean(run(200_000..202_000, LARGE, false, false));
+}
+
+#[test]
+fn engine_matches_brute_force_second_edition() {
+    let t = run(0..4000, SMALL2, true, true);
+    // The run must include infeasible problems (checked conflicts) and
+    // feasible ones.
+    assert!(
+        t.infeasible > 400 && t.infeasible < 2500,
+        "{}",
+        t.infeasible
+    );
+    assert_clean(t);
+}
+
+#[test]
+fn engine_matches_brute_force_second_edition_without_symmetry_breaking_or_redundancy() {
+    assert_clean(run(0..1500, SMALL2, false, false));
+}
+
+#[test]
+#[ignore = "slow: run with `cargo test --release --test synth_differential -- --ignored`"]
+fn engine_matches_brute_force_second_edition_large() {
+    assert_clean(run(300_000..310_000, LARGE2, true, true));
+}
+
+#[test]
+#[ignore = "slow: run with `cargo test --release --test synth_differential -- --ignored`"]
+fn engine_matches_brute_force_second_edition_large_plain() {
+    assert_clean(run(400_000..404_000, LARGE2, false, false));
 }

@@ -408,6 +408,51 @@ mod tests {
         assert_eq!(r.layouts_checked, 0);
     }
 
+    /// A hard scene-level rule counts as a hard violation when it fails,
+    /// although no object violates it. Three 10×10 A in a 60×30 strip
+    /// whose west 10 columns are a fixed wall `w`: 15 cells, 15·14·13 =
+    /// 2730 layouts. `at least 2 A: EC_E(A, @w)` needs two of them in the
+    /// column x = 10 (3 cells): exactly two, 3 pairs · 3·2 cells · 12 cells
+    /// for the third = 216; all three, 3! = 6; so 222 layouts.
+    #[test]
+    fn hand_checked_hard_scene_level_rule() {
+        use crate::relations::Quant;
+        use crate::rules::Scope;
+        let mut objects = vec![Object {
+            width: 10,
+            height: 30,
+            ..obj("w", "W", Some((0, 0)), 10, true)
+        }];
+        for i in 0..3 {
+            objects.push(obj(&format!("a{i}"), "A", None, 10, false));
+        }
+        let s = scene(60, 30, objects);
+        let touches = Formula::Atom(Atom::new(
+            Relation::new(Kind::EC, Dir::E),
+            "A",
+            Target::Landmark("w".into()),
+        ));
+        let rule = |q| {
+            RuleSet::new(vec![Rule::new("wall", touches.clone())
+                .with_scope(Scope::Scene(q))
+                .with_strength(Strength::Hard)])
+        };
+        let r = solve(&s, &rule(Quant::AtLeast(2)), Contact::Point).unwrap();
+        assert_eq!((r.layouts_checked, r.layouts_feasible), (2730, 222));
+        // `no A: …`: every layout without a block in the column, 12·11·10.
+        let r = solve(&s, &rule(Quant::No), Contact::Point).unwrap();
+        assert_eq!(r.layouts_feasible, 1320);
+        // `at least 4`: impossible with three blocks.
+        let r = solve(&s, &rule(Quant::AtLeast(4)), Contact::Point).unwrap();
+        assert!(!r.feasible);
+        // Soft, weight 2: one term, so the best numerator is 2, not 6.
+        let soft = RuleSet::new(vec![Rule::new("wall", touches.clone())
+            .with_scope(Scope::Scene(Quant::Some))
+            .with_strength(Strength::Weight(2.0))]);
+        let r = solve(&s, &soft, Contact::Point).unwrap();
+        assert!(approx_eq(r.best_numerator, 2.0));
+    }
+
     #[test]
     fn refuses_large_problems() {
         let s = scene(

@@ -10,6 +10,11 @@
 //! - `Ge` Booleans: `new_literal_for_predicate([v ≥ k])` (no propagator);
 //! - `DiffGe` Booleans: a fresh literal reifying the linear `b − a ≤ −k`;
 //! - `And` Booleans: the usual clauses `l → lᵢ` and `⋀lᵢ → l`;
+//! - `AtLeast` Booleans: a fresh literal reifying the linear
+//!   `Σ −mᵢ·[lᵢ] ≤ −k` over the distinct counted literals `lᵢ` (each a 0/1
+//!   view, `1 − x` for a negated one) with multiplicities `mᵢ`; the reified
+//!   linear propagator explains both directions, so it is sound under
+//!   assumptions and in cores like every other reified constraint;
 //! - objective: `obj = Σ cᵢ·[litᵢ]` (`boolean_equals`);
 //! - symmetry: linear `≤`; redundant: `cumulative` on both axes in real units.
 //!
@@ -449,13 +454,23 @@ impl Engine {
                     solver.add_clause(big, tag);
                 }
                 BoolDef::AtLeast { lits: counted, k } => {
-                    // l ⇔ Σ counted ≥ k  ⇔  Σ −[counted] ≤ −k
+                    // l ⇔ Σ counted ≥ k  ⇔  Σ −[counted] ≤ −k. A literal
+                    // counted m times is one term with coefficient −m (the
+                    // model keeps one polarity per Boolean), so no solver
+                    // variable appears twice in the sum.
                     let terms: Vec<AffineView<DomainId>> = counted
-                        .iter()
-                        .map(|&c| conv(&lits, c).get_integer_variable().scaled(-1))
+                        .chunk_by(|a, b| a == b)
+                        .map(|g| {
+                            let m = i32::try_from(g.len()).unwrap_or(i32::MAX);
+                            conv(&lits, g[0]).get_integer_variable().scaled(-m)
+                        })
                         .collect();
                     solver
-                        .add_constraint(less_than_or_equals(terms, -(*k as i32), tag))
+                        .add_constraint(less_than_or_equals(
+                            terms,
+                            -i32::try_from(*k).unwrap_or(i32::MAX),
+                            tag,
+                        ))
                         .reify(l);
                 }
             }
@@ -914,4 +929,132 @@ pub fn like_fits(terms: &[LikeTerm]) -> bool {
         }
     }
     total <= max
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::relations::{Contact, Dir, Kind, Quant, Relation};
+    use crate::rules::{Atom, Formula, Rule, RuleSet, Scope, Target};
+    use crate::scene::{Object, Scene, Space};
+    use crate::synth::model::{BuildOptions, HardRule};
+
+    /// Every literal of every soft term (reified counts among them), made
+    /// hard under one guard in either polarity: the engine finds a solution
+    /// iff some layout satisfies it (enumerated over the definitions), the
+    /// solution does satisfy it, and a refutation's core is that guard. So
+    /// the `AtLeast` encoding (and every other) is exact under assumptions.
+    #[test]
+    fn guarded_literals_match_the_definitions() {
+        let scene = Scene {
+            space: Space {
+                x: 0,
+                y: 0,
+                width: 30,
+                height: 20,
+            },
+            grid: 10,
+            objects: (0..4)
+                .map(|i| Object {
+                    id: format!("a{i}"),
+                    class: "A".into(),
+                    x: None,
+                    y: None,
+                    width: 10,
+                    height: 10,
+                    fixed: false,
+                })
+                .chain([Object::fixed_at("f", "F", 20, 10, 10, 10)])
+                .collect(),
+        };
+        let q =
+            |rel: Relation, quant, t: Target| Formula::Atom(Atom::quantified(rel, "A", quant, t));
+        let al_s = Relation::new(Kind::AL, Dir::S);
+        let ec_e = Relation::new(Kind::EC, Dir::E);
+        let dr_n = Relation::new(Kind::DR, Dir::N);
+        let rules = RuleSet::new(vec![
+            Rule::new("r0", q(al_s, Quant::AtLeast(2), Target::Any)),
+            Rule::new("r1", q(ec_e, Quant::AtMost(1), Target::Any)),
+            Rule::new("r2", q(dr_n, Quant::Some, Target::Any))
+                .with_scope(Scope::Scene(Quant::AtLeast(2))),
+            Rule::new("r3", q(al_s, Quant::AtLeast(2), Target::Class("A".into())))
+                .with_scope(Scope::Scene(Quant::AtMost(2))),
+            // Impossible: the four A cannot all share their row with two
+            // other objects (3 + 1 leaves one alone with `f`, 2 + 2 leaves
+            // each of the bottom two with one).
+            Rule::new("r4", q(al_s, Quant::AtLeast(2), Target::Any))
+                .with_scope(Scope::Scene(Quant::AtLeast(4))),
+            Rule::new("r5", q(al_s, Quant::AtLeast(2), Target::Any))
+                .with_scope(Scope::Scene(Quant::AtLeast(3))),
+        ]);
+        let m = Model::build(
+            &scene,
+            &rules,
+            BuildOptions {
+                contact: Contact::Point,
+                rules: true,
+                symmetry_breaking: false,
+                redundant: false,
+            },
+        );
+        let counts = m
+            .bools
+            .iter()
+            .filter(|b| matches!(b, BoolDef::AtLeast { .. }))
+            .count();
+        assert!(counts >= 4, "{counts} reified counts");
+        // Every assignment: the clause values and the bools.
+        let ub: Vec<i64> = m.vars.iter().map(|v| v.ub).collect();
+        let mut all: Vec<(Vec<i64>, Vec<bool>)> = Vec::new();
+        let mut vals = vec![0i64; ub.len()];
+        'outer: loop {
+            let bools = m.eval_bools(&vals);
+            if m.clauses.iter().all(|c| c.iter().any(|l| l.value(&bools))) {
+                all.push((vals.clone(), bools));
+            }
+            let mut i = 0;
+            loop {
+                if i == vals.len() {
+                    break 'outer;
+                }
+                vals[i] += 1;
+                if vals[i] > ub[i] {
+                    vals[i] = 0;
+                    i += 1;
+                } else {
+                    break;
+                }
+            }
+        }
+        let mut sat = 0;
+        let mut unsat = 0;
+        for t in &m.soft {
+            for lit in [t.lit, !t.lit] {
+                let mut mh = m.clone();
+                mh.soft.clear();
+                mh.hard = vec![HardRule {
+                    rule: 0,
+                    lits: vec![lit],
+                }];
+                let possible = all.iter().any(|(_, b)| lit.value(b));
+                let mut e = Engine::new(&mh, 0, true, None);
+                match e.satisfy_rules(&[0], &Limits::default()) {
+                    Sat::Solution(v) => {
+                        assert!(possible, "engine found {v:?} for the impossible {lit:?}");
+                        let b = m.eval_bools(&v);
+                        assert!(lit.value(&b), "{lit:?} false in the engine's {v:?}");
+                        assert!(m.clauses.iter().all(|c| c.iter().any(|l| l.value(&b))));
+                        sat += 1;
+                    }
+                    Sat::Unsat(core) => {
+                        assert!(!possible, "engine refuted the possible {lit:?}");
+                        assert!(core.is_empty() || core == vec![0], "{core:?}");
+                        unsat += 1;
+                    }
+                    Sat::Unknown => panic!("no limit, yet unknown"),
+                }
+            }
+        }
+        assert!(sat > 0 && unsat > 0, "{sat} sat, {unsat} unsat");
+    }
 }

@@ -2,6 +2,29 @@
 //! rules hold and the §6 numerator is as large as possible.
 //!
 //! This file fixes the public API; the model and engine live in submodules.
+//!
+//! # Second-edition rules (SPEC §11)
+//!
+//! Quantified atoms, landmarks and scene-level rules are compiled by
+//! [`model`] into the same kind of literals as first-edition rules, so
+//! everything downstream treats them alike:
+//!
+//! - a soft scene-level rule (`some A: φ`, `no A: φ`, `at least K A: φ`,
+//!   `at most K A: φ`) is **one** objective term `w·[holds]`
+//!   (`SoftTerm::object` is `None`), exactly the §11.4 score;
+//! - a hard scene-level rule is one hard literal; under core extraction it
+//!   has one assumption like every hard rule;
+//! - an infeasibility [`Conflict`] names hard **rules**, never objects. A
+//!   scene-level rule in a core is named like any other (its name only: the
+//!   rule is about the scene, so there is no object to blame, and listing
+//!   every subject would say nothing more than the rule's subject class);
+//! - the reported [`Evaluation`] is the evaluator's, so a scene-level rule's
+//!   entry has `subjects = 1` and `satisfied` 0 or 1, plus its `scene`
+//!   counts; first-edition rule sets report exactly as before;
+//! - a landmark `@ID` that names no fixed object of the problem (a movable
+//!   object, or none) is an empty target, as in the evaluator: the default
+//!   quantifier decides (`DR` true; `EC`, `FL`, `AL` false). The command
+//!   line rejects such rules before synthesis (SPEC §11.3).
 
 use crate::eval::Evaluation;
 use crate::relations::Contact;
@@ -105,6 +128,7 @@ pub struct Conflict {
     pub objects_cannot_fit: bool,
     /// Names of hard rules whose conjunction (with the geometry) is
     /// impossible; minimal: dropping any one makes the rest satisfiable.
+    /// Scene-level rules (§11.4) appear by name like the others.
     pub hard_rules: Vec<String>,
 }
 

@@ -480,15 +480,33 @@ impl Model {
     }
 
     /// At least `k` of `lits` (a multiset) hold, folded where it can be.
+    ///
+    /// Constants are counted off; a literal and its complement together
+    /// always count exactly one, so such pairs are counted off too. What is
+    /// left holds at most one polarity of each Boolean (repeats kept with
+    /// their multiplicity), so the engine never sees one solver variable
+    /// twice in a count.
     pub fn at_least(&mut self, lits: Vec<Lit>, k: u32) -> Lit {
         let mut need = i64::from(k);
-        let mut v = Vec::with_capacity(lits.len());
+        let mut vars: Vec<(u32, bool)> = Vec::with_capacity(lits.len());
         for l in lits {
             match l {
                 Lit::Const(true) => need -= 1,
                 Lit::Const(false) => {}
-                _ => v.push(l),
+                Lit::Var { id, neg } => vars.push((id, neg)),
             }
+        }
+        // Sorted, `l` and `¬l` are adjacent (same id, `neg` false first).
+        vars.sort_unstable();
+        let mut v = Vec::with_capacity(vars.len());
+        for group in vars.chunk_by(|a, b| a.0 == b.0) {
+            let id = group[0].0;
+            let neg = group.iter().filter(|l| l.1).count();
+            let pos = group.len() - neg;
+            let pairs = pos.min(neg);
+            need -= pairs as i64;
+            let rest = Lit::Var { id, neg: neg > pos };
+            v.extend(std::iter::repeat_n(rest, pos.max(neg) - pairs));
         }
         if need <= 0 {
             return Lit::TRUE;
@@ -501,7 +519,6 @@ impl Model {
         } else if need == n {
             self.and(v)
         } else {
-            v.sort_unstable();
             self.intern(BoolDef::AtLeast {
                 lits: v,
                 k: need as u32,
@@ -713,12 +730,14 @@ impl Model {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::eval::Evaluator;
     use crate::relations::relation_bits;
+    use crate::rules::{Atom, Rule, Strength};
     use crate::scene::{Object, Space};
 
-    fn obj(class: &str, w: i64, h: i64, pos: Option<(i64, i64)>) -> Object {
+    fn obj(id: &str, class: &str, w: i64, h: i64, pos: Option<(i64, i64)>) -> Object {
         Object {
-            id: String::new(),
+            id: id.into(),
             class: class.into(),
             x: pos.map(|p| p.0),
             y: pos.map(|p| p.1),
@@ -728,81 +747,388 @@ mod tests {
         }
     }
 
-    /// Every pairwise literal agrees with `relation_bits` on every layout of a
-    /// small problem with off-grid sizes, for both contact modes.
-    #[test]
-    fn pair_literals_match_geometry() {
-        for contact in [Contact::Point, Contact::Edge] {
-            let mut scene = Scene {
-                space: Space {
-                    x: 3,
-                    y: -2,
-                    width: 40,
-                    height: 33,
-                },
-                grid: 5,
-                objects: vec![
-                    obj("A", 10, 7, None),
-                    obj("B", 13, 5, None),
-                    obj("C", 6, 9, Some((17, 8))),
-                ],
-            };
-            for (i, o) in scene.objects.iter_mut().enumerate() {
-                o.id = format!("o{i}");
-            }
-            let mut m = Model::build(
-                &scene,
-                &RuleSet::default(),
-                BuildOptions {
-                    contact,
-                    rules: false,
-                    symmetry_breaking: false,
-                    redundant: false,
-                },
-            );
-            let mut lits = Vec::new();
-            for a in 0..3 {
-                for b in 0..3 {
-                    if a != b {
-                        for rel in Relation::ALL {
-                            lits.push((a, b, rel, m.pair(rel, a, b, contact)));
-                        }
-                    }
-                }
-            }
-            let ub: Vec<i64> = m.vars.iter().map(|v| v.ub).collect();
-            let mut vals = vec![0i64; 4];
+    fn opts(contact: Contact, rules: bool) -> BuildOptions {
+        BuildOptions {
+            contact,
+            rules,
+            symmetry_breaking: false,
+            redundant: false,
+        }
+    }
+
+    /// Call `f` with every assignment of the model's grid variables (the
+    /// whole box of domains, overlapping layouts included: literals are
+    /// definitions, not constraints).
+    fn each_assignment(m: &Model, mut f: impl FnMut(&[i64])) {
+        let ub: Vec<i64> = m.vars.iter().map(|v| v.ub).collect();
+        let mut vals = vec![0i64; ub.len()];
+        loop {
+            f(&vals);
+            let mut i = 0;
             loop {
-                let s = m.scene(&scene, &vals);
-                let bools = m.eval_bools(&vals);
-                for &(a, b, rel, l) in &lits {
-                    let ra = s.objects[a].rect().unwrap();
-                    let rb = s.objects[b].rect().unwrap();
-                    let want = relation_bits(&ra, &rb, contact) & rel.bit() != 0;
-                    assert_eq!(l.value(&bools), want, "{rel}({a},{b}) at {vals:?}");
+                if i == vals.len() {
+                    return;
                 }
-                // next assignment
-                let mut i = 0;
-                loop {
-                    if i == vals.len() {
-                        return_if_done(&mut vals);
-                        break;
-                    }
-                    vals[i] += 1;
-                    if vals[i] > ub[i] {
-                        vals[i] = 0;
-                        i += 1;
-                    } else {
-                        break;
-                    }
-                }
-                if vals.is_empty() {
+                vals[i] += 1;
+                if vals[i] > ub[i] {
+                    vals[i] = 0;
+                    i += 1;
+                } else {
                     break;
                 }
             }
         }
-        fn return_if_done(v: &mut Vec<i64>) {
-            v.clear();
+    }
+
+    /// Every pairwise literal of every relation between every ordered pair
+    /// agrees with `relation_bits` on every layout; returns, per relation,
+    /// whether it was seen true and seen false.
+    fn check_pairs(scene: &Scene, contact: Contact) -> [(bool, bool); 16] {
+        let mut m = Model::build(scene, &RuleSet::default(), opts(contact, false));
+        let n = scene.objects.len();
+        let mut lits = Vec::new();
+        for a in 0..n {
+            for b in 0..n {
+                if a != b {
+                    for rel in Relation::ALL {
+                        lits.push((a, b, rel, m.pair(rel, a, b, contact)));
+                    }
+                }
+            }
+        }
+        let mut seen = [(false, false); 16];
+        each_assignment(&m, |vals| {
+            let s = m.scene(scene, vals);
+            let bools = m.eval_bools(vals);
+            for &(a, b, rel, l) in &lits {
+                let (Some(ra), Some(rb)) = (s.objects[a].rect(), s.objects[b].rect()) else {
+                    panic!("every object is placed in the model's scene");
+                };
+                let want = relation_bits(&ra, &rb, contact) & rel.bit() != 0;
+                assert_eq!(
+                    l.value(&bools),
+                    want,
+                    "{rel}({a},{b}) {contact} at {vals:?}"
+                );
+                let e = &mut seen[rel.index()];
+                if want {
+                    e.0 = true;
+                } else {
+                    e.1 = true;
+                }
+            }
+        });
+        seen
+    }
+
+    /// Every pairwise literal of all sixteen relations is exactly the
+    /// geometry, in both contact modes, on a problem with off-grid sizes and
+    /// offset origin, and on one with mixed sizes where every relation
+    /// (the equalities of `FL` and `AL` included) is both true and false in
+    /// some layout.
+    #[test]
+    fn pair_literals_match_geometry() {
+        let mut off_grid = Scene {
+            space: Space {
+                x: 3,
+                y: -2,
+                width: 40,
+                height: 33,
+            },
+            grid: 5,
+            objects: vec![
+                obj("o0", "A", 10, 7, None),
+                obj("o1", "B", 13, 5, None),
+                obj("o2", "C", 6, 9, Some((17, 8))),
+            ],
+        };
+        off_grid.objects[2].fixed = true;
+        let mixed = Scene {
+            space: Space {
+                x: 0,
+                y: 0,
+                width: 40,
+                height: 30,
+            },
+            grid: 10,
+            objects: vec![
+                obj("a", "A", 10, 10, None),
+                obj("b", "B", 20, 10, None),
+                obj("c", "C", 10, 20, None),
+                obj("f", "F", 30, 10, Some((10, 20))),
+            ],
+        };
+        for contact in Contact::ALL {
+            check_pairs(&off_grid, contact);
+            let seen = check_pairs(&mixed, contact);
+            for rel in Relation::ALL {
+                assert_eq!(
+                    seen[rel.index()],
+                    (true, true),
+                    "{rel} {contact}: (seen true, seen false)"
+                );
+            }
+        }
+    }
+
+    fn at(rel: Relation, q: Quant, t: &Target) -> Formula {
+        Formula::Atom(Atom::quantified(rel, "A", q, t.clone()))
+    }
+
+    const QUANTS: [Quant; 10] = [
+        Quant::Every,
+        Quant::Some,
+        Quant::No,
+        Quant::AtLeast(0),
+        Quant::AtLeast(1),
+        Quant::AtLeast(2),
+        Quant::AtLeast(3),
+        Quant::AtMost(0),
+        Quant::AtMost(1),
+        Quant::AtMost(2),
+    ];
+
+    /// Rules with subject `A` covering every relation × quantifier × target
+    /// kind (class, `*`, a landmark on a fixed object, on a movable object,
+    /// on no object), compound formulas, and scene-level rules with every
+    /// subject quantifier, soft and hard.
+    fn coverage_rules() -> RuleSet {
+        let targets = [
+            Target::Class("A".into()),
+            Target::Class("B".into()),
+            Target::Class("Z".into()), // no such class
+            Target::Any,
+            Target::Landmark("w".into()),
+            Target::Landmark("b0".into()), // movable: empty target
+            Target::Landmark("nope".into()),
+        ];
+        let mut rules = Vec::new();
+        for rel in Relation::ALL {
+            for q in QUANTS {
+                for t in &targets {
+                    rules.push(Rule::new(format!("r{}", rules.len()), at(rel, q, t)));
+                }
+            }
+        }
+        let ec = |d: Dir, q: Quant, t: &Target| at(Relation::new(Kind::EC, d), q, t);
+        let fl = |d: Dir, q: Quant, t: &Target| at(Relation::new(Kind::FL, d), q, t);
+        let al = |d: Dir, q: Quant, t: &Target| at(Relation::new(Kind::AL, d), q, t);
+        let a = Target::Class("A".into());
+        let any = Target::Any;
+        let w = Target::Landmark("w".into());
+        let compound = vec![
+            // blue_row
+            Formula::And(vec![
+                al(Dir::S, Quant::Every, &a),
+                Formula::Or(vec![
+                    fl(Dir::E, Quant::Some, &a),
+                    fl(Dir::W, Quant::Some, &a),
+                ]),
+            ]),
+            // blue_flush
+            Formula::And(
+                Dir::ALL
+                    .iter()
+                    .map(|&d| {
+                        Formula::Or(vec![
+                            Formula::not(ec(d, Quant::Some, &any)),
+                            fl(d, Quant::Some, &any),
+                        ])
+                    })
+                    .collect(),
+            ),
+            // apart
+            Formula::And(
+                Dir::ALL
+                    .iter()
+                    .map(|&d| ec(d, Quant::No, &Target::Class("B".into())))
+                    .collect(),
+            ),
+            // touches the landmark
+            Formula::Or(Dir::ALL.iter().map(|&d| ec(d, Quant::Some, &w)).collect()),
+            Formula::not(Formula::And(vec![
+                al(Dir::N, Quant::AtLeast(1), &any),
+                ec(Dir::W, Quant::AtMost(0), &any),
+            ])),
+        ];
+        for f in &compound {
+            rules.push(Rule::new(format!("r{}", rules.len()), f.clone()));
+            rules.push(
+                Rule::new(format!("r{}", rules.len()), f.clone()).with_strength(Strength::Hard),
+            );
+            for q in QUANTS
+                .into_iter()
+                .skip(1)
+                .chain([Quant::AtLeast(4), Quant::AtMost(3)])
+            {
+                for strength in [Strength::Weight(1.5), Strength::Hard] {
+                    rules.push(
+                        Rule::new(format!("r{}", rules.len()), f.clone())
+                            .with_scope(Scope::Scene(q))
+                            .with_strength(strength),
+                    );
+                }
+            }
+        }
+        RuleSet::new(rules)
+    }
+
+    /// Every rule literal of the model (soft terms and hard rules, per
+    /// object and scene-level) has, under `eval_bools`, the evaluator's
+    /// truth value on every layout of a tiny problem: quantified atoms with
+    /// `at least`/`at most` around the object count, landmarks, empty
+    /// targets, scene-level rules, both contact modes.
+    #[test]
+    fn rule_literals_match_evaluator() {
+        let mut scene = Scene {
+            space: Space {
+                x: 0,
+                y: 0,
+                width: 30,
+                height: 30,
+            },
+            grid: 10,
+            objects: vec![
+                obj("w", "W", 10, 10, Some((20, 0))),
+                obj("a0", "A", 10, 10, None),
+                obj("a1", "A", 10, 10, None),
+                obj("b0", "B", 20, 10, None),
+                obj("a2", "A", 10, 20, Some((0, 10))),
+            ],
+        };
+        scene.objects[0].fixed = true;
+        let rules = coverage_rules();
+        let n_scene = rules.rules.iter().filter(|r| r.scope.is_scene()).count();
+        for contact in Contact::ALL {
+            let m = Model::build(&scene, &rules, opts(contact, true));
+            assert!(m.bools.iter().any(|b| matches!(b, BoolDef::AtLeast { .. })));
+            let objects: Vec<usize> = (0..scene.objects.len())
+                .filter(|&o| scene.objects[o].class == "A")
+                .collect();
+            // Per rule: the literals by subject object, or the one
+            // scene-level literal.
+            let mut per_rule: Vec<Vec<(Option<usize>, Lit)>> = vec![Vec::new(); rules.rules.len()];
+            for t in &m.soft {
+                per_rule[t.rule].push((t.object, t.lit));
+            }
+            for h in &m.hard {
+                let r = &rules.rules[h.rule];
+                if r.scope.is_scene() {
+                    assert_eq!(h.lits.len(), 1);
+                    per_rule[h.rule].push((None, h.lits[0]));
+                } else {
+                    assert_eq!(h.lits.len(), objects.len());
+                    for (&o, &l) in objects.iter().zip(&h.lits) {
+                        per_rule[h.rule].push((Some(o), l));
+                    }
+                }
+            }
+            for (ri, r) in rules.rules.iter().enumerate() {
+                let want = if r.scope.is_scene() { 1 } else { objects.len() };
+                assert_eq!(per_rule[ri].len(), want, "rule {}", r.name);
+            }
+            let mut scene_truth = vec![(false, false); rules.rules.len()];
+            let mut layouts = 0;
+            each_assignment(&m, |vals| {
+                layouts += 1;
+                let s = m.scene(&scene, vals);
+                let bools = m.eval_bools(vals);
+                let ev = Evaluator::new(&s, &rules, contact).evaluate(&rules);
+                for (ri, r) in rules.rules.iter().enumerate() {
+                    let rep = &ev.rules[ri];
+                    for &(o, l) in &per_rule[ri] {
+                        let truth = match o {
+                            Some(o) => !rep.violators.contains(&s.objects[o].id),
+                            None => rep.satisfied == 1,
+                        };
+                        if o.is_none() {
+                            let e = &mut scene_truth[ri];
+                            if truth {
+                                e.0 = true;
+                            } else {
+                                e.1 = true;
+                            }
+                        }
+                        assert_eq!(
+                            l.value(&bools),
+                            truth,
+                            "rule {} ({:?}, {}) on {o:?} {contact} at {vals:?}",
+                            r.name,
+                            r.scope,
+                            crate::rules::print_formula(&r.formula)
+                        );
+                    }
+                }
+            });
+            assert_eq!(layouts, 9 * 9 * 6);
+            // The scene-level rules are not all constant on this problem.
+            let varying = scene_truth.iter().filter(|e| **e == (true, true)).count();
+            assert!(varying * 2 > n_scene, "{varying} of {n_scene} vary");
+        }
+    }
+
+    /// `at_least` folds constants and complementary pairs and keeps
+    /// multiplicities, and its value always equals the count.
+    #[test]
+    fn at_least_folds_exactly() {
+        let scene = Scene {
+            space: Space {
+                x: 0,
+                y: 0,
+                width: 30,
+                height: 10,
+            },
+            grid: 10,
+            objects: vec![obj("a", "A", 10, 10, None)],
+        };
+        let mut m = Model::build(&scene, &RuleSet::default(), opts(Contact::Point, false));
+        let x1 = m.ge(0, 1);
+        let x2 = m.ge(0, 2);
+        let pool = [x1, !x1, x2, !x2, Lit::TRUE, Lit::FALSE];
+        // Every multiset of up to 4 literals from the pool, every k.
+        let mut cases = Vec::new();
+        for n in 0..=4u32 {
+            let mut idx = vec![0usize; n as usize];
+            loop {
+                cases.push(idx.iter().map(|&i| pool[i]).collect::<Vec<Lit>>());
+                let mut i = 0;
+                while i < idx.len() {
+                    idx[i] += 1;
+                    if idx[i] < pool.len() {
+                        break;
+                    }
+                    idx[i] = 0;
+                    i += 1;
+                }
+                if i == idx.len() {
+                    break;
+                }
+            }
+        }
+        let mut built = Vec::new();
+        for lits in &cases {
+            for k in 0..=5u32 {
+                let l = m.at_least(lits.clone(), k);
+                built.push((lits.clone(), k, l));
+            }
+        }
+        for b in &m.bools {
+            if let BoolDef::AtLeast { lits, k } = b {
+                assert!(*k >= 2 && (*k as usize) < lits.len(), "{b:?}");
+                for w in lits.windows(2) {
+                    assert!(w[0] <= w[1]);
+                    if let (Lit::Var { id: i, neg: p }, Lit::Var { id: j, neg: q }) = (w[0], w[1]) {
+                        assert!(i != j || p == q, "complements left in {b:?}");
+                    }
+                }
+            }
+        }
+        for v in 0..=2 {
+            let bools = m.eval_bools(&[v, 0]);
+            for (lits, k, l) in &built {
+                let c = lits.iter().filter(|x| x.value(&bools)).count();
+                assert_eq!(l.value(&bools), c >= *k as usize, "{lits:?} k={k} x={v}");
+            }
         }
     }
 }

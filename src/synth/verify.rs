@@ -11,7 +11,8 @@ use crate::scene::Scene;
 /// same space, grid, ids, classes, sizes and order; every object placed and
 /// inside the space; previously placed objects (fixed or not) unmoved;
 /// newly placed objects on the grid; no two interiors overlapping; every
-/// hard rule holding for every subject (by the evaluator).
+/// hard rule holding for every subject, and every hard scene-level rule
+/// (§11.4) holding in the scene (by the evaluator).
 ///
 /// The error names the first problem found.
 pub fn verify_solution(
@@ -85,13 +86,22 @@ pub fn verify_solution(
     }
     let e = evaluate(solution, rules, contact);
     for r in &e.rules {
-        if r.hard && !r.violators.is_empty() {
-            return Err(format!(
+        // `satisfied < subjects`, not "has violators": a failing scene-level
+        // rule (`some A: …`, `at least K A: …`) has no violating object.
+        if !r.hard || r.satisfied >= r.subjects {
+            continue;
+        }
+        return Err(match &r.scene {
+            Some(s) => format!(
+                "hard scene-level rule `{}` ({} …) does not hold: {} of {} subject objects satisfy its formula",
+                r.name, s.quantifier, s.satisfying, s.objects
+            ),
+            None => format!(
                 "hard rule `{}` is broken by {}",
                 r.name,
                 r.violators.join(", ")
-            ));
-        }
+            ),
+        });
     }
     Ok(())
 }
