@@ -43,6 +43,7 @@ use rand_chacha::ChaCha8Rng;
 use rccpack::bench::pool::{among, atom, corner, formula_text, touches};
 use rccpack::eval::evaluate;
 use rccpack::relations::{Contact, Dir, Kind, Quant, Relation};
+use rccpack::resemblance::Likeness;
 use rccpack::rules::{Atom, Formula, Rule, RuleSet, Scope, Strength, Target};
 use rccpack::scene::{Object, Scene, Space};
 use rccpack::synth::brute_force::{self, approx_eq, BruteResult};
@@ -573,6 +574,122 @@ fn check(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<BruteR
     Ok(bf)
 }
 
+/// Random like-scenes for `case` (SPEC §12): one to four scenes, each
+/// holding one movable object of a class and size of the problem (or, now
+/// and then, of a size it lacks) at any integer position inside the space,
+/// on the grid or off it (so rounding up matters).
+fn random_like(case: &Case) -> Vec<Scene> {
+    let mut rng = ChaCha8Rng::seed_from_u64(BASE_SEED ^ 0x11ce);
+    rng.set_stream(case.index);
+    let movable: Vec<&Object> = case.scene.objects.iter().filter(|o| !o.fixed).collect();
+    let sp = case.scene.space;
+    let n = rng.random_range(1..=4);
+    (0..n)
+        .map(|_| {
+            let o = pick(&mut rng, &movable);
+            let (w, h) = if rng.random_range(0..6) == 0 {
+                (o.width + 10, o.height)
+            } else {
+                (o.width, o.height)
+            };
+            let x = sp.x + rng.random_range(0..=(sp.width - w).max(0));
+            let y = sp.y + rng.random_range(0..=(sp.height - h).max(0));
+            Scene {
+                space: sp,
+                grid: case.scene.grid,
+                objects: vec![Object {
+                    id: "l".into(),
+                    class: o.class.clone(),
+                    x: Some(x),
+                    y: Some(y),
+                    width: w,
+                    height: h,
+                    fixed: false,
+                }],
+            }
+        })
+        .collect()
+}
+
+/// The lexicographic optimum (numerator, then resemblance cost) of the
+/// engine equals brute force's; the score with `--like` equals the score
+/// without; the reported cost is the resemblance function's.
+fn check_like(
+    case: &Case,
+    symmetry_breaking: bool,
+    redundant: bool,
+) -> Result<BruteResult, String> {
+    let like = Likeness::new(&random_like(case));
+    let bf = brute_force::solve_like(
+        &case.scene,
+        &case.rules,
+        case.contact,
+        &like,
+        brute_force::MAX_LAYOUTS,
+    )
+    .map_err(|e| format!("brute force: {e}"))?;
+    let opts = SynthOptions {
+        contact: case.contact,
+        time_limit: Some(Duration::from_secs(20)),
+        symmetry_breaking,
+        redundant,
+        ..SynthOptions::default()
+    };
+    let plain =
+        synthesize(&case.scene, &case.rules, &opts).map_err(|e| format!("engine error: {e}"))?;
+    let r = synthesize(
+        &case.scene,
+        &case.rules,
+        &SynthOptions {
+            like: Some(like.clone()),
+            ..opts
+        },
+    )
+    .map_err(|e| format!("engine error with like: {e}"))?;
+    if !bf.feasible {
+        return match (r.status, plain.status) {
+            (Status::Infeasible, Status::Infeasible) => Ok(bf),
+            s => Err(format!(
+                "brute force: infeasible; engine (like, plain): {s:?}"
+            )),
+        };
+    }
+    if r.status != Status::Optimal || plain.status != Status::Optimal {
+        return Err(format!(
+            "engine (like, plain): {:?}, {:?}",
+            r.status, plain.status
+        ));
+    }
+    let sol = r.scene.as_ref().ok_or("engine: optimal without a scene")?;
+    verify_solution(&case.scene, sol, &case.rules, case.contact)
+        .map_err(|e| format!("engine solution fails verify_solution: {e}"))?;
+    let num = evaluate(sol, &case.rules, case.contact).satisfied_weight;
+    let num_plain = plain
+        .evaluation
+        .as_ref()
+        .map(|e| e.satisfied_weight)
+        .unwrap_or(f64::NAN);
+    if !approx_eq(num, bf.best_numerator) || !approx_eq(num, num_plain) {
+        return Err(format!(
+            "numerator: engine with like {num}, without {num_plain}, brute force {}",
+            bf.best_numerator
+        ));
+    }
+    let res = r.resemblance.ok_or("engine: no resemblance with like")?;
+    let cost = like.cost(&case.scene, sol);
+    if res.cost != cost || cost != bf.best_cost || !res.proven {
+        return Err(format!(
+            "cost: engine reports {} (proven {}), resemblance function {cost}, brute force {}\nengine:\n{}brute force:\n{}",
+            res.cost,
+            res.proven,
+            bf.best_cost,
+            sol.to_json(),
+            bf.best.as_ref().map(Scene::to_json).unwrap_or_default()
+        ));
+    }
+    Ok(bf)
+}
+
 struct Tally {
     cases: usize,
     infeasible: usize,
@@ -584,6 +701,18 @@ fn run(
     sizes: Sizes,
     symmetry_breaking: bool,
     redundant: bool,
+) -> Tally {
+    run_with(range, sizes, symmetry_breaking, redundant, check)
+}
+
+type Checker = fn(&Case, bool, bool) -> Result<BruteResult, String>;
+
+fn run_with(
+    range: std::ops::Range<u64>,
+    sizes: Sizes,
+    symmetry_breaking: bool,
+    redundant: bool,
+    check: Checker,
 ) -> Tally {
     use rayon::prelude::*;
     let results: Vec<(u64, Result<BruteResult, String>)> = range
@@ -874,6 +1003,29 @@ fn engine_matches_brute_force_large() {
 #[ignore = "slow: run with `cargo test --release --test synth_differential -- --ignored`"]
 fn engine_matches_brute_force_large_plain() {
     assert_clean(run(200_000..202_000, LARGE, false, false));
+}
+
+#[test]
+fn engine_matches_brute_force_lexicographically_with_like_scenes() {
+    let t = run_with(0..600, SMALL2, true, true, check_like);
+    assert!(t.infeasible > 50, "{}", t.infeasible);
+    assert_clean(t);
+}
+
+#[test]
+fn engine_matches_brute_force_with_like_scenes_without_symmetry_breaking_or_redundancy() {
+    assert_clean(run_with(600..900, SMALL2, false, false, check_like));
+}
+
+#[test]
+fn engine_matches_brute_force_with_like_scenes_first_edition_rules() {
+    assert_clean(run_with(0..300, SMALL, true, true, check_like));
+}
+
+#[test]
+#[ignore = "slow: run with `cargo test --release --test synth_differential -- --ignored`"]
+fn engine_matches_brute_force_with_like_scenes_large() {
+    assert_clean(run_with(500_000..503_000, LARGE2, true, true, check_like));
 }
 
 #[test]
