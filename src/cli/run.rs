@@ -95,9 +95,8 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         seed: a.seed,
         ..SynthOptions::default()
     };
-    let result = synthesize(&problem, &rules, &opts).map_err(|e| match e {
-        SynthError::BadProblem(m) => Reported(format!("error: {}: {m}", problem_path.display())),
-    })?;
+    let result = synthesize(&problem, &rules, &opts)
+        .map_err(|e: SynthError| Reported(format!("error: {}: {e}", problem_path.display())))?;
 
     let candidates = learned.statements.iter().filter(|s| s.candidate).count();
     println!(

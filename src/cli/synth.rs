@@ -109,9 +109,8 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         progress,
         ..SynthOptions::default()
     };
-    let result = synthesize(&problem, &rules, &opts).map_err(|e| match e {
-        SynthError::BadProblem(m) => Reported(format!("error: {}: {m}", a.problem.display())),
-    })?;
+    let result = synthesize(&problem, &rules, &opts)
+        .map_err(|e: SynthError| Reported(format!("error: {}: {e}", a.problem.display())))?;
     let ev = result.evaluation.as_ref();
     if let Some(path) = &a.report {
         let report = Report {

@@ -1,0 +1,122 @@
+//! Issue 11: inputs that used to panic or wrap, and every documented limit
+//! at and just past its bound (accepted and solved correctly at the limit,
+//! refused with a clear message just past it).
+
+use rccpack::relations::Contact;
+use rccpack::rules::{parse_rules, RuleSet};
+use rccpack::scene::Scene;
+use rccpack::synth::verify::verify_solution;
+use rccpack::synth::{synthesize, Status, SynthError, SynthOptions, MAX_COORD};
+use std::time::Duration;
+
+fn problem(x: i64, y: i64, w: i64, h: i64, grid: i64, objects: &str) -> Scene {
+    Scene::from_json(&format!(
+        r#"{{"space":{{"x":{x},"y":{y},"width":{w},"height":{h}}},"grid":{grid},"objects":[{objects}]}}"#
+    ))
+    .expect("valid scene")
+}
+
+const TWO_BLOCKS: &str = r#"{"id":"b1","class":"B","width":10,"height":10},
+                            {"id":"b2","class":"B","width":10,"height":10}"#;
+
+fn solve(p: &Scene, rules: &RuleSet) -> Result<rccpack::synth::SynthResult, SynthError> {
+    let opts = SynthOptions {
+        node_limit: Some(200_000),
+        ..SynthOptions::default()
+    };
+    synthesize(p, rules, &opts)
+}
+
+fn assert_optimal(p: &Scene, rules: &RuleSet) {
+    let r = solve(p, rules).expect("solvable");
+    assert_eq!(r.status, Status::Optimal, "{:?}", r.stats);
+    let s = r.scene.expect("a layout");
+    verify_solution(p, &s, rules, Contact::Point).expect("verified");
+    assert_eq!(r.evaluation.expect("evaluated").score, 1.0);
+}
+
+/// The issue's crash: symmetry breaking between two interchangeable blocks
+/// in a 200000×200000 space with grid 1 overflowed Pumpkin's i32
+/// (`gy·NX + gx`); now the order is posted without products and the
+/// problem is solved.
+#[test]
+fn symmetry_term_in_a_huge_space_does_not_overflow() {
+    let p = problem(0, 0, 200_000, 200_000, 1, TWO_BLOCKS);
+    let rules = parse_rules("rule touch: EC_E(B, B) | EC_W(B, B)\n").unwrap();
+    assert_optimal(&p, &rules);
+    assert_optimal(&p, &RuleSet::default());
+}
+
+/// At the engine's bound (2^28): largest space, grid 1, fixed object at
+/// the far corner, interchangeable objects, cumulative sums past i32 (nine
+/// tall objects): solved and verified.
+#[test]
+fn synthesis_at_the_coordinate_bound() {
+    let m = MAX_COORD;
+    let p = problem(0, 0, m, m, 1, TWO_BLOCKS);
+    let rules = parse_rules("rule north: DR_N(B, B) | DR_S(B, B)\n").unwrap();
+    assert_optimal(&p, &rules);
+    // Negative corner: the space spans [-2^27, 2^27].
+    let h = m / 2;
+    let wall = format!(
+        r#"{{"id":"w","class":"W","x":{},"y":{},"width":10,"height":10,"fixed":true}},"#,
+        h - 10,
+        h - 10
+    );
+    let p = problem(-h, -h, m, m, 1, &(wall + TWO_BLOCKS));
+    let rules = parse_rules("rule near: EC_S(B, W) | EC_W(B, W)\n").unwrap();
+    assert_optimal(&p, &rules);
+    // Nine objects of the space's full height side by side: the demands of
+    // the redundant cumulative sum past i32, so it is left out.
+    let tall: Vec<String> = (0..9)
+        .map(|i| format!(r#"{{"id":"t{i}","class":"T","width":1,"height":{m}}}"#))
+        .collect();
+    let p = problem(0, 0, m, m, 1, &tall.join(","));
+    assert_optimal(&p, &parse_rules("rule row: AL_S(T, T)\n").unwrap());
+}
+
+/// Just past the bound: a typed error naming the value, never a panic.
+#[test]
+fn synthesis_past_the_coordinate_bound_is_refused() {
+    let m = MAX_COORD;
+    let cases = [
+        (problem(0, 0, m + 1, 100, 1, TWO_BLOCKS), "space.width"),
+        (problem(0, -m - 1, 100, 100, 1, TWO_BLOCKS), "space.y"),
+        (problem(1, 0, m, 100, 1, TWO_BLOCKS), "space reaches x"),
+        (problem(-m, 0, m + 1, 100, 1, TWO_BLOCKS), "space.width"),
+        (
+            problem(
+                0,
+                0,
+                m + 100,
+                100,
+                1,
+                r#"{"class":"B","x":268435466,"y":0,"width":10,"height":10}"#,
+            ),
+            "space.width",
+        ),
+    ];
+    for (p, what) in cases {
+        match solve(&p, &RuleSet::default()) {
+            Err(e @ SynthError::TooLarge(_)) => {
+                let m = e.to_string();
+                assert!(m.contains(what), "{m}");
+                assert!(m.contains("268435456"), "names the limit: {m}");
+            }
+            other => panic!("expected TooLarge for {what}, got {other:?}"),
+        }
+    }
+}
+
+/// A time limit beyond what `Instant` holds means "no deadline", never an
+/// overflow panic in `start + limit`.
+#[test]
+fn huge_library_time_limit_is_no_deadline() {
+    let p = problem(0, 0, 40, 40, 10, TWO_BLOCKS);
+    let opts = SynthOptions {
+        time_limit: Some(Duration::MAX),
+        ..SynthOptions::default()
+    };
+    let r = synthesize(&p, &RuleSet::default(), &opts).unwrap();
+    assert_eq!(r.status, Status::Optimal);
+}
