@@ -120,3 +120,158 @@ fn huge_library_time_limit_is_no_deadline() {
     let r = synthesize(&p, &RuleSet::default(), &opts).unwrap();
     assert_eq!(r.status, Status::Optimal);
 }
+
+// ---- command line ----------------------------------------------------------
+
+fn rccpack(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_rccpack"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("run rccpack")
+}
+
+fn stderr(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// `run … --time-limit 1e20` panicked in `Duration::from_secs_f64`; every
+/// command's time limit now goes through one validated parser: exit 1 with
+/// a message naming the value and the range.
+#[test]
+fn bad_time_limits_exit_1_everywhere() {
+    let out = std::env::temp_dir().join(format!("rccpack-robust-{}", std::process::id()));
+    let out = out.to_str().unwrap();
+    let problem = "examples/box-packing/problem.json";
+    let rules = "examples/box-packing/pilot.rcc";
+    for bad in ["1e20", "-1", "nan", "inf", "1000001", "soon"] {
+        for args in [
+            vec!["run", "examples/box-packing", "--out", out, "--time-limit", bad],
+            vec!["synth", problem, "--rules", rules, "--time-limit", bad],
+            vec!["bench", "thesis", "--out", out, "--time-limit", bad],
+        ] {
+            let o = rccpack(&args);
+            let e = stderr(&o);
+            assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+            assert!(!e.contains("panicked"), "{args:?}: {e}");
+            assert!(
+                e.contains("expected a number of seconds from 0 to 1000000"),
+                "{args:?}: {e}"
+            );
+        }
+    }
+}
+
+/// The largest time limit is accepted (and the problem solved well before).
+#[test]
+fn largest_time_limit_is_accepted() {
+    let o = rccpack(&[
+        "synth",
+        "examples/box-packing/problem.json",
+        "--rules",
+        "examples/box-packing/pilot.rcc",
+        "--time-limit",
+        "1000000",
+        "--quiet",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}
+
+/// Usage errors are bad input (exit 1), never clap's 2, which SPEC §10
+/// reserves for "infeasible"; help and version still exit 0.
+#[test]
+fn usage_errors_exit_1_help_exits_0() {
+    let pilot = "examples/box-packing/pilot.rcc";
+    let demos = "examples/box-packing/demos.json";
+    for args in [
+        vec!["score", demos, "--rules", pilot, "--contact", "bogus"],
+        vec!["score", demos, "--rules", pilot, "--bogus"],
+        vec!["synth", "x.json", "--rules", pilot, "--time-limit", "-1"],
+        vec!["learn"],
+        vec!["synth", "x.json"],
+        vec!["frobnicate"],
+        vec![],
+        vec!["learn", demos, "--samples", "many"],
+        vec!["learn", demos, "--samples", "100000000000000000000000"],
+    ] {
+        let o = rccpack(&args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert!(!stderr(&o).is_empty(), "{args:?}: a message");
+    }
+    for args in [vec!["--help"], vec!["--version"], vec!["synth", "--help"], vec!["help"]] {
+        let o = rccpack(&args);
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
+        assert!(!o.stdout.is_empty(), "{args:?}: printed to stdout");
+    }
+}
+
+/// `learn --samples 1000000000000000` ran until killed; now refused at
+/// once, naming the documented cap. The cap itself is accepted (checked on
+/// the parameters, without drawing a million scenes here).
+#[test]
+fn absurd_sample_counts_are_refused() {
+    let o = rccpack(&[
+        "learn",
+        "examples/box-packing/demos.json",
+        "--samples",
+        "1000000000000000",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(
+        e.contains("invalid --samples 1000000000000000: expected a whole number of at most 1000000"),
+        "{e}"
+    );
+    use rccpack::infer::LearnParams;
+    use rccpack::limits::MAX_SAMPLES;
+    assert_eq!(MAX_SAMPLES, 1_000_000, "the message writes the cap out");
+    let at = LearnParams {
+        samples: MAX_SAMPLES,
+        ..LearnParams::default()
+    };
+    assert!(at.validate().is_ok());
+    let past = LearnParams {
+        samples: MAX_SAMPLES + 1,
+        ..LearnParams::default()
+    };
+    assert!(past.validate().is_err());
+}
+
+/// The 200000×200000 problem of the issue through the command line: solved,
+/// exit 0 (it used to panic inside Pumpkin).
+#[test]
+fn huge_space_through_the_command_line() {
+    let dir = std::env::temp_dir().join(format!("rccpack-robust-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("huge.json");
+    std::fs::write(
+        &p,
+        format!(
+            r#"{{"space":{{"width":200000,"height":200000}},"grid":1,"objects":[{TWO_BLOCKS}]}}"#
+        ),
+    )
+    .unwrap();
+    let r = dir.join("r.rcc");
+    std::fs::write(&r, "rule touch: EC_E(B, B) | EC_W(B, B)\n").unwrap();
+    let o = rccpack(&[
+        "synth",
+        p.to_str().unwrap(),
+        "--rules",
+        r.to_str().unwrap(),
+        "--quiet",
+        "--node-limit",
+        "100000",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    // Past the bound: exit 1 naming the field.
+    std::fs::write(
+        &p,
+        format!(
+            r#"{{"space":{{"width":300000000,"height":10}},"grid":1,"objects":[{TWO_BLOCKS}]}}"#
+        ),
+    )
+    .unwrap();
+    let o = rccpack(&["synth", p.to_str().unwrap(), "--rules", r.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("space.width = 300000000 is too large"), "{}", stderr(&o));
+}
