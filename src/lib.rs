@@ -63,6 +63,9 @@
 
 pub mod bench;
 pub mod eval;
+#[cfg(feature = "fuzzing")]
+#[doc(hidden)]
+pub mod fuzzing;
 pub mod infer;
 pub mod limits;
 pub mod relations;
