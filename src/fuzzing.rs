@@ -483,6 +483,17 @@ fn within_synth_bound(p: &Scene) -> bool {
         && p.objects.iter().all(|o| {
             ok(o.width) && ok(o.height) && o.x.is_none_or(ok) && o.y.is_none_or(ok)
         })
+        && p.objects.iter().filter(|o| !o.is_placed()).all(|o| {
+            let n = |space: i64, size: i64| {
+                if space < size {
+                    0
+                } else {
+                    (i128::from(space) - i128::from(size)) / i128::from(p.grid.max(1)) + 1
+                }
+            };
+            let max = i128::from(crate::synth::MAX_POSITIONS);
+            n(sp.width, o.width) <= max && n(sp.height, o.height) <= max
+        })
 }
 
 fn synth_inner(u: &mut Unstructured) -> AResult<()> {
@@ -506,6 +517,9 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
         redundant: u.arbitrary()?,
         ..SynthOptions::default()
     };
+    if std::env::var_os("RCCPACK_FUZZ_DEBUG").is_some() {
+        eprintln!("{}{}\n{opts:?}", p.to_json(), print_rules(&rules));
+    }
     let valid = p.validate().is_ok();
     let r = match synthesize(&p, &rules, &opts) {
         Ok(r) => r,
@@ -523,7 +537,23 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
         }
     };
     assert!(valid, "an invalid problem was solved");
-    let brute = solve_with_limit(&p, &rules, contact, 4000).ok();
+    // Brute force enumerates every position first: only when they are few.
+    let positions: i128 = p
+        .objects
+        .iter()
+        .filter(|o| !o.is_placed())
+        .map(|o| {
+            let g = i128::from(p.grid);
+            let count = |room: i128| if room < 0 { 0 } else { room / g + 1 };
+            count(i128::from(p.space.width) - i128::from(o.width))
+                * count(i128::from(p.space.height) - i128::from(o.height))
+        })
+        .fold(1, |a: i128, n| a.saturating_mul(n.max(1)));
+    let brute = if positions <= 4000 {
+        solve_with_limit(&p, &rules, contact, 4000).ok()
+    } else {
+        None
+    };
     let terms: f64 = r
         .evaluation
         .as_ref()

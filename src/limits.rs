@@ -7,7 +7,8 @@
 //! | sizes `width`, `height`, `grid` | `1 ≤ v ≤` [`MAX_COORD`] | [`crate::scene::Scene::validate`] |
 //! | time limits (`--time-limit`, studio `time_limit`) | finite, `0 ≤ t ≤` [`MAX_TIME_LIMIT_SECS`] | [`time_limit`] |
 //! | null-model samples (`--samples`, studio `samples`) | `1 ≤ n ≤` [`MAX_SAMPLES`] | [`check_samples`] |
-//! | synthesis coordinates | `|v| ≤ 2^28` (the engine works in `i32`) | `synth::synthesize` |
+//! | synthesis coordinates | `|v| ≤ 2^28` (the engine works in `i32`) | `synth::synthesize` ([`crate::synth::MAX_COORD`]) |
+//! | synthesis grid positions per object and axis | `≤ 2^18` | `synth::synthesize` ([`crate::synth::MAX_POSITIONS`]) |
 //!
 //! With every coordinate and size within ±10^15, every edge `x + width` is
 //! within ±2·10^15 and every difference of two edges within ±4·10^15 <

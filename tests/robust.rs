@@ -6,7 +6,7 @@ use rccpack::relations::Contact;
 use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::scene::Scene;
 use rccpack::synth::verify::verify_solution;
-use rccpack::synth::{synthesize, Status, SynthError, SynthOptions, MAX_COORD};
+use rccpack::synth::{synthesize, Status, SynthError, SynthOptions, MAX_COORD, MAX_POSITIONS};
 use std::time::Duration;
 
 fn problem(x: i64, y: i64, w: i64, h: i64, grid: i64, objects: &str) -> Scene {
@@ -47,23 +47,25 @@ fn symmetry_term_in_a_huge_space_does_not_overflow() {
     assert_optimal(&p, &RuleSet::default());
 }
 
-/// At the engine's bound (2^28): largest space, grid 1, fixed object at
-/// the far corner, interchangeable objects, cumulative sums past i32 (nine
-/// tall objects): solved and verified.
+/// At the engine's bounds: coordinates at ±2^28 and exactly
+/// `MAX_POSITIONS` grid positions per axis (grid 1024 over 2^28), a fixed
+/// object near the far corner, interchangeable objects, cumulative sums
+/// past i32 (nine full-height objects): solved and verified.
 #[test]
 fn synthesis_at_the_coordinate_bound() {
     let m = MAX_COORD;
-    let p = problem(0, 0, m, m, 1, TWO_BLOCKS);
+    let g = m / MAX_POSITIONS; // 1024
+    let p = problem(0, 0, m, m, g, TWO_BLOCKS);
     let rules = parse_rules("rule north: DR_N(B, B) | DR_S(B, B)\n").unwrap();
     assert_optimal(&p, &rules);
-    // Negative corner: the space spans [-2^27, 2^27].
+    // Negative corner: the space spans [-2^27, 2^27]; the wall sits so that
+    // a block can touch it on the grid.
     let h = m / 2;
+    let at = h - 2 * g + 10;
     let wall = format!(
-        r#"{{"id":"w","class":"W","x":{},"y":{},"width":10,"height":10,"fixed":true}},"#,
-        h - 10,
-        h - 10
+        r#"{{"id":"w","class":"W","x":{at},"y":{at},"width":1100,"height":1100,"fixed":true}},"#
     );
-    let p = problem(-h, -h, m, m, 1, &(wall + TWO_BLOCKS));
+    let p = problem(-h, -h, m, m, g, &(wall + TWO_BLOCKS));
     let rules = parse_rules("rule near: EC_S(B, W) | EC_W(B, W)\n").unwrap();
     assert_optimal(&p, &rules);
     // Nine objects of the space's full height side by side: the demands of
@@ -71,8 +73,21 @@ fn synthesis_at_the_coordinate_bound() {
     let tall: Vec<String> = (0..9)
         .map(|i| format!(r#"{{"id":"t{i}","class":"T","width":1,"height":{m}}}"#))
         .collect();
-    let p = problem(0, 0, m, m, 1, &tall.join(","));
+    let p = problem(0, 0, m, m, g, &tall.join(","));
     assert_optimal(&p, &parse_rules("rule row: AL_S(T, T)\n").unwrap());
+    // Grid 1: exactly MAX_POSITIONS positions along x is accepted ...
+    let p = problem(0, 0, MAX_POSITIONS + 9, 10, 1, TWO_BLOCKS);
+    assert_optimal(&p, &parse_rules("rule touch: EC_E(B, B) | EC_W(B, B)\n").unwrap());
+    // ... one more is refused, naming the object and the limit.
+    let p = problem(0, 0, MAX_POSITIONS + 10, 10, 1, TWO_BLOCKS);
+    match solve(&p, &RuleSet::default()) {
+        Err(e @ SynthError::TooLarge(_)) => {
+            let m = e.to_string();
+            assert!(m.contains("objects[0] `b1` has 262145 grid positions along x"), "{m}");
+            assert!(m.contains("at most 262144"), "{m}");
+        }
+        other => panic!("expected TooLarge, got {other:?}"),
+    }
 }
 
 /// Just past the bound: a typed error naming the value, never a panic.

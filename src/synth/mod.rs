@@ -173,6 +173,16 @@ pub enum SynthError {
 /// argument is an error, never a panic or a wrapped number.
 pub const MAX_COORD: i64 = 1 << 28;
 
+/// Most grid positions an unplaced object may have along one axis,
+/// `(space size − object size) / grid + 1` (2^18 = 262 144).
+///
+/// Bound propagation over differences of grid variables can converge one
+/// step at a time across a whole domain (e.g. `a ≥ b + 5` and `b ≥ a − 3`
+/// learned as a conflict only after `ub/2` rounds), and Pumpkin does not
+/// stop inside propagation, so this is what bounds the time and memory of
+/// one propagation (a fuzzed 54×2^28 space with grid 5 took gigabytes).
+pub const MAX_POSITIONS: i64 = 1 << 18;
+
 fn check_ranges(problem: &Scene) -> Result<(), SynthError> {
     let sp = problem.space;
     let mut vals: Vec<(String, i64)> = vec![
@@ -207,6 +217,25 @@ fn check_ranges(problem: &Scene) -> Result<(), SynthError> {
             return Err(SynthError::TooLarge(format!(
                 "the space reaches {axis} = {far} (space.{axis} + size), too far for synthesis; expected at most {MAX_COORD} in absolute value"
             )));
+        }
+    }
+    for (i, o) in problem.objects.iter().enumerate() {
+        if o.is_placed() {
+            continue;
+        }
+        for (axis, space, size) in [("x", sp.width, o.width), ("y", sp.height, o.height)] {
+            // Within ±2^28 (checked above): no overflow.
+            let n = if space < size {
+                0
+            } else {
+                (space - size) / problem.grid + 1
+            };
+            if n > MAX_POSITIONS {
+                return Err(SynthError::TooLarge(format!(
+                    "objects[{i}] `{}` has {n} grid positions along {axis}, too many for synthesis; expected at most {MAX_POSITIONS} (use a coarser grid or a smaller space)",
+                    o.id
+                )));
+            }
         }
     }
     Ok(())
