@@ -55,6 +55,7 @@
 //! - [`eval`]: the one evaluator and the §6 score.
 //! - [`render`]: SVG and PNG pictures.
 //! - [`synth`]: synthesis of layouts.
+//! - [`limits`]: the documented limits on user-supplied numbers.
 //!
 //! The command-line tool `rccpack` wraps these (`check`, `score`, `render`,
 //! …); see the README.
@@ -62,7 +63,11 @@
 
 pub mod bench;
 pub mod eval;
+#[cfg(feature = "fuzzing")]
+#[doc(hidden)]
+pub mod fuzzing;
 pub mod infer;
+pub mod limits;
 pub mod relations;
 pub mod render;
 pub mod resemblance;

@@ -30,13 +30,14 @@ impl Rect {
     pub const fn new(x: i64, y: i64, w: i64, h: i64) -> Self {
         Rect { x, y, w, h }
     }
-    /// East edge `x + w`.
+    /// East edge `x + w` (saturating: exact for every rectangle of a
+    /// validated scene, and no overflow for one built in code).
     pub const fn x2(&self) -> i64 {
-        self.x + self.w
+        self.x.saturating_add(self.w)
     }
-    /// North edge `y + h`.
+    /// North edge `y + h` (saturating, like [`Rect::x2`]).
     pub const fn y2(&self) -> i64 {
-        self.y + self.h
+        self.y.saturating_add(self.h)
     }
     /// Whether the interiors of `self` and `other` overlap (touching is fine).
     pub const fn interiors_overlap(&self, other: &Rect) -> bool {
@@ -302,10 +303,50 @@ impl Scene {
         s
     }
 
-    /// Check SPEC §1: sizes ≥ 1, grid ≥ 1, unique ids, class names that are
-    /// identifiers, fixed objects placed, `x` and `y` given together, placed
-    /// objects inside the space, no two interiors overlapping.
+    /// Check SPEC §1: coordinates, sizes and grid within
+    /// [`crate::limits::MAX_COORD`], sizes ≥ 1, grid ≥ 1, unique ids, class
+    /// names that are identifiers, fixed objects placed, `x` and `y` given
+    /// together, placed objects inside the space, no two interiors
+    /// overlapping.
     pub fn validate(&self) -> Result<(), SceneError> {
+        use crate::limits::MAX_COORD;
+        // Range first: after these checks every edge and every difference
+        // of edges fits easily in i64 (see `crate::limits`).
+        let coord = |path: &str, what: &str, v: i64| -> Result<(), SceneError> {
+            if (-MAX_COORD..=MAX_COORD).contains(&v) {
+                Ok(())
+            } else {
+                Err(SceneError::invalid(
+                    path,
+                    format!("{what} {v} is out of range; expected an integer from -{MAX_COORD} to {MAX_COORD}"),
+                ))
+            }
+        };
+        let size = |path: &str, what: &str, v: i64| -> Result<(), SceneError> {
+            if v > MAX_COORD {
+                Err(SceneError::invalid(
+                    path,
+                    format!("{what} {v} is too large; expected an integer from 1 to {MAX_COORD}"),
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        coord("space.x", "space x", self.space.x)?;
+        coord("space.y", "space y", self.space.y)?;
+        size("space.width", "space width", self.space.width)?;
+        size("space.height", "space height", self.space.height)?;
+        size("grid", "grid step", self.grid)?;
+        for (i, o) in self.objects.iter().enumerate() {
+            size(&format!("objects[{i}].width"), "width", o.width)?;
+            size(&format!("objects[{i}].height"), "height", o.height)?;
+            if let Some(x) = o.x {
+                coord(&format!("objects[{i}].x"), "x", x)?;
+            }
+            if let Some(y) = o.y {
+                coord(&format!("objects[{i}].y"), "y", y)?;
+            }
+        }
         if self.space.width < 1 || self.space.height < 1 {
             return Err(SceneError::invalid(
                 "space",
@@ -379,12 +420,6 @@ impl Scene {
                 ));
             }
             if let Some(r) = o.rect() {
-                if r.x.checked_add(r.w).is_none() || r.y.checked_add(r.h).is_none() {
-                    return Err(SceneError::invalid(
-                        path,
-                        format!("object `{}` is too large", o.id),
-                    ));
-                }
                 if !r.inside(&space) {
                     return Err(SceneError::invalid(
                         path,
@@ -452,10 +487,14 @@ impl Scene {
     /// Whether `o` sits on the grid: `(x − space.x) % grid == 0`, same for y.
     pub fn on_grid(&self, o: &Object) -> bool {
         match (o.x, o.y) {
-            (Some(x), Some(y)) => {
-                (x - self.space.x).rem_euclid(self.grid) == 0
-                    && (y - self.space.y).rem_euclid(self.grid) == 0
+            // In i128 and with a guard on the step, so that a scene built in
+            // code (not validated) cannot overflow or divide by zero here.
+            (Some(x), Some(y)) if self.grid >= 1 => {
+                let g = i128::from(self.grid);
+                (i128::from(x) - i128::from(self.space.x)).rem_euclid(g) == 0
+                    && (i128::from(y) - i128::from(self.space.y)).rem_euclid(g) == 0
             }
+            (Some(_), Some(_)) => false,
             _ => true,
         }
     }

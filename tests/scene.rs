@@ -143,3 +143,114 @@ fn on_grid_is_relative_to_the_space_origin() {
     assert!(s.on_grid(&s.objects[0]));
     assert!(!s.on_grid(&s.objects[1]));
 }
+
+/// Issue 11: coordinates far out of range get a field-named error (no
+/// overflow in `space.x + width`, no wrapping `abs()`), and the documented
+/// bound itself is accepted.
+#[test]
+fn coordinates_at_and_past_the_documented_bound() {
+    use rccpack::limits::MAX_COORD;
+    let scene =
+        |space: &str, obj: &str| format!(r#"{{"space":{space},"grid":1,"objects":[{obj}]}}"#);
+    // At the bound: accepted.
+    let at = scene(
+        &format!(
+            r#"{{"x":{},"y":{},"width":{MAX_COORD},"height":{MAX_COORD}}}"#,
+            -MAX_COORD, -MAX_COORD
+        ),
+        &format!(
+            r#"{{"class":"R","x":{},"y":-1,"width":{MAX_COORD},"height":1}}"#,
+            -MAX_COORD
+        ),
+    );
+    Scene::from_json(&at).expect("the bound itself is accepted");
+    // The space's corner plus its size reaches 2·MAX_COORD; still fine.
+    let far = scene(
+        &format!(r#"{{"x":{MAX_COORD},"y":{MAX_COORD},"width":{MAX_COORD},"height":{MAX_COORD}}}"#),
+        &format!(
+            r#"{{"class":"R","x":{},"y":{MAX_COORD},"width":{MAX_COORD},"height":1}}"#,
+            MAX_COORD
+        ),
+    );
+    Scene::from_json(&far).expect("edges up to 2·MAX_COORD are fine");
+    let cases: Vec<(String, &str)> = vec![
+        (
+            scene(r#"{"x":9223372036854775807,"width":10,"height":10}"#, ""),
+            "space.x",
+        ),
+        (
+            scene(
+                &format!(r#"{{"x":{},"width":10,"height":10}}"#, MAX_COORD + 1),
+                "",
+            ),
+            "space.x",
+        ),
+        (
+            scene(r#"{"y":-9223372036854775808,"width":10,"height":10}"#, ""),
+            "space.y",
+        ),
+        (
+            scene(r#"{"width":9223372036854775807,"height":10}"#, ""),
+            "space.width",
+        ),
+        (
+            scene(&format!(r#"{{"width":10,"height":{}}}"#, MAX_COORD + 1), ""),
+            "space.height",
+        ),
+        (
+            scene(
+                r#"{"width":10,"height":10}"#,
+                r#"{"class":"R","x":-9223372036854775808,"y":0,"width":1,"height":1}"#,
+            ),
+            "objects[0].x",
+        ),
+        (
+            scene(
+                r#"{"width":10,"height":10}"#,
+                r#"{"class":"R","x":0,"y":9223372036854775807,"width":1,"height":1}"#,
+            ),
+            "objects[0].y",
+        ),
+        (
+            scene(
+                r#"{"width":10,"height":10}"#,
+                r#"{"class":"R","x":0,"y":0,"width":9223372036854775807,"height":1}"#,
+            ),
+            "objects[0].width",
+        ),
+        (
+            scene(
+                r#"{"width":10,"height":10}"#,
+                r#"{"class":"R","width":1,"height":1000000000000001}"#,
+            ),
+            "objects[0].height",
+        ),
+    ];
+    for (text, path) in cases {
+        let e = err(&text);
+        assert_eq!(e.path(), path, "{text}: {e}");
+        let m = e.to_string();
+        assert!(
+            m.contains("out of range") || m.contains("too large"),
+            "{text}: {m}"
+        );
+        assert!(m.contains("1000000000000000"), "names the limit: {m}");
+    }
+    let e = err(r#"{"space":{"width":10,"height":10},"grid":9223372036854775807,"objects":[]}"#);
+    assert_eq!(e.path(), "grid");
+}
+
+/// `on_grid` never divides by zero or overflows on a scene built in code.
+#[test]
+fn on_grid_is_total() {
+    let mut s = Scene::from_json(OK).unwrap();
+    let o = s.objects[1].clone();
+    assert!(s.on_grid(&o));
+    s.grid = 0;
+    assert!(!s.on_grid(&o));
+    s.grid = 3;
+    s.space.x = i64::MIN;
+    let mut far = o.clone();
+    far.x = Some(i64::MAX);
+    let _ = s.on_grid(&far);
+}

@@ -568,3 +568,43 @@ async fn synth_can_be_cancelled() {
     assert_eq!(done["cancelled"], true);
     assert_eq!(done["state"], "done", "{done}");
 }
+
+/// Issue 11: the studio's `samples` has the documented upper bound (it had
+/// none: a huge value ran until killed), and `time_limit` goes through the
+/// shared parser; both answer 400 naming the field.
+#[tokio::test]
+async fn learn_samples_and_synth_time_limit_are_bounded() {
+    let dir = task_dir("bounds", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    for n in [
+        json!(0),
+        json!(1_000_001u64),
+        json!(1_000_000_000_000_000u64),
+        json!(u64::MAX),
+    ] {
+        let (s, v) = call(
+            &app,
+            Method::POST,
+            "/api/learn",
+            json!({"samples": n}).to_string(),
+        )
+        .await;
+        assert_eq!(s, StatusCode::BAD_REQUEST, "{n}: {v}");
+        assert_eq!(v["path"], "samples");
+        assert!(
+            v["error"].as_str().unwrap().contains("from 1 to 1000000"),
+            "{v}"
+        );
+    }
+    for t in [json!(0), json!(600.5), json!(1e20), json!(-1)] {
+        let (s, v) = call(
+            &app,
+            Method::POST,
+            "/api/synth",
+            json!({"rules": "", "time_limit": t}).to_string(),
+        )
+        .await;
+        assert_eq!(s, StatusCode::BAD_REQUEST, "{t}: {v}");
+        assert_eq!(v["path"], "time_limit");
+    }
+}

@@ -18,6 +18,12 @@ use std::process::ExitCode;
 
 pub use io::{read_rules, read_scene, read_scenes, Reported};
 
+/// Clap value parser for `--time-limit SECONDS` (the library's shared,
+/// validated parser: finite, 0 to `limits::MAX_TIME_LIMIT_SECS`).
+fn time_limit_arg(text: &str) -> Result<std::time::Duration, String> {
+    rccpack::limits::parse_time_limit(text).map_err(|e| e.to_string())
+}
+
 /// Learn spatial placement rules from demonstrations and lay out new objects
 /// that keep them.
 #[derive(Parser, Debug)]
@@ -51,7 +57,19 @@ enum Command {
 /// Parse arguments, run the command, map errors to exit codes.
 pub fn main() -> ExitCode {
     restore_sigpipe();
-    let cli = Cli::parse();
+    // Usage errors are bad input: exit 1 (SPEC §10 keeps 2 for
+    // "infeasible"); `--help` and `--version` print to stdout and exit 0.
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() {
+                ExitCode::from(1)
+            } else {
+                ExitCode::SUCCESS
+            };
+        }
+    };
     let result = match cli.command {
         Command::Check(a) => check::run(a),
         Command::Score(a) => score::run(a),

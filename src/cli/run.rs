@@ -37,8 +37,8 @@ pub struct RunArgs {
     #[arg(long, default_value_t = 0)]
     seed: u64,
     /// Stop the layout search after this many seconds, keeping the best found.
-    #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
-    time_limit: f64,
+    #[arg(long, value_name = "SECONDS", default_value = "60", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
+    time_limit: Duration,
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
     #[arg(long, default_value = "point")]
     contact: Contact,
@@ -58,12 +58,6 @@ fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
 }
 
 pub fn run(a: RunArgs) -> Result<ExitCode> {
-    if !(a.time_limit.is_finite() && a.time_limit >= 0.0) {
-        anyhow::bail!(
-            "--time-limit {}: expected a non-negative number of seconds",
-            a.time_limit
-        );
-    }
     let out = a.out.clone().unwrap_or_else(|| a.dir.clone());
     std::fs::create_dir_all(&out).map_err(|e| {
         Reported(format!(
@@ -112,14 +106,13 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     })?;
     let opts = SynthOptions {
         contact: a.contact,
-        time_limit: Some(Duration::from_secs_f64(a.time_limit)),
+        time_limit: Some(a.time_limit),
         seed: a.seed,
         like: like.clone(),
         ..SynthOptions::default()
     };
-    let result = synthesize(&problem, &rules, &opts).map_err(|e| match e {
-        SynthError::BadProblem(m) => Reported(format!("error: {}: {m}", problem_path.display())),
-    })?;
+    let result = synthesize(&problem, &rules, &opts)
+        .map_err(|e: SynthError| Reported(format!("error: {}: {e}", problem_path.display())))?;
 
     let candidates = learned.statements.iter().filter(|s| s.candidate).count();
     println!(

@@ -34,8 +34,8 @@ pub struct SynthArgs {
     #[arg(long)]
     report: Option<PathBuf>,
     /// Stop after this many seconds and keep the best layout found.
-    #[arg(long, value_name = "SECONDS")]
-    time_limit: Option<f64>,
+    #[arg(long, value_name = "SECONDS", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
+    time_limit: Option<Duration>,
     /// Stop after this many search decisions (deterministic).
     #[arg(long, value_name = "N")]
     node_limit: Option<u64>,
@@ -81,16 +81,7 @@ struct Report<'a> {
 pub fn run(a: SynthArgs) -> Result<ExitCode> {
     let problem = read_scene(&a.problem)?;
     let rules = read_rules(&a.rules, std::slice::from_ref(&problem))?;
-    let time_limit = match a.time_limit {
-        None => None,
-        Some(t) if (0.0..1e9).contains(&t) => Some(Duration::from_secs_f64(t)),
-        Some(t) => {
-            return Err(Reported(format!(
-                "error: --time-limit {t}: expected a non-negative number of seconds"
-            ))
-            .into())
-        }
-    };
+    let time_limit = a.time_limit;
     let cancel = Arc::new(AtomicBool::new(false));
     {
         let c = cancel.clone();
@@ -122,9 +113,8 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         },
         ..SynthOptions::default()
     };
-    let result = synthesize(&problem, &rules, &opts).map_err(|e| match e {
-        SynthError::BadProblem(m) => Reported(format!("error: {}: {m}", a.problem.display())),
-    })?;
+    let result = synthesize(&problem, &rules, &opts)
+        .map_err(|e: SynthError| Reported(format!("error: {}: {e}", a.problem.display())))?;
     let ev = result.evaluation.as_ref();
     if let Some(path) = &a.report {
         let report = Report {

@@ -200,6 +200,14 @@ impl LearnParams {
                 expected: "a whole number of at least 1",
             });
         }
+        if self.samples > crate::limits::MAX_SAMPLES {
+            return Err(InferError::BadParameter {
+                flag: "samples",
+                value: self.samples.to_string(),
+                // `crate::limits::MAX_SAMPLES`, written out.
+                expected: "a whole number of at most 1000000",
+            });
+        }
         open_unit("cutoff", self.cutoff)?;
         open_unit("prior", self.prior)?;
         if let Some(e) = self.epsilon {

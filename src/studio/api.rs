@@ -427,7 +427,8 @@ pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
     let b: LearnBody = parse_body(&body)?;
     let mut params = LearnParams::default();
     if let Some(n) = b.samples {
-        params.samples = n;
+        params.samples = crate::limits::check_samples(n)
+            .map_err(|e| ApiError::bad(format!("request body: samples: {e}")).at("samples"))?;
     }
     if let Some(s) = b.seed {
         params.seed = s;
@@ -579,18 +580,25 @@ struct SynthBody {
 
 const CHOSEN: &str = "chosen rules";
 
+/// Largest `time_limit` of `POST /api/synth`, in seconds.
+const STUDIO_MAX_TIME_LIMIT_SECS: u64 = 600;
+
 pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
     let b: SynthBody = parse_body(&body)?;
     let set = parse_rules(&b.rules).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
     check_classes(&set, &st.problem).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
     check_landmarks(&set, &st.problem).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
-    let limit = b.time_limit.unwrap_or(30.0);
-    if !(limit.is_finite() && limit > 0.0 && limit <= 600.0) {
-        return Err(ApiError::bad(format!(
-            "request body: time_limit: {limit} is out of range; expected seconds in (0, 600]"
-        ))
-        .at("time_limit"));
-    }
+    let secs = b.time_limit.unwrap_or(30.0);
+    // The shared validated parser, then the studio's own tighter cap.
+    let limit = crate::limits::time_limit(secs)
+        .ok()
+        .filter(|d| !d.is_zero() && *d <= Duration::from_secs(STUDIO_MAX_TIME_LIMIT_SECS))
+        .ok_or_else(|| {
+            ApiError::bad(format!(
+                "request body: time_limit: {secs} is out of range; expected seconds in (0, {STUDIO_MAX_TIME_LIMIT_SECS}]"
+            ))
+            .at("time_limit")
+        })?;
     let like = match b.like.unwrap_or(true) {
         true => Some(Likeness::new(&read_demos(&st)?)),
         false => None,
@@ -618,7 +626,7 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
     }
     let progress_best = best.clone();
     let opts = SynthOptions {
-        time_limit: Some(Duration::from_secs_f64(limit)),
+        time_limit: Some(limit),
         seed: b.seed.unwrap_or(0),
         cancel: Some(cancel),
         progress: Some(ProgressFn(Arc::new(move |p: &Progress| {

@@ -46,6 +46,7 @@
 use super::like::{total_cost, LikeTerm};
 use super::model::{BoolDef, Coord, Lit, Model};
 use super::weights::SubsetSums;
+use super::SynthError;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
 use pumpkin_constraints::{boolean_equals, cumulative, equals, less_than_or_equals};
 use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
@@ -71,6 +72,23 @@ use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Instant;
+
+/// `v` as an `i32`, or [`SynthError::TooLarge`] naming `what`.
+fn i32_of(v: i64, what: impl FnOnce() -> String) -> Result<i32, SynthError> {
+    i32::try_from(v).map_err(|_| {
+        SynthError::TooLarge(format!(
+            "{} ({v}) is too large for the solver's 32-bit arithmetic",
+            what()
+        ))
+    })
+}
+
+/// `v` clamped into `i32`: for objective bounds, which lie in
+/// `-1..=total` with `total` checked to fit; clamping keeps the meaning of
+/// `obj ≥ v` / `obj ≤ v` for an `obj` whose domain is inside `i32`.
+fn clamp_i32(v: i64) -> i32 {
+    v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
+}
 
 /// How many times [`Strategy::UpperBoundFirst`] asks for the proven upper
 /// bound itself before it bisects between incumbent and bound.
@@ -310,7 +328,17 @@ impl Engine {
     /// under its assumption literal (for core extraction); otherwise hard
     /// literals are posted as units. `coefs` are the objective coefficients
     /// of `model.soft` (none: no objective).
-    pub fn new(model: &Model, seed: u64, guarded: bool, coefs: Option<&[i64]>) -> Engine {
+    ///
+    /// Every number handed to Pumpkin goes through a checked conversion to
+    /// `i32`; one that does not fit is a [`SynthError::TooLarge`] naming it
+    /// (see [`super::MAX_COORD`] for why that cannot happen on a problem
+    /// that passed the range check).
+    pub fn new(
+        model: &Model,
+        seed: u64,
+        guarded: bool,
+        coefs: Option<&[i64]>,
+    ) -> Result<Engine, SynthError> {
         Self::with_like(model, seed, guarded, coefs, Vec::new())
     }
 
@@ -324,7 +352,39 @@ impl Engine {
         guarded: bool,
         coefs: Option<&[i64]>,
         like: Vec<LikeTerm>,
-    ) -> Engine {
+    ) -> Result<Engine, SynthError> {
+        let obj_name = |o: usize| format!("objects[{o}]");
+        // Range-check everything before the solver exists.
+        for v in &model.vars {
+            i32_of(v.ub, || {
+                format!("the position range of {}", obj_name(v.object))
+            })?;
+        }
+        for s in &model.symmetry {
+            if !model.lin_fits_i32(s) {
+                return Err(SynthError::TooLarge(
+                    "a symmetry-breaking order is too large for the solver's 32-bit arithmetic"
+                        .into(),
+                ));
+            }
+        }
+        for c in &model.cumulative {
+            if !model.cumulative_fits_i32(c) {
+                return Err(SynthError::TooLarge(
+                    "the area relaxation is too large for the solver's 32-bit arithmetic".into(),
+                ));
+            }
+        }
+        if !like_fits(&like) {
+            return Err(SynthError::TooLarge(
+                "resemblance costs are too large for the solver's 32-bit arithmetic".into(),
+            ));
+        }
+        let grid = i32_of(model.grid, || "grid".into())?;
+        let origin = (
+            i32_of(model.origin.0, || "space.x".into())?,
+            i32_of(model.origin.1, || "space.y".into())?,
+        );
         let mut solver = Solver::with_options(SolverOptions {
             random_generator: SmallRng::seed_from_u64(seed),
             memory_preallocated: 1,
@@ -334,8 +394,8 @@ impl Engine {
         let vars: Vec<DomainId> = model
             .vars
             .iter()
-            .map(|v| solver.new_bounded_integer(0, v.ub as i32))
-            .collect();
+            .map(|v| i32_of(v.ub, String::new).map(|ub| solver.new_bounded_integer(0, ub)))
+            .collect::<Result<_, _>>()?;
         let t = solver.get_true_literal();
         let tb = Instant::now();
         let mut lits: Vec<Literal> = Vec::with_capacity(model.bools.len());
@@ -361,7 +421,8 @@ impl Engine {
             lits.push(match def {
                 BoolDef::Ge { var, k } => {
                     let x = vars[*var];
-                    solver.new_literal_for_predicate(predicate![x >= *k as i32], tag)
+                    let k = i32_of(*k, || "a position bound".into())?;
+                    solver.new_literal_for_predicate(predicate![x >= k], tag)
                 }
                 BoolDef::DiffGe { .. } | BoolDef::And(_) | BoolDef::AtLeast { .. } => {
                     solver.new_literal()
@@ -373,30 +434,25 @@ impl Engine {
         } else {
             Vec::new()
         };
-        let cumulative_starts: Vec<Vec<AffineView<DomainId>>> = model
-            .cumulative
-            .iter()
-            .map(|cu| {
-                cu.tasks
-                    .iter()
-                    .map(|&(o, _, _)| {
-                        let (cx, cy) = model.coords[o];
-                        let (c, origin) = match cu.axis {
-                            super::model::Axis::X => (cx, model.origin.0),
-                            super::model::Axis::Y => (cy, model.origin.1),
-                        };
-                        match c {
-                            Coord::Const(v) => {
-                                solver.new_bounded_integer(v as i32, v as i32).scaled(1)
-                            }
-                            Coord::Var(v) => {
-                                vars[v].scaled(model.grid as i32).offset(origin as i32)
-                            }
-                        }
-                    })
-                    .collect()
-            })
-            .collect();
+        let mut cumulative_starts: Vec<Vec<AffineView<DomainId>>> = Vec::new();
+        for cu in &model.cumulative {
+            let mut starts = Vec::with_capacity(cu.tasks.len());
+            for &(o, _, _) in &cu.tasks {
+                let (cx, cy) = model.coords[o];
+                let (c, origin) = match cu.axis {
+                    super::model::Axis::X => (cx, origin.0),
+                    super::model::Axis::Y => (cy, origin.1),
+                };
+                starts.push(match c {
+                    Coord::Const(v) => {
+                        let v = i32_of(v, || format!("the position of {}", obj_name(o)))?;
+                        solver.new_bounded_integer(v, v).scaled(1)
+                    }
+                    Coord::Var(v) => vars[v].scaled(grid).offset(origin),
+                });
+            }
+            cumulative_starts.push(starts);
+        }
         // Resemblance variables: per term a cost variable, bounded below by
         // clauses over the position (see `post_like`).
         let like_costs: Vec<DomainId> = like
@@ -414,16 +470,21 @@ impl Engine {
                 .sum();
             solver.new_bounded_integer(lo as i32, hi as i32)
         });
-        let objective_var = coefs.map(|coefs| {
-            let total: i64 = model
-                .soft
-                .iter()
-                .zip(coefs)
-                .filter(|(s, _)| matches!(s.lit, Lit::Var { .. }))
-                .map(|(_, &c)| c)
-                .sum();
-            solver.new_bounded_integer(0, total as i32)
-        });
+        let objective_var = match coefs {
+            None => None,
+            Some(coefs) => {
+                let total: i128 = model
+                    .soft
+                    .iter()
+                    .zip(coefs)
+                    .filter(|(s, _)| matches!(s.lit, Lit::Var { .. }))
+                    .map(|(_, &c)| i128::from(c))
+                    .sum();
+                let total = i64::try_from(total).unwrap_or(i64::MAX);
+                let total = i32_of(total, || "the total of the rule weights".into())?;
+                Some(solver.new_bounded_integer(0, total))
+            }
+        };
         for (i, def) in model.bools.iter().enumerate() {
             let tt = Instant::now();
             let cat = match def {
@@ -436,10 +497,11 @@ impl Engine {
                 BoolDef::Ge { .. } => {}
                 BoolDef::DiffGe { a, b, k } => {
                     // a − b ≥ k  ⇔  b − a ≤ −k
+                    let rhs = i32_of(k.saturating_neg(), || "a distance bound".into())?;
                     solver
                         .add_constraint(less_than_or_equals(
                             vec![vars[*b].scaled(1), vars[*a].scaled(-1)],
-                            -*k as i32,
+                            rhs,
                             tag,
                         ))
                         .reify(l);
@@ -462,13 +524,14 @@ impl Engine {
                         .chunk_by(|a, b| a == b)
                         .map(|g| {
                             let m = i32::try_from(g.len()).unwrap_or(i32::MAX);
+                            // (counts fit: at most one term per object)
                             conv(&lits, g[0]).get_integer_variable().scaled(-m)
                         })
                         .collect();
                     solver
                         .add_constraint(less_than_or_equals(
                             terms,
-                            -i32::try_from(*k).unwrap_or(i32::MAX),
+                            i32_of(-i64::from(*k), || "a count bound".into())?,
                             tag,
                         ))
                         .reify(l);
@@ -522,20 +585,25 @@ impl Engine {
             }
         }
         for s in &model.symmetry {
-            let terms: Vec<AffineView<DomainId>> = s
-                .terms
-                .iter()
-                .map(|&(c, v)| vars[v].scaled(c as i32))
-                .collect();
+            let mut terms: Vec<AffineView<DomainId>> = Vec::with_capacity(s.terms.len());
+            for &(c, v) in &s.terms {
+                terms.push(vars[v].scaled(i32_of(c, || "a symmetry coefficient".into())?));
+            }
+            let rhs = i32_of(s.rhs, || "a symmetry bound".into())?;
             solver
-                .add_constraint(less_than_or_equals(terms, s.rhs as i32, tag))
+                .add_constraint(less_than_or_equals(terms, rhs, tag))
                 .post();
         }
         for (cu, starts) in model.cumulative.iter().zip(cumulative_starts) {
-            let durs: Vec<i32> = cu.tasks.iter().map(|&(_, dur, _)| dur as i32).collect();
-            let dems: Vec<i32> = cu.tasks.iter().map(|&(_, _, dem)| dem as i32).collect();
+            let mut durs: Vec<i32> = Vec::with_capacity(cu.tasks.len());
+            let mut dems: Vec<i32> = Vec::with_capacity(cu.tasks.len());
+            for &(o, dur, dem) in &cu.tasks {
+                durs.push(i32_of(dur, || format!("the size of {}", obj_name(o)))?);
+                dems.push(i32_of(dem, || format!("the size of {}", obj_name(o)))?);
+            }
+            let capacity = i32_of(cu.capacity, || "the space size".into())?;
             solver
-                .add_constraint(cumulative(starts, durs, dems, cu.capacity as i32, tag))
+                .add_constraint(cumulative(starts, durs, dems, capacity, tag))
                 .post();
         }
         if dbg {
@@ -545,7 +613,7 @@ impl Engine {
             );
         }
         let mut objective = None;
-        if let Some(coefs) = coefs {
+        if let (Some(coefs), Some(obj)) = (coefs, objective_var) {
             let mut ws = Vec::new();
             let mut ls = Vec::new();
             for (s, &c) in model.soft.iter().zip(coefs) {
@@ -554,8 +622,10 @@ impl Engine {
                     ls.push(conv(&lits, s.lit));
                 }
             }
-            let obj = objective_var.expect("created with the coefficients");
-            let ws32: Vec<i32> = ws.iter().map(|&w| w as i32).collect();
+            let mut ws32: Vec<i32> = Vec::with_capacity(ws.len());
+            for &w in &ws {
+                ws32.push(i32_of(w, || "a rule weight".into())?);
+            }
             solver
                 .add_constraint(boolean_equals(ws32, ls, obj, tag))
                 .post();
@@ -584,7 +654,7 @@ impl Engine {
             nodes: counters.nodes.clone(),
             conflicts: counters.conflicts.clone(),
         };
-        Engine {
+        Ok(Engine {
             solver,
             brancher,
             resolver: ResolutionResolver::default(),
@@ -595,7 +665,7 @@ impl Engine {
             tag,
             first_phase,
             like: like_total.map(|t| (like, t)),
-        }
+        })
     }
 
     /// Decisions so far.
@@ -718,7 +788,7 @@ impl Engine {
         if strategy == Strategy::ImproveFromFirst {
             // Improve from the incumbent.
             loop {
-                let a = [predicate![obj >= (best_val + 1) as i32]];
+                let a = [predicate![obj >= clamp_i32(best_val + 1)]];
                 match self.under(&a, limits, false) {
                     Sat::Solution(v) => {
                         best_val = self.objective_value(model, &v);
@@ -757,7 +827,7 @@ impl Engine {
                 best_val + (hi - best_val + 1) / 2
             };
             step += 1;
-            let a = [predicate![obj >= target as i32]];
+            let a = [predicate![obj >= clamp_i32(target)]];
             match self.under(&a, limits, false) {
                 Sat::Solution(v) => {
                     best_val = self.objective_value(model, &v);
@@ -766,7 +836,7 @@ impl Engine {
                 }
                 Sat::Unsat(_) => {
                     self.solver
-                        .add_clause([predicate![obj <= (target - 1) as i32]], self.tag);
+                        .add_clause([predicate![obj <= clamp_i32(target - 1)]], self.tag);
                     hi = snap(target - 1);
                 }
                 Sat::Unknown => return OptOutcome::Feasible(best),
@@ -800,14 +870,14 @@ impl Engine {
         if let Some((obj, _)) = &self.objective {
             let obj = *obj;
             self.solver
-                .add_clause([predicate![obj >= best_num as i32]], self.tag);
+                .add_clause([predicate![obj >= clamp_i32(best_num)]], self.tag);
         }
         let mut best_cost = total_cost(&terms, &best);
         let mut best = best;
         let mut lo = self.solver.lower_bound(&total) as u64;
         while lo < best_cost {
             let mid = lo + (best_cost - lo - 1) / 2;
-            let a = [predicate![total <= mid as i32]];
+            let a = [predicate![total <= i32::try_from(mid).unwrap_or(i32::MAX)]];
             let t = Instant::now();
             let r = self.under(&a, limits, false);
             if std::env::var_os("RCCPACK_DEBUG").is_some() {
@@ -832,15 +902,19 @@ impl Engine {
                         if let Some((obj, _)) = &self.objective {
                             let obj = *obj;
                             self.solver
-                                .add_clause([predicate![obj >= best_num as i32]], self.tag);
+                                .add_clause([predicate![obj >= clamp_i32(best_num)]], self.tag);
                         }
                         // The cost floor was proven for a lower numerator
                         // floor; it still holds (fewer layouts now).
                     }
                 }
                 Sat::Unsat(_) => {
-                    self.solver
-                        .add_clause([predicate![total >= (mid + 1) as i32]], self.tag);
+                    self.solver.add_clause(
+                        [predicate![
+                            total >= i32::try_from(mid + 1).unwrap_or(i32::MAX)
+                        ]],
+                        self.tag,
+                    );
                     lo = mid + 1;
                 }
                 Sat::Unknown => {
@@ -1037,7 +1111,7 @@ mod tests {
                     lits: vec![lit],
                 }];
                 let possible = all.iter().any(|(_, b)| lit.value(b));
-                let mut e = Engine::new(&mh, 0, true, None);
+                let mut e = Engine::new(&mh, 0, true, None).unwrap();
                 match e.satisfy_rules(&[0], &Limits::default()) {
                     Sat::Solution(v) => {
                         assert!(possible, "engine found {v:?} for the impossible {lit:?}");

@@ -181,39 +181,104 @@ pub enum SynthError {
     /// The problem scene is not usable for synthesis.
     #[error("{0}")]
     BadProblem(String),
+    /// A number of the problem (or derived from it) is too large for the
+    /// solver's 32-bit arithmetic; the message names it.
+    #[error("{0}")]
+    TooLarge(String),
 }
 
-/// Largest absolute coordinate or size accepted (the engine works in `i32`).
-const MAX_COORD: i64 = 1 << 28;
+/// Largest absolute coordinate or size accepted for synthesis (2^28); the
+/// space's far edges `space.x + width`, `space.y + height` too.
+///
+/// # Why every number handed to Pumpkin fits in `i32`
+///
+/// Pumpkin works in `i32` (2^31 − 1). With every coordinate, size and grid
+/// step within ±2^28 and both edges of the space within ±2^28 (so every
+/// edge of a placed object too, as it lies inside the space):
+///
+/// - grid variables have domains `0..=ub` with `ub ≤ space.width ≤ 2^28`;
+///   `Ge` bounds `k` lie in `1..=ub`;
+/// - a `DiffGe` literal `b − a ≤ −k` has two unit terms and a bound folded
+///   into `(−ub_b, ub_a]`: `|b| + |a| + |k| ≤ 3·2^28`;
+/// - the cumulative views `grid·v + origin` stay inside the space (±2^28),
+///   `start + duration ≤ space.x + width ≤ 2^28`; the sum of all demands is
+///   checked when the model is built, and the (redundant) constraint is
+///   left out when it could exceed `i32`;
+/// - the symmetry order `nx·gy_a + gx_a < nx·gy_b + gx_b` is posted as a
+///   linear only when `Σ |coef|·ub + |rhs|` fits, else as the equivalent
+///   lexicographic clauses over `DiffGe` literals (no products);
+/// - objective coefficients sum to at most 2^30 (`weights`), and `AtLeast`
+///   bounds are at most the number of objects.
+///
+/// The engine still converts every value with a checked conversion
+/// ([`SynthError::TooLarge`] if one ever failed), so a mistake in this
+/// argument is an error, never a panic or a wrapped number.
+pub const MAX_COORD: i64 = 1 << 28;
+
+/// Most grid positions an unplaced object may have along one axis,
+/// `(space size − object size) / grid + 1` (2^18 = 262 144).
+///
+/// Bound propagation over differences of grid variables can converge one
+/// step at a time across a whole domain (e.g. `a ≥ b + 5` and `b ≥ a − 3`
+/// learned as a conflict only after `ub/2` rounds), and Pumpkin does not
+/// stop inside propagation, so this is what bounds the time and memory of
+/// one propagation (a fuzzed 54×2^28 space with grid 5 took gigabytes).
+pub const MAX_POSITIONS: i64 = 1 << 18;
 
 fn check_ranges(problem: &Scene) -> Result<(), SynthError> {
     let sp = problem.space;
-    let mut vals = vec![
-        ("space.x", sp.x),
-        ("space.y", sp.y),
-        ("space.width", sp.width),
-        ("space.height", sp.height),
-        ("grid", problem.grid),
+    let mut vals: Vec<(String, i64)> = vec![
+        ("space.x".into(), sp.x),
+        ("space.y".into(), sp.y),
+        ("space.width".into(), sp.width),
+        ("space.height".into(), sp.height),
+        ("grid".into(), problem.grid),
     ];
-    for o in &problem.objects {
-        vals.push(("width", o.width));
-        vals.push(("height", o.height));
-        if let (Some(x), Some(y)) = (o.x, o.y) {
-            vals.push(("x", x));
-            vals.push(("y", y));
+    for (i, o) in problem.objects.iter().enumerate() {
+        vals.push((format!("objects[{i}].width"), o.width));
+        vals.push((format!("objects[{i}].height"), o.height));
+        if let Some(x) = o.x {
+            vals.push((format!("objects[{i}].x"), x));
+        }
+        if let Some(y) = o.y {
+            vals.push((format!("objects[{i}].y"), y));
         }
     }
+    let max = MAX_COORD.unsigned_abs();
     for (what, v) in vals {
-        if v.abs() > MAX_COORD {
-            return Err(SynthError::BadProblem(format!(
-                "{what} = {v} is too large for synthesis (at most {MAX_COORD} in absolute value)"
+        // `unsigned_abs`: `i64::MIN.abs()` would wrap and pass.
+        if v.unsigned_abs() > max {
+            return Err(SynthError::TooLarge(format!(
+                "{what} = {v} is too large for synthesis; expected at most {MAX_COORD} in absolute value"
             )));
         }
     }
-    if sp.x.abs() + sp.width > MAX_COORD || sp.y.abs() + sp.height > MAX_COORD {
-        return Err(SynthError::BadProblem(
-            "the space is too large for synthesis".into(),
-        ));
+    for (axis, corner, size) in [("x", sp.x, sp.width), ("y", sp.y, sp.height)] {
+        let far = corner.saturating_add(size);
+        if far.unsigned_abs() > max {
+            return Err(SynthError::TooLarge(format!(
+                "the space reaches {axis} = {far} (space.{axis} + size), too far for synthesis; expected at most {MAX_COORD} in absolute value"
+            )));
+        }
+    }
+    for (i, o) in problem.objects.iter().enumerate() {
+        if o.is_placed() {
+            continue;
+        }
+        for (axis, space, size) in [("x", sp.width, o.width), ("y", sp.height, o.height)] {
+            // Within ±2^28 (checked above): no overflow.
+            let n = if space < size {
+                0
+            } else {
+                (space - size) / problem.grid + 1
+            };
+            if n > MAX_POSITIONS {
+                return Err(SynthError::TooLarge(format!(
+                    "objects[{i}] `{}` has {n} grid positions along {axis}, too many for synthesis; expected at most {MAX_POSITIONS} (use a coarser grid or a smaller space)",
+                    o.id
+                )));
+            }
+        }
     }
     Ok(())
 }
@@ -243,7 +308,8 @@ pub fn synthesize(
         .map_err(|e| SynthError::BadProblem(e.to_string()))?;
     check_ranges(problem)?;
     let limits = Limits {
-        deadline: opts.time_limit.map(|t| start + t),
+        // A limit past what `Instant` can represent means no deadline.
+        deadline: opts.time_limit.and_then(|t| start.checked_add(t)),
         node_limit: opts.node_limit,
         cancel: opts.cancel.clone(),
     };
@@ -277,7 +343,9 @@ pub fn synthesize(
     }
     let weights: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();
     let coefs = weights::integer_weights(&weights).ok_or_else(|| {
-        SynthError::BadProblem("rule weights are too large for the solver".into())
+        SynthError::TooLarge(
+            "rule weights are too large for the solver: their integer scaling exceeds 2^30".into(),
+        )
     })?;
     let like_terms = match &opts.like {
         Some(like) => {
@@ -300,7 +368,7 @@ pub fn synthesize(
         false,
         Some(&coefs),
         like_terms.clone().unwrap_or_default(),
-    );
+    )?;
     if std::env::var_os("RCCPACK_DEBUG").is_some() {
         eprintln!(
             "model {:.1} ms ({} vars, {} bools, {} clauses), engine {:.1} ms",
@@ -362,7 +430,7 @@ pub fn synthesize(
             });
         }
         OptOutcome::Infeasible => {
-            let conflict = explain(problem, rules, opts, &limits, &mut stats);
+            let conflict = explain(problem, rules, opts, &limits, &mut stats)?;
             return Ok(infeasible(conflict, stats));
         }
     };
@@ -394,7 +462,7 @@ fn explain(
     opts: &SynthOptions,
     limits: &engine::Limits,
     stats: &mut SolveStats,
-) -> Conflict {
+) -> Result<Conflict, SynthError> {
     use engine::{Engine, Sat};
     use model::{BuildOptions, Model};
     let base = BuildOptions {
@@ -410,7 +478,7 @@ fn explain(
             .collect()
     };
     let m0 = Model::build(problem, rules, base);
-    let mut e0 = Engine::new(&m0, opts.seed, false, None);
+    let mut e0 = Engine::new(&m0, opts.seed, false, None)?;
     let fit = e0.satisfy(limits);
     stats.nodes += e0.nodes();
     stats.conflicts += e0.conflicts();
@@ -425,20 +493,20 @@ fn explain(
     );
     match fit {
         Sat::Unsat(_) => {
-            return Conflict {
+            return Ok(Conflict {
                 objects_cannot_fit: true,
                 hard_rules: Vec::new(),
-            }
+            })
         }
         Sat::Unknown => {
-            return Conflict {
+            return Ok(Conflict {
                 objects_cannot_fit: false,
                 hard_rules: all_rules(&mg),
-            }
+            })
         }
         Sat::Solution(_) => {}
     }
-    let mut eg = Engine::new(&mg, opts.seed, true, None);
+    let mut eg = Engine::new(&mg, opts.seed, true, None)?;
     let all: Vec<usize> = (0..mg.hard.len()).collect();
     let mut core = match eg.satisfy_rules(&all, limits) {
         Sat::Unsat(c) if !c.is_empty() => c,
@@ -462,11 +530,11 @@ fn explain(
     }
     stats.nodes += eg.nodes();
     stats.conflicts += eg.conflicts();
-    Conflict {
+    Ok(Conflict {
         objects_cannot_fit: false,
         hard_rules: core
             .iter()
             .map(|&k| rules.rules[mg.hard[k].rule].name.clone())
             .collect(),
-    }
+    })
 }

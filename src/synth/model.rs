@@ -564,13 +564,53 @@ impl Model {
                     continue;
                 };
                 let nx = self.vars[xa].ub + 1;
-                // nx·ya + xa < nx·yb + xb
-                self.symmetry.push(LinLe {
+                // (ya, xa) <lex (yb, xb): as the linear
+                // nx·ya + xa < nx·yb + xb when its products fit the engine's
+                // i32 arithmetic, else as clauses without products.
+                let lin = LinLe {
                     terms: vec![(nx, ya), (1, xa), (-nx, yb), (-1, xb)],
                     rhs: -1,
-                });
+                };
+                if self.lin_fits_i32(&lin) {
+                    self.symmetry.push(lin);
+                } else {
+                    // ya ≤ yb, and ya < yb ∨ xa < xb.
+                    let le = self.vdiff_ge(yb, ya, 0);
+                    let lt_y = self.vdiff_ge(yb, ya, 1);
+                    let lt_x = self.vdiff_ge(xb, xa, 1);
+                    self.clauses.push(vec![le]);
+                    self.clauses.push(vec![lt_y, lt_x]);
+                }
             }
         }
+    }
+
+    /// Whether every partial sum of `Σ coef·var` (and the right-hand side)
+    /// stays within `i32`: `Σ |coef|·ub + |rhs| ≤ i32::MAX`.
+    pub fn lin_fits_i32(&self, l: &LinLe) -> bool {
+        let sum: i128 = l
+            .terms
+            .iter()
+            .map(|&(c, v)| i128::from(c).abs() * i128::from(self.vars[v].ub))
+            .sum::<i128>()
+            + i128::from(l.rhs).abs();
+        sum <= i128::from(i32::MAX)
+    }
+
+    /// Whether a cumulative's numbers stay within `i32` in the engine:
+    /// the sum of every demand plus the capacity, and every task's largest
+    /// start plus its duration.
+    pub fn cumulative_fits_i32(&self, c: &Cumulative) -> bool {
+        let demands: i128 = c.tasks.iter().map(|t| i128::from(t.2).abs()).sum();
+        let origin = i128::from(self.axis_origin(c.axis));
+        let ends_fit = c.tasks.iter().all(|&(o, dur, _)| {
+            let start = match self.coord(o, c.axis) {
+                Coord::Const(v) => i128::from(v).abs(),
+                Coord::Var(v) => origin.abs() + i128::from(self.grid) * i128::from(self.vars[v].ub),
+            };
+            start + i128::from(dur).abs() <= i128::from(i32::MAX)
+        });
+        ends_fit && demands + i128::from(c.capacity).abs() <= i128::from(i32::MAX)
     }
 
     fn post_cumulative(&mut self, problem: &Scene) {
@@ -586,11 +626,15 @@ impl Model {
                 })
                 .collect();
             if tasks.iter().filter(|t| !self.is_const(t.0)).count() >= 2 {
-                self.cumulative.push(Cumulative {
+                let c = Cumulative {
                     axis,
                     tasks,
                     capacity,
-                });
+                };
+                // Redundant: left out when its sums could leave i32.
+                if self.cumulative_fits_i32(&c) {
+                    self.cumulative.push(c);
+                }
             }
         }
     }

@@ -26,7 +26,8 @@ pub fn integer_weights(weights: &[f64]) -> Option<Vec<i64>> {
     let mut ints: Option<Vec<i64>> = None;
     if all_int {
         let v: Vec<i64> = weights.iter().map(|&w| w as i64).collect();
-        if v.iter().sum::<i64>() <= MAX_TOTAL {
+        // Summed in i128: many terms of up to 1e12 must not overflow.
+        if v.iter().map(|&x| i128::from(x)).sum::<i128>() <= i128::from(MAX_TOTAL) {
             ints = Some(v);
         }
     }

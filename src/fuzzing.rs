@@ -1,0 +1,847 @@
+//! Fuzz harnesses (issue 11), shared by the cargo-fuzz targets in `fuzz/`
+//! and by `tests/fuzz_replay.rs`, which replays every committed corpus and
+//! regression file on stable Rust.
+//!
+//! Each harness takes arbitrary bytes and returns normally for every input
+//! on which the program behaves as SPEC says; a panic (including a failed
+//! assertion here) is a bug. Compiled only with the `fuzzing` feature.
+//!
+//! | harness | input | checks |
+//! |---|---|---|
+//! | [`scene`] | scene / demonstrations JSON | no panic; a valid scene round-trips through save/load; relations agree with the table; evaluation and rendering do not panic; scores in `[0, 1]` |
+//! | [`rules`] | `.rcc` text | no panic; every error span inside the input; parse → print → parse gives the same rules; check and evaluate against a small scene |
+//! | [`learn`] | structured (`arbitrary`) demonstrations | the learned file parses and every demonstration satisfies every learned rule |
+//! | [`synth`] | structured tiny problem and rules, coordinates also extreme | on success `verify` passes and the score equals brute force's optimum; on refusal a typed error |
+//! | [`studio`] | requests (method, path, body) | a status code below 500, never a panic, nothing written outside the task folder |
+
+use crate::eval::evaluate;
+use crate::relations::{relation_bits, Contact, Quant, Relation};
+use crate::rules::{
+    check_classes, parse_rules, print_rules, Atom, Formula, Rule, RuleSet, Scope, Strength, Target,
+};
+use crate::scene::{scenes_from_json, scenes_to_json, Object, Scene, Space};
+use arbitrary::{Result as AResult, Unstructured};
+
+// ---- scene -----------------------------------------------------------------
+
+/// A fixed rule set over a scene's classes: every relation with every
+/// quantifier against `*`, the first class and a landmark, plus a
+/// scene-level rule, for the first two classes.
+fn fixed_rules(scene: &Scene) -> RuleSet {
+    let classes = scene.classes();
+    let mut rules = Vec::new();
+    let landmark = scene.objects.iter().find(|o| o.fixed).map(|o| o.id.clone());
+    for (ci, subject) in classes.iter().take(2).enumerate() {
+        let target = classes[0].to_string();
+        let quants = [
+            Quant::Every,
+            Quant::Some,
+            Quant::No,
+            Quant::AtLeast(2),
+            Quant::AtMost(1),
+        ];
+        for (ri, rel) in Relation::ALL.into_iter().enumerate() {
+            let q = quants[ri % quants.len()];
+            let mut atoms = vec![
+                Formula::Atom(Atom::quantified(rel, *subject, q, Target::Any)),
+                Formula::Atom(Atom::new(rel, *subject, Target::Class(target.clone()))),
+            ];
+            if let Some(id) = &landmark {
+                atoms.push(Formula::Atom(Atom::new(
+                    rel,
+                    *subject,
+                    Target::Landmark(id.clone()),
+                )));
+            }
+            let f = if ri % 2 == 0 {
+                Formula::Or(atoms)
+            } else {
+                Formula::not(Formula::And(atoms))
+            };
+            let strength = match ri % 3 {
+                0 => Strength::Hard,
+                1 => Strength::Weight(1.5),
+                _ => Strength::P(0.01),
+            };
+            rules.push(Rule::new(format!("r{ci}_{ri}"), f).with_strength(strength));
+        }
+        let f = Formula::Atom(Atom::new(
+            Relation::ALL[ci],
+            *subject,
+            Target::Class(subject.to_string()),
+        ));
+        rules.push(Rule::new(format!("s{ci}"), f).with_scope(Scope::Scene(Quant::AtLeast(1))));
+    }
+    RuleSet::new(rules)
+}
+
+/// Everything a valid scene must survive.
+fn check_valid_scene(s: &Scene) {
+    let again = Scene::from_json(&s.to_json()).expect("a saved valid scene loads again");
+    assert_eq!(&again, s, "save/load round trip");
+    // Relations: the fast bit path agrees with the table's conditions.
+    let rects: Vec<_> = s.objects.iter().filter_map(Object::rect).take(24).collect();
+    for contact in Contact::ALL {
+        for a in &rects {
+            for b in &rects {
+                let bits = relation_bits(a, b, contact);
+                for rel in Relation::ALL {
+                    assert_eq!(
+                        bits & rel.bit() != 0,
+                        rel.def().holds(a, b, contact),
+                        "{rel} on {a:?} {b:?} ({contact})"
+                    );
+                }
+            }
+        }
+    }
+    if s.objects.len() <= 64 {
+        let rules = fixed_rules(s);
+        for contact in Contact::ALL {
+            let e = evaluate(s, &rules, contact);
+            assert!((0.0..=1.0).contains(&e.score), "score {}", e.score);
+            assert!(e.satisfied_weight <= e.total_weight + 1e-9);
+            for r in &e.rules {
+                assert!(r.satisfied <= r.subjects.max(1));
+            }
+            let _ = serde_json::to_string(&e).expect("an evaluation serialises");
+        }
+        let svg =
+            crate::render::render_svg(s, Some(&rules), &crate::render::RenderOptions::default());
+        assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"));
+    }
+}
+
+/// Bytes → scene and demonstrations JSON → validate → relations →
+/// evaluate a fixed rule set; a valid scene round-trips.
+pub fn scene(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    match Scene::from_json(text) {
+        Ok(s) => check_valid_scene(&s),
+        Err(e) => {
+            let _ = e.to_string();
+        }
+    }
+    match scenes_from_json(text) {
+        Ok(scenes) => {
+            let again = scenes_from_json(&scenes_to_json(&scenes)).expect("saved scenes load");
+            assert_eq!(again, scenes, "demonstrations round trip");
+            for s in &scenes {
+                check_valid_scene(s);
+            }
+        }
+        Err(e) => {
+            let _ = e.to_string();
+        }
+    }
+}
+
+// ---- rules -----------------------------------------------------------------
+
+/// The small scene the `rules` harness checks against: classes R, G, B, W
+/// with a fixed wall `w` (a landmark).
+fn small_scene() -> Scene {
+    Scene::from_json(
+        r#"{"space":{"width":60,"height":60},"grid":10,"objects":[
+        {"id":"w","class":"W","x":0,"y":0,"width":60,"height":10,"fixed":true},
+        {"id":"r1","class":"R","x":0,"y":10,"width":10,"height":10},
+        {"id":"r2","class":"R","x":10,"y":10,"width":10,"height":10},
+        {"id":"g1","class":"G","x":30,"y":10,"width":20,"height":10},
+        {"id":"b1","class":"B","x":0,"y":20,"width":10,"height":10},
+        {"id":"b2","class":"B","width":10,"height":10}]}"#,
+    )
+    .unwrap_or_else(|e| unreachable!("the built-in scene is valid: {e}"))
+}
+
+fn spans_inside(e: &crate::rules::RulesError, src: &str) {
+    assert!(!e.diagnostics.is_empty(), "an error has a diagnostic");
+    for d in &e.diagnostics {
+        assert!(
+            d.span.start <= d.span.end && d.span.end <= src.len(),
+            "span {:?} outside the input of {} bytes: {}",
+            d.span,
+            src.len(),
+            d.message
+        );
+    }
+    let _ = e.render("fuzz.rcc", src, false);
+}
+
+/// Bytes → parse → check against a small scene → print → re-parse equal.
+pub fn rules(data: &[u8]) {
+    let Ok(src) = std::str::from_utf8(data) else {
+        return;
+    };
+    let set = match parse_rules(src) {
+        Ok(set) => set,
+        Err(e) => return spans_inside(&e, src),
+    };
+    let printed = print_rules(&set);
+    let again = match parse_rules(&printed) {
+        Ok(a) => a,
+        Err(e) => {
+            panic!("printed rules do not parse: {e}\n--- input\n{src}\n--- printed\n{printed}")
+        }
+    };
+    assert!(
+        set.same_rules(&again),
+        "print/parse round trip changed the rules\n--- input\n{src}\n--- printed\n{printed}"
+    );
+    assert_eq!(print_rules(&again), printed, "printing is a fixed point");
+    let scene = small_scene();
+    if let Err(e) = check_classes(&set, &scene) {
+        spans_inside(&e, src);
+    }
+    for contact in Contact::ALL {
+        let e = evaluate(&scene, &set, contact);
+        assert!((0.0..=1.0).contains(&e.score), "score {}", e.score);
+    }
+}
+
+// ---- structured inputs -----------------------------------------------------
+
+const CLASSES: [&str; 3] = ["A", "B", "W"];
+
+fn quant(u: &mut Unstructured) -> AResult<Quant> {
+    Ok(match u.int_in_range(0..=5)? {
+        0 => Quant::Every,
+        1 => Quant::Some,
+        2 => Quant::No,
+        3 => Quant::AtLeast(u.int_in_range(0..=3)?),
+        4 => Quant::AtMost(u.int_in_range(0..=3)?),
+        _ => {
+            if u.arbitrary()? {
+                Quant::AtLeast(crate::relations::MAX_COUNT)
+            } else {
+                Quant::AtMost(crate::relations::MAX_COUNT)
+            }
+        }
+    })
+}
+
+fn formula(u: &mut Unstructured, subject: &str, ids: &[String], depth: u32) -> AResult<Formula> {
+    let pick = if depth == 0 {
+        0
+    } else {
+        u.int_in_range(0..=3)?
+    };
+    Ok(match pick {
+        0 => {
+            let rel = *u.choose(&Relation::ALL)?;
+            let target = match u.int_in_range(0..=2)? {
+                0 => Target::Any,
+                1 if !ids.is_empty() => Target::Landmark(u.choose(ids)?.clone()),
+                _ => Target::Class(u.choose(&CLASSES)?.to_string()),
+            };
+            if matches!(target, Target::Landmark(_)) || u.arbitrary()? {
+                Formula::Atom(Atom::new(rel, subject, target))
+            } else {
+                Formula::Atom(Atom::quantified(rel, subject, quant(u)?, target))
+            }
+        }
+        1 => Formula::not(formula(u, subject, ids, depth - 1)?),
+        k => {
+            let n = u.int_in_range(2..=3)?;
+            let v = (0..n)
+                .map(|_| formula(u, subject, ids, depth - 1))
+                .collect::<AResult<Vec<_>>>()?;
+            if k == 2 {
+                Formula::And(v)
+            } else {
+                Formula::Or(v)
+            }
+        }
+    })
+}
+
+fn rule_set(u: &mut Unstructured, fixed_ids: &[String], max: usize) -> AResult<RuleSet> {
+    let n = u.int_in_range(0..=max)?;
+    let mut rules = Vec::with_capacity(n);
+    for i in 0..n {
+        let subject = *u.choose(&CLASSES[..2])?;
+        let f = formula(u, subject, fixed_ids, 2)?;
+        let strength = match u.int_in_range(0..=4)? {
+            0 => Strength::Hard,
+            1 => Strength::Weight(f64::from(u.int_in_range(1u8..=3)?)),
+            2 => Strength::Weight(2.5),
+            3 => Strength::P(*u.choose(&[0.5, 0.01, 1e-8, 1e-300])?),
+            _ => Strength::Weight(1.0),
+        };
+        let scope = if u.ratio(1, 4)? {
+            Scope::of(quant(u)?)
+        } else {
+            Scope::Each
+        };
+        rules.push(
+            Rule::new(format!("r{i}"), f)
+                .with_strength(strength)
+                .with_scope(scope),
+        );
+    }
+    Ok(RuleSet::new(rules))
+}
+
+// ---- learn -----------------------------------------------------------------
+
+fn demos(u: &mut Unstructured) -> AResult<Vec<Scene>> {
+    let grid = *u.choose(&[1i64, 5, 10])?;
+    let w = u.int_in_range(1..=6)? * 10;
+    let h = u.int_in_range(1..=6)? * 10;
+    let space = Space {
+        x: *u.choose(&[0i64, -20, 7])?,
+        y: *u.choose(&[0i64, 30, -5])?,
+        width: w,
+        height: h,
+    };
+    let fixed = if u.arbitrary()? {
+        vec![Object::fixed_at(
+            "w",
+            "W",
+            space.x,
+            space.y,
+            space.width.min(20),
+            10.min(h),
+        )]
+    } else {
+        Vec::new()
+    };
+    let n_demos = u.int_in_range(1..=3)?;
+    let mut out = Vec::new();
+    for _ in 0..n_demos {
+        let mut objects = fixed.clone();
+        for i in 0..u.int_in_range(1..=4)? {
+            let size = *u.choose(&[(10i64, 10i64), (20, 10), (5, 5)])?;
+            let class = *u.choose(&CLASSES[..2])?;
+            let o = Object {
+                id: format!("{class}{i}"),
+                class: class.into(),
+                x: Some(space.x + u.int_in_range(0..=w / grid)? * grid),
+                y: Some(space.y + u.int_in_range(0..=h / grid)? * grid),
+                width: size.0,
+                height: size.1,
+                fixed: false,
+            };
+            let r = o.rect().unwrap_or_else(|| unreachable!("placed"));
+            let fits = r.inside(&space.rect())
+                && objects
+                    .iter()
+                    .filter_map(Object::rect)
+                    .all(|p| !p.interiors_overlap(&r));
+            if fits {
+                objects.push(o);
+            }
+        }
+        out.push(Scene {
+            space,
+            grid,
+            objects,
+        });
+    }
+    Ok(out)
+}
+
+fn learn_inner(u: &mut Unstructured) -> AResult<()> {
+    use crate::infer::{learn as run_learn, LearnParams};
+    let demos = demos(u)?;
+    let statements = if u.ratio(1, 3)? {
+        Some(rule_set(u, &[], 6)?)
+    } else {
+        None
+    };
+    let params = LearnParams {
+        samples: u.int_in_range(1..=12)?,
+        cutoff: *u.choose(&[0.01, 0.5, 0.999])?,
+        seed: u.arbitrary()?,
+        contact: *u.choose(&Contact::ALL)?,
+        ..LearnParams::default()
+    };
+    let learned = match run_learn(&demos, statements.as_ref(), &params) {
+        Ok(l) => l,
+        Err(e) => {
+            // A typed refusal (e.g. objects the null model cannot place).
+            let _ = e.to_string();
+            return Ok(());
+        }
+    };
+    let text = learned.to_rcc();
+    let parsed = match parse_rules(&text) {
+        Ok(p) => p,
+        Err(e) => panic!("the learned file does not parse: {e}\n{text}"),
+    };
+    assert!(
+        parsed.same_rules(&learned.rules()),
+        "the learned file means its rules\n{text}"
+    );
+    let _ = learned.report_json();
+    for (d, scene) in demos.iter().enumerate() {
+        let e = evaluate(scene, &parsed, params.contact);
+        for r in &e.rules {
+            let holds = match &r.scene {
+                Some(_) => r.satisfied == 1,
+                None => r.satisfied == r.subjects,
+            };
+            assert!(
+                holds,
+                "demonstration {d} breaks learned rule `{}` ({:?})\n{text}\n{}",
+                r.name,
+                r.violators,
+                scene.to_json()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// A few small random demonstrations → learn with few samples → the
+/// learned file parses and every demonstration satisfies every learned
+/// rule.
+pub fn learn(data: &[u8]) {
+    let _ = learn_inner(&mut Unstructured::new(data));
+}
+
+// ---- synth -----------------------------------------------------------------
+
+/// Coordinates: mostly small, sometimes at or past the documented bounds.
+fn coord(u: &mut Unstructured, small: i64) -> AResult<i64> {
+    use crate::limits::MAX_COORD as SCENE_MAX;
+    use crate::synth::MAX_COORD as SYNTH_MAX;
+    Ok(if u.ratio(7, 8)? {
+        u.int_in_range(0..=small)?
+    } else {
+        *u.choose(&[
+            SYNTH_MAX,
+            SYNTH_MAX - 30,
+            -SYNTH_MAX,
+            SYNTH_MAX + 1,
+            SCENE_MAX,
+            -SCENE_MAX,
+            SCENE_MAX + 1,
+            i64::MAX,
+            i64::MIN,
+            -1,
+        ])?
+    })
+}
+
+fn size(u: &mut Unstructured, small: i64) -> AResult<i64> {
+    Ok(if u.ratio(15, 16)? {
+        u.int_in_range(1..=small)?
+    } else {
+        *u.choose(&[
+            crate::synth::MAX_COORD,
+            crate::synth::MAX_COORD + 1,
+            crate::limits::MAX_COORD,
+            i64::MAX,
+            0,
+            -5,
+        ])?
+    })
+}
+
+fn problem(u: &mut Unstructured) -> AResult<Scene> {
+    let space = Space {
+        x: coord(u, 20)?,
+        y: coord(u, 20)?,
+        width: size(u, 60)?,
+        height: size(u, 60)?,
+    };
+    let grid = if u.ratio(15, 16)? {
+        *u.choose(&[1i64, 5, 10, 15, 20, 7])?
+    } else {
+        size(u, 60)?
+    };
+    let mut objects = Vec::new();
+    for i in 0..u.int_in_range(0..=4)? {
+        let class = *u.choose(&CLASSES)?;
+        let kind = u.int_in_range(0..=5)?;
+        let (w, h) = if u.ratio(3, 4)? {
+            *u.choose(&[(10i64, 10i64), (20, 10), (10, 20), (5, 5), (15, 10)])?
+        } else {
+            (size(u, 40)?, size(u, 40)?)
+        };
+        let pos = match kind {
+            // Fixed or already placed: a position relative to the space.
+            0 | 1 => Some((
+                space.x.saturating_add(coord(u, 50)?),
+                space.y.saturating_add(coord(u, 50)?),
+            )),
+            _ => None,
+        };
+        objects.push(Object {
+            id: format!("o{i}"),
+            class: class.into(),
+            x: pos.map(|p| p.0),
+            y: pos.map(|p| p.1),
+            width: w,
+            height: h,
+            fixed: kind == 0,
+        });
+    }
+    Ok(Scene {
+        space,
+        grid,
+        objects,
+    })
+}
+
+/// Whether every number is within synthesis's documented bound.
+fn within_synth_bound(p: &Scene) -> bool {
+    let m = crate::synth::MAX_COORD;
+    let ok = |v: i64| v.unsigned_abs() <= m.unsigned_abs();
+    let sp = p.space;
+    ok(sp.x)
+        && ok(sp.y)
+        && ok(sp.width)
+        && ok(sp.height)
+        && ok(p.grid)
+        && ok(sp.x.saturating_add(sp.width))
+        && ok(sp.y.saturating_add(sp.height))
+        && p.objects
+            .iter()
+            .all(|o| ok(o.width) && ok(o.height) && o.x.is_none_or(ok) && o.y.is_none_or(ok))
+        && p.objects.iter().filter(|o| !o.is_placed()).all(|o| {
+            let n = |space: i64, size: i64| {
+                if space < size {
+                    0
+                } else {
+                    (i128::from(space) - i128::from(size)) / i128::from(p.grid.max(1)) + 1
+                }
+            };
+            let max = i128::from(crate::synth::MAX_POSITIONS);
+            n(sp.width, o.width) <= max && n(sp.height, o.height) <= max
+        })
+}
+
+fn synth_inner(u: &mut Unstructured) -> AResult<()> {
+    use crate::synth::brute_force::{approx_eq, solve_with_limit};
+    use crate::synth::verify::verify_solution;
+    use crate::synth::{synthesize, Status, SynthError, SynthOptions};
+    let p = problem(u)?;
+    let fixed_ids: Vec<String> = p
+        .objects
+        .iter()
+        .filter(|o| o.fixed)
+        .map(|o| o.id.clone())
+        .collect();
+    let rules = rule_set(u, &fixed_ids, 4)?;
+    let contact = *u.choose(&Contact::ALL)?;
+    let opts = SynthOptions {
+        contact,
+        node_limit: Some(u.int_in_range(50..=4000)?),
+        seed: u.arbitrary()?,
+        symmetry_breaking: u.arbitrary()?,
+        redundant: u.arbitrary()?,
+        ..SynthOptions::default()
+    };
+    if std::env::var_os("RCCPACK_FUZZ_DEBUG").is_some() {
+        eprintln!("{}{}\n{opts:?}", p.to_json(), print_rules(&rules));
+    }
+    let valid = p.validate().is_ok();
+    let r = match synthesize(&p, &rules, &opts) {
+        Ok(r) => r,
+        Err(SynthError::BadProblem(m)) => {
+            assert!(!valid, "a valid problem refused as bad: {m}");
+            return Ok(());
+        }
+        Err(SynthError::TooLarge(m)) => {
+            assert!(
+                !valid || !within_synth_bound(&p),
+                "refused as too large within the bound: {m}\n{}",
+                p.to_json()
+            );
+            return Ok(());
+        }
+    };
+    assert!(valid, "an invalid problem was solved");
+    // Brute force enumerates every position first: only when they are few.
+    let positions: i128 = p
+        .objects
+        .iter()
+        .filter(|o| !o.is_placed())
+        .map(|o| {
+            let g = i128::from(p.grid);
+            let count = |room: i128| if room < 0 { 0 } else { room / g + 1 };
+            count(i128::from(p.space.width) - i128::from(o.width))
+                * count(i128::from(p.space.height) - i128::from(o.height))
+        })
+        .fold(1, |a: i128, n| a.saturating_mul(n.max(1)));
+    let brute = if positions <= 4000 {
+        solve_with_limit(&p, &rules, contact, 4000).ok()
+    } else {
+        None
+    };
+    let terms: f64 = r
+        .evaluation
+        .as_ref()
+        .map_or(0.0, |e| e.total_weight.max(1.0));
+    match r.status {
+        Status::Optimal | Status::Feasible => {
+            let s = r
+                .scene
+                .as_ref()
+                .unwrap_or_else(|| unreachable!("a solution has a scene"));
+            if let Err(e) = verify_solution(&p, s, &rules, contact) {
+                panic!("solution fails verification: {e}\n{}", s.to_json());
+            }
+            let e = r
+                .evaluation
+                .as_ref()
+                .unwrap_or_else(|| unreachable!("evaluated"));
+            let again = evaluate(s, &rules, contact);
+            assert_eq!(again.satisfied_weight, e.satisfied_weight);
+            if let Some(b) = brute {
+                assert!(b.feasible, "brute force finds no layout, synthesis did");
+                // Weights are scaled to integers (≤ 1e-6 relative error per
+                // term), so allow that much.
+                let tol = 1e-6 * terms;
+                assert!(
+                    e.satisfied_weight <= b.best_numerator + tol,
+                    "synthesis beats brute force: {} > {}",
+                    e.satisfied_weight,
+                    b.best_numerator
+                );
+                if r.status == Status::Optimal {
+                    assert!(
+                        approx_eq(e.satisfied_weight, b.best_numerator)
+                            || (e.satisfied_weight - b.best_numerator).abs() <= tol,
+                        "optimal {} but brute force {}\n{}",
+                        e.satisfied_weight,
+                        b.best_numerator,
+                        p.to_json()
+                    );
+                }
+            }
+        }
+        Status::Infeasible => {
+            if let Some(b) = brute {
+                assert!(
+                    !b.feasible,
+                    "infeasible, but brute force found {}",
+                    b.best.map(|s| s.to_json()).unwrap_or_default()
+                );
+            }
+        }
+        Status::Unknown => {}
+    }
+    Ok(())
+}
+
+/// A structured tiny problem (space ≤ 60×60, ≤ 4 objects, random rules of
+/// every form, hard and soft, both contact modes, coordinates and sizes
+/// also extreme) → synthesize with a node limit → verified, and optimal
+/// means brute force's optimum; a refusal is a typed error.
+pub fn synth(data: &[u8]) {
+    let _ = synth_inner(&mut Unstructured::new(data));
+}
+
+// ---- studio ----------------------------------------------------------------
+
+const STUDIO_PROBLEM: &str = r#"{"space":{"width":40,"height":40},"grid":10,"objects":[
+  {"id":"w","class":"W","x":0,"y":0,"width":40,"height":10,"fixed":true},
+  {"id":"r1","class":"R","width":10,"height":10},
+  {"id":"b1","class":"B","width":10,"height":10}]}"#;
+
+const STUDIO_DEMO: &str = r#"{"space":{"width":40,"height":40},"grid":10,"objects":[
+  {"id":"w","class":"W","x":0,"y":0,"width":40,"height":10,"fixed":true},
+  {"id":"r1","class":"R","x":0,"y":10,"width":10,"height":10},
+  {"id":"b1","class":"B","x":0,"y":20,"width":10,"height":10}]}"#;
+
+fn runtime() -> &'static tokio::runtime::Runtime {
+    static RT: std::sync::OnceLock<tokio::runtime::Runtime> = std::sync::OnceLock::new();
+    RT.get_or_init(|| {
+        tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .build()
+            .unwrap_or_else(|e| panic!("cannot start a runtime for the harness: {e}"))
+    })
+}
+
+struct Request {
+    method: axum::http::Method,
+    uri: String,
+    host: Option<String>,
+    body: Vec<u8>,
+}
+
+fn request(u: &mut Unstructured) -> AResult<Request> {
+    use axum::http::Method;
+    let method = u
+        .choose(&[
+            Method::GET,
+            Method::POST,
+            Method::PUT,
+            Method::DELETE,
+            Method::PATCH,
+        ])?
+        .clone();
+    let tail: String = u.arbitrary()?;
+    let uri = match u.int_in_range(0..=13)? {
+        0 => "/".to_string(),
+        1 => "/api/task".into(),
+        2 => "/api/demos".into(),
+        3 => format!("/api/demos/{}", u.int_in_range(0u8..=3)?),
+        4 => format!("/api/demos/{tail}"),
+        5 => "/api/learn".into(),
+        6 => "/api/learned".into(),
+        7 => "/api/synth".into(),
+        8 => format!("/api/synth/{}", u.int_in_range(0u8..=3)?),
+        9 => format!("/api/synth/{}/cancel", u.int_in_range(0u8..=3)?),
+        10 => format!("/assets/{tail}"),
+        11 => format!("/api/demos/0?version={tail}"),
+        12 => format!("/{tail}"),
+        _ => tail,
+    };
+    let host = if u.ratio(1, 8)? {
+        Some(u.arbitrary()?)
+    } else {
+        None
+    };
+    let body = match u.int_in_range(0..=5)? {
+        0 => Vec::new(),
+        1 => STUDIO_DEMO.as_bytes().to_vec(),
+        2 => format!(
+            r#"{{"rules":"rule a: EC_S(B, R)\n","time_limit":{},"seed":{}}}"#,
+            u.int_in_range(0u8..=3)?,
+            u.int_in_range(0u8..=3)?
+        )
+        .into_bytes(),
+        3 => {
+            let text: String = u.arbitrary()?;
+            serde_json::json!({"text": text, "base_version": "absent"})
+                .to_string()
+                .into_bytes()
+        }
+        _ => u.arbitrary::<Vec<u8>>()?,
+    };
+    Ok(Request {
+        method,
+        uri,
+        host,
+        body,
+    })
+}
+
+/// Keep the harness fast: a learn body asking for many samples, or a synth
+/// body with a long time limit, is scaled down (the limits themselves are
+/// tested elsewhere; here only the handling of the request matters).
+fn tame(req: &mut Request) {
+    if let Ok(mut v) = serde_json::from_slice::<serde_json::Value>(&req.body) {
+        let mut changed = false;
+        if let Some(n) = v.get("samples").and_then(serde_json::Value::as_u64) {
+            if (21..=crate::limits::MAX_SAMPLES as u64).contains(&n) {
+                v["samples"] = serde_json::json!(20);
+                changed = true;
+            }
+        }
+        if let Some(t) = v.get("time_limit").and_then(serde_json::Value::as_f64) {
+            if t > 2.0 && t <= 600.0 {
+                v["time_limit"] = serde_json::json!(2);
+                changed = true;
+            }
+        }
+        if changed {
+            req.body = v.to_string().into_bytes();
+        }
+    }
+}
+
+fn list_dir(dir: &std::path::Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .map(|rd| {
+            rd.filter_map(|e| e.ok())
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    v.sort();
+    v
+}
+
+fn studio_inner(u: &mut Unstructured, root: &std::path::Path) -> AResult<()> {
+    use tower::ServiceExt;
+    let task = root.join("task");
+    std::fs::create_dir_all(&task).unwrap_or_else(|e| panic!("cannot create {task:?}: {e}"));
+    let write = |name: &str, text: &str| {
+        std::fs::write(task.join(name), text).unwrap_or_else(|e| panic!("cannot write: {e}"))
+    };
+    write("problem.json", STUDIO_PROBLEM);
+    if u.arbitrary()? {
+        write("demos.json", &format!("[{STUDIO_DEMO}]"));
+    }
+    if u.ratio(1, 4)? {
+        let text: String = u.arbitrary()?;
+        write("statements.rcc", &text);
+    }
+    let app = match crate::studio::router(&task) {
+        Ok(a) => a,
+        Err(e) => panic!("the studio refuses a valid task folder: {e}"),
+    };
+    let n = u.int_in_range(1..=4)?;
+    for _ in 0..n {
+        let mut req = request(u)?;
+        tame(&mut req);
+        let mut b = axum::http::Request::builder()
+            .method(req.method.clone())
+            .uri(req.uri.as_str());
+        if let Some(h) = &req.host {
+            b = b.header(axum::http::header::HOST, h.as_str());
+        }
+        // A URI or header the HTTP types refuse never reaches the server.
+        let Ok(http_req) = b.body(axum::body::Body::from(req.body.clone())) else {
+            continue;
+        };
+        let res = runtime().block_on(async {
+            let res = app.clone().oneshot(http_req).await;
+            match res {
+                Ok(r) => {
+                    let status = r.status();
+                    let body = axum::body::to_bytes(r.into_body(), 16 << 20).await;
+                    (status, body.map(|b| b.len()).unwrap_or(0))
+                }
+                Err(e) => match e {},
+            }
+        });
+        assert!(
+            !res.0.is_server_error(),
+            "{} {} answered {} (body {:?})",
+            req.method,
+            req.uri,
+            res.0,
+            String::from_utf8_lossy(&req.body)
+        );
+    }
+    // Nothing outside the task folder; inside, only the task's file names.
+    assert_eq!(list_dir(root), ["task"], "written outside the task folder");
+    for name in list_dir(&task) {
+        assert!(
+            matches!(
+                name.as_str(),
+                "problem.json" | "demos.json" | "statements.rcc" | "learned.rcc"
+            ),
+            "unexpected file {name} in the task folder"
+        );
+    }
+    Ok(())
+}
+
+/// Requests (method, path, body, sometimes a Host header) through the
+/// studio's router with `oneshot` on a fresh temporary task folder → a
+/// status below 500, never a panic, nothing written outside the folder.
+pub fn studio(data: &[u8]) {
+    static N: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let root = std::env::temp_dir().join(format!(
+        "rccpack-fuzz-studio-{}-{}",
+        std::process::id(),
+        N.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+    ));
+    let _ = std::fs::remove_dir_all(&root);
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let _ = studio_inner(&mut Unstructured::new(data), &root);
+    }));
+    let _ = std::fs::remove_dir_all(&root);
+    if let Err(p) = result {
+        std::panic::resume_unwind(p);
+    }
+}
