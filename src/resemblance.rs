@@ -270,11 +270,27 @@ mod tests {
 
     #[test]
     fn far_coordinates_saturate_and_huge_maps_are_refused() {
-        let like = Likeness::new(&[Scene::from_json(
-            r#"{"space":{"x":-4000000000000000000,"y":0,"width":9000000000000000000,"height":10},
-                "grid":1,"objects":[{"class":"A","x":-4000000000000000000,"y":0,"width":1,"height":1}]}"#,
-        )
-        .unwrap()]);
+        // Built in code: the scene loader refuses such coordinates, but
+        // the library function must not wrap on them either.
+        let far = Object {
+            id: "f".into(),
+            class: "A".into(),
+            x: Some(-4_000_000_000_000_000_000),
+            y: Some(0),
+            width: 1,
+            height: 1,
+            fixed: false,
+        };
+        let like = Likeness::new(&[Scene {
+            space: crate::scene::Space {
+                x: i64::MIN / 2,
+                y: 0,
+                width: i64::MAX,
+                height: 10,
+            },
+            grid: 1,
+            objects: vec![far],
+        }]);
         let o = Object {
             id: "a".into(),
             class: "A".into(),

@@ -306,7 +306,7 @@ fn hard_problem() -> (Scene, RuleSet) {
 fn time_limit_returns_a_valid_layout() {
     let (p, rules) = hard_problem();
     let opts = SynthOptions {
-        time_limit: Some(Duration::from_millis(50)),
+        time_limit: Some(Duration::from_millis(400)),
         ..Default::default()
     };
     let r = solve(&p, &rules, &opts);
