@@ -88,13 +88,26 @@ mod tests {
             time_limit(MAX_TIME_LIMIT_SECS),
             Ok(Duration::from_secs(1_000_000))
         );
-        for bad in [-1.0, -0.0001, 1e20, MAX_TIME_LIMIT_SECS + 1.0, f64::NAN, f64::INFINITY] {
+        for bad in [
+            -1.0,
+            -0.0001,
+            1e20,
+            MAX_TIME_LIMIT_SECS + 1.0,
+            f64::NAN,
+            f64::INFINITY,
+        ] {
             let e = time_limit(bad).unwrap_err().to_string();
-            assert!(e.contains("expected a number of seconds from 0 to 1000000"), "{e}");
+            assert!(
+                e.contains("expected a number of seconds from 0 to 1000000"),
+                "{e}"
+            );
         }
         assert!(parse_time_limit("1e20").is_err());
         assert!(parse_time_limit("inf").is_err());
-        assert!(parse_time_limit("ten").unwrap_err().to_string().contains("`ten`"));
+        assert!(parse_time_limit("ten")
+            .unwrap_err()
+            .to_string()
+            .contains("`ten`"));
         assert_eq!(parse_time_limit("2.5"), Ok(Duration::from_millis(2500)));
     }
 
@@ -104,6 +117,9 @@ mod tests {
         assert_eq!(check_samples(MAX_SAMPLES), Ok(MAX_SAMPLES));
         assert!(check_samples(0).is_err());
         let e = check_samples(MAX_SAMPLES + 1).unwrap_err().to_string();
-        assert!(e.contains("1000001") && e.contains("from 1 to 1000000"), "{e}");
+        assert!(
+            e.contains("1000001") && e.contains("from 1 to 1000000"),
+            "{e}"
+        );
     }
 }

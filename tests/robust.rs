@@ -77,13 +77,19 @@ fn synthesis_at_the_coordinate_bound() {
     assert_optimal(&p, &parse_rules("rule row: AL_S(T, T)\n").unwrap());
     // Grid 1: exactly MAX_POSITIONS positions along x is accepted ...
     let p = problem(0, 0, MAX_POSITIONS + 9, 10, 1, TWO_BLOCKS);
-    assert_optimal(&p, &parse_rules("rule touch: EC_E(B, B) | EC_W(B, B)\n").unwrap());
+    assert_optimal(
+        &p,
+        &parse_rules("rule touch: EC_E(B, B) | EC_W(B, B)\n").unwrap(),
+    );
     // ... one more is refused, naming the object and the limit.
     let p = problem(0, 0, MAX_POSITIONS + 10, 10, 1, TWO_BLOCKS);
     match solve(&p, &RuleSet::default()) {
         Err(e @ SynthError::TooLarge(_)) => {
             let m = e.to_string();
-            assert!(m.contains("objects[0] `b1` has 262145 grid positions along x"), "{m}");
+            assert!(
+                m.contains("objects[0] `b1` has 262145 grid positions along x"),
+                "{m}"
+            );
             assert!(m.contains("at most 262144"), "{m}");
         }
         other => panic!("expected TooLarge, got {other:?}"),
@@ -161,7 +167,14 @@ fn bad_time_limits_exit_1_everywhere() {
     let rules = "examples/box-packing/pilot.rcc";
     for bad in ["1e20", "-1", "nan", "inf", "1000001", "soon"] {
         for args in [
-            vec!["run", "examples/box-packing", "--out", out, "--time-limit", bad],
+            vec![
+                "run",
+                "examples/box-packing",
+                "--out",
+                out,
+                "--time-limit",
+                bad,
+            ],
             vec!["synth", problem, "--rules", rules, "--time-limit", bad],
             vec!["bench", "thesis", "--out", out, "--time-limit", bad],
         ] {
@@ -213,7 +226,12 @@ fn usage_errors_exit_1_help_exits_0() {
         assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
         assert!(!stderr(&o).is_empty(), "{args:?}: a message");
     }
-    for args in [vec!["--help"], vec!["--version"], vec!["synth", "--help"], vec!["help"]] {
+    for args in [
+        vec!["--help"],
+        vec!["--version"],
+        vec!["synth", "--help"],
+        vec!["help"],
+    ] {
         let o = rccpack(&args);
         assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
         assert!(!o.stdout.is_empty(), "{args:?}: printed to stdout");
@@ -234,7 +252,9 @@ fn absurd_sample_counts_are_refused() {
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
     assert!(
-        e.contains("invalid --samples 1000000000000000: expected a whole number of at most 1000000"),
+        e.contains(
+            "invalid --samples 1000000000000000: expected a whole number of at most 1000000"
+        ),
         "{e}"
     );
     use rccpack::infer::LearnParams;
@@ -288,5 +308,9 @@ fn huge_space_through_the_command_line() {
     .unwrap();
     let o = rccpack(&["synth", p.to_str().unwrap(), "--rules", r.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("space.width = 300000000 is too large"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("space.width = 300000000 is too large"),
+        "{}",
+        stderr(&o)
+    );
 }

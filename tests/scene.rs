@@ -150,19 +150,27 @@ fn on_grid_is_relative_to_the_space_origin() {
 #[test]
 fn coordinates_at_and_past_the_documented_bound() {
     use rccpack::limits::MAX_COORD;
-    let scene = |space: &str, obj: &str| {
-        format!(r#"{{"space":{space},"grid":1,"objects":[{obj}]}}"#)
-    };
+    let scene =
+        |space: &str, obj: &str| format!(r#"{{"space":{space},"grid":1,"objects":[{obj}]}}"#);
     // At the bound: accepted.
     let at = scene(
-        &format!(r#"{{"x":{},"y":{},"width":{MAX_COORD},"height":{MAX_COORD}}}"#, -MAX_COORD, -MAX_COORD),
-        &format!(r#"{{"class":"R","x":{},"y":-1,"width":{MAX_COORD},"height":1}}"#, -MAX_COORD),
+        &format!(
+            r#"{{"x":{},"y":{},"width":{MAX_COORD},"height":{MAX_COORD}}}"#,
+            -MAX_COORD, -MAX_COORD
+        ),
+        &format!(
+            r#"{{"class":"R","x":{},"y":-1,"width":{MAX_COORD},"height":1}}"#,
+            -MAX_COORD
+        ),
     );
     Scene::from_json(&at).expect("the bound itself is accepted");
     // The space's corner plus its size reaches 2·MAX_COORD; still fine.
     let far = scene(
         &format!(r#"{{"x":{MAX_COORD},"y":{MAX_COORD},"width":{MAX_COORD},"height":{MAX_COORD}}}"#),
-        &format!(r#"{{"class":"R","x":{},"y":{MAX_COORD},"width":{MAX_COORD},"height":1}}"#, MAX_COORD),
+        &format!(
+            r#"{{"class":"R","x":{},"y":{MAX_COORD},"width":{MAX_COORD},"height":1}}"#,
+            MAX_COORD
+        ),
     );
     Scene::from_json(&far).expect("edges up to 2·MAX_COORD are fine");
     let cases: Vec<(String, &str)> = vec![
@@ -171,7 +179,10 @@ fn coordinates_at_and_past_the_documented_bound() {
             "space.x",
         ),
         (
-            scene(&format!(r#"{{"x":{},"width":10,"height":10}}"#, MAX_COORD + 1), ""),
+            scene(
+                &format!(r#"{{"x":{},"width":10,"height":10}}"#, MAX_COORD + 1),
+                "",
+            ),
             "space.x",
         ),
         (

@@ -554,8 +554,19 @@ async fn synth_can_be_cancelled() {
 async fn learn_samples_and_synth_time_limit_are_bounded() {
     let dir = task_dir("bounds", true);
     let app = rccpack::studio::router(&dir).unwrap();
-    for n in [json!(0), json!(1_000_001u64), json!(1_000_000_000_000_000u64), json!(u64::MAX)] {
-        let (s, v) = call(&app, Method::POST, "/api/learn", json!({"samples": n}).to_string()).await;
+    for n in [
+        json!(0),
+        json!(1_000_001u64),
+        json!(1_000_000_000_000_000u64),
+        json!(u64::MAX),
+    ] {
+        let (s, v) = call(
+            &app,
+            Method::POST,
+            "/api/learn",
+            json!({"samples": n}).to_string(),
+        )
+        .await;
         assert_eq!(s, StatusCode::BAD_REQUEST, "{n}: {v}");
         assert_eq!(v["path"], "samples");
         assert!(

@@ -39,8 +39,8 @@
 //! scaled real weights.
 
 use super::model::{BoolDef, Coord, Lit, Model};
-use super::SynthError;
 use super::weights::SubsetSums;
+use super::SynthError;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
 use pumpkin_constraints::{boolean_equals, cumulative, less_than_or_equals};
 use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
@@ -322,12 +322,15 @@ impl Engine {
         let obj_name = |o: usize| format!("objects[{o}]");
         // Range-check everything before the solver exists.
         for v in &model.vars {
-            i32_of(v.ub, || format!("the position range of {}", obj_name(v.object)))?;
+            i32_of(v.ub, || {
+                format!("the position range of {}", obj_name(v.object))
+            })?;
         }
         for s in &model.symmetry {
             if !model.lin_fits_i32(s) {
                 return Err(SynthError::TooLarge(
-                    "a symmetry-breaking order is too large for the solver's 32-bit arithmetic".into(),
+                    "a symmetry-breaking order is too large for the solver's 32-bit arithmetic"
+                        .into(),
                 ));
             }
         }

@@ -300,7 +300,9 @@ pub fn synthesize(
     }
     let weights: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();
     let coefs = weights::integer_weights(&weights).ok_or_else(|| {
-        SynthError::TooLarge("rule weights are too large for the solver: their integer scaling exceeds 2^30".into())
+        SynthError::TooLarge(
+            "rule weights are too large for the solver: their integer scaling exceeds 2^30".into(),
+        )
     })?;
     let t_model = start.elapsed();
     let mut engine = Engine::new(&model, opts.seed, false, Some(&coefs))?;
