@@ -345,8 +345,16 @@ fn demos(u: &mut Unstructured) -> AResult<Vec<Scene>> {
 fn learn_inner(u: &mut Unstructured) -> AResult<()> {
     use crate::infer::{learn as run_learn, LearnParams};
     let demos = demos(u)?;
+    // Given statements only in forms the parser reads back (so that the
+    // learned file can parse): built with every form of the AST, kept when
+    // print → parse gives them back. Forms the grammar does not have yet
+    // join in by themselves once it does.
     let statements = if u.ratio(1, 3)? {
-        Some(rule_set(u, &[], 6)?)
+        let set = rule_set(u, &[], 6)?;
+        parse_rules(&print_rules(&set))
+            .ok()
+            .filter(|p| p.same_rules(&set))
+            .map(|_| set)
     } else {
         None
     };

@@ -314,3 +314,24 @@ fn huge_space_through_the_command_line() {
         stderr(&o)
     );
 }
+
+/// A rule built in code with a NaN, infinite or non-positive weight is a
+/// typed error naming the rule (NaN used to become a coefficient of 1).
+#[test]
+fn non_finite_weights_are_refused() {
+    use rccpack::rules::{Rule, Strength};
+    let p = problem(0, 0, 40, 40, 10, TWO_BLOCKS);
+    let base = parse_rules("rule touch: EC_E(B, B) | EC_W(B, B)\n").unwrap();
+    for w in [f64::NAN, f64::INFINITY, 0.0, -1.0] {
+        let mut rules = base.clone();
+        let r: Rule = rules.rules[0].clone().with_strength(Strength::Weight(w));
+        rules.rules[0] = r;
+        match solve(&p, &rules) {
+            Err(SynthError::BadProblem(m)) => {
+                assert!(m.contains("rule `touch` has weight"), "{m}");
+                assert!(m.contains("expected a finite number greater than 0"), "{m}");
+            }
+            other => panic!("weight {w}: expected BadProblem, got {other:?}"),
+        }
+    }
+}

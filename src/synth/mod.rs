@@ -341,6 +341,18 @@ pub fn synthesize(
             stats,
         ));
     }
+    // Weights from the parser are finite and positive; a rule built in code
+    // may carry anything, and NaN would silently become a coefficient of 1.
+    if let Some(s) = model
+        .soft
+        .iter()
+        .find(|s| !(s.weight.is_finite() && s.weight > 0.0))
+    {
+        return Err(SynthError::BadProblem(format!(
+            "rule `{}` has weight {}; expected a finite number greater than 0",
+            rules.rules[s.rule].name, s.weight
+        )));
+    }
     let weights: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();
     let coefs = weights::integer_weights(&weights).ok_or_else(|| {
         SynthError::TooLarge(
