@@ -8,7 +8,11 @@
 //! The demonstrations are written down here as block positions, so that
 //! changing one is a one-line edit; the box walls are shared by all of them.
 
-use rccpack::scene::{scenes_to_json, Object, Scene, Space};
+#[path = "support/boxes.rs"]
+mod boxes;
+
+use boxes::{block, scene, walls};
+use rccpack::scene::{scenes_to_json, Scene};
 use std::path::Path;
 
 /// `(class, [(x, y), ...])` per class; every block is 20×20.
@@ -67,43 +71,6 @@ const DEMOS: [Demo; 8] = [
         ("B", &[(200, 380), (200, 360)]),
     ],
 ];
-
-fn walls() -> Vec<Object> {
-    [
-        ("w_south", 190, 190, 220, 10),
-        ("w_north", 190, 400, 220, 10),
-        ("w_west", 190, 200, 10, 200),
-        ("w_east", 400, 200, 10, 200),
-    ]
-    .into_iter()
-    .map(|(id, x, y, w, h)| Object::fixed_at(id, "W", x, y, w, h))
-    .collect()
-}
-
-fn block(class: &str, i: usize, pos: Option<(i64, i64)>) -> Object {
-    Object {
-        id: format!("{}{}", class.to_ascii_lowercase(), i + 1),
-        class: class.into(),
-        x: pos.map(|p| p.0),
-        y: pos.map(|p| p.1),
-        width: 20,
-        height: 20,
-        fixed: false,
-    }
-}
-
-fn scene(objects: Vec<Object>) -> Scene {
-    Scene {
-        space: Space {
-            x: 0,
-            y: 0,
-            width: 600,
-            height: 600,
-        },
-        grid: 10,
-        objects,
-    }
-}
 
 fn demos() -> Vec<Scene> {
     DEMOS
