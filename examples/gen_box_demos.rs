@@ -11,12 +11,9 @@
 #[path = "support/boxes.rs"]
 mod boxes;
 
-use boxes::{block, scene, walls};
+use boxes::{block, scene, walls, write_or_check, Demo};
 use rccpack::scene::{scenes_to_json, Scene};
 use std::path::Path;
-
-/// `(class, [(x, y), ...])` per class; every block is 20×20.
-type Demo = [(&'static str, &'static [(i64, i64)]); 3];
 
 /// Eight layouts: red packed low in the west, blue north of every red, green
 /// east of every red and blue; every block touches its own class and has
@@ -72,24 +69,6 @@ const DEMOS: [Demo; 8] = [
     ],
 ];
 
-fn demos() -> Vec<Scene> {
-    DEMOS
-        .iter()
-        .map(|demo| {
-            let mut objects = walls();
-            for (class, cells) in demo {
-                objects.extend(
-                    cells
-                        .iter()
-                        .enumerate()
-                        .map(|(i, &p)| block(class, i, Some(p))),
-                );
-            }
-            scene(objects)
-        })
-        .collect()
-}
-
 fn problem() -> Scene {
     let mut objects = walls();
     for class in ["R", "G", "B"] {
@@ -100,8 +79,7 @@ fn problem() -> Scene {
 
 fn main() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing");
-    let check = std::env::args().any(|a| a == "--check");
-    let demos = demos();
+    let demos = boxes::demos(&DEMOS);
     for (i, d) in demos.iter().enumerate() {
         d.validate()
             .unwrap_or_else(|e| panic!("demonstration {i} is invalid: {e}"));
@@ -112,18 +90,5 @@ fn main() {
         ("demos.json", scenes_to_json(&demos)),
         ("problem.json", problem.to_json()),
     ];
-    for (name, text) in files {
-        let path = dir.join(name);
-        if check {
-            let old = std::fs::read_to_string(&path).unwrap_or_default();
-            assert!(
-                old == text,
-                "{} is stale; rerun gen_box_demos",
-                path.display()
-            );
-        } else {
-            std::fs::write(&path, text).expect("write");
-            println!("wrote {}", path.display());
-        }
-    }
+    write_or_check(&dir, &files, "gen_box_demos");
 }

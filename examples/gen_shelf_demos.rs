@@ -19,13 +19,9 @@ use rccpack::rules::parse_rules;
 #[path = "support/boxes.rs"]
 mod boxes;
 
-use boxes::{block, scene, walls};
+use boxes::{block, scene, walls, write_or_check, Demo};
 use rccpack::scene::{scenes_to_json, Scene};
 use std::path::Path;
-
-/// `(class, [(x, y), ...])` per class; every block is 20×20. The box
-/// interior is [200, 400] × [200, 400].
-type Demo = [(&'static str, &'static [(i64, i64)]); 3];
 
 const DEMOS: [Demo; 8] = [
     [
@@ -70,24 +66,6 @@ const DEMOS: [Demo; 8] = [
     ],
 ];
 
-fn demos() -> Vec<Scene> {
-    DEMOS
-        .iter()
-        .map(|demo| {
-            let mut objects = walls();
-            for (class, cells) in demo {
-                objects.extend(
-                    cells
-                        .iter()
-                        .enumerate()
-                        .map(|(i, &p)| block(class, i, Some(p))),
-                );
-            }
-            scene(objects)
-        })
-        .collect()
-}
-
 /// Four reds, four greens and three blues for the empty box.
 fn problem() -> Scene {
     let mut objects = walls();
@@ -99,11 +77,10 @@ fn problem() -> Scene {
 
 fn main() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/shelf");
-    let check = std::env::args().any(|a| a == "--check");
     let intended_text =
         std::fs::read_to_string(dir.join("intended.rcc")).expect("read intended.rcc");
     let intended = parse_rules(&intended_text).expect("intended.rcc parses");
-    let demos = demos();
+    let demos = boxes::demos(&DEMOS);
     for (i, d) in demos.iter().enumerate() {
         d.validate()
             .unwrap_or_else(|e| panic!("demonstration {i} is invalid: {e}"));
@@ -127,18 +104,5 @@ fn main() {
         ("demos.json", scenes_to_json(&demos)),
         ("problem.json", problem.to_json()),
     ];
-    for (name, text) in files {
-        let path = dir.join(name);
-        if check {
-            let old = std::fs::read_to_string(&path).unwrap_or_default();
-            assert!(
-                old == text,
-                "{} is stale; rerun gen_shelf_demos",
-                path.display()
-            );
-        } else {
-            std::fs::write(&path, text).expect("write");
-            println!("wrote {}", path.display());
-        }
-    }
+    write_or_check(&dir, &files, "gen_shelf_demos");
 }

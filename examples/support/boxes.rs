@@ -2,6 +2,10 @@
 //! the box of four fixed walls on a 600×600 table, 20×20 blocks, the scene.
 
 use rccpack::scene::{Object, Scene, Space};
+use std::path::Path;
+
+/// `(class, [(x, y), ...])` per class; every block is 20×20.
+pub type Demo = [(&'static str, &'static [(i64, i64)]); 3];
 
 pub fn walls() -> Vec<Object> {
     [
@@ -37,5 +41,44 @@ pub fn scene(objects: Vec<Object>) -> Scene {
         },
         grid: 10,
         objects,
+    }
+}
+
+/// One complete scene per demonstration: the walls plus its blocks.
+pub fn demos(demos: &[Demo]) -> Vec<Scene> {
+    demos
+        .iter()
+        .map(|demo| {
+            let mut objects = walls();
+            for (class, cells) in demo {
+                objects.extend(
+                    cells
+                        .iter()
+                        .enumerate()
+                        .map(|(i, &p)| block(class, i, Some(p))),
+                );
+            }
+            scene(objects)
+        })
+        .collect()
+}
+
+/// Write each `(name, text)` into `dir`, or with `--check` on the command
+/// line fail when a file differs (it is stale; rerun `generator`).
+pub fn write_or_check(dir: &Path, files: &[(&str, String)], generator: &str) {
+    let check = std::env::args().any(|a| a == "--check");
+    for (name, text) in files {
+        let path = dir.join(name);
+        if check {
+            let old = std::fs::read_to_string(&path).unwrap_or_default();
+            assert!(
+                &old == text,
+                "{} is stale; rerun {generator}",
+                path.display()
+            );
+        } else {
+            std::fs::write(&path, text).expect("write");
+            println!("wrote {}", path.display());
+        }
     }
 }

@@ -343,9 +343,10 @@ impl Engine {
     }
 
     /// [`Engine::new`] with the resemblance terms of the second objective
-    /// (none: no second objective). Each term's cost is an `element` over
-    /// its distance map indexed by `nx·gy + gx`; the total is one variable.
-    /// The caller checks that costs fit in `i32` ([`like_fits`]).
+    /// (none: no second objective). Each term's cost is a variable bounded
+    /// below by its distance map (see `post_like`); the total is one
+    /// variable. Costs that do not fit `i32` ([`like_fits`]) are a
+    /// [`SynthError::TooLarge`].
     pub fn with_like(
         model: &Model,
         seed: u64,

@@ -361,14 +361,9 @@ pub fn synthesize(
     })?;
     let like_terms = match &opts.like {
         Some(like) => {
+            // The engine refuses costs past its 32-bit arithmetic.
             let terms = like::like_terms(&model, problem, like)
                 .map_err(|e| SynthError::BadProblem(e.to_string()))?;
-            if !engine::like_fits(&terms) {
-                return Err(SynthError::BadProblem(
-                    "resemblance costs are too large for the solver; use a coarser grid or leave out --like"
-                        .into(),
-                ));
-            }
             Some(terms)
         }
         None => None,
