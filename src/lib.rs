@@ -61,6 +61,7 @@
 //! …); see the README.
 #![warn(missing_docs)]
 
+pub mod ask;
 pub mod bench;
 pub mod eval;
 #[cfg(feature = "fuzzing")]

@@ -116,7 +116,12 @@ impl Object {
 }
 
 /// A scene: space, grid step and objects (SPEC §1).
-#[derive(Debug, Clone, PartialEq, Eq)]
+///
+/// Serde reads and writes the SPEC §2 form (defaults filled in, the scene
+/// validated), so a scene can be a field of other JSON files
+/// (`answers.json`).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(try_from = "SceneJson", into = "SceneJson")]
 pub struct Scene {
     /// The table.
     pub space: Space,
@@ -268,6 +273,21 @@ impl SceneJson {
                 })
                 .collect(),
         }
+    }
+}
+
+impl From<Scene> for SceneJson {
+    fn from(s: Scene) -> Self {
+        SceneJson::from_scene(&s)
+    }
+}
+
+impl TryFrom<SceneJson> for Scene {
+    type Error = SceneError;
+    fn try_from(raw: SceneJson) -> Result<Self, SceneError> {
+        let scene = raw.into_scene();
+        scene.validate()?;
+        Ok(scene)
     }
 }
 

@@ -3,6 +3,7 @@
 //! Exit codes (SPEC §10): 0 success; 1 bad input; 2 infeasible; 3 a limit
 //! stopped the search before any solution.
 
+mod ask;
 mod bench;
 mod check;
 mod io;
@@ -16,7 +17,7 @@ mod synth;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
-pub use io::{read_rules, read_scene, read_scenes, Reported};
+pub use io::{read_rules, read_scene, read_scenes, read_text, Reported};
 
 /// Clap value parser for `--time-limit SECONDS` (the library's shared,
 /// validated parser: finite, 0 to `limits::MAX_TIME_LIMIT_SECS`).
@@ -50,6 +51,9 @@ enum Command {
     Synth(synth::SynthArgs),
     /// The whole pipeline on a task folder: learn, synthesise, render.
     Run(run::RunArgs),
+    /// Check the learned rules of a task folder with the person: show probe
+    /// layouts that break one rule each, drop or confirm it (SPEC §13).
+    Ask(ask::AskArgs),
     /// Benchmarks: `bench thesis` reproduces the thesis runtime study.
     Bench(bench::BenchArgs),
 }
@@ -78,6 +82,7 @@ pub fn main() -> ExitCode {
         Command::Synth(a) => synth::run(a),
         Command::Run(a) => run::run(a),
         Command::Studio(a) => studio::run(a),
+        Command::Ask(a) => ask::run(a),
         Command::Bench(a) => bench::run(a),
     };
     match result {

@@ -25,6 +25,10 @@ pub struct ScoreArgs {
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
     #[arg(long, default_value = "point")]
     contact: Contact,
+    /// Judge instead of report: exit 0 when every rule holds for every
+    /// object of every scene, 1 otherwise (an oracle for `rccpack ask`).
+    #[arg(long)]
+    require: bool,
 }
 
 pub fn run(a: ScoreArgs) -> Result<ExitCode> {
@@ -34,6 +38,33 @@ pub fn run(a: ScoreArgs) -> Result<ExitCode> {
         .iter()
         .map(|s| evaluate(s, &rules, a.contact))
         .collect();
+    if a.require {
+        let mut kept = true;
+        for (i, e) in evals.iter().enumerate() {
+            let label = if is_array {
+                format!("{} [{i}]", a.scene.display())
+            } else {
+                a.scene.display().to_string()
+            };
+            let broken: Vec<String> = e
+                .rules
+                .iter()
+                .filter(|r| r.satisfied < r.subjects)
+                .map(|r| format!("{} ({})", r.name, r.violators.join(", ")))
+                .collect();
+            if broken.is_empty() {
+                println!("{label}: every rule holds for every object");
+            } else {
+                kept = false;
+                println!("{label}: rules broken: {}", broken.join("; "));
+            }
+        }
+        return Ok(if kept {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::from(1)
+        });
+    }
     if a.json {
         let text = if is_array {
             serde_json::to_string_pretty(&evals)?

@@ -637,6 +637,16 @@ impl Learned {
     /// The `.rcc` text: a header comment with the parameters, then
     /// [`Learned::rules`].
     pub fn to_rcc(&self) -> String {
+        let mut s = self.rcc_header();
+        for r in &self.rules().rules {
+            s.push_str(&print_rule(r));
+        }
+        s
+    }
+
+    /// The header comment of [`Learned::to_rcc`] (parameters, ε), ending in
+    /// a blank line.
+    pub fn rcc_header(&self) -> String {
         let p = &self.params;
         let mut s = String::new();
         let candidates = self.statements.iter().filter(|s| s.candidate).count();
@@ -668,9 +678,6 @@ impl Learned {
         }
         let _ = writeln!(s, "# epsilon: {}", eps.join(", "));
         s.push('\n');
-        for r in &self.rules().rules {
-            s.push_str(&print_rule(r));
-        }
         s
     }
 

@@ -25,14 +25,28 @@ pub fn file(dir: &Path, name: &'static str) -> PathBuf {
 /// folder, flushed to disk, then renamed over the target. A crash leaves
 /// either the old file or the new one, never half of one.
 pub fn atomic_write(dir: &Path, name: &'static str, contents: &str) -> std::io::Result<()> {
+    atomic_write_path(&dir.join(name), contents)
+}
+
+/// [`atomic_write`] to any path: a temporary file beside it, flushed, then
+/// renamed over it.
+pub fn atomic_write_path(path: &Path, contents: &str) -> std::io::Result<()> {
     let n = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.tmp-{}-{n}", std::process::id()));
     let result = (|| {
         let mut f = fs::File::create(&tmp)?;
         f.write_all(contents.as_bytes())?;
         f.sync_all()?;
         drop(f);
-        fs::rename(&tmp, dir.join(name))?;
+        fs::rename(&tmp, path)?;
         // Make the rename itself durable.
         if let Ok(d) = fs::File::open(dir) {
             let _ = d.sync_all();

@@ -268,9 +268,8 @@ impl Brancher for Phased {
 pub enum Sat {
     /// A solution: grid values per model variable.
     Solution(Vec<i64>),
-    /// Proved impossible (under the assumptions: with the core as rule
-    /// indices into `Model::hard`).
-    Unsat(Vec<usize>),
+    /// Proved impossible (under the assumptions, when there are any).
+    Unsat,
     /// A limit stopped the search.
     Unknown,
 }
@@ -702,25 +701,31 @@ impl Engine {
             .satisfy(&mut self.brancher, &mut stop, &mut self.resolver)
         {
             SatisfactionResult::Satisfiable(s) => Sat::Solution(Self::values(&vars, &s.solution())),
-            SatisfactionResult::Unsatisfiable(..) => Sat::Unsat(Vec::new()),
+            SatisfactionResult::Unsatisfiable(..) => Sat::Unsat,
             SatisfactionResult::Unknown(..) => Sat::Unknown,
         }
     }
 
     /// Solve with the guards of the hard rules in `rules` (indices into
-    /// `Model::hard`) assumed true; on failure return the rules in the core.
+    /// `Model::hard`) assumed true.
+    ///
+    /// `Sat::Unsat` carries no core: Pumpkin 0.5's `extract_core` can panic
+    /// (`ConstraintTag::create_from_index`) or run for minutes without
+    /// checking the termination condition on infeasible probe problems of
+    /// the bundled example (`tests/fixtures/regressions/core-hang.rcc`), so
+    /// the caller shrinks conflicts by deletion, where every solve obeys the
+    /// limits.
     pub fn satisfy_rules(&mut self, rules: &[usize], limits: &Limits) -> Sat {
         let assumptions: Vec<Predicate> = rules
             .iter()
             .map(|&r| self.guards[r].get_true_predicate())
             .collect();
-        self.under(&assumptions, limits, true)
+        self.under(&assumptions, limits)
     }
 
-    fn under(&mut self, assumptions: &[Predicate], limits: &Limits, want_core: bool) -> Sat {
+    fn under(&mut self, assumptions: &[Predicate], limits: &Limits) -> Sat {
         let mut stop = self.stop(limits);
         let vars = self.vars.clone();
-        let guards = self.guards.clone();
         match self.solver.satisfy_under_assumptions(
             &mut self.brancher,
             &mut stop,
@@ -730,21 +735,8 @@ impl Engine {
             SatisfactionResultUnderAssumptions::Satisfiable(s) => {
                 Sat::Solution(Self::values(&vars, &s.solution()))
             }
-            SatisfactionResultUnderAssumptions::UnsatisfiableUnderAssumptions(mut u) => {
-                if !want_core {
-                    return Sat::Unsat(Vec::new());
-                }
-                let core = u.extract_core();
-                let mut rules: Vec<usize> = guards
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, g)| core.contains(&g.get_true_predicate()))
-                    .map(|(i, _)| i)
-                    .collect();
-                rules.sort_unstable();
-                Sat::Unsat(rules)
-            }
-            SatisfactionResultUnderAssumptions::Unsatisfiable(_) => Sat::Unsat(Vec::new()),
+            SatisfactionResultUnderAssumptions::UnsatisfiableUnderAssumptions(_)
+            | SatisfactionResultUnderAssumptions::Unsatisfiable(_) => Sat::Unsat,
             SatisfactionResultUnderAssumptions::Unknown(_) => Sat::Unknown,
         }
     }
@@ -777,7 +769,7 @@ impl Engine {
     ) -> OptOutcome {
         let mut best = match self.satisfy(limits) {
             Sat::Solution(v) => v,
-            Sat::Unsat(_) => return OptOutcome::Infeasible,
+            Sat::Unsat => return OptOutcome::Infeasible,
             Sat::Unknown => return OptOutcome::Unknown,
         };
         on_incumbent(&best);
@@ -790,13 +782,13 @@ impl Engine {
             // Improve from the incumbent.
             loop {
                 let a = [predicate![obj >= clamp_i32(best_val + 1)]];
-                match self.under(&a, limits, false) {
+                match self.under(&a, limits) {
                     Sat::Solution(v) => {
                         best_val = self.objective_value(model, &v);
                         best = v;
                         on_incumbent(&best);
                     }
-                    Sat::Unsat(_) => return OptOutcome::Optimal(best),
+                    Sat::Unsat => return OptOutcome::Optimal(best),
                     Sat::Unknown => return OptOutcome::Feasible(best),
                 }
             }
@@ -829,13 +821,13 @@ impl Engine {
             };
             step += 1;
             let a = [predicate![obj >= clamp_i32(target)]];
-            match self.under(&a, limits, false) {
+            match self.under(&a, limits) {
                 Sat::Solution(v) => {
                     best_val = self.objective_value(model, &v);
                     best = v;
                     on_incumbent(&best);
                 }
-                Sat::Unsat(_) => {
+                Sat::Unsat => {
                     self.solver
                         .add_clause([predicate![obj <= clamp_i32(target - 1)]], self.tag);
                     hi = snap(target - 1);
@@ -880,13 +872,13 @@ impl Engine {
             let mid = lo + (best_cost - lo - 1) / 2;
             let a = [predicate![total <= i32::try_from(mid).unwrap_or(i32::MAX)]];
             let t = Instant::now();
-            let r = self.under(&a, limits, false);
+            let r = self.under(&a, limits);
             if std::env::var_os("RCCPACK_DEBUG").is_some() {
                 eprintln!(
                     "  cost <= {mid} (lo {lo}, best {best_cost}): {} in {:.1} ms",
                     match &r {
                         Sat::Solution(_) => "sat",
-                        Sat::Unsat(_) => "unsat",
+                        Sat::Unsat => "unsat",
                         Sat::Unknown => "unknown",
                     },
                     t.elapsed().as_secs_f64() * 1e3
@@ -909,7 +901,7 @@ impl Engine {
                         // floor; it still holds (fewer layouts now).
                     }
                 }
-                Sat::Unsat(_) => {
+                Sat::Unsat => {
                     self.solver.add_clause(
                         [predicate![
                             total >= i32::try_from(mid + 1).unwrap_or(i32::MAX)
@@ -1121,9 +1113,8 @@ mod tests {
                         assert!(m.clauses.iter().all(|c| c.iter().any(|l| l.value(&b))));
                         sat += 1;
                     }
-                    Sat::Unsat(core) => {
+                    Sat::Unsat => {
                         assert!(!possible, "engine refuted the possible {lit:?}");
-                        assert!(core.is_empty() || core == vec![0], "{core:?}");
                         unsat += 1;
                     }
                     Sat::Unknown => panic!("no limit, yet unknown"),

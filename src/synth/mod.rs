@@ -68,6 +68,11 @@ pub struct SynthOptions {
     /// The second objective (SPEC §12): among the layouts with the best
     /// score, one most like these positions (`synth --like`).
     pub like: Option<Likeness>,
+    /// On an infeasible problem, name a minimal conflicting set of hard
+    /// rules ([`SynthResult::conflict`]); off, the result says only
+    /// `infeasible` (a probe needs no more, and the shrinking costs one solve
+    /// per hard rule).
+    pub explain: bool,
 }
 
 /// An improving layout found during the search.
@@ -102,6 +107,7 @@ impl Default for SynthOptions {
             strategy: Strategy::default(),
             progress: None,
             like: None,
+            explain: true,
         }
     }
 }
@@ -436,6 +442,17 @@ pub fn synthesize(
                 resemblance: None,
             });
         }
+        OptOutcome::Infeasible if !opts.explain => {
+            stats.time_ms = ms(start.elapsed());
+            return Ok(SynthResult {
+                status: Status::Infeasible,
+                scene: None,
+                evaluation: None,
+                conflict: None,
+                stats,
+                resemblance: None,
+            });
+        }
         OptOutcome::Infeasible => {
             let conflict = explain(problem, rules, opts, &limits, &mut stats)?;
             return Ok(infeasible(conflict, stats));
@@ -499,7 +516,7 @@ fn explain(
         },
     );
     match fit {
-        Sat::Unsat(_) => {
+        Sat::Unsat => {
             return Ok(Conflict {
                 objects_cannot_fit: true,
                 hard_rules: Vec::new(),
@@ -514,11 +531,10 @@ fn explain(
         Sat::Solution(_) => {}
     }
     let mut eg = Engine::new(&mg, opts.seed, true, None)?;
-    let all: Vec<usize> = (0..mg.hard.len()).collect();
-    let mut core = match eg.satisfy_rules(&all, limits) {
-        Sat::Unsat(c) if !c.is_empty() => c,
-        _ => all,
-    };
+    // Deletion: drop each rule in turn; keep it out when the rest still
+    // conflict. Every solve obeys the limits (a limit keeps the rule, so the
+    // set stays conflicting, perhaps not minimal).
+    let mut core: Vec<usize> = (0..mg.hard.len()).collect();
     let mut i = 0;
     while i < core.len() {
         let trial: Vec<usize> = core
@@ -528,10 +544,9 @@ fn explain(
             .map(|(_, &r)| r)
             .collect();
         match eg.satisfy_rules(&trial, limits) {
-            // Every UNSAT subset of `trial` keeps the rules before `i`
-            // (each was needed in a superset), so `i` stays put.
-            Sat::Unsat(c) if !c.is_empty() => core = c,
-            Sat::Unsat(_) => core = trial,
+            // The rules before `i` were each needed in a superset, so they
+            // are needed here too: `i` stays put.
+            Sat::Unsat => core = trial,
             Sat::Solution(_) | Sat::Unknown => i += 1,
         }
     }

@@ -1,0 +1,226 @@
+//! Probes (SPEC §13): a layout that breaks one held rule and keeps the rest.
+//!
+//! # Background
+//!
+//! A learned rule is true in every demonstration and improbable by chance,
+//! yet it may be a habit of these demonstrations rather than an intention.
+//! Only the person can tell; the thesis (§5.2.2) proposes asking them with a
+//! layout that breaks the rule on purpose.
+//!
+//! # Practical
+//!
+//! The probe for rule `r` is a synthesis problem built from the language
+//! itself, so the model builder is not copied or special-cased:
+//!
+//! - every *other* held rule becomes `hard`;
+//! - `r` is replaced by its [`negation`], also `hard`: for `rule r: φ` that
+//!   is the scene-level rule `some A: !φ` ("at least one subject breaks
+//!   it"); for a scene-level rule the complementary quantifier
+//!   (`some` ↔ `no`, `at least K` ↔ `at most K−1`);
+//! - the objective (soft, weight 1 per subject) is `!φ` for each subject, so
+//!   the probe breaks `r` for as many objects as the other rules allow —
+//!   the most visible break;
+//! - the second objective (SPEC §12) is resemblance to the demonstrations:
+//!   everything the probe does not have to change sits where the person put
+//!   it, so what stands out is the broken rule.
+//!
+//! An infeasible probe problem is a proof (the engine is exact) that on this
+//! object mix the other held rules imply `r`: there is nothing to ask. The
+//! conflict names the held rules that imply it.
+//!
+//! # How to extend
+//!
+//! A new rule form needs only a negation here when it adds a scope; new
+//! atoms and quantifiers inside formulas are negated by `!` for free.
+
+use crate::eval::evaluate;
+use crate::relations::{Contact, Quant, MAX_COUNT};
+use crate::resemblance::Likeness;
+use crate::rules::{Formula, Rule, RuleSet, Scope, Strength};
+use crate::scene::Scene;
+use crate::synth::{synthesize, Status, SynthError, SynthOptions};
+use std::time::Duration;
+
+/// The name given to the negated rule inside a probe problem.
+pub const NEGATION_PREFIX: &str = "not_";
+
+/// A rule that holds exactly when `rule` is broken: `some A: !φ` for a
+/// per-object rule, the complementary quantifier for a scene-level one.
+/// `None` when `rule` cannot be broken at all (`at least 0`; `at most K`
+/// with `K` = [`MAX_COUNT`], which no scene within the limits can break).
+pub fn negation(rule: &Rule) -> Option<Rule> {
+    let (scope, formula) = match rule.scope {
+        Scope::Each => (
+            Scope::Scene(Quant::Some),
+            Formula::not(rule.formula.clone()),
+        ),
+        Scope::Scene(q) => {
+            let nq = match q {
+                // `every A: φ` is `Scope::Each`; kept total all the same.
+                Quant::Every => {
+                    return negation(&Rule {
+                        scope: Scope::Each,
+                        ..rule.clone()
+                    })
+                }
+                Quant::Some => Quant::No,
+                Quant::No => Quant::Some,
+                Quant::AtLeast(0) => return None,
+                Quant::AtLeast(1) => Quant::No,
+                Quant::AtLeast(k) => Quant::AtMost(k - 1),
+                Quant::AtMost(k) if k >= MAX_COUNT => return None,
+                Quant::AtMost(0) => Quant::Some,
+                Quant::AtMost(k) => Quant::AtLeast(k + 1),
+            };
+            (Scope::Scene(nq), rule.formula.clone())
+        }
+    };
+    Some(Rule {
+        name: format!("{NEGATION_PREFIX}{}", rule.name),
+        strength: Strength::Hard,
+        scope,
+        formula,
+        comments: Vec::new(),
+        origin: None,
+    })
+}
+
+/// Settings of one probe solve.
+#[derive(Debug, Clone)]
+pub struct ProbeOptions {
+    /// How EC decides that two sides touch.
+    pub contact: Contact,
+    /// Seed of the solve.
+    pub seed: u64,
+    /// Stop each solve after this long (`None`: no limit).
+    pub time_limit: Option<Duration>,
+    /// Stop each solve after this many search nodes (deterministic).
+    pub node_limit: Option<u64>,
+    /// Positions the probe should resemble (the demonstrations).
+    pub like: Option<Likeness>,
+    /// For a rule with no probe, name the held rules implying it (one more
+    /// solve per held rule).
+    pub explain: bool,
+}
+
+impl Default for ProbeOptions {
+    fn default() -> Self {
+        ProbeOptions {
+            contact: Contact::Point,
+            seed: 0,
+            time_limit: Some(Duration::from_secs(10)),
+            node_limit: None,
+            like: None,
+            explain: false,
+        }
+    }
+}
+
+/// What the probe search found for one rule.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ProbeOutcome {
+    /// A layout breaking the rule and keeping every other held rule.
+    Probe(Probe),
+    /// Proven: no layout of the problem breaks the rule while keeping the
+    /// others. `by` names a minimal set of held rules implying it (empty
+    /// when the rule cannot be broken on this problem at all, e.g. the
+    /// problem has no object of its subject class).
+    Implied {
+        /// Held rules whose conjunction implies the rule on this problem.
+        by: Vec<String>,
+    },
+    /// A limit stopped the search before either.
+    Unknown,
+}
+
+/// A probe layout.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Probe {
+    /// The probed rule's name.
+    pub rule: String,
+    /// The complete layout.
+    pub scene: Scene,
+    /// Ids of the objects that break the rule (for a scene-level rule: the
+    /// evaluator's violators, possibly none).
+    pub broken: Vec<String>,
+    /// Its resemblance cost to the demonstrations (0 without `like`).
+    pub cost: u64,
+    /// Search time in milliseconds.
+    pub time_ms: f64,
+}
+
+/// The probe problem for `held.rules[target]`: the other held rules hard,
+/// its negation hard, "break it for as many subjects as possible" soft.
+/// `None` when the rule cannot be broken at all ([`negation`]).
+pub fn probe_rules(held: &RuleSet, target: usize) -> Option<RuleSet> {
+    let r = &held.rules[target];
+    let neg = negation(r)?;
+    let mut rules: Vec<Rule> = held
+        .rules
+        .iter()
+        .enumerate()
+        .filter(|&(k, _)| k != target)
+        .map(|(_, h)| Rule {
+            strength: Strength::Hard,
+            comments: Vec::new(),
+            origin: None,
+            ..h.clone()
+        })
+        .collect();
+    if r.scope == Scope::Each {
+        // The most visible break: as many subjects as possible.
+        let mut visible = Rule::new(format!("break_{}", r.name), Formula::not(r.formula.clone()));
+        visible.strength = Strength::Weight(1.0);
+        rules.push(visible);
+    }
+    rules.push(neg);
+    // Names stay unique: the added names carry prefixes no learned name
+    // needs, and if one clashes the solve still works (names are labels).
+    Some(RuleSet::new(rules))
+}
+
+/// Search a probe for `held.rules[target]` on `problem`.
+pub fn find_probe(
+    problem: &Scene,
+    held: &RuleSet,
+    target: usize,
+    opts: &ProbeOptions,
+) -> Result<ProbeOutcome, SynthError> {
+    let Some(rules) = probe_rules(held, target) else {
+        return Ok(ProbeOutcome::Implied { by: Vec::new() });
+    };
+    let sopts = SynthOptions {
+        contact: opts.contact,
+        time_limit: opts.time_limit,
+        node_limit: opts.node_limit,
+        seed: opts.seed,
+        like: opts.like.clone(),
+        explain: opts.explain,
+        ..SynthOptions::default()
+    };
+    let r = synthesize(problem, &rules, &sopts)?;
+    let name = &held.rules[target].name;
+    match r.status {
+        Status::Optimal | Status::Feasible => {
+            let scene = r.scene.expect("a layout with a solution status");
+            let one = RuleSet::new(vec![held.rules[target].clone()]);
+            let ev = evaluate(&scene, &one, opts.contact);
+            Ok(ProbeOutcome::Probe(Probe {
+                rule: name.clone(),
+                scene,
+                broken: ev.rules[0].violators.clone(),
+                cost: r.resemblance.map_or(0, |c| c.cost),
+                time_ms: r.stats.time_ms,
+            }))
+        }
+        Status::Infeasible => {
+            let neg = format!("{NEGATION_PREFIX}{name}");
+            let by = r
+                .conflict
+                .map(|c| c.hard_rules.into_iter().filter(|n| *n != neg).collect())
+                .unwrap_or_default();
+            Ok(ProbeOutcome::Implied { by })
+        }
+        Status::Unknown => Ok(ProbeOutcome::Unknown),
+    }
+}

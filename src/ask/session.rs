@@ -1,0 +1,400 @@
+//! The question loop (SPEC §13), without I/O: which rule to ask about next,
+//! and what an answer does. The command line and the studio drive it and
+//! save what it returns.
+//!
+//! # Order of questions
+//!
+//! The held rules are visited **weakest evidence first** (the learned rule
+//! whose posterior is closest to the cutoff first, i.e. [`Learned::order`]
+//! reversed): a habit of a few demonstrations has less evidence than a rule
+//! the person kept every time, so with a small `--max-questions` budget the
+//! questions go where doubt is largest. A rule is skipped, without a
+//! question, when
+//!
+//! - it is confirmed already;
+//! - another held rule implies it on every scene (the syntactic test
+//!   [`crate::infer::english::rule_implies`], no solve), unless the two
+//!   imply each other (then the first in the order stands for both);
+//! - no probe exists: the engine proves that on the problem's objects the
+//!   other held rules imply it.
+//!
+//! Probe results stay valid while the held set does not change: a rejected
+//! probe confirms its rule and changes nothing else, so the next question
+//! costs only the probes not yet computed. An accepted probe adds a
+//! demonstration, learning is redone, and every cached result is dropped.
+
+use super::probe::{find_probe, Probe, ProbeOptions, ProbeOutcome};
+use crate::infer::english::rule_implies;
+use crate::infer::{learn, InferError, LearnParams, Learned};
+use crate::resemblance::Likeness;
+use crate::rules::{print_rule, RuleSet};
+use crate::scene::Scene;
+use crate::synth::SynthError;
+use serde::{Deserialize, Serialize};
+use std::collections::{BTreeSet, HashMap};
+
+/// The comment line that marks a confirmed rule in `learned.rcc`.
+pub const CONFIRMED: &str = "confirmed";
+
+/// Why the question loop cannot go on.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum AskError {
+    /// Learning failed (bad demonstrations or statements).
+    #[error(transparent)]
+    Learn(#[from] InferError),
+    /// The problem cannot be used for probes.
+    #[error("the problem cannot be used for probes: {0}")]
+    Synth(#[from] SynthError),
+    /// `answers.json` does not fit the task.
+    #[error("answers[{index}]: {why}")]
+    BadAnswer {
+        /// Index of the answer.
+        index: usize,
+        /// What is wrong.
+        why: String,
+    },
+    /// An answer for a question that is not the one asked.
+    #[error("no question about rule `{0}` is open")]
+    NotAsked(String),
+}
+
+/// One answered question, as kept in `answers.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Answer {
+    /// The probed rule's name.
+    pub rule: String,
+    /// Its `.rcc` text (after `rule NAME:`).
+    pub statement: String,
+    /// Its English reading.
+    pub english: String,
+    /// Whether the person found the probe acceptable.
+    pub accepted: bool,
+    /// For an accepted probe: its index in `demos.json` (it is that
+    /// demonstration).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub demo: Option<usize>,
+    /// Objects breaking the rule in the probe.
+    pub broken: Vec<String>,
+    /// The probe layout.
+    pub probe: Scene,
+}
+
+/// The `answers.json` file.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnswersFile {
+    /// Every answer, in the order given.
+    pub answers: Vec<Answer>,
+}
+
+/// A question: is this probe acceptable?
+#[derive(Debug, Clone, PartialEq)]
+pub struct Question {
+    /// The rule it asks about.
+    pub rule: String,
+    /// The rule's `.rcc` text (after `rule NAME:`).
+    pub statement: String,
+    /// The rule's English reading.
+    pub english: String,
+    /// The probe.
+    pub probe: Probe,
+}
+
+/// How far the questions have come.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct Progress {
+    /// Questions answered (over all runs).
+    pub asked: usize,
+    /// Rules dropped by accepted probes.
+    pub dropped: usize,
+    /// Rules confirmed by rejected probes.
+    pub confirmed: usize,
+    /// Held rules not asked because the others imply them.
+    pub implied: usize,
+    /// Held rules whose probe search hit the limit.
+    pub unknown: usize,
+    /// Held rules now.
+    pub held: usize,
+}
+
+/// Settings of the loop.
+#[derive(Debug, Clone)]
+pub struct AskOptions {
+    /// Learning parameters (as for `learn`/`run`).
+    pub learn: LearnParams,
+    /// Probe search settings (`like` is filled from the demonstrations when
+    /// `resemble` is on).
+    pub probe: ProbeOptions,
+    /// Probes resemble the demonstrations (SPEC §12).
+    pub resemble: bool,
+}
+
+impl Default for AskOptions {
+    fn default() -> Self {
+        AskOptions {
+            learn: LearnParams::default(),
+            probe: ProbeOptions::default(),
+            resemble: true,
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+enum Known {
+    Probe(Probe),
+    Implied,
+    Unknown,
+}
+
+/// The question loop's state.
+#[derive(Debug, Clone)]
+pub struct Asker {
+    problem: Scene,
+    demos: Vec<Scene>,
+    statements: Option<RuleSet>,
+    opts: AskOptions,
+    learned: Learned,
+    held: RuleSet,
+    answers: Vec<Answer>,
+    confirmed: BTreeSet<String>,
+    dropped: usize,
+    known: HashMap<String, Known>,
+    open: Option<String>,
+}
+
+impl Asker {
+    /// Start (or resume) on a task: `demos` as in `demos.json` (accepted
+    /// probes of earlier runs included), `answers` as in `answers.json`.
+    pub fn new(
+        problem: Scene,
+        demos: Vec<Scene>,
+        statements: Option<RuleSet>,
+        answers: Vec<Answer>,
+        opts: AskOptions,
+    ) -> Result<Asker, AskError> {
+        let mut demos = demos;
+        for (i, a) in answers.iter().enumerate() {
+            if !a.accepted {
+                continue;
+            }
+            // An accepted probe is a demonstration; one saved in the
+            // answers but not yet in the demonstrations (an abort between
+            // the two writes) is added again.
+            match a.demo {
+                Some(d) if demos.get(d) == Some(&a.probe) => {}
+                Some(d) if d == demos.len() => demos.push(a.probe.clone()),
+                Some(d) => {
+                    return Err(AskError::BadAnswer {
+                        index: i,
+                        why: format!(
+                            "the accepted probe should be demonstration [{d}], but demos.json has {} demonstrations and [{d}] is a different scene",
+                            demos.len()
+                        ),
+                    })
+                }
+                None => {
+                    return Err(AskError::BadAnswer {
+                        index: i,
+                        why: "an accepted answer needs `demo`, its index in demos.json".into(),
+                    })
+                }
+            }
+        }
+        let learned = learn(&demos, statements.as_ref(), &opts.learn)?;
+        let mut asker = Asker {
+            problem,
+            demos,
+            statements,
+            opts,
+            held: RuleSet::default(),
+            learned,
+            dropped: answers.iter().filter(|a| a.accepted).count(),
+            confirmed: answers
+                .iter()
+                .filter(|a| !a.accepted)
+                .map(|a| a.rule.clone())
+                .collect(),
+            answers,
+            known: HashMap::new(),
+            open: None,
+        };
+        asker.held = asker.held_rules();
+        Ok(asker)
+    }
+
+    fn held_rules(&self) -> RuleSet {
+        let mut set = self.learned.rules();
+        for r in &mut set.rules {
+            if self.confirmed.contains(&r.name) {
+                r.comments.push(CONFIRMED.into());
+            }
+        }
+        set
+    }
+
+    /// The demonstrations, accepted probes included (what `demos.json`
+    /// should hold).
+    pub fn demos(&self) -> &[Scene] {
+        &self.demos
+    }
+
+    /// Every answer so far (what `answers.json` should hold).
+    pub fn answers(&self) -> &[Answer] {
+        &self.answers
+    }
+
+    /// The current learning result.
+    pub fn learned(&self) -> &Learned {
+        &self.learned
+    }
+
+    /// The held rules, confirmed ones marked with a `confirmed` comment.
+    pub fn held(&self) -> &RuleSet {
+        &self.held
+    }
+
+    /// Whether the rule named `name` has been confirmed.
+    pub fn is_confirmed(&self, name: &str) -> bool {
+        self.confirmed.contains(name)
+    }
+
+    /// `learned.rcc`: [`Learned::to_rcc`] with the confirmed rules marked.
+    pub fn learned_rcc(&self) -> String {
+        let mut out = self.learned.rcc_header();
+        for r in &self.held.rules {
+            out.push_str(&print_rule(r));
+        }
+        out
+    }
+
+    /// The progress so far.
+    pub fn progress(&self) -> Progress {
+        let count = |f: fn(&Known) -> bool| {
+            self.held
+                .rules
+                .iter()
+                .filter(|r| !self.confirmed.contains(&r.name))
+                .filter(|r| self.known.get(&r.name).is_some_and(f))
+                .count()
+        };
+        Progress {
+            asked: self.answers.len(),
+            dropped: self.dropped,
+            confirmed: self.confirmed.len(),
+            implied: count(|k| matches!(k, Known::Implied)),
+            unknown: count(|k| matches!(k, Known::Unknown)),
+            held: self.held.rules.len(),
+        }
+    }
+
+    fn like(&self) -> Option<Likeness> {
+        self.opts.resemble.then(|| Likeness::new(&self.demos))
+    }
+
+    /// Held rules in asking order: weakest evidence first.
+    fn asking_order(&self) -> Vec<usize> {
+        // `held` is strongest first.
+        (0..self.held.rules.len()).rev().collect()
+    }
+
+    /// Whether another held rule implies rule `k` on every scene
+    /// (syntactically); of rules implying each other the one asked first
+    /// stands for all.
+    fn syntactically_implied(&self, k: usize, order: &[usize]) -> bool {
+        let r = &self.held.rules[k];
+        let pos = |i: usize| order.iter().position(|&j| j == i);
+        let contact = self.opts.learn.contact;
+        self.held.rules.iter().enumerate().any(|(j, h)| {
+            if j == k {
+                return false;
+            }
+            let implies = |a: &crate::rules::Rule, b: &crate::rules::Rule| {
+                rule_implies((a.scope, &a.formula), (b.scope, &b.formula), contact)
+            };
+            implies(h, r) && (!implies(r, h) || pos(j) < pos(k) || self.confirmed.contains(&h.name))
+        })
+    }
+
+    /// The next question, or `None` when every held rule is confirmed or
+    /// needs no question. Computes probes lazily, in asking order.
+    pub fn next_question(&mut self) -> Result<Option<Question>, AskError> {
+        let order = self.asking_order();
+        let like = self.like();
+        for &k in &order {
+            let rule = self.held.rules[k].clone();
+            if self.confirmed.contains(&rule.name) {
+                continue;
+            }
+            if !self.known.contains_key(&rule.name) {
+                let known = if self.syntactically_implied(k, &order) {
+                    Known::Implied
+                } else {
+                    let opts = ProbeOptions {
+                        like: like.clone(),
+                        ..self.opts.probe.clone()
+                    };
+                    // The probe keeps every other held rule; the held set is
+                    // the learned rules, whose strengths are replaced.
+                    match find_probe(&self.problem, &self.held, k, &opts)? {
+                        ProbeOutcome::Probe(p) => Known::Probe(p),
+                        ProbeOutcome::Implied { .. } => Known::Implied,
+                        ProbeOutcome::Unknown => Known::Unknown,
+                    }
+                };
+                self.known.insert(rule.name.clone(), known);
+            }
+            if let Some(Known::Probe(p)) = self.known.get(&rule.name) {
+                let stmt = self
+                    .learned
+                    .statements
+                    .iter()
+                    .find(|s| s.name == rule.name)
+                    .expect("a held rule is a statement");
+                self.open = Some(rule.name.clone());
+                return Ok(Some(Question {
+                    rule: rule.name.clone(),
+                    statement: crate::infer::statement_text(rule.scope, &rule.formula),
+                    english: stmt.english.clone(),
+                    probe: p.clone(),
+                }));
+            }
+        }
+        self.open = None;
+        Ok(None)
+    }
+
+    /// Apply the person's answer to question `q` (SPEC §13): accepted → the
+    /// probe becomes a demonstration and learning is redone; rejected → the
+    /// rule is confirmed. Returns the answer to save.
+    pub fn answer(&mut self, q: &Question, accepted: bool) -> Result<&Answer, AskError> {
+        if self.open.as_deref() != Some(q.rule.as_str()) {
+            return Err(AskError::NotAsked(q.rule.clone()));
+        }
+        self.open = None;
+        let mut a = Answer {
+            rule: q.rule.clone(),
+            statement: q.statement.clone(),
+            english: q.english.clone(),
+            accepted,
+            demo: None,
+            broken: q.probe.broken.clone(),
+            probe: q.probe.scene.clone(),
+        };
+        if accepted {
+            a.demo = Some(self.demos.len());
+            let mut demos = self.demos.clone();
+            demos.push(q.probe.scene.clone());
+            let learned = learn(&demos, self.statements.as_ref(), &self.opts.learn)?;
+            self.demos = demos;
+            self.learned = learned;
+            self.dropped += 1;
+            self.known.clear();
+        } else {
+            self.confirmed.insert(q.rule.clone());
+        }
+        self.held = self.held_rules();
+        self.answers.push(a);
+        Ok(self.answers.last().expect("just pushed"))
+    }
+}

@@ -1,0 +1,330 @@
+//! `rccpack ask DIR`: check learned rules with the person (SPEC §13).
+//!
+//! Reads `DIR/problem.json`, `DIR/demos.json`, optional `DIR/statements.rcc`
+//! and, when resuming, `DIR/answers.json`. Each question writes the probe to
+//! `DIR/probes/probe-N.json` and `.png` and asks on the terminal (`y`/`n`)
+//! or runs `--oracle CMD`. After each answer, in this order and each
+//! atomically: `answers.json` (the journal), `demos.json` (an accepted probe
+//! joins the demonstrations), `learned.rcc` (confirmed rules marked). An
+//! abort (end of input, `q`, an oracle failure, Ctrl-C) loses nothing
+//! already answered; running again resumes.
+
+use super::{read_rules, read_scene, read_scenes, read_text, Reported};
+use anyhow::Result;
+use clap::Args;
+use rccpack::ask::{AnswersFile, AskOptions, Asker, ProbeOptions, Question};
+use rccpack::infer::{LearnParams, Templates};
+use rccpack::relations::Contact;
+use rccpack::render::{render_to_path, RenderOptions};
+use rccpack::rules::RuleSet;
+use rccpack::scene::scenes_to_json;
+use rccpack::studio::storage::atomic_write_path;
+use std::io::{BufRead, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode, Stdio};
+use std::time::{Duration, Instant};
+
+/// `rccpack ask DIR [--max-questions N] [--oracle CMD]`
+#[derive(Args, Debug)]
+pub struct AskArgs {
+    /// Task folder with `demos.json`, `problem.json` and optionally `statements.rcc`.
+    dir: PathBuf,
+    /// Ask at most this many questions in this run (answers of earlier runs
+    /// do not count).
+    #[arg(long, default_value_t = 50)]
+    max_questions: usize,
+    /// Answer with a command instead of the terminal: it is run through
+    /// `sh -c` with the probe scene's path appended as its one argument; exit
+    /// 0 means acceptable, 1 not acceptable, anything else aborts.
+    #[arg(long, value_name = "CMD")]
+    oracle: Option<String>,
+    /// Random scenes in the null model.
+    #[arg(long, default_value_t = 1000)]
+    samples: usize,
+    /// Learn candidates whose posterior is below this, in (0, 1).
+    #[arg(long, default_value_t = 0.01)]
+    cutoff: f64,
+    /// Seed for learning and probes.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Stop each probe search after this many seconds (the rule is then
+    /// left unsettled, not asked).
+    #[arg(long, value_name = "SECONDS", default_value = "10", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
+    time_limit: Duration,
+    /// How EC decides that two sides touch: `point` (corners count) or `edge`.
+    #[arg(long, default_value = "point")]
+    contact: Contact,
+    /// Which templates to learn with when there is no `statements.rcc`.
+    #[arg(long, default_value = "second", value_name = "first|second")]
+    templates: Templates,
+}
+
+fn write(path: &Path, contents: &str) -> Result<()> {
+    atomic_write_path(path, contents)
+        .map_err(|e| Reported(format!("error: {}: cannot write: {e}", path.display())).into())
+}
+
+enum Verdict {
+    Yes,
+    No,
+    Abort(String),
+}
+
+fn ask_terminal(q: &Question, number: usize, picture: &Path) -> Verdict {
+    println!();
+    println!("question {number}: rule `{}`: {}", q.rule, q.english);
+    println!("  rule {}: {}", q.rule, q.statement);
+    if q.probe.broken.is_empty() {
+        println!("  this layout breaks it and keeps every other learned rule");
+    } else {
+        println!(
+            "  this layout breaks it for {} and keeps every other learned rule",
+            q.probe.broken.join(", ")
+        );
+    }
+    println!("  picture: {}", picture.display());
+    let stdin = std::io::stdin();
+    loop {
+        print!("  is this layout acceptable? [y/n, q to stop] ");
+        let _ = std::io::stdout().flush();
+        let mut line = String::new();
+        match stdin.lock().read_line(&mut line) {
+            Ok(0) => return Verdict::Abort("end of input".into()),
+            Ok(_) => {}
+            Err(e) => return Verdict::Abort(format!("cannot read the answer: {e}")),
+        }
+        match line.trim().to_ascii_lowercase().as_str() {
+            "y" | "yes" => return Verdict::Yes,
+            "n" | "no" => return Verdict::No,
+            "q" | "quit" => return Verdict::Abort("stopped by the person".into()),
+            _ => println!("  please answer y (acceptable) or n (not acceptable)"),
+        }
+    }
+}
+
+fn ask_oracle(cmd: &str, probe: &Path) -> Verdict {
+    let status = Command::new("sh")
+        .arg("-c")
+        .arg(format!("{cmd} \"$1\""))
+        .arg("rccpack-ask")
+        .arg(probe)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .status();
+    match status {
+        Ok(s) => match s.code() {
+            Some(0) => Verdict::Yes,
+            Some(1) => Verdict::No,
+            Some(c) => Verdict::Abort(format!(
+                "the oracle `{cmd}` exited with {c}; expected 0 (acceptable) or 1 (not acceptable)"
+            )),
+            None => Verdict::Abort(format!("the oracle `{cmd}` was stopped by a signal")),
+        },
+        Err(e) => Verdict::Abort(format!("cannot run the oracle `{cmd}`: {e}")),
+    }
+}
+
+pub fn run(a: AskArgs) -> Result<ExitCode> {
+    let dir = &a.dir;
+    let problem_path = dir.join("problem.json");
+    let demos_path = dir.join("demos.json");
+    let answers_path = dir.join("answers.json");
+    let learned_path = dir.join("learned.rcc");
+    let problem = read_scene(&problem_path)?;
+    let (demos, _) = read_scenes(&demos_path)?;
+    let statements_path = dir.join("statements.rcc");
+    let statements: Option<RuleSet> = if statements_path.exists() {
+        Some(read_rules(&statements_path, &demos)?)
+    } else {
+        None
+    };
+    let answers = if answers_path.exists() {
+        let text = read_text(&answers_path)?;
+        let de = &mut serde_json::Deserializer::from_str(&text);
+        let file: AnswersFile = serde_path_to_error::deserialize(de).map_err(|e| {
+            Reported(format!(
+                "error: {}: at `{}`: {}",
+                answers_path.display(),
+                e.path(),
+                e.inner()
+            ))
+        })?;
+        file.answers
+    } else {
+        Vec::new()
+    };
+    let resumed = answers.len();
+    let opts = AskOptions {
+        learn: LearnParams {
+            samples: a.samples,
+            cutoff: a.cutoff,
+            seed: a.seed,
+            contact: a.contact,
+            templates: a.templates,
+            ..LearnParams::default()
+        },
+        probe: ProbeOptions {
+            contact: a.contact,
+            seed: a.seed,
+            time_limit: Some(a.time_limit),
+            ..ProbeOptions::default()
+        },
+        resemble: true,
+    };
+    let n_demos = demos.len();
+    let mut asker = Asker::new(problem, demos, statements, answers, opts).map_err(|e| {
+        let file = match e {
+            rccpack::ask::AskError::BadAnswer { .. } => &answers_path,
+            rccpack::ask::AskError::Synth(_) => &problem_path,
+            _ => &demos_path,
+        };
+        Reported(format!("error: {}: {e}", file.display()))
+    })?;
+    if asker.demos().len() != n_demos {
+        // An accepted probe saved in answers.json but not yet in demos.json.
+        write(&demos_path, &scenes_to_json(asker.demos()))?;
+    }
+    if resumed == 0 && learned_path.exists() {
+        let old = read_text(&learned_path)?;
+        if old != asker.learned_rcc() {
+            let backup = dir.join("learned.rcc.bak");
+            write(&backup, &old)?;
+            println!(
+                "note: {} was not learned from {} with these settings; kept as {}",
+                learned_path.display(),
+                demos_path.display(),
+                backup.display()
+            );
+        }
+    }
+    write(&learned_path, &asker.learned_rcc())?;
+    if resumed > 0 {
+        println!("resuming: {resumed} answers in {}", answers_path.display());
+    }
+    let probes = dir.join("probes");
+    let mut asked_now = 0usize;
+    let mut times: Vec<f64> = Vec::new();
+    let mut aborted: Option<String> = None;
+    let mut out_of_budget = false;
+    loop {
+        let t = Instant::now();
+        let next = asker
+            .next_question()
+            .map_err(|e| Reported(format!("error: {}: {e}", problem_path.display())))?;
+        let Some(q) = next else { break };
+        if asked_now >= a.max_questions {
+            out_of_budget = true;
+            break;
+        }
+        times.push(t.elapsed().as_secs_f64() * 1000.0);
+        let number = asker.answers().len() + 1;
+        std::fs::create_dir_all(&probes).map_err(|e| {
+            Reported(format!(
+                "error: {}: cannot create folder: {e}",
+                probes.display()
+            ))
+        })?;
+        let json = probes.join(format!("probe-{number}.json"));
+        let png = probes.join(format!("probe-{number}.png"));
+        write(&json, &q.probe.scene.to_json())?;
+        let rule = asker
+            .held()
+            .rules
+            .iter()
+            .find(|r| r.name == q.rule)
+            .cloned()
+            .expect("the question's rule is held");
+        let ropts = RenderOptions {
+            contact: a.contact,
+            scale: 1.0,
+            title: Some(format!(
+                "question {number}: is this acceptable? (breaks {})",
+                q.rule
+            )),
+            like: None,
+        };
+        render_to_path(
+            &q.probe.scene,
+            Some(&RuleSet::new(vec![rule])),
+            &ropts,
+            &png,
+        )
+        .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;
+        let verdict = match &a.oracle {
+            Some(cmd) => ask_oracle(cmd, &json),
+            None => ask_terminal(&q, number, &png),
+        };
+        let accepted = match verdict {
+            Verdict::Yes => true,
+            Verdict::No => false,
+            Verdict::Abort(why) => {
+                aborted = Some(why);
+                break;
+            }
+        };
+        if a.oracle.is_some() {
+            println!(
+                "question {number}: `{}` ({}) -> {}",
+                q.rule,
+                q.english,
+                if accepted {
+                    "acceptable: dropped"
+                } else {
+                    "not acceptable: confirmed"
+                }
+            );
+        }
+        asker
+            .answer(&q, accepted)
+            .map_err(|e| Reported(format!("error: {}: {e}", demos_path.display())))?;
+        asked_now += 1;
+        let file = AnswersFile {
+            answers: asker.answers().to_vec(),
+        };
+        let mut text = serde_json::to_string_pretty(&file)?;
+        text.push('\n');
+        write(&answers_path, &text)?;
+        if accepted {
+            write(&demos_path, &scenes_to_json(asker.demos()))?;
+        }
+        write(&learned_path, &asker.learned_rcc())?;
+    }
+    let p = asker.progress();
+    let median = {
+        let mut t = times.clone();
+        t.sort_by(f64::total_cmp);
+        t.get(t.len() / 2).copied()
+    };
+    println!();
+    println!(
+        "asked {} questions ({} in this run{}): {} rules dropped, {} confirmed; {} rules held, {} need no question (the others imply them){} -> {}",
+        p.asked,
+        asked_now,
+        median.map_or(String::new(), |m| format!(", median {m:.0} ms to a question")),
+        p.dropped,
+        p.confirmed,
+        p.held,
+        p.implied,
+        if p.unknown > 0 {
+            format!(", {} unsettled (probe time limit)", p.unknown)
+        } else {
+            String::new()
+        },
+        learned_path.display()
+    );
+    if out_of_budget {
+        println!(
+            "stopped at --max-questions {}; run again to go on",
+            a.max_questions
+        );
+    }
+    if let Some(why) = aborted {
+        eprintln!(
+            "error: aborted ({why}); {} answers are saved in {}, run again to resume",
+            p.asked,
+            answers_path.display()
+        );
+        return Ok(ExitCode::from(1));
+    }
+    Ok(ExitCode::SUCCESS)
+}
