@@ -335,3 +335,35 @@ fn non_finite_weights_are_refused() {
         }
     }
 }
+
+/// Found by the first probes (issue 13): on this infeasible problem (the
+/// bundled example with 54 learned rules hard and one negated) Pumpkin's
+/// `extract_core` panicked or ran for minutes past the time limit. The
+/// conflict is now shrunk by deletion, every solve under the limits.
+#[test]
+fn infeasible_probe_problem_is_explained_without_core_extraction() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let p = Scene::from_json(
+        &std::fs::read_to_string(root.join("examples/box-packing/problem.json")).unwrap(),
+    )
+    .unwrap();
+    let rules = parse_rules(
+        &std::fs::read_to_string(root.join("tests/fixtures/regressions/core-hang.rcc")).unwrap(),
+    )
+    .unwrap();
+    let opts = SynthOptions {
+        time_limit: Some(Duration::from_secs(120)),
+        ..SynthOptions::default()
+    };
+    let started = std::time::Instant::now();
+    let r = synthesize(&p, &rules, &opts).unwrap();
+    assert_eq!(r.status, Status::Infeasible);
+    let c = r.conflict.expect("a conflict");
+    assert!(!c.objects_cannot_fit);
+    assert!(
+        c.hard_rules.contains(&"not_R_touches_flush_R".to_string()),
+        "{c:?}"
+    );
+    assert!(c.hard_rules.len() < rules.rules.len(), "{c:?}");
+    assert!(started.elapsed() < Duration::from_secs(150));
+}
