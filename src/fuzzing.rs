@@ -599,7 +599,7 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
                 .unwrap_or_else(|| unreachable!("evaluated"));
             let again = evaluate(s, &rules, contact);
             assert_eq!(again.satisfied_weight, e.satisfied_weight);
-            if let Some(b) = brute {
+            if let Some(b) = &brute {
                 assert!(b.feasible, "brute force finds no layout, synthesis did");
                 // Weights are scaled to integers (≤ 1e-6 relative error per
                 // term), so allow that much.
@@ -623,15 +623,62 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
             }
         }
         Status::Infeasible => {
-            if let Some(b) = brute {
+            if let Some(b) = &brute {
                 assert!(
                     !b.feasible,
                     "infeasible, but brute force found {}",
-                    b.best.map(|s| s.to_json()).unwrap_or_default()
+                    b.best.as_ref().map(|s| s.to_json()).unwrap_or_default()
                 );
             }
         }
         Status::Unknown => {}
+    }
+    // A probe (SPEC §13) for one rule, the set as the held rules.
+    if brute.is_some() && !rules.rules.is_empty() {
+        probe_check(u, &p, &rules, contact)?;
+    }
+    Ok(())
+}
+
+/// The probe for one rule of `rules` breaks it and keeps the others (by the
+/// evaluator); "no probe" only when brute force finds none either.
+fn probe_check(u: &mut Unstructured, p: &Scene, rules: &RuleSet, contact: Contact) -> AResult<()> {
+    use crate::ask::probe::{find_probe, probe_rules, ProbeOptions, ProbeOutcome};
+    use crate::synth::brute_force::solve_with_limit;
+    let k = u.choose_index(rules.rules.len())?;
+    let opts = ProbeOptions {
+        contact,
+        node_limit: Some(4000),
+        time_limit: None,
+        ..ProbeOptions::default()
+    };
+    let Ok(outcome) = find_probe(p, rules, k, &opts) else {
+        unreachable!("the problem was solved above, so it is usable for probes")
+    };
+    match outcome {
+        ProbeOutcome::Probe(pr) => {
+            let ev = evaluate(&pr.scene, rules, contact);
+            for (j, r) in ev.rules.iter().enumerate() {
+                if j == k {
+                    assert!(r.satisfied < r.subjects, "the probe keeps rule {k}");
+                    assert_eq!(pr.broken, r.violators);
+                } else {
+                    assert_eq!(r.satisfied, r.subjects, "the probe breaks rule {j}");
+                }
+            }
+        }
+        ProbeOutcome::Implied { .. } => {
+            if let Some(set) = probe_rules(rules, k) {
+                if let Ok(b) = solve_with_limit(p, &set, contact, 4000) {
+                    assert!(
+                        !b.feasible,
+                        "no probe said, but brute force found {}",
+                        b.best.map(|s| s.to_json()).unwrap_or_default()
+                    );
+                }
+            }
+        }
+        ProbeOutcome::Unknown => {}
     }
     Ok(())
 }

@@ -179,6 +179,115 @@ pub fn probe_rules(held: &RuleSet, target: usize) -> Option<RuleSet> {
     Some(RuleSet::new(rules))
 }
 
+/// Whether each held rule has a probe, for many rules with one engine.
+///
+/// One model holds every held rule and every negation as a hard rule with
+/// its own guard; "does rule `k` have a probe" is one solve under the
+/// assumptions "every other held rule, and `k`'s negation". Pumpkin keeps
+/// what it learned between solves, and the engine is built once (building
+/// it is most of the time of one probe search on the bundled example).
+/// A solution only says that a probe exists; [`find_probe`] then finds the
+/// one to show (most visible, most like the demonstrations).
+///
+/// Holds a Pumpkin engine, so it is not `Send`: make one per scan.
+pub struct ProbeChecker {
+    engine: Option<crate::synth::engine::Engine>,
+    held: usize,
+    negation_of: Vec<Option<usize>>,
+    opts: ProbeOptions,
+}
+
+impl ProbeChecker {
+    /// Build the engine for `held` on `problem`.
+    pub fn new(
+        problem: &Scene,
+        held: &RuleSet,
+        opts: &ProbeOptions,
+    ) -> Result<ProbeChecker, SynthError> {
+        use crate::synth::engine::Engine;
+        use crate::synth::model::{BuildOptions, Model};
+        crate::synth::check_problem(problem)?;
+        let n = held.rules.len();
+        let mut rules: Vec<Rule> = held
+            .rules
+            .iter()
+            .map(|h| Rule {
+                strength: Strength::Hard,
+                comments: Vec::new(),
+                origin: None,
+                ..h.clone()
+            })
+            .collect();
+        let mut negation_of = Vec::with_capacity(n);
+        for h in &held.rules {
+            match negation(h) {
+                Some(neg) => {
+                    negation_of.push(Some(rules.len()));
+                    rules.push(neg);
+                }
+                None => negation_of.push(None),
+            }
+        }
+        let set = RuleSet::new(rules);
+        let model = Model::build(
+            problem,
+            &set,
+            BuildOptions {
+                contact: opts.contact,
+                rules: true,
+                symmetry_breaking: false,
+                redundant: true,
+            },
+        );
+        // Every rule is hard, so `model.hard[i]` is rule `i`.
+        debug_assert!(model.hard.iter().enumerate().all(|(i, h)| h.rule == i));
+        let engine = if model.too_large.is_empty() {
+            Some(Engine::new(&model, opts.seed, true, None)?)
+        } else {
+            None
+        };
+        Ok(ProbeChecker {
+            engine,
+            held: n,
+            negation_of,
+            opts: opts.clone(),
+        })
+    }
+
+    /// `Some(true)`: rule `k` has a probe; `Some(false)`: proven none (the
+    /// others imply it on this problem); `None`: a limit stopped the solve
+    /// (the engine is then spent: make a new checker).
+    /// Rules with `removed[j]` are left out of the assumptions.
+    pub fn has_probe(&mut self, k: usize, removed: &[bool]) -> Option<bool> {
+        use crate::synth::engine::{Limits, Sat};
+        let Some(neg) = self.negation_of[k] else {
+            return Some(false);
+        };
+        // An object that cannot lie in the space: no layout at all.
+        let Some(engine) = self.engine.as_mut() else {
+            return Some(false);
+        };
+        let mut assume: Vec<usize> = (0..self.held)
+            .filter(|&j| j != k && !removed.get(j).copied().unwrap_or(false))
+            .collect();
+        assume.push(neg);
+        let started = std::time::Instant::now();
+        let limits = Limits {
+            deadline: self.opts.time_limit.and_then(|t| started.checked_add(t)),
+            node_limit: self
+                .opts
+                .node_limit
+                .map(|n| engine.nodes().saturating_add(n)),
+            cancel: None,
+        };
+        match engine.satisfy_rules(&assume, &limits) {
+            Sat::Solution(_) => Some(true),
+            Sat::Unsat => Some(false),
+            Sat::Unknown => None,
+        }
+    }
+}
+
 /// Search a probe for `held.rules[target]` on `problem`.
 pub fn find_probe(
     problem: &Scene,

@@ -16,14 +16,16 @@
 //!   [`crate::infer::english::rule_implies`], no solve), unless the two
 //!   imply each other (then the first in the order stands for both);
 //! - no probe exists: the engine proves that on the problem's objects the
-//!   other held rules imply it.
+//!   other held rules imply it ([`ProbeChecker`]: one engine per scan, one
+//!   solve under assumptions per rule; only for the rule asked about is the
+//!   probe to show searched, by [`find_probe`]).
 //!
 //! Probe results stay valid while the held set does not change: a rejected
 //! probe confirms its rule and changes nothing else, so the next question
 //! costs only the probes not yet computed. An accepted probe adds a
 //! demonstration, learning is redone, and every cached result is dropped.
 
-use super::probe::{find_probe, Probe, ProbeOptions, ProbeOutcome};
+use super::probe::{find_probe, Probe, ProbeChecker, ProbeOptions, ProbeOutcome};
 use crate::infer::english::rule_implies;
 use crate::infer::{learn, InferError, LearnParams, Learned};
 use crate::resemblance::Likeness;
@@ -99,6 +101,9 @@ pub struct Question {
     pub english: String,
     /// The probe.
     pub probe: Probe,
+    /// Other held rules the probe breaks too: rules that follow from the
+    /// rest, set aside (see [`Asker::next_question`]); usually empty.
+    pub also_broken: Vec<String>,
 }
 
 /// How far the questions have come.
@@ -298,50 +303,89 @@ impl Asker {
         (0..self.held.rules.len()).rev().collect()
     }
 
-    /// Whether another held rule implies rule `k` on every scene
-    /// (syntactically); of rules implying each other the one asked first
-    /// stands for all.
-    fn syntactically_implied(&self, k: usize, order: &[usize]) -> bool {
+    /// Whether another remaining held rule implies rule `k` on every scene
+    /// (syntactically).
+    fn syntactically_implied(&self, k: usize, removed: &[bool]) -> bool {
         let r = &self.held.rules[k];
-        let pos = |i: usize| order.iter().position(|&j| j == i);
         let contact = self.opts.learn.contact;
         self.held.rules.iter().enumerate().any(|(j, h)| {
-            if j == k {
-                return false;
-            }
-            let implies = |a: &crate::rules::Rule, b: &crate::rules::Rule| {
-                rule_implies((a.scope, &a.formula), (b.scope, &b.formula), contact)
-            };
-            implies(h, r) && (!implies(r, h) || pos(j) < pos(k) || self.confirmed.contains(&h.name))
+            j != k
+                && !removed[j]
+                && rule_implies((h.scope, &h.formula), (r.scope, &r.formula), contact)
         })
     }
 
     /// The next question, or `None` when every held rule is confirmed or
     /// needs no question. Computes probes lazily, in asking order.
+    ///
+    /// A rule found to follow from the others is set aside for the rest of
+    /// the scan: the set without it allows exactly the same layouts, so
+    /// setting aside such rules one at a time never changes what the held
+    /// rules allow. It is what lets a group of habits that imply each other
+    /// (`DR_S(R, G)` and `DR_N(G, R)`) be asked about at all: the first is
+    /// set aside, and the probe of the second may break both
+    /// ([`Question::also_broken`]); accepted, it drops both.
     pub fn next_question(&mut self) -> Result<Option<Question>, AskError> {
         let order = self.asking_order();
         let like = self.like();
+        let mut checker: Option<ProbeChecker> = None;
+        let mut removed: Vec<bool> = self
+            .held
+            .rules
+            .iter()
+            .map(|r| {
+                !self.confirmed.contains(&r.name)
+                    && matches!(self.known.get(&r.name), Some(Known::Implied))
+            })
+            .collect();
         for &k in &order {
             let rule = self.held.rules[k].clone();
             if self.confirmed.contains(&rule.name) {
                 continue;
             }
             if !self.known.contains_key(&rule.name) {
-                let known = if self.syntactically_implied(k, &order) {
+                let known = if self.syntactically_implied(k, &removed) {
                     Known::Implied
                 } else {
-                    let opts = ProbeOptions {
-                        like: like.clone(),
-                        ..self.opts.probe.clone()
+                    let c = match &mut checker {
+                        Some(c) => c,
+                        None => checker.insert(ProbeChecker::new(
+                            &self.problem,
+                            &self.held,
+                            &self.opts.probe,
+                        )?),
                     };
-                    // The probe keeps every other held rule; the held set is
-                    // the learned rules, whose strengths are replaced.
-                    match find_probe(&self.problem, &self.held, k, &opts)? {
-                        ProbeOutcome::Probe(p) => Known::Probe(p),
-                        ProbeOutcome::Implied { .. } => Known::Implied,
-                        ProbeOutcome::Unknown => Known::Unknown,
+                    match c.has_probe(k, &removed) {
+                        // Proven: the other held rules imply it here.
+                        Some(false) => Known::Implied,
+                        verdict => {
+                            if verdict.is_none() {
+                                // A spent engine answers nothing more.
+                                checker = None;
+                            }
+                            let opts = ProbeOptions {
+                                like: like.clone(),
+                                ..self.opts.probe.clone()
+                            };
+                            // The probe keeps every other remaining held rule.
+                            let keep: Vec<usize> = (0..self.held.rules.len())
+                                .filter(|&j| j == k || !removed[j])
+                                .collect();
+                            let set = RuleSet::new(
+                                keep.iter().map(|&j| self.held.rules[j].clone()).collect(),
+                            );
+                            let at = keep.iter().position(|&j| j == k).expect("kept");
+                            match find_probe(&self.problem, &set, at, &opts)? {
+                                ProbeOutcome::Probe(p) => Known::Probe(p),
+                                ProbeOutcome::Implied { .. } => Known::Implied,
+                                ProbeOutcome::Unknown => Known::Unknown,
+                            }
+                        }
                     }
                 };
+                if matches!(known, Known::Implied) {
+                    removed[k] = true;
+                }
                 self.known.insert(rule.name.clone(), known);
             }
             if let Some(Known::Probe(p)) = self.known.get(&rule.name) {
@@ -352,7 +396,15 @@ impl Asker {
                     .find(|s| s.name == rule.name)
                     .expect("a held rule is a statement");
                 self.open = Some(rule.name.clone());
+                let ev = crate::eval::evaluate(&p.scene, &self.held, self.opts.learn.contact);
+                let also_broken = ev
+                    .rules
+                    .iter()
+                    .filter(|r| r.name != rule.name && r.satisfied < r.subjects)
+                    .map(|r| r.name.clone())
+                    .collect();
                 return Ok(Some(Question {
+                    also_broken,
                     rule: rule.name.clone(),
                     statement: crate::infer::statement_text(rule.scope, &rule.formula),
                     english: stmt.english.clone(),

@@ -82,6 +82,12 @@ fn ask_terminal(q: &Question, number: usize, picture: &Path) -> Verdict {
             q.probe.broken.join(", ")
         );
     }
+    if !q.also_broken.is_empty() {
+        println!(
+            "  it also breaks {}, which the other rules imply",
+            q.also_broken.join(", ")
+        );
+    }
     println!("  picture: {}", picture.display());
     let stdin = std::io::stdin();
     loop {
@@ -297,7 +303,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
     };
     println!();
     println!(
-        "asked {} questions ({} in this run{}): {} rules dropped, {} confirmed; {} rules held, {} need no question (the others imply them){} -> {}",
+        "asked {} questions ({} in this run{}): {} rules dropped, {} confirmed; {} rules held, {} need no question (the others imply them{}){} -> {}",
         p.asked,
         asked_now,
         median.map_or(String::new(), |m| format!(", median {m:.0} ms to a question")),
@@ -305,6 +311,11 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         p.confirmed,
         p.held,
         p.implied,
+        if out_of_budget || aborted.is_some() {
+            "; of the rules looked at so far"
+        } else {
+            ""
+        },
         if p.unknown > 0 {
             format!(", {} unsettled (probe time limit)", p.unknown)
         } else {

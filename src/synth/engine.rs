@@ -300,6 +300,13 @@ pub struct Engine {
     first_phase: Rc<Cell<bool>>,
     /// The resemblance terms and the total-cost variable (SPEC §12).
     like: Option<(Vec<LikeTerm>, DomainId)>,
+    /// Proved infeasible whatever the assumptions: Pumpkin's solver must not
+    /// be called again (it asserts), and every later call is `Unsat`.
+    dead: bool,
+    /// A limit stopped a solve: Pumpkin 0.5 asserts when solving again after
+    /// a timeout, so every later call is `Unknown` (the limits are over the
+    /// engine's life anyway). Make a new engine to go on.
+    spent: bool,
 }
 
 /// How the second phase ended.
@@ -665,6 +672,8 @@ impl Engine {
             tag,
             first_phase,
             like: like_total.map(|t| (like, t)),
+            dead: false,
+            spent: false,
         })
     }
 
@@ -694,6 +703,12 @@ impl Engine {
 
     /// Find any solution.
     pub fn satisfy(&mut self, limits: &Limits) -> Sat {
+        if self.dead {
+            return Sat::Unsat;
+        }
+        if self.spent {
+            return Sat::Unknown;
+        }
         let mut stop = self.stop(limits);
         let vars = self.vars.clone();
         match self
@@ -701,8 +716,14 @@ impl Engine {
             .satisfy(&mut self.brancher, &mut stop, &mut self.resolver)
         {
             SatisfactionResult::Satisfiable(s) => Sat::Solution(Self::values(&vars, &s.solution())),
-            SatisfactionResult::Unsatisfiable(..) => Sat::Unsat,
-            SatisfactionResult::Unknown(..) => Sat::Unknown,
+            SatisfactionResult::Unsatisfiable(..) => {
+                self.dead = true;
+                Sat::Unsat
+            }
+            SatisfactionResult::Unknown(..) => {
+                self.spent = true;
+                Sat::Unknown
+            }
         }
     }
 
@@ -724,6 +745,12 @@ impl Engine {
     }
 
     fn under(&mut self, assumptions: &[Predicate], limits: &Limits) -> Sat {
+        if self.dead {
+            return Sat::Unsat;
+        }
+        if self.spent {
+            return Sat::Unknown;
+        }
         let mut stop = self.stop(limits);
         let vars = self.vars.clone();
         match self.solver.satisfy_under_assumptions(
@@ -735,9 +762,15 @@ impl Engine {
             SatisfactionResultUnderAssumptions::Satisfiable(s) => {
                 Sat::Solution(Self::values(&vars, &s.solution()))
             }
-            SatisfactionResultUnderAssumptions::UnsatisfiableUnderAssumptions(_)
-            | SatisfactionResultUnderAssumptions::Unsatisfiable(_) => Sat::Unsat,
-            SatisfactionResultUnderAssumptions::Unknown(_) => Sat::Unknown,
+            SatisfactionResultUnderAssumptions::UnsatisfiableUnderAssumptions(_) => Sat::Unsat,
+            SatisfactionResultUnderAssumptions::Unsatisfiable(_) => {
+                self.dead = true;
+                Sat::Unsat
+            }
+            SatisfactionResultUnderAssumptions::Unknown(_) => {
+                self.spent = true;
+                Sat::Unknown
+            }
         }
     }
 

@@ -231,6 +231,17 @@ pub const MAX_COORD: i64 = 1 << 28;
 /// one propagation (a fuzzed 54×2^28 space with grid 5 took gigabytes).
 pub const MAX_POSITIONS: i64 = 1 << 18;
 
+/// Whether `problem` is usable for synthesis: a valid scene (SPEC §1) whose
+/// numbers are within the solver's bounds ([`MAX_COORD`],
+/// [`MAX_POSITIONS`]). [`synthesize`] checks this first; callers that build
+/// [`model::Model`]s themselves must too.
+pub fn check_problem(problem: &Scene) -> Result<(), SynthError> {
+    problem
+        .validate()
+        .map_err(|e| SynthError::BadProblem(e.to_string()))?;
+    check_ranges(problem)
+}
+
 fn check_ranges(problem: &Scene) -> Result<(), SynthError> {
     let sp = problem.space;
     let mut vals: Vec<(String, i64)> = vec![
@@ -309,10 +320,7 @@ pub fn synthesize(
     use std::time::Instant;
 
     let start = Instant::now();
-    problem
-        .validate()
-        .map_err(|e| SynthError::BadProblem(e.to_string()))?;
-    check_ranges(problem)?;
+    check_problem(problem)?;
     let limits = Limits {
         // A limit past what `Instant` can represent means no deadline.
         deadline: opts.time_limit.and_then(|t| start.checked_add(t)),
