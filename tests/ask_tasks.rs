@@ -26,7 +26,7 @@
 
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rccpack::ask::{negation, AskOptions, Asker, ProbeOptions};
+use rccpack::ask::{find_probe, negation, AskOptions, Asker, ProbeOptions, ProbeOutcome};
 use rccpack::eval::evaluate;
 use rccpack::infer::LearnParams;
 use rccpack::relations::Contact;
@@ -41,6 +41,7 @@ const CONTACT: Contact = Contact::Point;
 const SOLVE_LIMIT: Duration = Duration::from_secs(10);
 
 /// One generated task.
+#[derive(Clone, Copy)]
 struct Task {
     name: &'static str,
     /// Block classes with the range of counts per demonstration.
@@ -272,6 +273,10 @@ struct Outcome {
     gt_not_learned_first: Vec<String>,
     /// One line per question.
     log: Vec<String>,
+    /// The held rules at the end.
+    held: RuleSet,
+    /// The problem.
+    problem: Option<Scene>,
 }
 
 fn run_task(task: &Task, truth_text: &str, mixes: usize) -> Outcome {
@@ -463,6 +468,8 @@ fn run_task(task: &Task, truth_text: &str, mixes: usize) -> Outcome {
         }
         None => out.c_fail.push(format!("no layout: {:?}", r.status)),
     }
+    out.held = held.clone();
+    out.problem = Some(problem.clone());
     out.secs = start.elapsed().as_secs_f64();
     eprintln!(
         "| {:<6} | {:>3} asked | {:>2} dropped | {:>2} confirmed | {:>2} implied | {:>2} unknown | held {:>2} → {:>2} | {:>5.1} s | (a) {:?} | (b) {:?} | (c) {:?} | truth not learned at first: {:?}",
@@ -572,4 +579,77 @@ fn task_three() {
     let o = run("three", 2);
     check_generic(&o);
     assert!(o.a_fail.is_empty() && o.b_fail.is_empty(), "{o:#?}");
+}
+
+/// Every task on more seeds (other demonstrations) and more object mixes
+/// for (a): prints the table and a summary; asserts only that no check
+/// timed out (the other properties fail now and then for the reasons the
+/// known failures above document).
+#[test]
+#[ignore = "slower: cargo test --release --test ask_tasks -- --ignored --nocapture"]
+fn tasks_on_many_seeds() {
+    let mut total = [0usize; 4];
+    let mut runs = 0;
+    for (task, truth) in tasks() {
+        for seed in 100..110 {
+            let t = Task { seed, ..task };
+            let o = run_task(&t, &truth, 6);
+            assert!(o.timeouts.is_empty(), "{o:#?}");
+            runs += 1;
+            total[0] += usize::from(!o.a_fail.is_empty());
+            total[1] += usize::from(!o.a_fail_unconfirmed.is_empty());
+            total[2] += usize::from(!o.b_fail.is_empty());
+            total[3] += usize::from(!o.c_fail.is_empty());
+        }
+    }
+    eprintln!(
+        "{runs} runs: (a) fails in {} ({} with an unconfirmed rule), (b) in {}, (c) in {}",
+        total[0], total[1], total[2], total[3]
+    );
+}
+
+/// Known failure of (a), a defect of the question loop (`Asker`): three
+/// held habits that imply one another on the problem — `R_dr_s_G:
+/// DR_S(R, G)`, `G_dr_n_R: DR_N(G, R)` (the same statement from either
+/// side; the syntactic `rule_implies` does not see it) and
+/// `G_none_touch_w_south` — each get `Implied` from the engine because the
+/// others are kept hard in its probe, so none is ever asked and all stay
+/// held, though the truth allows a green beside the reds on the floor.
+/// Without the other two, the probe for `R_dr_s_G` exists and the oracle
+/// accepts it. (Seed 101 of the `row` task.)
+#[test]
+fn mutually_implied_habits_are_never_asked() {
+    let (task, truth) = tasks()
+        .into_iter()
+        .find(|(t, _)| t.name == "row")
+        .expect("a task");
+    let o = run_task(&Task { seed: 101, ..task }, &truth, 0);
+    for name in ["R_dr_s_G", "G_dr_n_R"] {
+        assert!(o.a_fail_unconfirmed.iter().any(|n| n == name), "{o:#?}");
+    }
+    let problem = o.problem.clone().expect("problem");
+    let truth = parse_rules(&truth).expect("truth");
+    let idx = |set: &RuleSet, n: &str| set.rules.iter().position(|r| r.name == n).expect(n);
+    let opts = ProbeOptions {
+        contact: CONTACT,
+        time_limit: Some(SOLVE_LIMIT),
+        ..ProbeOptions::default()
+    };
+    let k = idx(&o.held, "R_dr_s_G");
+    let with = find_probe(&problem, &o.held, k, &opts).expect("probe");
+    assert!(matches!(with, ProbeOutcome::Implied { .. }), "{with:?}");
+    // Without the other habits the truth does not imply either.
+    let mut without = o.held.clone();
+    without
+        .rules
+        .retain(|r| r.name == "R_dr_s_G" || !o.a_fail_unconfirmed.contains(&r.name));
+    let k = idx(&without, "R_dr_s_G");
+    match find_probe(&problem, &without, k, &opts).expect("probe") {
+        ProbeOutcome::Probe(p) => assert!(
+            all_hold(&p.scene, &truth),
+            "the probe without the twin breaks the truth: {}",
+            positions(&p.scene)
+        ),
+        other => panic!("no probe without the twin: {other:?}"),
+    }
 }
