@@ -363,13 +363,14 @@ fn run_task(task: &Task, truth_text: &str, mixes: usize) -> Outcome {
             .map(|r| r.name.clone())
             .collect();
         // A truth rule the probe breaks is never implied by the held rules
-        // the probe keeps, all but the probed one (else the probe could not
-        // exist).
+        // the probe keeps: all but the probed one and the rules equivalent
+        // to it on the problem, which it breaks too (`also_broken`; else
+        // the probe could not exist).
         let others: Vec<Rule> = asker
             .held()
             .rules
             .iter()
-            .filter(|r| r.name != q.rule)
+            .filter(|r| r.name != q.rule && !q.also_broken.contains(&r.name))
             .cloned()
             .collect();
         let broken: Vec<String> = broken
@@ -608,48 +609,24 @@ fn tasks_on_many_seeds() {
     );
 }
 
-/// Known failure of (a), a defect of the question loop (`Asker`): three
-/// held habits that imply one another on the problem — `R_dr_s_G:
-/// DR_S(R, G)`, `G_dr_n_R: DR_N(G, R)` (the same statement from either
-/// side; the syntactic `rule_implies` does not see it) and
-/// `G_none_touch_w_south` — each get `Implied` from the engine because the
-/// others are kept hard in its probe, so none is ever asked and all stay
-/// held, though the truth allows a green beside the reds on the floor.
-/// Without the other two, the probe for `R_dr_s_G` exists and the oracle
-/// accepts it. (Seed 101 of the `row` task.)
+/// Found by this test: held habits that imply one another on the problem
+/// — `R_dr_s_G: DR_S(R, G)` and `G_dr_n_R: DR_N(G, R)` (the same statement
+/// from either side; the syntactic `rule_implies` does not see it) — each
+/// got `Implied` from the engine because the other was kept hard in its
+/// probe, so neither was ever asked and both stayed held, though the truth
+/// allows a green beside the reds on the floor. The question loop now asks
+/// about rules equivalent on the problem as one (`Question::also_broken`).
+/// (Seed 101 of the `row` task.)
 #[test]
-fn mutually_implied_habits_are_never_asked() {
+fn mutually_implied_habits_are_asked_as_one() {
     let (task, truth) = tasks()
         .into_iter()
         .find(|(t, _)| t.name == "row")
         .expect("a task");
     let o = run_task(&Task { seed: 101, ..task }, &truth, 0);
     for name in ["R_dr_s_G", "G_dr_n_R"] {
-        assert!(o.a_fail_unconfirmed.iter().any(|n| n == name), "{o:#?}");
+        assert!(!o.a_fail_unconfirmed.iter().any(|n| n == name), "{o:#?}");
+        assert!(!o.held.rules.iter().any(|r| r.name == name), "{o:#?}");
     }
-    let problem = o.problem.clone().expect("problem");
-    let truth = parse_rules(&truth).expect("truth");
-    let idx = |set: &RuleSet, n: &str| set.rules.iter().position(|r| r.name == n).expect(n);
-    let opts = ProbeOptions {
-        contact: CONTACT,
-        time_limit: Some(SOLVE_LIMIT),
-        ..ProbeOptions::default()
-    };
-    let k = idx(&o.held, "R_dr_s_G");
-    let with = find_probe(&problem, &o.held, k, &opts).expect("probe");
-    assert!(matches!(with, ProbeOutcome::Implied { .. }), "{with:?}");
-    // Without the other habits the truth does not imply either.
-    let mut without = o.held.clone();
-    without
-        .rules
-        .retain(|r| r.name == "R_dr_s_G" || !o.a_fail_unconfirmed.contains(&r.name));
-    let k = idx(&without, "R_dr_s_G");
-    match find_probe(&problem, &without, k, &opts).expect("probe") {
-        ProbeOutcome::Probe(p) => assert!(
-            all_hold(&p.scene, &truth),
-            "the probe without the twin breaks the truth: {}",
-            positions(&p.scene)
-        ),
-        other => panic!("no probe without the twin: {other:?}"),
-    }
+    assert!(o.c_fail.is_empty(), "{o:#?}");
 }

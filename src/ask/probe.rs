@@ -257,7 +257,8 @@ impl ProbeChecker {
     /// `Some(true)`: rule `k` has a probe; `Some(false)`: proven none (the
     /// others imply it on this problem); `None`: a limit stopped the solve
     /// (the engine is then spent: make a new checker).
-    /// Rules with `removed[j]` are left out of the assumptions.
+    /// Rules with `removed[j]` (allowed to break with `k`) are left out of
+    /// the assumptions.
     pub fn has_probe(&mut self, k: usize, removed: &[bool]) -> Option<bool> {
         use crate::synth::engine::{Limits, Sat};
         let Some(neg) = self.negation_of[k] else {
@@ -283,6 +284,34 @@ impl ProbeChecker {
         match engine.satisfy_rules(&assume, &limits) {
             Sat::Solution(_) => Some(true),
             Sat::Unsat => Some(false),
+            Sat::Unknown => None,
+        }
+    }
+}
+
+impl ProbeChecker {
+    /// Whether held rule `a` alone implies held rule `b` on this problem
+    /// (no other rule assumed); `None` when a limit stopped the solve.
+    pub fn implies(&mut self, a: usize, b: usize) -> Option<bool> {
+        use crate::synth::engine::{Limits, Sat};
+        let Some(neg) = self.negation_of[b] else {
+            return Some(true);
+        };
+        let Some(engine) = self.engine.as_mut() else {
+            return Some(true);
+        };
+        let started = std::time::Instant::now();
+        let limits = Limits {
+            deadline: self.opts.time_limit.and_then(|t| started.checked_add(t)),
+            node_limit: self
+                .opts
+                .node_limit
+                .map(|n| engine.nodes().saturating_add(n)),
+            cancel: None,
+        };
+        match engine.satisfy_rules(&[a, neg], &limits) {
+            Sat::Solution(_) => Some(false),
+            Sat::Unsat => Some(true),
             Sat::Unknown => None,
         }
     }

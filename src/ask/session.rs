@@ -101,8 +101,8 @@ pub struct Question {
     pub english: String,
     /// The probe.
     pub probe: Probe,
-    /// Other held rules the probe breaks too: rules that follow from the
-    /// rest, set aside (see [`Asker::next_question`]); usually empty.
+    /// Other held rules the probe breaks too: rules of a group that imply
+    /// one another (see [`Asker::next_question`]); usually empty.
     pub also_broken: Vec<String>,
 }
 
@@ -303,113 +303,151 @@ impl Asker {
         (0..self.held.rules.len()).rev().collect()
     }
 
-    /// Whether another remaining held rule implies rule `k` on every scene
-    /// (syntactically).
-    fn syntactically_implied(&self, k: usize, removed: &[bool]) -> bool {
+    /// Whether another held rule implies rule `k` on every scene
+    /// (syntactically) and is not implied by it.
+    fn syntactically_implied(&self, k: usize) -> bool {
         let r = &self.held.rules[k];
         let contact = self.opts.learn.contact;
-        self.held.rules.iter().enumerate().any(|(j, h)| {
-            j != k
-                && !removed[j]
-                && rule_implies((h.scope, &h.formula), (r.scope, &r.formula), contact)
+        let implies = |a: &crate::rules::Rule, b: &crate::rules::Rule| {
+            rule_implies((a.scope, &a.formula), (b.scope, &b.formula), contact)
+        };
+        self.held
+            .rules
+            .iter()
+            .enumerate()
+            .any(|(j, h)| j != k && implies(h, r) && !implies(r, h))
+    }
+
+    fn checker<'c>(
+        &self,
+        checker: &'c mut Option<ProbeChecker>,
+    ) -> Result<&'c mut ProbeChecker, AskError> {
+        Ok(match checker {
+            Some(c) => c,
+            None => checker.insert(ProbeChecker::new(
+                &self.problem,
+                &self.held,
+                &self.opts.probe,
+            )?),
+        })
+    }
+
+    /// The probe for rule `k` keeping every held rule but `k` and those in
+    /// `equivalent`.
+    fn search(&self, k: usize, equivalent: &[bool]) -> Result<Known, AskError> {
+        let opts = ProbeOptions {
+            like: self.like(),
+            ..self.opts.probe.clone()
+        };
+        let keep: Vec<usize> = (0..self.held.rules.len())
+            .filter(|&j| j == k || !equivalent[j])
+            .collect();
+        let set = RuleSet::new(keep.iter().map(|&j| self.held.rules[j].clone()).collect());
+        let at = keep.iter().position(|&j| j == k).expect("kept");
+        Ok(match find_probe(&self.problem, &set, at, &opts)? {
+            ProbeOutcome::Probe(p) => Known::Probe(p),
+            ProbeOutcome::Implied { .. } => Known::Implied,
+            ProbeOutcome::Unknown => Known::Unknown,
         })
     }
 
     /// The next question, or `None` when every held rule is confirmed or
     /// needs no question. Computes probes lazily, in asking order.
     ///
-    /// A rule found to follow from the others is set aside for the rest of
-    /// the scan: the set without it allows exactly the same layouts, so
-    /// setting aside such rules one at a time never changes what the held
-    /// rules allow. It is what lets a group of habits that imply each other
-    /// (`DR_S(R, G)` and `DR_N(G, R)`) be asked about at all: the first is
-    /// set aside, and the probe of the second may break both
-    /// ([`Question::also_broken`]); accepted, it drops both.
+    /// When no rule has a probe that keeps every other held rule, a group
+    /// of rules that imply one another on the problem (e.g. `DR_S(R, G)` and
+    /// `DR_N(G, R)`, the same habit written two ways) would never be asked
+    /// about. Then, in asking order, a rule not implied by the confirmed and
+    /// probe-able rules alone gets a probe that breaks it together with the
+    /// fewest rules of its group (greedily: each is kept hard when it can
+    /// be) and keeps every other held rule; [`Question::also_broken`] names
+    /// the rules it breaks too.
     pub fn next_question(&mut self) -> Result<Option<Question>, AskError> {
         let order = self.asking_order();
-        let like = self.like();
+        let n = self.held.rules.len();
+        let none = vec![false; n];
         let mut checker: Option<ProbeChecker> = None;
-        let mut removed: Vec<bool> = self
-            .held
-            .rules
-            .iter()
-            .map(|r| {
-                !self.confirmed.contains(&r.name)
-                    && matches!(self.known.get(&r.name), Some(Known::Implied))
-            })
-            .collect();
-        for &k in &order {
-            let rule = self.held.rules[k].clone();
-            if self.confirmed.contains(&rule.name) {
-                continue;
-            }
-            if !self.known.contains_key(&rule.name) {
-                let known = if self.syntactically_implied(k, &removed) {
-                    Known::Implied
-                } else {
-                    let c = match &mut checker {
-                        Some(c) => c,
-                        None => checker.insert(ProbeChecker::new(
-                            &self.problem,
-                            &self.held,
-                            &self.opts.probe,
-                        )?),
-                    };
-                    match c.has_probe(k, &removed) {
-                        // Proven: the other held rules imply it here.
-                        Some(false) => Known::Implied,
-                        verdict => {
-                            if verdict.is_none() {
-                                // A spent engine answers nothing more.
-                                checker = None;
+        for pass in 0..2 {
+            for &k in &order {
+                let name = self.held.rules[k].name.clone();
+                if self.confirmed.contains(&name) {
+                    continue;
+                }
+                if pass == 0 && !self.known.contains_key(&name) {
+                    let known = if self.syntactically_implied(k) {
+                        Known::Implied
+                    } else {
+                        match self.checker(&mut checker)?.has_probe(k, &none) {
+                            Some(false) => Known::Implied,
+                            verdict => {
+                                if verdict.is_none() {
+                                    // A spent engine answers nothing more.
+                                    checker = None;
+                                }
+                                self.search(k, &none)?
                             }
-                            let opts = ProbeOptions {
-                                like: like.clone(),
-                                ..self.opts.probe.clone()
-                            };
-                            // The probe keeps every other remaining held rule.
-                            let keep: Vec<usize> = (0..self.held.rules.len())
-                                .filter(|&j| j == k || !removed[j])
-                                .collect();
-                            let set = RuleSet::new(
-                                keep.iter().map(|&j| self.held.rules[j].clone()).collect(),
-                            );
-                            let at = keep.iter().position(|&j| j == k).expect("kept");
-                            match find_probe(&self.problem, &set, at, &opts)? {
-                                ProbeOutcome::Probe(p) => Known::Probe(p),
-                                ProbeOutcome::Implied { .. } => Known::Implied,
-                                ProbeOutcome::Unknown => Known::Unknown,
+                        }
+                    };
+                    self.known.insert(name.clone(), known);
+                }
+                if pass == 1 && matches!(self.known.get(&name), Some(Known::Implied)) {
+                    // Which unconfirmed implied rules must break with it.
+                    let mut with: Vec<bool> = (0..n)
+                        .map(|j| {
+                            let other = &self.held.rules[j].name;
+                            j != k
+                                && !self.confirmed.contains(other)
+                                && matches!(self.known.get(other), Some(Known::Implied))
+                        })
+                        .collect();
+                    if !with.iter().any(|&w| w) {
+                        continue;
+                    }
+                    let c = self.checker(&mut checker)?;
+                    if c.has_probe(k, &with) != Some(true) {
+                        // The firm rules imply it (or a limit): settled.
+                        continue;
+                    }
+                    // Keep every rule hard that can be kept: the fewest
+                    // rules break together with `k`.
+                    for j in 0..n {
+                        if with[j] {
+                            with[j] = false;
+                            if c.has_probe(k, &with) != Some(true) {
+                                with[j] = true;
                             }
                         }
                     }
-                };
-                if matches!(known, Known::Implied) {
-                    removed[k] = true;
+                    let known = self.search(k, &with)?;
+                    if matches!(known, Known::Probe(_)) {
+                        self.known.insert(name.clone(), known);
+                    }
                 }
-                self.known.insert(rule.name.clone(), known);
-            }
-            if let Some(Known::Probe(p)) = self.known.get(&rule.name) {
-                let stmt = self
-                    .learned
-                    .statements
-                    .iter()
-                    .find(|s| s.name == rule.name)
-                    .expect("a held rule is a statement");
-                self.open = Some(rule.name.clone());
-                let ev = crate::eval::evaluate(&p.scene, &self.held, self.opts.learn.contact);
-                let also_broken = ev
-                    .rules
-                    .iter()
-                    .filter(|r| r.name != rule.name && r.satisfied < r.subjects)
-                    .map(|r| r.name.clone())
-                    .collect();
-                return Ok(Some(Question {
-                    also_broken,
-                    rule: rule.name.clone(),
-                    statement: crate::infer::statement_text(rule.scope, &rule.formula),
-                    english: stmt.english.clone(),
-                    probe: p.clone(),
-                }));
+                if let Some(Known::Probe(p)) = self.known.get(&name) {
+                    let rule = &self.held.rules[k];
+                    let stmt = self
+                        .learned
+                        .statements
+                        .iter()
+                        .find(|s| s.name == name)
+                        .expect("a held rule is a statement");
+                    let ev = crate::eval::evaluate(&p.scene, &self.held, self.opts.learn.contact);
+                    let also_broken = ev
+                        .rules
+                        .iter()
+                        .filter(|r| r.name != name && r.satisfied < r.subjects)
+                        .map(|r| r.name.clone())
+                        .collect();
+                    let q = Question {
+                        also_broken,
+                        rule: name.clone(),
+                        statement: crate::infer::statement_text(rule.scope, &rule.formula),
+                        english: stmt.english.clone(),
+                        probe: p.clone(),
+                    };
+                    self.open = Some(name);
+                    return Ok(Some(q));
+                }
             }
         }
         self.open = None;
