@@ -703,6 +703,11 @@ async fn ask_answers_are_saved_like_the_command_line() {
         .unwrap_or_else(|| panic!("rule {rule1} in {rcc}"));
     assert!(block.contains(&confirmed), "{block}");
     assert_eq!(v["learned"]["text"], rcc.as_str());
+    // The learned-rules summary marks it.
+    let listed = v["learned"]["rules"].as_array().unwrap();
+    let r1 = listed.iter().find(|r| r["name"] == rule1.as_str()).unwrap();
+    assert_eq!(r1["confirmed"], true);
+    assert!(listed.iter().filter(|r| r["confirmed"] == true).count() == 1);
 
     // The confirmed rule is not asked again. Looks right: the probe joins
     // the demonstrations.

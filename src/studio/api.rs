@@ -3,7 +3,9 @@
 
 use super::storage::{self, ANSWERS, DEMOS, LEARNED, LEARNED_BACKUP, STATEMENTS};
 use super::AppState;
-use crate::ask::{Answer, AnswersFile, AskError, AskOptions, Asker, ProbeOptions, Question};
+use crate::ask::{
+    Answer, AnswersFile, AskError, AskOptions, Asker, ProbeOptions, Question, CONFIRMED,
+};
 use crate::infer::{learn as run_learn, statement_text, LearnParams, StatementSource};
 use crate::resemblance::Likeness;
 use crate::rules::{check_classes, check_landmarks, parse_rules, RuleSet};
@@ -520,11 +522,44 @@ fn learned_value(st: &AppState, text: Option<&str>) -> Value {
             check_landmarks(&set, &st.problem)?;
             Ok(set)
         }) {
-            Ok(set) => v["rules"] = rule_summary(&set),
+            Ok(set) => {
+                let confirmed = confirmed_names(t);
+                let mut rules = rule_summary(&set);
+                for r in rules.as_array_mut().expect("an array") {
+                    let name = r["name"].as_str().unwrap_or("");
+                    r["confirmed"] = json!(confirmed.iter().any(|c| c == name));
+                }
+                v["rules"] = rules;
+            }
             Err(e) => v["error"] = json!(e.render(LEARNED, t, false)),
         }
     }
     v
+}
+
+/// Names of the rules marked `# confirmed` (SPEC §13) in `.rcc` text: the
+/// comment lines right above a `rule` line belong to it.
+fn confirmed_names(text: &str) -> Vec<String> {
+    let mark = format!("# {CONFIRMED}");
+    let mut out = Vec::new();
+    let mut pending = false;
+    for line in text.lines().map(str::trim) {
+        if line == mark {
+            pending = true;
+        } else if let Some(rest) = line.strip_prefix("rule ") {
+            if pending {
+                let name = rest
+                    .split(|c: char| c.is_whitespace() || c == ':')
+                    .next()
+                    .unwrap_or("");
+                out.push(name.to_string());
+            }
+            pending = false;
+        } else if !line.starts_with('#') {
+            pending = false;
+        }
+    }
+    out
 }
 
 fn rule_summary(set: &RuleSet) -> Value {
