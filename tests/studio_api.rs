@@ -608,3 +608,316 @@ async fn learn_samples_and_synth_time_limit_are_bounded() {
         assert_eq!(v["path"], "time_limit");
     }
 }
+
+// ---- Check rules (SPEC §13) --------------------------------------------------------
+
+fn answers_on_disk(dir: &Path) -> Vec<Value> {
+    let v: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("answers.json")).unwrap()).unwrap();
+    v["answers"].as_array().unwrap().clone()
+}
+
+async fn next_question(app: &axum::Router) -> Value {
+    let (s, v) = call(
+        app,
+        Method::POST,
+        "/api/ask/next",
+        json!({"samples": 200}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    v
+}
+
+async fn answer(app: &axum::Router, rule: &Value, accepted: bool) -> Value {
+    let (s, v) = call(
+        app,
+        Method::POST,
+        "/api/ask/answer",
+        json!({"rule": rule, "accepted": accepted}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    v
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn ask_next_returns_a_probe_question() {
+    let dir = task_dir("ask-next", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let v = next_question(&app).await;
+    let q = &v["question"];
+    assert!(q.is_object(), "{v}");
+    assert_eq!(q["number"], 1);
+    assert!(!q["rule"].as_str().unwrap().is_empty());
+    assert!(!q["statement"].as_str().unwrap().is_empty());
+    assert!(!q["english"].as_str().unwrap().is_empty());
+    assert!(q["broken"].is_array());
+    // The probe is a complete layout of the problem: every object placed.
+    let objects = q["scene"]["objects"].as_array().unwrap();
+    assert_eq!(objects.len(), 13);
+    assert!(objects.iter().all(|o| o["x"].is_i64() && o["y"].is_i64()));
+    let ids: Vec<&str> = objects.iter().map(|o| o["id"].as_str().unwrap()).collect();
+    for b in q["broken"].as_array().unwrap() {
+        assert!(ids.contains(&b.as_str().unwrap()), "{b} in {ids:?}");
+    }
+    assert_eq!(v["progress"]["asked"], 0);
+    assert!(v["progress"]["held"].as_u64().unwrap() > 0);
+    // learned.rcc is written at the start, as `rccpack ask` does, and
+    // `learned` has the shape of GET /api/learned.
+    assert_eq!(v["learned"]["exists"], true);
+    assert!(!v["learned"]["rules"].as_array().unwrap().is_empty());
+    let (_, l) = call(&app, Method::GET, "/api/learned", Body::empty()).await;
+    assert_eq!(l, v["learned"]);
+    // Asking again without answering shows the same question.
+    let again = next_question(&app).await;
+    assert_eq!(again["question"], v["question"]);
+    assert!(!dir.join("answers.json").exists());
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn ask_answers_are_saved_like_the_command_line() {
+    let dir = task_dir("ask-answer", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let n0 = demos_on_disk(&dir);
+
+    // Not like that: the rule is confirmed, demos.json unchanged.
+    let q1 = next_question(&app).await["question"].clone();
+    let rule1 = q1["rule"].as_str().unwrap().to_string();
+    let v = answer(&app, &q1["rule"], false).await;
+    assert_eq!(v["progress"]["asked"], 1);
+    assert_eq!(v["progress"]["confirmed"], 1);
+    assert_eq!(v["progress"]["dropped"], 0);
+    assert_eq!(v["answer"]["accepted"], false);
+    assert_eq!(demos_on_disk(&dir), n0);
+    let answers = answers_on_disk(&dir);
+    assert_eq!(answers.len(), 1);
+    assert_eq!(answers[0]["rule"], rule1.as_str());
+    assert_eq!(answers[0]["accepted"], false);
+    assert_eq!(answers[0]["probe"], q1["scene"]);
+    let rcc = std::fs::read_to_string(dir.join("learned.rcc")).unwrap();
+    let confirmed = format!("# {}\n", rccpack::ask::CONFIRMED);
+    let block = rcc
+        .split("\n\n")
+        .find(|b| b.contains(&format!("rule {rule1} ")) || b.contains(&format!("rule {rule1}:")))
+        .unwrap_or_else(|| panic!("rule {rule1} in {rcc}"));
+    assert!(block.contains(&confirmed), "{block}");
+    assert_eq!(v["learned"]["text"], rcc.as_str());
+    // The learned-rules summary marks it.
+    let listed = v["learned"]["rules"].as_array().unwrap();
+    let r1 = listed.iter().find(|r| r["name"] == rule1.as_str()).unwrap();
+    assert_eq!(r1["confirmed"], true);
+    assert!(listed.iter().filter(|r| r["confirmed"] == true).count() == 1);
+
+    // The confirmed rule is not asked again. Looks right: the probe joins
+    // the demonstrations.
+    let q2 = next_question(&app).await["question"].clone();
+    assert_ne!(q2["rule"], rule1.as_str());
+    assert_eq!(q2["number"], 2);
+    let v = answer(&app, &q2["rule"], true).await;
+    assert_eq!(v["progress"]["asked"], 2);
+    assert_eq!(v["progress"]["dropped"], 1);
+    assert_eq!(v["answer"]["demo"], n0);
+    assert_eq!(demos_on_disk(&dir), n0 + 1);
+    let demos: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("demos.json")).unwrap()).unwrap();
+    assert_eq!(demos[n0], q2["scene"]);
+    let answers = answers_on_disk(&dir);
+    assert_eq!(answers.len(), 2);
+    assert_eq!(answers[1]["accepted"], true);
+    assert_eq!(answers[1]["demo"], n0);
+    // The dropped rule is no longer in learned.rcc; the confirmed one stays.
+    let rcc = std::fs::read_to_string(dir.join("learned.rcc")).unwrap();
+    let rule2 = q2["rule"].as_str().unwrap();
+    assert!(!rcc.contains(&format!("rule {rule2} ")), "{rcc}");
+    assert!(rcc.contains(&format!("rule {rule1} ")), "{rcc}");
+
+    // Answering the same question twice: nothing is open about it.
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/ask/answer",
+        json!({"rule": q2["rule"], "accepted": true}).to_string(),
+    )
+    .await;
+    assert!(s.is_client_error(), "{s} {v}");
+    assert_eq!(answers_on_disk(&dir).len(), 2);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn ask_refuses_wrong_rules_and_bad_bodies() {
+    let dir = task_dir("ask-bad", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    // No question asked yet.
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/ask/answer",
+        json!({"rule": "x", "accepted": true}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::CONFLICT, "{v}");
+    assert!(
+        v["error"].as_str().unwrap().contains("no question is open"),
+        "{v}"
+    );
+    let q = next_question(&app).await["question"].clone();
+    // A rule that is not the open question's.
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/ask/answer",
+        json!({"rule": "not_the_rule", "accepted": false}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::CONFLICT, "{v}");
+    let msg = v["error"].as_str().unwrap();
+    assert!(
+        msg.contains("not_the_rule") && msg.contains(q["rule"].as_str().unwrap()),
+        "{msg}"
+    );
+    assert_eq!(v["path"], "rule");
+    // Bad bodies: 400 naming the field.
+    for (body, field) in [
+        (
+            json!({"rule": q["rule"], "accepted": "yes"}).to_string(),
+            "accepted",
+        ),
+        (json!({"rule": 3, "accepted": true}).to_string(), "rule"),
+        (json!({"accepted": true}).to_string(), "rule"),
+        (json!({"rule": q["rule"]}).to_string(), "accepted"),
+        (
+            json!({"rule": q["rule"], "accepted": true, "why": 1}).to_string(),
+            "why",
+        ),
+    ] {
+        let (s, v) = call(&app, Method::POST, "/api/ask/answer", body.clone()).await;
+        assert_eq!(s, StatusCode::BAD_REQUEST, "{body}: {v}");
+        assert!(v["error"].as_str().unwrap().contains(field), "{body}: {v}");
+    }
+    let (s, v) = call(&app, Method::POST, "/api/ask/answer", "{\"rule\": ").await;
+    assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
+    assert!(
+        v["error"].as_str().unwrap().starts_with("request body"),
+        "{v}"
+    );
+    let (s, v) = call(&app, Method::POST, "/api/ask/answer", Body::empty()).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
+    assert_eq!(v["path"], "rule");
+    for (body, field) in [
+        (json!({"samples": 0}), "samples"),
+        (json!({"samples": "many"}), "samples"),
+        (json!({"seed": -1}), "seed"),
+        (json!({"questions": 3}), "questions"),
+    ] {
+        let (s, v) = call(&app, Method::POST, "/api/ask/next", body.to_string()).await;
+        assert_eq!(s, StatusCode::BAD_REQUEST, "{body}: {v}");
+        assert!(v["error"].as_str().unwrap().contains(field), "{body}: {v}");
+    }
+    let big = format!("{{\"pad\": \"{}\"}}", "x".repeat(2 << 20));
+    let (s, _) = call(&app, Method::POST, "/api/ask/answer", big.clone()).await;
+    assert_eq!(s, StatusCode::PAYLOAD_TOO_LARGE);
+    let (s, _) = call(&app, Method::POST, "/api/ask/next", big).await;
+    assert_eq!(s, StatusCode::PAYLOAD_TOO_LARGE);
+    // Nothing was answered.
+    assert!(!dir.join("answers.json").exists());
+    // The question is still open after the refusals.
+    answer(&app, &q["rule"], false).await;
+
+    // A corrupt answers.json is reported and kept.
+    std::fs::write(dir.join("answers.json"), "{\"answers\": [{\"rule\": 1}]}").unwrap();
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/demos",
+        demo(&[("R", 200, 200)]).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::CREATED, "{v}");
+    let (s, v) = call(&app, Method::POST, "/api/ask/next", Body::empty()).await;
+    assert_eq!(s, StatusCode::CONFLICT, "{v}");
+    assert!(
+        v["error"]
+            .as_str()
+            .unwrap()
+            .starts_with("answers.json: at `answers[0].rule`"),
+        "{v}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("answers.json")).unwrap(),
+        "{\"answers\": [{\"rule\": 1}]}"
+    );
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn ask_resumes_from_answers_json() {
+    let dir = task_dir("ask-resume", true);
+    let n0 = demos_on_disk(&dir);
+    {
+        let app = rccpack::studio::router(&dir).unwrap();
+        let q = next_question(&app).await["question"].clone();
+        answer(&app, &q["rule"], true).await;
+        let q = next_question(&app).await["question"].clone();
+        answer(&app, &q["rule"], false).await;
+    }
+    let learned = std::fs::read_to_string(dir.join("learned.rcc")).unwrap();
+    // A fresh router (the studio restarted) continues where it stopped.
+    let app = rccpack::studio::router(&dir).unwrap();
+    let v = next_question(&app).await;
+    assert_eq!(v["progress"]["asked"], 2, "{v}");
+    assert_eq!(v["progress"]["dropped"], 1);
+    assert_eq!(v["progress"]["confirmed"], 1);
+    assert_eq!(v["question"]["number"], 3);
+    assert_eq!(demos_on_disk(&dir), n0 + 1);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("learned.rcc")).unwrap(),
+        learned
+    );
+    assert!(!dir.join("learned.rcc.bak").exists());
+    if v["question"].is_object() {
+        answer(&app, &v["question"]["rule"], false).await;
+        assert_eq!(answers_on_disk(&dir).len(), 3);
+    }
+
+    // Saving a demonstration drops the session: the open question is gone
+    // and the next one is asked from the files again.
+    let q = next_question(&app).await["question"].clone();
+    if q.is_object() {
+        let (s, _) = call(
+            &app,
+            Method::POST,
+            "/api/demos",
+            demo(&[("R", 200, 200), ("G", 380, 200), ("B", 200, 380)]).to_string(),
+        )
+        .await;
+        assert_eq!(s, StatusCode::CREATED);
+        let (s, v) = call(
+            &app,
+            Method::POST,
+            "/api/ask/answer",
+            json!({"rule": q["rule"], "accepted": false}).to_string(),
+        )
+        .await;
+        assert_eq!(s, StatusCode::CONFLICT, "{v}");
+        assert_eq!(v["kind"], "no_question");
+        let v = next_question(&app).await;
+        assert_eq!(v["progress"]["asked"], answers_on_disk(&dir).len());
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn ask_keeps_a_different_learned_rcc_as_backup() {
+    let dir = task_dir("ask-backup", true);
+    std::fs::write(dir.join("learned.rcc"), "rule mine: DR_N(B, R)\n").unwrap();
+    let app = rccpack::studio::router(&dir).unwrap();
+    let v = next_question(&app).await;
+    assert_eq!(v["backup"], "learned.rcc.bak");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("learned.rcc.bak")).unwrap(),
+        "rule mine: DR_N(B, R)\n"
+    );
+    assert_ne!(
+        std::fs::read_to_string(dir.join("learned.rcc")).unwrap(),
+        "rule mine: DR_N(B, R)\n"
+    );
+}

@@ -1,8 +1,11 @@
 //! HTTP handlers. Every error is JSON `{"error": "...", "path": "..."}` with a
 //! message in the same words as the command-line tool.
 
-use super::storage::{self, DEMOS, LEARNED, STATEMENTS};
+use super::storage::{self, ANSWERS, DEMOS, LEARNED, LEARNED_BACKUP, STATEMENTS};
 use super::AppState;
+use crate::ask::{
+    Answer, AnswersFile, AskError, AskOptions, Asker, ProbeOptions, Question, CONFIRMED,
+};
 use crate::infer::{learn as run_learn, statement_text, LearnParams, StatementSource};
 use crate::resemblance::Likeness;
 use crate::rules::{check_classes, check_landmarks, parse_rules, RuleSet};
@@ -343,6 +346,7 @@ pub(crate) async fn save_demo(State(st): St, body: Bytes) -> ApiResult {
     let _guard = st.write_lock.lock().await;
     let mut demos = read_demos(&st)?;
     demos.push(scene);
+    st.reset_ask();
     storage::atomic_write(&st.dir, DEMOS, &scenes_to_json(&demos))
         .map_err(|e| ApiError::io(DEMOS, e))?;
     Ok((
@@ -392,6 +396,7 @@ pub(crate) async fn delete_demo(
     }
     let i = demo_index(&index, demos.len())?;
     demos.remove(i);
+    st.reset_ask();
     storage::atomic_write(&st.dir, DEMOS, &scenes_to_json(&demos))
         .map_err(|e| ApiError::io(DEMOS, e))?;
     ok(json!({"count": demos.len()}))
@@ -419,12 +424,22 @@ fn parse_body<T: for<'de> Deserialize<'de> + Default>(body: &[u8]) -> Result<T, 
     })
 }
 
+/// statements.rcc, parsed, when present.
+fn read_statements(st: &AppState) -> Result<Option<RuleSet>, ApiError> {
+    match storage::read_optional(&st.dir, STATEMENTS).map_err(|e| ApiError::io(STATEMENTS, e))? {
+        Some(text) => Ok(Some(
+            parse_rules(&text).map_err(|e| rules_error(STATEMENTS, &text, e))?,
+        )),
+        None => Ok(None),
+    }
+}
+
 fn rules_error(file: &str, src: &str, e: crate::rules::RulesError) -> ApiError {
     ApiError::bad(e.render(file, src, false)).with("file", json!(file))
 }
 
-pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
-    let b: LearnBody = parse_body(&body)?;
+/// Learning parameters from a learn (or ask) body, checked.
+fn learn_params(b: &LearnBody) -> Result<LearnParams, ApiError> {
     let mut params = LearnParams::default();
     if let Some(n) = b.samples {
         params.samples = crate::limits::check_samples(n)
@@ -436,13 +451,16 @@ pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
     if let Some(c) = b.cutoff {
         params.cutoff = c;
     }
+    Ok(params)
+}
+
+pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
+    let b: LearnBody = parse_body(&body)?;
+    let params = learn_params(&b)?;
+    // Learning again starts the questions afresh (from the files).
+    st.reset_ask();
     let demos = read_demos(&st)?;
-    let statements = match storage::read_optional(&st.dir, STATEMENTS)
-        .map_err(|e| ApiError::io(STATEMENTS, e))?
-    {
-        Some(text) => Some(parse_rules(&text).map_err(|e| rules_error(STATEMENTS, &text, e))?),
-        None => None,
-    };
+    let statements = read_statements(&st)?;
     let learned =
         tokio::task::spawn_blocking(move || run_learn(&demos, statements.as_ref(), &params))
             .await
@@ -504,11 +522,44 @@ fn learned_value(st: &AppState, text: Option<&str>) -> Value {
             check_landmarks(&set, &st.problem)?;
             Ok(set)
         }) {
-            Ok(set) => v["rules"] = rule_summary(&set),
+            Ok(set) => {
+                let confirmed = confirmed_names(t);
+                let mut rules = rule_summary(&set);
+                for r in rules.as_array_mut().expect("an array") {
+                    let name = r["name"].as_str().unwrap_or("");
+                    r["confirmed"] = json!(confirmed.iter().any(|c| c == name));
+                }
+                v["rules"] = rules;
+            }
             Err(e) => v["error"] = json!(e.render(LEARNED, t, false)),
         }
     }
     v
+}
+
+/// Names of the rules marked `# confirmed` (SPEC §13) in `.rcc` text: the
+/// comment lines right above a `rule` line belong to it.
+fn confirmed_names(text: &str) -> Vec<String> {
+    let mark = format!("# {CONFIRMED}");
+    let mut out = Vec::new();
+    let mut pending = false;
+    for line in text.lines().map(str::trim) {
+        if line == mark {
+            pending = true;
+        } else if let Some(rest) = line.strip_prefix("rule ") {
+            if pending {
+                let name = rest
+                    .split(|c: char| c.is_whitespace() || c == ':')
+                    .next()
+                    .unwrap_or("");
+                out.push(name.to_string());
+            }
+            pending = false;
+        } else if !line.starts_with('#') {
+            pending = false;
+        }
+    }
+    out
 }
 
 fn rule_summary(set: &RuleSet) -> Value {
@@ -550,6 +601,319 @@ pub(crate) async fn put_learned(State(st): St, body: Bytes) -> ApiResult {
     }
     storage::atomic_write(&st.dir, LEARNED, &b.text).map_err(|e| ApiError::io(LEARNED, e))?;
     ok(learned_value(&st, Some(&b.text)))
+}
+
+// ---- questions ("Check rules", SPEC §13) ------------------------------------------
+
+/// The open "Check rules" session: the question loop and the question the
+/// page was shown.
+pub(crate) struct AskSession {
+    asker: Asker,
+    question: Option<Question>,
+    /// [`AppState::ask_generation`] when the session read the files.
+    generation: u64,
+    params: LearnParams,
+}
+
+impl AppState {
+    /// Drop the "Check rules" session: the next question reads the files
+    /// again. Called (under `write_lock` when demos.json is written) by every
+    /// endpoint that changes the demonstrations or learns.
+    pub(crate) fn reset_ask(&self) {
+        self.ask_generation.fetch_add(1, Ordering::SeqCst);
+    }
+}
+
+/// Seconds each probe search may take (the rule is then left unsettled).
+const PROBE_TIME_LIMIT_SECS: u64 = 10;
+
+fn ask_error(e: AskError) -> ApiError {
+    match e {
+        AskError::Learn(e) => {
+            ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, format!("{DEMOS}: {e}"))
+        }
+        AskError::Synth(e) => ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            format!("{}: {e}", storage::PROBLEM),
+        ),
+        e @ AskError::BadAnswer { .. } => ApiError::new(
+            StatusCode::CONFLICT,
+            format!("{ANSWERS}: {e}; fix or move the file, then ask again"),
+        )
+        .with("kind", json!("corrupt_answers")),
+        e @ AskError::NotAsked(_) => {
+            ApiError::new(StatusCode::CONFLICT, e.to_string()).with("kind", json!("not_asked"))
+        }
+    }
+}
+
+fn internal(what: &str) -> ApiError {
+    ApiError::new(
+        StatusCode::INTERNAL_SERVER_ERROR,
+        format!("{what} failed unexpectedly (internal error); the question was dropped, ask again"),
+    )
+}
+
+/// answers.json (empty when absent); one that does not parse is reported
+/// (409) and never overwritten.
+fn read_answers(st: &AppState) -> Result<Vec<Answer>, ApiError> {
+    let Some(text) =
+        storage::read_optional(&st.dir, ANSWERS).map_err(|e| ApiError::io(ANSWERS, e))?
+    else {
+        return Ok(Vec::new());
+    };
+    let de = &mut serde_json::Deserializer::from_str(&text);
+    let file: AnswersFile = serde_path_to_error::deserialize(de).map_err(|e| {
+        ApiError::new(
+            StatusCode::CONFLICT,
+            format!(
+                "{ANSWERS}: at `{}`: {}; the studio will not overwrite it — fix or move the file, then ask again",
+                e.path(),
+                e.inner()
+            ),
+        )
+        .with("kind", json!("corrupt_answers"))
+    })?;
+    Ok(file.answers)
+}
+
+/// Start (or resume) a session from the task folder's files, as `rccpack
+/// ask` does: an accepted probe missing from demos.json is added again, and
+/// learned.rcc is written (a different one of a first session is kept as
+/// learned.rcc.bak). Returns the session and the backup's name, if any.
+async fn start_session(
+    st: &Arc<AppState>,
+    params: LearnParams,
+) -> Result<(AskSession, Option<&'static str>), ApiError> {
+    let _guard = st.write_lock.lock().await;
+    let generation = st.ask_generation.load(Ordering::SeqCst);
+    let demos = read_demos(st)?;
+    let n_demos = demos.len();
+    let statements = read_statements(st)?;
+    let answers = read_answers(st)?;
+    let resumed = answers.len();
+    let opts = AskOptions {
+        learn: params,
+        probe: ProbeOptions {
+            contact: params.contact,
+            seed: params.seed,
+            time_limit: Some(Duration::from_secs(PROBE_TIME_LIMIT_SECS)),
+            ..ProbeOptions::default()
+        },
+        resemble: true,
+    };
+    let problem = st.problem.clone();
+    let asker =
+        tokio::task::spawn_blocking(move || Asker::new(problem, demos, statements, answers, opts))
+            .await
+            .map_err(|_| internal("learning"))?
+            .map_err(ask_error)?;
+    if asker.demos().len() != n_demos {
+        // An accepted probe saved in answers.json but not yet in demos.json.
+        storage::atomic_write(&st.dir, DEMOS, &scenes_to_json(asker.demos()))
+            .map_err(|e| ApiError::io(DEMOS, e))?;
+    }
+    let rcc = asker.learned_rcc();
+    let old = storage::read_optional(&st.dir, LEARNED).map_err(|e| ApiError::io(LEARNED, e))?;
+    let mut backup = None;
+    if let Some(old) = old.filter(|o| resumed == 0 && *o != rcc) {
+        storage::atomic_write(&st.dir, LEARNED_BACKUP, &old)
+            .map_err(|e| ApiError::io(LEARNED_BACKUP, e))?;
+        backup = Some(LEARNED_BACKUP);
+    }
+    storage::atomic_write(&st.dir, LEARNED, &rcc).map_err(|e| ApiError::io(LEARNED, e))?;
+    Ok((
+        AskSession {
+            asker,
+            question: None,
+            generation,
+            params,
+        },
+        backup,
+    ))
+}
+
+fn question_value(q: &Question, number: usize) -> Value {
+    json!({
+        "number": number,
+        "rule": q.rule,
+        "statement": q.statement,
+        "english": q.english,
+        "broken": q.probe.broken,
+        "scene": scene_value(&q.probe.scene),
+        "cost": q.probe.cost,
+        "time_ms": q.probe.time_ms,
+    })
+}
+
+fn current_learned(st: &AppState) -> Result<Value, ApiError> {
+    let text = storage::read_optional(&st.dir, LEARNED).map_err(|e| ApiError::io(LEARNED, e))?;
+    Ok(learned_value(st, text.as_deref()))
+}
+
+pub(crate) async fn ask_next(State(st): St, body: Bytes) -> ApiResult {
+    let b: LearnBody = parse_body(&body)?;
+    let params = learn_params(&b)?;
+    let mut guard = st.ask.clone().lock_owned().await;
+    let generation = st.ask_generation.load(Ordering::SeqCst);
+    let keep = guard.as_ref().is_some_and(|s| {
+        // Parameters given in the body must match the session's; omitted
+        // ones keep it.
+        s.generation == generation
+            && b.samples.is_none_or(|n| n == s.params.samples)
+            && b.seed.is_none_or(|x| x == s.params.seed)
+            && b.cutoff.is_none_or(|c| c == s.params.cutoff)
+    });
+    let mut backup = None;
+    if !keep {
+        *guard = None;
+        let (session, b) = start_session(&st, params).await?;
+        *guard = Some(session);
+        backup = b;
+    }
+    let open = guard
+        .as_ref()
+        .and_then(|s| s.question.clone())
+        .map(|q| (q, guard.as_ref().map_or(0, |s| s.asker.answers().len())));
+    let (guard, question) = match open {
+        // The page asks again (a reload): the same question.
+        Some((q, asked)) => (guard, Some(question_value(&q, asked + 1))),
+        None => {
+            let joined = tokio::task::spawn_blocking(move || {
+                let mut guard = guard;
+                let s = guard.as_mut().expect("a session was just started");
+                let next = s.asker.next_question();
+                if let Ok(q) = &next {
+                    s.question = q.clone();
+                }
+                (guard, next)
+            })
+            .await;
+            let Ok((mut guard, next)) = joined else {
+                *st.ask.lock().await = None;
+                return Err(internal("the probe search"));
+            };
+            match next {
+                Ok(q) => {
+                    let asked = guard.as_ref().map_or(0, |s| s.asker.answers().len());
+                    let v = q.as_ref().map(|q| question_value(q, asked + 1));
+                    (guard, v)
+                }
+                Err(e) => {
+                    *guard = None;
+                    return Err(ask_error(e));
+                }
+            }
+        }
+    };
+    let progress = guard.as_ref().map(|s| s.asker.progress());
+    drop(guard);
+    ok(json!({
+        "question": question,
+        "progress": progress,
+        "learned": current_learned(&st)?,
+        "backup": backup,
+    }))
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct AnswerBody {
+    rule: Option<String>,
+    accepted: Option<bool>,
+}
+
+pub(crate) async fn ask_answer(State(st): St, body: Bytes) -> ApiResult {
+    let b: AnswerBody = parse_body(&body)?;
+    let rule = b.rule.ok_or_else(|| {
+        ApiError::bad("request body: rule: missing; expected the name of the rule the open question asks about")
+            .at("rule")
+    })?;
+    let accepted = b.accepted.ok_or_else(|| {
+        ApiError::bad(
+            "request body: accepted: missing; expected true (the layout looks right) or false (not like that)",
+        )
+        .at("accepted")
+    })?;
+    let mut guard = st.ask.clone().lock_owned().await;
+    let generation = st.ask_generation.load(Ordering::SeqCst);
+    if guard.as_ref().is_some_and(|s| s.generation != generation) {
+        *guard = None;
+    }
+    let Some(open) = guard.as_ref().and_then(|s| s.question.as_ref()) else {
+        return Err(ApiError::new(
+            StatusCode::CONFLICT,
+            "no question is open (none asked yet, or the demonstrations changed since); ask with POST /api/ask/next",
+        )
+        .with("kind", json!("no_question")));
+    };
+    if open.rule != rule {
+        return Err(ApiError::new(
+            StatusCode::CONFLICT,
+            format!(
+                "rule: no question about rule `{rule}` is open; the open question is about rule `{}`",
+                open.rule
+            ),
+        )
+        .at("rule")
+        .with("kind", json!("not_asked")));
+    }
+    let joined = tokio::task::spawn_blocking(move || {
+        let mut guard = guard;
+        let s = guard.as_mut().expect("checked above");
+        let q = s.question.take().expect("checked above");
+        let r = s.asker.answer(&q, accepted).map(|_| ());
+        (guard, r)
+    })
+    .await;
+    let Ok((mut guard, r)) = joined else {
+        *st.ask.lock().await = None;
+        return Err(internal("learning from the answer"));
+    };
+    if let Err(e) = r {
+        *guard = None;
+        return Err(ask_error(e));
+    }
+    let _write = st.write_lock.lock().await;
+    let s = guard.as_ref().expect("answered above");
+    if s.generation != st.ask_generation.load(Ordering::SeqCst) {
+        *guard = None;
+        return Err(ApiError::new(
+            StatusCode::CONFLICT,
+            format!("{DEMOS} changed while the answer was applied; the answer was not saved — ask again"),
+        )
+        .with("kind", json!("no_question")));
+    }
+    // As `rccpack ask`: the journal first, then the demonstrations, then the
+    // rules; each write atomic. A failed write drops the session, so the
+    // next question starts again from what is on disk.
+    let file = AnswersFile {
+        answers: s.asker.answers().to_vec(),
+    };
+    let mut text = serde_json::to_string_pretty(&file).expect("answers serialise");
+    text.push('\n');
+    let rcc = s.asker.learned_rcc();
+    let written = storage::atomic_write(&st.dir, ANSWERS, &text)
+        .map_err(|e| ApiError::io(ANSWERS, e))
+        .and_then(|()| match accepted {
+            true => storage::atomic_write(&st.dir, DEMOS, &scenes_to_json(s.asker.demos()))
+                .map_err(|e| ApiError::io(DEMOS, e)),
+            false => Ok(()),
+        })
+        .and_then(|()| {
+            storage::atomic_write(&st.dir, LEARNED, &rcc).map_err(|e| ApiError::io(LEARNED, e))
+        });
+    if let Err(e) = written {
+        *guard = None;
+        return Err(e);
+    }
+    let answer = s.asker.answers().last().expect("just answered");
+    let v = json!({
+        "answer": {"rule": answer.rule, "accepted": answer.accepted, "demo": answer.demo},
+        "progress": s.asker.progress(),
+        "learned": learned_value(&st, Some(&rcc)),
+    });
+    ok(v)
 }
 
 // ---- synthesis -------------------------------------------------------------------

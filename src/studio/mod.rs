@@ -2,7 +2,8 @@
 //! from them and synthesise layouts (`rccpack studio DIR`).
 //!
 //! [`router`] builds the HTTP API and the page over a task folder `DIR`
-//! (`problem.json`, `demos.json`, optional `statements.rcc`, `learned.rcc`).
+//! (`problem.json`, `demos.json`, optional `statements.rcc`, `learned.rcc`,
+//! `answers.json` of the "Check rules" questions).
 //! The server only ever touches those fixed file names inside `DIR`; no path
 //! comes from the client. Writes are atomic (temporary file + rename) and
 //! serialised by one mutex. The page's assets are embedded in the binary.
@@ -53,6 +54,13 @@ pub(crate) struct AppState {
     /// Synthesis jobs by id (the most recent few).
     pub jobs: std::sync::Mutex<std::collections::BTreeMap<u64, api::SynthJob>>,
     pub next_job: std::sync::atomic::AtomicU64,
+    /// The open "Check rules" session (SPEC §13), if any. Held across the
+    /// probe search, which runs on a blocking thread.
+    pub ask: Arc<tokio::sync::Mutex<Option<api::AskSession>>>,
+    /// Bumped (under `write_lock`) whenever demos.json changes or learning
+    /// runs through the other endpoints: a session of an older generation
+    /// is dropped and the files are read again.
+    pub ask_generation: std::sync::atomic::AtomicU64,
 }
 
 /// Build the studio's router over the task folder `dir`: reads and checks
@@ -85,6 +93,8 @@ pub fn router(dir: &Path) -> Result<Router, StudioError> {
         write_lock: tokio::sync::Mutex::new(()),
         jobs: std::sync::Mutex::new(std::collections::BTreeMap::new()),
         next_job: std::sync::atomic::AtomicU64::new(1),
+        ask: Arc::new(tokio::sync::Mutex::new(None)),
+        ask_generation: std::sync::atomic::AtomicU64::new(0),
     });
     Ok(Router::new()
         .route("/", get(api::index))
@@ -97,6 +107,8 @@ pub fn router(dir: &Path) -> Result<Router, StudioError> {
         )
         .route("/api/learn", post(api::learn))
         .route("/api/learned", get(api::get_learned).put(api::put_learned))
+        .route("/api/ask/next", post(api::ask_next))
+        .route("/api/ask/answer", post(api::ask_answer))
         .route("/api/synth", post(api::start_synth))
         .route("/api/synth/{job}", get(api::synth_status))
         .route("/api/synth/{job}/cancel", post(api::cancel_synth))

@@ -14,6 +14,12 @@ pub const STATEMENTS: &str = "statements.rcc";
 /// The chosen learned rules (written by the page).
 pub const LEARNED: &str = "learned.rcc";
 
+/// The answered questions of "Check rules" (SPEC §13), as `rccpack ask`
+/// keeps them.
+pub const ANSWERS: &str = "answers.json";
+/// The previous `learned.rcc`, kept when a first question replaces it.
+pub const LEARNED_BACKUP: &str = "learned.rcc.bak";
+
 static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 /// The path of one of the fixed file names inside `dir`.

@@ -168,6 +168,61 @@ try {
   assert.match(await page.locator('#toast').textContent(), /changed on disk/);
   assert.match(fs.readFileSync(path.join(task, 'learned.rcc'), 'utf8'), /# my note/);
 
+  // Check rules (SPEC §13): answer two questions, one of each kind. The two
+  // recorded demonstrations pin every learned rule (each follows from the
+  // others: nothing to ask), so the example's eight varied ones take their
+  // place in the task folder.
+  const exampleDemos = JSON.parse(fs.readFileSync(path.join(example, 'demos.json'), 'utf8'));
+  fs.copyFileSync(path.join(example, 'demos.json'), path.join(task, 'demos.json'));
+  await page.reload();
+  await page.waitForSelector('body[data-ready="1"]');
+  assert.equal(await page.locator('#demo-count').textContent(), String(exampleDemos.length));
+  await page.click('#tab-check');
+  await page.fill('[data-testid=ask-samples]', '200');
+  await page.click('[data-testid=check-rules]');
+  const askSettled = () => page.waitForSelector('body[data-ask="question"], body[data-ask="done"], body[data-ask="error"]',
+    { timeout: 120000 });
+  await askSettled();
+  assert.equal(await page.evaluate(() => document.body.dataset.ask), 'question', 'a first question');
+  const progressLine = () => page.locator('[data-testid=ask-progress-line]').textContent();
+  assert.match(await progressLine(), /asked 0 · dropped 0 · confirmed 0/);
+  // learned.rcc edited by hand was replaced by every learned rule and kept.
+  assert.match(fs.readFileSync(path.join(task, 'learned.rcc.bak'), 'utf8'), /# my note/);
+  const question = page.locator('[data-testid=ask-question]');
+  const rule1 = await page.locator('[data-testid=ask-rule]').textContent();
+  assert.ok(rule1.length > 0);
+  assert.ok((await page.locator('[data-testid=ask-english]').textContent()).length > 0);
+  assert.equal(await question.getAttribute('data-rule'), rule1);
+  // The probe is on the board, the objects breaking the rule outlined.
+  assert.equal(await page.locator('#board .obj:not(.fixed)').count(), 9);
+  assert.equal(String(await page.locator('#board .obj .violation').count()), await question.getAttribute('data-broken'));
+  await page.screenshot({ path: path.join(out, 'studio-check.png') });
+  log('question 1 about', rule1);
+  await page.click('[data-testid=ask-yes]');
+  await page.waitForFunction(() => /asked 1 /.test(document.querySelector('[data-testid=ask-progress-line]')?.textContent || ''));
+  await askSettled();
+  assert.match(await progressLine(), /asked 1 · dropped 1 · confirmed 0/);
+  assert.equal(JSON.parse(fs.readFileSync(path.join(task, 'demos.json'), 'utf8')).length, exampleDemos.length + 1);
+  await page.waitForFunction((n) => document.getElementById('demo-count').textContent === String(n), exampleDemos.length + 1);
+  assert.equal(await page.evaluate(() => document.body.dataset.ask), 'question', 'a second question');
+  const rule2 = await page.locator('[data-testid=ask-rule]').textContent();
+  assert.notEqual(rule2, rule1);
+  log('question 2 about', rule2);
+  await page.click('[data-testid=ask-no]');
+  await page.waitForFunction(() => /asked 2 /.test(document.querySelector('[data-testid=ask-progress-line]')?.textContent || ''));
+  await askSettled();
+  assert.match(await progressLine(), /asked 2 · dropped 1 · confirmed 1/);
+  const answers = JSON.parse(fs.readFileSync(path.join(task, 'answers.json'), 'utf8')).answers;
+  assert.equal(answers.length, 2);
+  assert.deepEqual(answers.map((a) => [a.rule, a.accepted]), [[rule1, true], [rule2, false]]);
+  const checked = fs.readFileSync(path.join(task, 'learned.rcc'), 'utf8');
+  assert.match(checked, /# confirmed\n/);
+  assert.ok(!new RegExp(`^rule ${rule1}[ :]`, 'm').test(checked), 'the dropped rule is gone');
+  // The learned-rules list follows learned.rcc: the confirmed rule is marked.
+  assert.equal(await page.locator(`#ask-rules .rule[data-name="${rule2}"] .pill.confirmed`).count(), 1);
+  assert.equal(await page.locator(`#ask-rules .rule[data-name="${rule1}"]`).count(), 0);
+  log('answers.json holds 2 answers');
+
   if (synthEnabled && await page.locator('#tab-synth').isVisible()) {
     await page.click('#tab-synth');
     await page.fill('#synth-limit', '20');
@@ -201,8 +256,8 @@ try {
   await page.click('#tab-record');
   page.once('dialog', (d) => d.accept());
   await page.locator('#demos .demo').nth(1).getByRole('button', { name: 'Delete' }).click();
-  await page.waitForFunction(() => document.getElementById('demo-count').textContent === '1');
-  assert.equal(JSON.parse(fs.readFileSync(path.join(task, 'demos.json'), 'utf8')).length, 1);
+  await page.waitForFunction((n) => document.getElementById('demo-count').textContent === String(n), exampleDemos.length);
+  assert.equal(JSON.parse(fs.readFileSync(path.join(task, 'demos.json'), 'utf8')).length, exampleDemos.length);
 
   assert.deepEqual(errors, [], 'no errors in the page');
   log('ok; screenshots in', out);

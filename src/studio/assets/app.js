@@ -12,8 +12,11 @@ const state = {
   learnResult: null,
   learned: null,       // { exists, text, version, rules?, error? }
   tab: 'record',
-  boardMode: 'edit',   // 'edit' | 'result'
+  boardMode: 'edit',   // 'edit' | 'result' | 'probe'
   result: null,        // synthesis result shown on the board
+  question: null,      // the open "Check rules" question
+  probe: null,         // { scene, violators, title, info } shown on the board
+  checked: false,      // rules were checked since the last Learn: synthesize with learned.rcc
 };
 
 // ---- helpers ------------------------------------------------------------------
@@ -62,8 +65,9 @@ function drawOpts(extra = {}) {
 
 function redraw() {
   const svg = $('board');
-  if (state.boardMode === 'result' && state.result) {
-    const { view } = drawScene(svg, state.result.scene, drawOpts({ violators: state.result.violators }));
+  const shown = state.boardMode === 'result' ? state.result : state.boardMode === 'probe' ? state.probe : null;
+  if (shown) {
+    const { view } = drawScene(svg, shown.scene, drawOpts({ violators: shown.violators }));
     state.view = view;
     return;
   }
@@ -222,6 +226,9 @@ function renderLegend() {
   if (state.boardMode === 'result') {
     items.push('<span><i class="ring soft"></i>breaks a rule</span>', '<span><i class="ring hard"></i>breaks a hard rule</span>');
   }
+  if (state.boardMode === 'probe') {
+    items.push('<span><i class="ring probe"></i>breaks the rule asked about</span>');
+  }
   $('legend').innerHTML = items.join('');
 }
 
@@ -301,6 +308,8 @@ async function learn() {
   }
   const d = r.data;
   state.learnResult = d;
+  state.checked = false;
+  state.question = null;
   $('learn-summary').innerHTML = `<p><b>${d.rules.length}</b> rules learned from <b>${d.demonstrations}</b> demonstrations:
     ${d.candidates} of ${d.statements} ${d.source === 'given' ? 'statements from statements.rcc' : 'template statements'} hold in every demonstration;
     the rest are rejected as likely by chance (${d.samples} random layouts).</p>`;
@@ -379,6 +388,9 @@ async function saveRules() {
 
 // The rules to solve with: the ticked learned rules of this session, else learned.rcc.
 function synthRules() {
+  if (state.checked && state.learned && state.learned.exists && state.learned.rules) {
+    return { text: state.learned.text, label: `learned.rcc, checked (${state.learned.rules.length} rules)` };
+  }
   if (state.learnResult && state.learnResult.rules.length) {
     const { text, count } = chosenRulesText();
     return { text, label: `the ${count} rules ticked in Learn` };
@@ -476,6 +488,134 @@ function showResult(r, cancelled) {
 
 function fmtW(w) { return Number.isInteger(w) ? String(w) : w.toFixed(2); }
 
+// ---- check rules pane (SPEC §13) ----------------------------------------------------
+
+function setAskState(s) { document.body.dataset.ask = s; }
+
+function renderAskProgress(p) {
+  if (!p) return;
+  const extra = [];
+  if (p.implied) extra.push(`${p.implied} follow from the others`);
+  if (p.unknown) extra.push(`${p.unknown} unsettled (probe time limit)`);
+  $('ask-progress').innerHTML = `<p id="ask-progress-line" data-testid="ask-progress-line">asked ${p.asked} · dropped ${p.dropped} · confirmed ${p.confirmed}
+    <span class="muted small">· ${p.held} rules held${extra.length ? ` · ${extra.join(' · ')}` : ''}</span></p>`;
+}
+
+function renderAskRules() {
+  const l = state.learned;
+  const box = $('ask-rules');
+  $('ask-rules-card').hidden = !(l && l.exists);
+  box.replaceChildren();
+  if (!l || !l.exists) return;
+  if (!l.rules) { box.innerHTML = `<pre class="error-box">${esc(l.error || 'learned.rcc does not parse')}</pre>`; return; }
+  for (const r of l.rules) {
+    const row = document.createElement('div');
+    row.className = 'rule static';
+    row.dataset.name = r.name;
+    row.innerHTML = `<span class="rule-body"><span class="rule-head"><b>${esc(r.name)}</b>
+        ${r.confirmed ? '<span class="pill confirmed">confirmed</span>' : ''}${r.hard ? '<span class="pill hard">hard</span>' : ''}</span>
+      <code>${esc(r.formula)}</code></span>`;
+    box.appendChild(row);
+  }
+}
+
+function showProbe(q) {
+  const violators = new Map(q.broken.map((id) => [id, 'hard']));
+  const title = `Question ${q.number} · is this acceptable?`;
+  const info = q.broken.length
+    ? `${q.broken.join(', ')} break${q.broken.length === 1 ? 's' : ''} ${q.rule} (outlined)`
+    : `the layout breaks ${q.rule}`;
+  state.probe = { scene: q.scene, violators, title, info };
+  state.boardMode = 'probe';
+  $('stage-title').textContent = title;
+  $('stage-info').textContent = info;
+  renderLegend();
+  redraw();
+}
+
+function applyAsk(d) {
+  state.learned = d.learned;
+  renderLearned();
+  renderAskRules();
+  renderAskProgress(d.progress);
+  const q = d.question;
+  state.question = q;
+  $('ask-question').hidden = !q;
+  $('ask-done').hidden = !!q;
+  if (!q) {
+    const p = d.progress;
+    $('ask-done').innerHTML = `<h3>No more questions</h3>
+      <p id="ask-summary" data-testid="ask-summary">${p.asked} answered: ${p.dropped} rules dropped, ${p.confirmed} confirmed;
+      ${p.held} rules held${p.implied ? `, ${p.implied} of them follow from the others` : ''}${p.unknown ? `, ${p.unknown} unsettled` : ''}.
+      learned.rcc holds the checked rules.</p>`;
+    state.probe = null;
+    if (state.boardMode === 'probe') showEditor();
+    setAskState('done');
+    return;
+  }
+  $('ask-number').textContent = `question ${q.number}`;
+  $('ask-rule').textContent = q.rule;
+  $('ask-english').textContent = q.english;
+  $('ask-statement').textContent = q.statement;
+  $('ask-broken').textContent = q.broken.length
+    ? `Outlined: ${q.broken.join(', ')} break${q.broken.length === 1 ? 's' : ''} it; every other learned rule holds.`
+    : 'Every other learned rule holds.';
+  $('ask-question').dataset.rule = q.rule;
+  $('ask-question').dataset.broken = String(q.broken.length);
+  $('btn-ask-yes').disabled = false;
+  $('btn-ask-no').disabled = false;
+  showProbe(q);
+  setAskState('question');
+}
+
+async function askNext() {
+  const btn = $('btn-check');
+  btn.disabled = true;
+  btn.textContent = 'Looking for a layout…';
+  setAskState('busy');
+  const samples = Number($('ask-samples').value) || 1000;
+  const r = await api('POST', '/api/ask/next', { samples });
+  btn.disabled = false;
+  btn.textContent = 'Check rules';
+  if (!r.ok) {
+    setAskState('error');
+    $('ask-progress').innerHTML = `<pre class="error-box">${esc(r.data.error)}</pre>`;
+    toast(r.data.error, 'error');
+    return;
+  }
+  if (r.data.backup) toast(`learned.rcc now holds every learned rule; the one before is kept as ${r.data.backup}.`);
+  applyAsk(r.data);
+}
+
+async function askAnswer(accepted) {
+  const q = state.question;
+  if (!q) return;
+  $('btn-ask-yes').disabled = true;
+  $('btn-ask-no').disabled = true;
+  setAskState('busy');
+  const r = await api('POST', '/api/ask/answer', { rule: q.rule, accepted });
+  if (!r.ok) {
+    toast(r.data.error, 'error');
+    if (r.status === 409) { await askNext(); return; }
+    $('btn-ask-yes').disabled = false;
+    $('btn-ask-no').disabled = false;
+    setAskState('question');
+    return;
+  }
+  state.checked = true;
+  state.learned = r.data.learned;
+  renderLearned();
+  renderAskRules();
+  renderAskProgress(r.data.progress);
+  if (accepted) {
+    toast(`Dropped ${q.rule}: the layout is now demonstration #${r.data.answer.demo + 1}.`, 'ok');
+    loadDemos();
+  } else {
+    toast(`Confirmed ${q.rule}.`, 'ok');
+  }
+  await askNext();
+}
+
 // ---- tabs -------------------------------------------------------------------------
 
 function setTab(tab) {
@@ -483,6 +623,11 @@ function setTab(tab) {
   for (const b of document.querySelectorAll('.tab')) b.classList.toggle('active', b.dataset.tab === tab);
   for (const p of document.querySelectorAll('.pane')) p.hidden = p.dataset.pane !== tab;
   if (tab === 'record') showEditor();
+  if (tab === 'check') {
+    renderAskRules();
+    if (state.question && state.probe) showProbe(state.question);
+    else if (state.boardMode !== 'edit') showEditor();
+  }
   if (tab === 'synth') {
     renderSynthPane();
     if (state.result) {
@@ -528,6 +673,9 @@ async function main() {
   $('btn-learn').onclick = learn;
   $('btn-save-rules').onclick = saveRules;
   $('btn-synth').onclick = synthesize;
+  $('btn-check').onclick = askNext;
+  $('btn-ask-yes').onclick = () => askAnswer(true);
+  $('btn-ask-no').onclick = () => askAnswer(false);
   $('btn-cancel').onclick = async () => {
     if (state.job !== null && state.job !== undefined) await api('POST', `/api/synth/${state.job}/cancel`);
   };
