@@ -26,7 +26,7 @@
 
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rccpack::ask::{find_probe, negation, AskOptions, Asker, ProbeOptions, ProbeOutcome};
+use rccpack::ask::{negation, AskOptions, Asker, ProbeOptions};
 use rccpack::eval::evaluate;
 use rccpack::infer::LearnParams;
 use rccpack::relations::Contact;

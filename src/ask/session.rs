@@ -20,10 +20,10 @@
 //!   solve under assumptions per rule; only for the rule asked about is the
 //!   probe to show searched, by [`find_probe`]).
 //!
-//! Probe results stay valid while the held set does not change: a rejected
-//! probe confirms its rule and changes nothing else, so the next question
-//! costs only the probes not yet computed. An accepted probe adds a
-//! demonstration, learning is redone, and every cached result is dropped.
+//! Probe results are recomputed after every answer, so the next question
+//! depends only on the demonstrations, the held rules and the confirmed
+//! ones — a resumed session asks exactly what an uninterrupted one would
+//! (tested). One engine per scan ([`ProbeChecker`]) keeps that cheap.
 
 use super::probe::{find_probe, Probe, ProbeChecker, ProbeOptions, ProbeOutcome};
 use crate::infer::english::rule_implies;
@@ -482,6 +482,11 @@ impl Asker {
             self.known.clear();
         } else {
             self.confirmed.insert(q.rule.clone());
+            // The next question depends only on the held rules, the
+            // confirmed ones and the demonstrations, never on what was
+            // computed before: a resumed session asks what an uninterrupted
+            // one would.
+            self.known.clear();
         }
         self.held = self.held_rules();
         self.answers.push(a);
