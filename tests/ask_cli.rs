@@ -37,7 +37,17 @@ fn ask(dir: &Path, extra: &[&str]) -> Output {
     Command::new(bin())
         .arg("ask")
         .arg(dir)
-        .args(["--oracle", &oracle, "--samples", "1000"])
+        // The node budgets bound every solve and make the runs
+        // reproducible; the time limit is only a safety net, set out of
+        // reach so that a loaded test machine cannot change a question.
+        .args([
+            "--oracle",
+            &oracle,
+            "--samples",
+            "1000",
+            "--time-limit",
+            "600",
+        ])
         .args(extra)
         .output()
         .unwrap()

@@ -493,6 +493,7 @@ fn check_case(case: &Case, t: &mut Tally) {
             seed: case.index,
             time_limit: None,
             node_limit: None,
+            check_nodes: None,
             like: like.clone(),
             explain,
         };

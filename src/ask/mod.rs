@@ -11,7 +11,10 @@
 pub mod probe;
 pub mod session;
 
-pub use probe::{find_probe, negation, Probe, ProbeOptions, ProbeOutcome};
+pub use probe::{
+    find_probe, negation, Probe, ProbeOptions, ProbeOutcome, DEFAULT_CHECK_NODES,
+    DEFAULT_PROBE_NODES,
+};
 pub use session::{
     Answer, AnswersFile, AskError, AskOptions, Asker, Progress, Question, CONFIRMED,
 };

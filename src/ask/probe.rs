@@ -85,6 +85,15 @@ pub fn negation(rule: &Rule) -> Option<Rule> {
     })
 }
 
+/// Default [`ProbeOptions::node_limit`]: on the bundled example the largest
+/// probe search takes 18,509 nodes (about 1.4 s in release), so this stops
+/// only searches far outside what a question should cost.
+pub const DEFAULT_PROBE_NODES: u64 = 100_000;
+
+/// Default [`ProbeOptions::check_nodes`]: on the bundled example no check
+/// takes more than 1,674 nodes (0.14 s).
+pub const DEFAULT_CHECK_NODES: u64 = 20_000;
+
 /// Settings of one probe solve.
 #[derive(Debug, Clone)]
 pub struct ProbeOptions {
@@ -92,10 +101,16 @@ pub struct ProbeOptions {
     pub contact: Contact,
     /// Seed of the solve.
     pub seed: u64,
-    /// Stop each solve after this long (`None`: no limit).
+    /// Stop each solve after this long (`None`: no limit): a safety net
+    /// for slow machines; what a limit stops then depends on the clock.
     pub time_limit: Option<Duration>,
-    /// Stop each solve after this many search nodes (deterministic).
+    /// Stop a probe search after this many search nodes (deterministic:
+    /// the best probe found so far is shown).
     pub node_limit: Option<u64>,
+    /// Stop a check of [`ProbeChecker`] (does a probe exist? does one rule
+    /// imply another?) after this many search nodes (deterministic: the
+    /// check then counts as undecided).
+    pub check_nodes: Option<u64>,
     /// Positions the probe should resemble (the demonstrations).
     pub like: Option<Likeness>,
     /// For a rule with no probe, name the held rules implying it (one more
@@ -109,7 +124,8 @@ impl Default for ProbeOptions {
             contact: Contact::Point,
             seed: 0,
             time_limit: Some(Duration::from_secs(10)),
-            node_limit: None,
+            node_limit: Some(DEFAULT_PROBE_NODES),
+            check_nodes: Some(DEFAULT_CHECK_NODES),
             like: None,
             explain: false,
         }
@@ -260,7 +276,7 @@ impl ProbeChecker {
     /// Rules with `removed[j]` (allowed to break with `k`) are left out of
     /// the assumptions.
     pub fn has_probe(&mut self, k: usize, removed: &[bool]) -> Option<bool> {
-        use crate::synth::engine::{Limits, Sat};
+        use crate::synth::engine::Sat;
         let Some(neg) = self.negation_of[k] else {
             return Some(false);
         };
@@ -272,15 +288,7 @@ impl ProbeChecker {
             .filter(|&j| j != k && !removed.get(j).copied().unwrap_or(false))
             .collect();
         assume.push(neg);
-        let started = std::time::Instant::now();
-        let limits = Limits {
-            deadline: self.opts.time_limit.and_then(|t| started.checked_add(t)),
-            node_limit: self
-                .opts
-                .node_limit
-                .map(|n| engine.nodes().saturating_add(n)),
-            cancel: None,
-        };
+        let limits = check_limits(&self.opts, engine);
         match engine.satisfy_rules(&assume, &limits) {
             Sat::Solution(_) => Some(true),
             Sat::Unsat => Some(false),
@@ -293,27 +301,34 @@ impl ProbeChecker {
     /// Whether held rule `a` alone implies held rule `b` on this problem
     /// (no other rule assumed); `None` when a limit stopped the solve.
     pub fn implies(&mut self, a: usize, b: usize) -> Option<bool> {
-        use crate::synth::engine::{Limits, Sat};
+        use crate::synth::engine::Sat;
         let Some(neg) = self.negation_of[b] else {
             return Some(true);
         };
         let Some(engine) = self.engine.as_mut() else {
             return Some(true);
         };
-        let started = std::time::Instant::now();
-        let limits = Limits {
-            deadline: self.opts.time_limit.and_then(|t| started.checked_add(t)),
-            node_limit: self
-                .opts
-                .node_limit
-                .map(|n| engine.nodes().saturating_add(n)),
-            cancel: None,
-        };
+        let limits = check_limits(&self.opts, engine);
         match engine.satisfy_rules(&[a, neg], &limits) {
             Sat::Solution(_) => Some(false),
             Sat::Unsat => Some(true),
             Sat::Unknown => None,
         }
+    }
+}
+
+/// The limits of one solve of a [`ProbeChecker`]: the probe options' time
+/// limit from now, their check budget past the nodes already spent.
+fn check_limits(
+    opts: &ProbeOptions,
+    engine: &crate::synth::engine::Engine,
+) -> crate::synth::engine::Limits {
+    crate::synth::engine::Limits {
+        deadline: opts
+            .time_limit
+            .and_then(|t| std::time::Instant::now().checked_add(t)),
+        node_limit: opts.check_nodes.map(|n| engine.nodes().saturating_add(n)),
+        cancel: None,
     }
 }
 

@@ -20,10 +20,15 @@
 //!   solve under assumptions per rule; only for the rule asked about is the
 //!   probe to show searched, by [`find_probe`]).
 //!
-//! Probe results are recomputed after every answer, so the next question
-//! depends only on the demonstrations, the held rules and the confirmed
-//! ones — a resumed session asks exactly what an uninterrupted one would
-//! (tested). One engine per scan ([`ProbeChecker`]) keeps that cheap.
+//! Probe results are recomputed after every answer (and group probes on
+//! every call), so the next question depends only on the demonstrations,
+//! the held rules and the confirmed ones — a resumed session asks exactly
+//! what an uninterrupted one would (tested). Every solve has a node budget
+//! (deterministic) besides the time limit (a safety net), so that holds on
+//! a slow or loaded machine too. One engine per scan ([`ProbeChecker`])
+//! keeps the recomputation affordable. When no rule has a probe that keeps
+//! all the others, groups of rules that follow from one another are asked
+//! about as one ([`Asker::next_question`]).
 
 use super::probe::{find_probe, Probe, ProbeChecker, ProbeOptions, ProbeOutcome};
 use crate::infer::english::rule_implies;
@@ -88,6 +93,22 @@ pub struct Answer {
 pub struct AnswersFile {
     /// Every answer, in the order given.
     pub answers: Vec<Answer>,
+}
+
+impl AnswersFile {
+    /// Parse `answers.json`; the error names the field (`at `answers[0].rule`: …`).
+    pub fn from_json(text: &str) -> Result<AnswersFile, String> {
+        let de = &mut serde_json::Deserializer::from_str(text);
+        serde_path_to_error::deserialize(de)
+            .map_err(|e| format!("at `{}`: {}", e.path(), e.inner()))
+    }
+
+    /// Pretty JSON, ending in a newline.
+    pub fn to_json(&self) -> String {
+        let mut text = serde_json::to_string_pretty(self).expect("answers serialise");
+        text.push('\n');
+        text
+    }
 }
 
 /// A question: is this probe acceptable?
@@ -163,7 +184,8 @@ pub struct Asker {
     held: RuleSet,
     answers: Vec<Answer>,
     confirmed: BTreeSet<String>,
-    dropped: usize,
+    /// Resemblance to the demonstrations (accepted probes included).
+    like: Option<Likeness>,
     known: HashMap<String, Known>,
     open: Option<String>,
 }
@@ -207,6 +229,7 @@ impl Asker {
             }
         }
         let learned = learn(&demos, statements.as_ref(), &opts.learn)?;
+        let like = opts.resemble.then(|| Likeness::new(&demos));
         let mut asker = Asker {
             problem,
             demos,
@@ -214,7 +237,7 @@ impl Asker {
             opts,
             held: RuleSet::default(),
             learned,
-            dropped: answers.iter().filter(|a| a.accepted).count(),
+            like,
             confirmed: answers
                 .iter()
                 .filter(|a| !a.accepted)
@@ -285,16 +308,12 @@ impl Asker {
         };
         Progress {
             asked: self.answers.len(),
-            dropped: self.dropped,
+            dropped: self.answers.iter().filter(|a| a.accepted).count(),
             confirmed: self.confirmed.len(),
             implied: count(|k| matches!(k, Known::Implied)),
             unknown: count(|k| matches!(k, Known::Unknown)),
             held: self.held.rules.len(),
         }
-    }
-
-    fn like(&self) -> Option<Likeness> {
-        self.opts.resemble.then(|| Likeness::new(&self.demos))
     }
 
     /// Held rules in asking order: weakest evidence first.
@@ -336,7 +355,7 @@ impl Asker {
     /// `equivalent`.
     fn search(&self, k: usize, equivalent: &[bool]) -> Result<Known, AskError> {
         let opts = ProbeOptions {
-            like: self.like(),
+            like: self.like.clone(),
             ..self.opts.probe.clone()
         };
         let keep: Vec<usize> = (0..self.held.rules.len())
@@ -351,22 +370,84 @@ impl Asker {
         })
     }
 
+    /// [`ProbeChecker::has_probe`], making a new checker after a limit.
+    fn check(
+        &self,
+        checker: &mut Option<ProbeChecker>,
+        k: usize,
+        removed: &[bool],
+    ) -> Result<Option<bool>, AskError> {
+        let verdict = self.checker(checker)?.has_probe(k, removed);
+        if verdict.is_none() {
+            // A spent engine answers nothing more.
+            *checker = None;
+        }
+        Ok(verdict)
+    }
+
+    /// Whether held rule `a` alone implies held rule `b` on this problem
+    /// (syntactically, or proven by the checker; a limit counts as no).
+    /// Memoised in `memo` for one scan.
+    fn alone_implies(
+        &self,
+        checker: &mut Option<ProbeChecker>,
+        memo: &mut HashMap<(usize, usize), bool>,
+        a: usize,
+        b: usize,
+    ) -> Result<bool, AskError> {
+        if let Some(&v) = memo.get(&(a, b)) {
+            return Ok(v);
+        }
+        let (ra, rb) = (&self.held.rules[a], &self.held.rules[b]);
+        let v = if rule_implies(
+            (ra.scope, &ra.formula),
+            (rb.scope, &rb.formula),
+            self.opts.learn.contact,
+        ) {
+            true
+        } else {
+            let verdict = self.checker(checker)?.implies(a, b);
+            if verdict.is_none() {
+                // A spent engine answers nothing more.
+                *checker = None;
+            }
+            verdict == Some(true)
+        };
+        memo.insert((a, b), v);
+        Ok(v)
+    }
+
     /// The next question, or `None` when every held rule is confirmed or
     /// needs no question. Computes probes lazily, in asking order.
     ///
-    /// When no rule has a probe that keeps every other held rule, a group
-    /// of rules that imply one another on the problem (e.g. `DR_S(R, G)` and
-    /// `DR_N(G, R)`, the same habit written two ways) would never be asked
-    /// about. Then, in asking order, a rule not implied by the confirmed and
-    /// probe-able rules alone gets a probe that breaks it together with the
-    /// fewest rules of its group (greedily: each is kept hard when it can
-    /// be) and keeps every other held rule; [`Question::also_broken`] names
-    /// the rules it breaks too.
+    /// When no rule has a probe that keeps every other held rule, rules
+    /// that follow from one another would never be asked about: e.g.
+    /// `DR_S(R, G)` and `DR_N(G, R)` (the same habit written two ways), or
+    /// `R_inside_W` and the four `!DR_d(R, W)` that together say the same.
+    /// Then a second pass visits the unconfirmed rules, in asking order:
+    ///
+    /// 1. a rule that another unconfirmed rule alone implies, but not the
+    ///    other way round, is skipped (the stronger one is asked about);
+    /// 2. the rules that alone imply it and that it alone implies (the same
+    ///    statement on this problem) may break with it; if the rest still
+    ///    imply it, the other unconfirmed rules are added one at a time,
+    ///    weakest evidence first, until a probe exists (or none is left:
+    ///    settled);
+    /// 3. each added rule is kept hard again when a probe exists without
+    ///    it, so the probe breaks the rule and the fewest others;
+    ///    [`Question::also_broken`] names them.
+    ///
+    /// Every check is a solve with a node budget
+    /// ([`ProbeOptions::check_nodes`], deterministic), so the questions
+    /// depend on the budgets, never on the machine's speed, unless the
+    /// time limit (a safety net) stops a solve first.
     pub fn next_question(&mut self) -> Result<Option<Question>, AskError> {
         let order = self.asking_order();
         let n = self.held.rules.len();
         let none = vec![false; n];
         let mut checker: Option<ProbeChecker> = None;
+        let mut group: Option<Probe> = None;
+        let mut alone: HashMap<(usize, usize), bool> = HashMap::new();
         for pass in 0..2 {
             for &k in &order {
                 let name = self.held.rules[k].name.clone();
@@ -377,53 +458,90 @@ impl Asker {
                     let known = if self.syntactically_implied(k) {
                         Known::Implied
                     } else {
-                        match self.checker(&mut checker)?.has_probe(k, &none) {
+                        match self.check(&mut checker, k, &none)? {
                             Some(false) => Known::Implied,
-                            verdict => {
-                                if verdict.is_none() {
-                                    // A spent engine answers nothing more.
-                                    checker = None;
-                                }
-                                self.search(k, &none)?
-                            }
+                            _ => self.search(k, &none)?,
                         }
                     };
                     self.known.insert(name.clone(), known);
                 }
                 if pass == 1 && matches!(self.known.get(&name), Some(Known::Implied)) {
-                    // Which unconfirmed implied rules must break with it.
-                    let mut with: Vec<bool> = (0..n)
-                        .map(|j| {
+                    // The unconfirmed implied rules; skip `k` when one of
+                    // them alone implies it and not the other way round
+                    // (the stronger rule is asked about, and once settled,
+                    // settles `k`); group it with those that say the same
+                    // on this problem (each alone implies the other).
+                    let open: Vec<usize> = (0..n)
+                        .filter(|&j| {
                             let other = &self.held.rules[j].name;
                             j != k
                                 && !self.confirmed.contains(other)
                                 && matches!(self.known.get(other), Some(Known::Implied))
                         })
                         .collect();
-                    if !with.iter().any(|&w| w) {
+                    let mut with = vec![false; n];
+                    let mut weaker = false;
+                    for &j in &open {
+                        let j_k = self.alone_implies(&mut checker, &mut alone, j, k)?;
+                        let k_j = self.alone_implies(&mut checker, &mut alone, k, j)?;
+                        if j_k && !k_j {
+                            weaker = true;
+                            break;
+                        }
+                        with[j] = j_k && k_j;
+                    }
+                    if weaker {
                         continue;
                     }
-                    let c = self.checker(&mut checker)?;
-                    if c.has_probe(k, &with) != Some(true) {
+                    // Grow the group, weakest evidence first, until the
+                    // firm rules no longer imply `k` (tight solves first:
+                    // most rules stay assumed), then keep hard every rule
+                    // that can be kept: the fewest break together with `k`.
+                    let mut probe_able = false;
+                    // `None`: the equivalents alone.
+                    let grow: Vec<Option<usize>> = std::iter::once(None)
+                        .chain(
+                            order
+                                .iter()
+                                .filter(|&&j| open.contains(&j) && !with[j])
+                                .map(|&j| Some(j)),
+                        )
+                        .collect();
+                    for j in grow {
+                        match j {
+                            Some(j) => with[j] = true,
+                            None if !with.iter().any(|&w| w) => continue,
+                            None => {}
+                        }
+                        if self.check(&mut checker, k, &with)? == Some(true) {
+                            probe_able = true;
+                            break;
+                        }
+                    }
+                    if !probe_able {
                         // The firm rules imply it (or a limit): settled.
                         continue;
                     }
-                    // Keep every rule hard that can be kept: the fewest
-                    // rules break together with `k`.
                     for j in 0..n {
                         if with[j] {
                             with[j] = false;
-                            if c.has_probe(k, &with) != Some(true) {
+                            if self.check(&mut checker, k, &with)? != Some(true) {
                                 with[j] = true;
                             }
                         }
                     }
-                    let known = self.search(k, &with)?;
-                    if matches!(known, Known::Probe(_)) {
-                        self.known.insert(name.clone(), known);
-                    }
+                    // Not cached: it depends on which rules are confirmed.
+                    group = match self.search(k, &with)? {
+                        Known::Probe(p) => Some(p),
+                        _ => None,
+                    };
                 }
-                if let Some(Known::Probe(p)) = self.known.get(&name) {
+                let probe = match (&group, self.known.get(&name)) {
+                    (Some(p), _) => Some(p),
+                    (None, Some(Known::Probe(p))) if pass == 0 => Some(p),
+                    _ => None,
+                };
+                if let Some(p) = probe {
                     let rule = &self.held.rules[k];
                     let stmt = self
                         .learned
@@ -476,16 +594,15 @@ impl Asker {
             let mut demos = self.demos.clone();
             demos.push(q.probe.scene.clone());
             let learned = learn(&demos, self.statements.as_ref(), &self.opts.learn)?;
+            self.like = self.opts.resemble.then(|| Likeness::new(&demos));
             self.demos = demos;
             self.learned = learned;
-            self.dropped += 1;
             self.known.clear();
         } else {
             self.confirmed.insert(q.rule.clone());
-            // The next question depends only on the held rules, the
-            // confirmed ones and the demonstrations, never on what was
-            // computed before: a resumed session asks what an uninterrupted
-            // one would.
+            // Recomputed from scratch, so that the next question depends
+            // only on the demonstrations, the held rules and the confirmed
+            // ones: a resumed session asks what an uninterrupted one would.
             self.known.clear();
         }
         self.held = self.held_rules();

@@ -17,8 +17,7 @@ use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
 use rccpack::render::{render_to_path, RenderOptions};
 use rccpack::rules::RuleSet;
-use rccpack::scene::scenes_to_json;
-use rccpack::studio::storage::atomic_write_path;
+use rccpack::studio::storage::{self, atomic_write_path};
 use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
@@ -47,10 +46,19 @@ pub struct AskArgs {
     /// Seed for learning and probes.
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Stop each probe search after this many seconds (the rule is then
-    /// left unsettled, not asked).
+    /// Stop each probe search or check after this many seconds: a safety
+    /// net (what it stops depends on the machine's speed; the node budgets
+    /// below do not).
     #[arg(long, value_name = "SECONDS", default_value = "10", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
     time_limit: Duration,
+    /// Stop a probe search after this many search nodes (the best probe
+    /// found so far is shown).
+    #[arg(long, value_name = "N", default_value_t = rccpack::ask::DEFAULT_PROBE_NODES, value_parser = clap::value_parser!(u64).range(1..))]
+    node_limit: u64,
+    /// Stop a check (does a probe exist? does one rule imply another?) after
+    /// this many search nodes (the rule is then left unsettled, not asked).
+    #[arg(long, value_name = "N", default_value_t = rccpack::ask::DEFAULT_CHECK_NODES, value_parser = clap::value_parser!(u64).range(1..))]
+    check_nodes: u64,
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
     #[arg(long, default_value = "point")]
     contact: Contact,
@@ -145,17 +153,9 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         None
     };
     let answers = if answers_path.exists() {
-        let text = read_text(&answers_path)?;
-        let de = &mut serde_json::Deserializer::from_str(&text);
-        let file: AnswersFile = serde_path_to_error::deserialize(de).map_err(|e| {
-            Reported(format!(
-                "error: {}: at `{}`: {}",
-                answers_path.display(),
-                e.path(),
-                e.inner()
-            ))
-        })?;
-        file.answers
+        AnswersFile::from_json(&read_text(&answers_path)?)
+            .map_err(|e| Reported(format!("error: {}: {e}", answers_path.display())))?
+            .answers
     } else {
         Vec::new()
     };
@@ -173,6 +173,8 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             contact: a.contact,
             seed: a.seed,
             time_limit: Some(a.time_limit),
+            node_limit: Some(a.node_limit),
+            check_nodes: Some(a.check_nodes),
             ..ProbeOptions::default()
         },
         resemble: true,
@@ -186,24 +188,20 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         };
         Reported(format!("error: {}: {e}", file.display()))
     })?;
-    if asker.demos().len() != n_demos {
-        // An accepted probe saved in answers.json but not yet in demos.json.
-        write(&demos_path, &scenes_to_json(asker.demos()))?;
+    let io_error = |(file, e): (&str, std::io::Error)| {
+        Reported(format!(
+            "error: {}: cannot write: {e}",
+            dir.join(file).display()
+        ))
+    };
+    if storage::write_session_start(dir, &asker, n_demos, resumed).map_err(io_error)? {
+        println!(
+            "note: {} was not learned from {} with these settings; kept as {}",
+            learned_path.display(),
+            demos_path.display(),
+            dir.join(storage::LEARNED_BACKUP).display()
+        );
     }
-    if resumed == 0 && learned_path.exists() {
-        let old = read_text(&learned_path)?;
-        if old != asker.learned_rcc() {
-            let backup = dir.join("learned.rcc.bak");
-            write(&backup, &old)?;
-            println!(
-                "note: {} was not learned from {} with these settings; kept as {}",
-                learned_path.display(),
-                demos_path.display(),
-                backup.display()
-            );
-        }
-    }
-    write(&learned_path, &asker.learned_rcc())?;
     if resumed > 0 {
         println!("resuming: {resumed} answers in {}", answers_path.display());
     }
@@ -284,16 +282,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             .answer(&q, accepted)
             .map_err(|e| Reported(format!("error: {}: {e}", demos_path.display())))?;
         asked_now += 1;
-        let file = AnswersFile {
-            answers: asker.answers().to_vec(),
-        };
-        let mut text = serde_json::to_string_pretty(&file)?;
-        text.push('\n');
-        write(&answers_path, &text)?;
-        if accepted {
-            write(&demos_path, &scenes_to_json(asker.demos()))?;
-        }
-        write(&learned_path, &asker.learned_rcc())?;
+        storage::write_after_answer(dir, &asker, accepted).map_err(io_error)?;
     }
     let p = asker.progress();
     let median = {

@@ -662,14 +662,11 @@ fn read_answers(st: &AppState) -> Result<Vec<Answer>, ApiError> {
     else {
         return Ok(Vec::new());
     };
-    let de = &mut serde_json::Deserializer::from_str(&text);
-    let file: AnswersFile = serde_path_to_error::deserialize(de).map_err(|e| {
+    let file = AnswersFile::from_json(&text).map_err(|e| {
         ApiError::new(
             StatusCode::CONFLICT,
             format!(
-                "{ANSWERS}: at `{}`: {}; the studio will not overwrite it — fix or move the file, then ask again",
-                e.path(),
-                e.inner()
+                "{ANSWERS}: {e}; the studio will not overwrite it — fix or move the file, then ask again"
             ),
         )
         .with("kind", json!("corrupt_answers"))
@@ -708,20 +705,9 @@ async fn start_session(
             .await
             .map_err(|_| internal("learning"))?
             .map_err(ask_error)?;
-    if asker.demos().len() != n_demos {
-        // An accepted probe saved in answers.json but not yet in demos.json.
-        storage::atomic_write(&st.dir, DEMOS, &scenes_to_json(asker.demos()))
-            .map_err(|e| ApiError::io(DEMOS, e))?;
-    }
-    let rcc = asker.learned_rcc();
-    let old = storage::read_optional(&st.dir, LEARNED).map_err(|e| ApiError::io(LEARNED, e))?;
-    let mut backup = None;
-    if let Some(old) = old.filter(|o| resumed == 0 && *o != rcc) {
-        storage::atomic_write(&st.dir, LEARNED_BACKUP, &old)
-            .map_err(|e| ApiError::io(LEARNED_BACKUP, e))?;
-        backup = Some(LEARNED_BACKUP);
-    }
-    storage::atomic_write(&st.dir, LEARNED, &rcc).map_err(|e| ApiError::io(LEARNED, e))?;
+    let backup = storage::write_session_start(&st.dir, &asker, n_demos, resumed)
+        .map_err(|(file, e)| ApiError::io(file, e))?
+        .then_some(LEARNED_BACKUP);
     Ok((
         AskSession {
             asker,
@@ -887,22 +873,9 @@ pub(crate) async fn ask_answer(State(st): St, body: Bytes) -> ApiResult {
     // As `rccpack ask`: the journal first, then the demonstrations, then the
     // rules; each write atomic. A failed write drops the session, so the
     // next question starts again from what is on disk.
-    let file = AnswersFile {
-        answers: s.asker.answers().to_vec(),
-    };
-    let mut text = serde_json::to_string_pretty(&file).expect("answers serialise");
-    text.push('\n');
     let rcc = s.asker.learned_rcc();
-    let written = storage::atomic_write(&st.dir, ANSWERS, &text)
-        .map_err(|e| ApiError::io(ANSWERS, e))
-        .and_then(|()| match accepted {
-            true => storage::atomic_write(&st.dir, DEMOS, &scenes_to_json(s.asker.demos()))
-                .map_err(|e| ApiError::io(DEMOS, e)),
-            false => Ok(()),
-        })
-        .and_then(|()| {
-            storage::atomic_write(&st.dir, LEARNED, &rcc).map_err(|e| ApiError::io(LEARNED, e))
-        });
+    let written = storage::write_after_answer(&st.dir, &s.asker, accepted)
+        .map_err(|(f, e)| ApiError::io(f, e));
     if let Err(e) = written {
         *guard = None;
         return Err(e);

@@ -90,3 +90,50 @@ pub fn version(content: Option<&str>) -> String {
         }
     }
 }
+
+/// The writes that start (or resume) a question session (SPEC §13), shared
+/// by `rccpack ask` and the studio: `demos.json` when `Asker::new` added an
+/// accepted probe an abort had kept out of it (`demos_read` is how many
+/// scenes the file held), then `learned.rcc`; a different `learned.rcc` of a
+/// first session (`resumed` = 0 answers) is kept as `learned.rcc.bak` first.
+/// Returns whether a backup was written; an error names the file.
+pub fn write_session_start(
+    dir: &Path,
+    asker: &crate::ask::Asker,
+    demos_read: usize,
+    resumed: usize,
+) -> Result<bool, (&'static str, std::io::Error)> {
+    if asker.demos().len() != demos_read {
+        atomic_write(dir, DEMOS, &crate::scene::scenes_to_json(asker.demos()))
+            .map_err(|e| (DEMOS, e))?;
+    }
+    let rcc = asker.learned_rcc();
+    let old = read_optional(dir, LEARNED).map_err(|e| (LEARNED, e))?;
+    let backup = resumed == 0 && old.as_ref().is_some_and(|o| *o != rcc);
+    if backup {
+        let old = old.unwrap_or_default();
+        atomic_write(dir, LEARNED_BACKUP, &old).map_err(|e| (LEARNED_BACKUP, e))?;
+    }
+    atomic_write(dir, LEARNED, &rcc).map_err(|e| (LEARNED, e))?;
+    Ok(backup)
+}
+
+/// The writes after an answer (SPEC §13), in journal order, each atomic:
+/// `answers.json`, then `demos.json` (only when the probe was accepted),
+/// then `learned.rcc`. An abort between two of them loses nothing:
+/// `Asker::new` reconciles the demonstrations with the journal.
+pub fn write_after_answer(
+    dir: &Path,
+    asker: &crate::ask::Asker,
+    accepted: bool,
+) -> Result<(), (&'static str, std::io::Error)> {
+    let file = crate::ask::AnswersFile {
+        answers: asker.answers().to_vec(),
+    };
+    atomic_write(dir, ANSWERS, &file.to_json()).map_err(|e| (ANSWERS, e))?;
+    if accepted {
+        atomic_write(dir, DEMOS, &crate::scene::scenes_to_json(asker.demos()))
+            .map_err(|e| (DEMOS, e))?;
+    }
+    atomic_write(dir, LEARNED, &asker.learned_rcc()).map_err(|e| (LEARNED, e))
+}
