@@ -24,6 +24,11 @@ pub const MAX_COORD: i64 = 1_000_000_000_000_000;
 /// days).
 pub const MAX_TIME_LIMIT_SECS: f64 = 1_000_000.0;
 
+/// Most objects in one scene (each demonstration counts on its own). Every
+/// relation is computed per pair of objects, so a scene past this would
+/// not fail but take hours; it is refused instead.
+pub const MAX_OBJECTS: usize = 10_000;
+
 /// Most random scenes the null model may draw (`--samples`).
 pub const MAX_SAMPLES: usize = 1_000_000;
 

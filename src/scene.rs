@@ -329,7 +329,16 @@ impl Scene {
     /// together, placed objects inside the space, no two interiors
     /// overlapping.
     pub fn validate(&self) -> Result<(), SceneError> {
-        use crate::limits::MAX_COORD;
+        use crate::limits::{MAX_COORD, MAX_OBJECTS};
+        if self.objects.len() > MAX_OBJECTS {
+            return Err(SceneError::invalid(
+                "objects",
+                format!(
+                    "{} objects is too many; expected at most {MAX_OBJECTS}",
+                    self.objects.len()
+                ),
+            ));
+        }
         // Range first: after these checks every edge and every difference
         // of edges fits easily in i64 (see `crate::limits`).
         let coord = |path: &str, what: &str, v: i64| -> Result<(), SceneError> {

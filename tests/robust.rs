@@ -367,3 +367,40 @@ fn infeasible_probe_problem_is_explained_without_core_extraction() {
     assert!(c.hard_rules.len() < rules.rules.len(), "{c:?}");
     assert!(started.elapsed() < Duration::from_secs(150));
 }
+
+/// At most `MAX_OBJECTS` objects per scene: a scene at the limit (a row of
+/// 1×1 blocks, one per cell, no overlap) is valid and its relations are
+/// computed; one more object is refused with the count and the limit named,
+/// at the JSON field `objects`.
+#[test]
+fn object_count_limit() {
+    use rccpack::limits::MAX_OBJECTS;
+    assert_eq!(MAX_OBJECTS, 10_000, "the README writes the limit out");
+    let scene = |n: usize| {
+        let objects: Vec<String> = (0..n)
+            .map(|i| {
+                format!(
+                    r#"{{"id":"o{i}","class":"B","x":{},"y":{},"width":1,"height":1}}"#,
+                    i % 100,
+                    i / 100 + 1
+                )
+            })
+            .collect();
+        format!(
+            r#"{{"space":{{"width":100,"height":102}},"grid":1,"objects":[{}]}}"#,
+            objects.join(",")
+        )
+    };
+    let at = Scene::from_json(&scene(MAX_OBJECTS)).expect("a scene at the limit is valid");
+    assert_eq!(at.objects.len(), MAX_OBJECTS);
+    let rules = parse_rules("rule r: !DR_N(B, B)\n").unwrap();
+    let ev = rccpack::eval::evaluate(&at, &rules, Contact::Point);
+    assert_eq!(ev.rules[0].subjects, MAX_OBJECTS);
+    let e = Scene::from_json(&scene(MAX_OBJECTS + 1))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("objects") && e.contains("10001 objects is too many; expected at most 10000"),
+        "{e}"
+    );
+}
