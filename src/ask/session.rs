@@ -20,13 +20,17 @@
 //!   solve under assumptions per rule; only for the rule asked about is the
 //!   probe to show searched, by [`find_probe`]).
 //!
-//! Probe results are recomputed after every answer (and group probes on
-//! every call), so the next question depends only on the demonstrations,
-//! the held rules and the confirmed ones — a resumed session asks exactly
-//! what an uninterrupted one would (tested). Every solve has a node budget
-//! (deterministic) besides the time limit (a safety net), so that holds on
-//! a slow or loaded machine too. One engine per scan ([`ProbeChecker`])
-//! keeps the recomputation affordable. When no rule has a probe that keeps
+//! What the engine decides — a probe, a proof that none exists, a proof
+//! that one rule alone implies another — depends only on the problem and
+//! the held rules, so it is kept while they stay the same (a rejected probe
+//! confirms a rule, it changes no held rule) and dropped when learning is
+//! redone. Every solve has a node budget (deterministic) besides the time
+//! limit (a safety net); a check its budget stops is tried again at the
+//! next question. So the next question depends only on the demonstrations,
+//! the held rules and the confirmed ones, and a resumed session asks what
+//! an uninterrupted one would (tested), on any machine — unless a check
+//! reaches its budget: how far a stopped search gets depends on what the
+//! engine learned from earlier solves. When no rule has a probe that keeps
 //! all the others, groups of rules that follow from one another are asked
 //! about as one ([`Asker::next_question`]).
 
@@ -173,6 +177,31 @@ enum Known {
     Unknown,
 }
 
+/// The classes a rule is about (subject and target classes), `None` when it
+/// is about any object (`*`) or a landmark.
+fn classes(r: &crate::rules::Rule) -> Option<BTreeSet<&str>> {
+    let mut out = BTreeSet::new();
+    for a in r.formula.atoms() {
+        out.insert(a.subject.as_str());
+        match &a.target {
+            crate::rules::Target::Class(c) => {
+                out.insert(c.as_str());
+            }
+            crate::rules::Target::Any | crate::rules::Target::Landmark(_) => return None,
+        }
+    }
+    Some(out)
+}
+
+/// Whether two rules may constrain one another: they share a class, or one
+/// is about any object.
+fn related(a: &crate::rules::Rule, b: &crate::rules::Rule) -> bool {
+    match (classes(a), classes(b)) {
+        (Some(x), Some(y)) => !x.is_disjoint(&y),
+        _ => true,
+    }
+}
+
 /// The question loop's state.
 #[derive(Debug, Clone)]
 pub struct Asker {
@@ -187,6 +216,12 @@ pub struct Asker {
     /// Resemblance to the demonstrations (accepted probes included).
     like: Option<Likeness>,
     known: HashMap<String, Known>,
+    /// Which held rule alone implies which (by name), while the held rules
+    /// stay the same: cleared when learning is redone.
+    alone: HashMap<(String, String), bool>,
+    /// Decided [`ProbeChecker::has_probe`] checks (rule, rules allowed to
+    /// break with it), while the held rules stay the same.
+    checks: std::cell::RefCell<HashMap<(String, Vec<String>), bool>>,
     open: Option<String>,
 }
 
@@ -245,6 +280,8 @@ impl Asker {
                 .collect(),
             answers,
             known: HashMap::new(),
+            alone: HashMap::new(),
+            checks: Default::default(),
             open: None,
         };
         asker.held = asker.held_rules();
@@ -377,10 +414,23 @@ impl Asker {
         k: usize,
         removed: &[bool],
     ) -> Result<Option<bool>, AskError> {
+        let key = (
+            self.held.rules[k].name.clone(),
+            (0..self.held.rules.len())
+                .filter(|&j| removed.get(j).copied().unwrap_or(false))
+                .map(|j| self.held.rules[j].name.clone())
+                .collect::<Vec<_>>(),
+        );
+        if let Some(&v) = self.checks.borrow().get(&key) {
+            return Ok(Some(v));
+        }
         let verdict = self.checker(checker)?.has_probe(k, removed);
-        if verdict.is_none() {
+        match verdict {
+            Some(v) => {
+                self.checks.borrow_mut().insert(key, v);
+            }
             // A spent engine answers nothing more.
-            *checker = None;
+            None => *checker = None,
         }
         Ok(verdict)
     }
@@ -391,15 +441,24 @@ impl Asker {
     fn alone_implies(
         &self,
         checker: &mut Option<ProbeChecker>,
-        memo: &mut HashMap<(usize, usize), bool>,
+        memo: &mut HashMap<(String, String), bool>,
         a: usize,
         b: usize,
     ) -> Result<bool, AskError> {
-        if let Some(&v) = memo.get(&(a, b)) {
+        let key = (
+            self.held.rules[a].name.clone(),
+            self.held.rules[b].name.clone(),
+        );
+        if let Some(&v) = memo.get(&key) {
             return Ok(v);
         }
         let (ra, rb) = (&self.held.rules[a], &self.held.rules[b]);
-        let v = if rule_implies(
+        let v = if !related(ra, rb) {
+            // No class in common: neither says anything about the other's
+            // objects (a rule impossible or certain on its own would be the
+            // exception; missing it only costs a question).
+            false
+        } else if rule_implies(
             (ra.scope, &ra.formula),
             (rb.scope, &rb.formula),
             self.opts.learn.contact,
@@ -413,7 +472,7 @@ impl Asker {
             }
             verdict == Some(true)
         };
-        memo.insert((a, b), v);
+        memo.insert(key, v);
         Ok(v)
     }
 
@@ -424,18 +483,22 @@ impl Asker {
     /// that follow from one another would never be asked about: e.g.
     /// `DR_S(R, G)` and `DR_N(G, R)` (the same habit written two ways), or
     /// `R_inside_W` and the four `!DR_d(R, W)` that together say the same.
-    /// Then a second pass visits the unconfirmed rules, in asking order:
+    /// Then further passes visit the unconfirmed rules, in asking order:
     ///
     /// 1. a rule that another unconfirmed rule alone implies, but not the
     ///    other way round, is skipped (the stronger one is asked about);
     /// 2. the rules that alone imply it and that it alone implies (the same
     ///    statement on this problem) may break with it; if the rest still
-    ///    imply it, the other unconfirmed rules are added one at a time,
-    ///    weakest evidence first, until a probe exists (or none is left:
-    ///    settled);
-    /// 3. each added rule is kept hard again when a probe exists without
-    ///    it, so the probe breaks the rule and the fewest others;
-    ///    [`Question::also_broken`] names them.
+    ///    imply it, its parts (the unconfirmed rules it alone implies) are
+    ///    added one at a time, weakest evidence first, until a probe exists;
+    /// 3. only in the last pass, when no rule could be asked about so, every
+    ///    unconfirmed rule about one of its classes may break too (one
+    ///    solve: e.g. the same habit written two ways, `DR_S(R, G)` and
+    ///    `DR_N(G, R)`, that a probe can break only by also breaking a
+    ///    habit "no G on the floor");
+    /// 4. each rule so added is kept hard again when a probe exists without
+    ///    it (strongest first), so the probe breaks the rule and the fewest
+    ///    others; [`Question::also_broken`] names them.
     ///
     /// Every check is a solve with a node budget
     /// ([`ProbeOptions::check_nodes`], deterministic), so the questions
@@ -447,8 +510,9 @@ impl Asker {
         let none = vec![false; n];
         let mut checker: Option<ProbeChecker> = None;
         let mut group: Option<Probe> = None;
-        let mut alone: HashMap<(usize, usize), bool> = HashMap::new();
-        for pass in 0..2 {
+        // Kept across questions while the held rules stay the same.
+        let mut alone = std::mem::take(&mut self.alone);
+        for pass in 0..3 {
             for &k in &order {
                 let name = self.held.rules[k].name.clone();
                 if self.confirmed.contains(&name) {
@@ -465,7 +529,7 @@ impl Asker {
                     };
                     self.known.insert(name.clone(), known);
                 }
-                if pass == 1 && matches!(self.known.get(&name), Some(Known::Implied)) {
+                if pass >= 1 && matches!(self.known.get(&name), Some(Known::Implied)) {
                     // The unconfirmed implied rules; skip `k` when one of
                     // them alone implies it and not the other way round
                     // (the stronger rule is asked about, and once settled,
@@ -480,6 +544,7 @@ impl Asker {
                         })
                         .collect();
                     let mut with = vec![false; n];
+                    let mut parts = vec![false; n];
                     let mut weaker = false;
                     for &j in &open {
                         let j_k = self.alone_implies(&mut checker, &mut alone, j, k)?;
@@ -489,23 +554,19 @@ impl Asker {
                             break;
                         }
                         with[j] = j_k && k_j;
+                        parts[j] = k_j && !j_k;
                     }
                     if weaker {
                         continue;
                     }
-                    // Grow the group, weakest evidence first, until the
-                    // firm rules no longer imply `k` (tight solves first:
-                    // most rules stay assumed), then keep hard every rule
-                    // that can be kept: the fewest break together with `k`.
+                    // Grow the group with the rule's parts (the rules it
+                    // alone implies), weakest evidence first, until the
+                    // firm rules no longer imply `k`; then keep hard every
+                    // part that can be kept: the fewest break with `k`.
                     let mut probe_able = false;
                     // `None`: the equivalents alone.
                     let grow: Vec<Option<usize>> = std::iter::once(None)
-                        .chain(
-                            order
-                                .iter()
-                                .filter(|&&j| open.contains(&j) && !with[j])
-                                .map(|&j| Some(j)),
-                        )
+                        .chain(order.iter().filter(|&&j| parts[j]).map(|&j| Some(j)))
                         .collect();
                     for j in grow {
                         match j {
@@ -516,6 +577,19 @@ impl Asker {
                         if self.check(&mut checker, k, &with)? == Some(true) {
                             probe_able = true;
                             break;
+                        }
+                    }
+                    if !probe_able && pass == 2 {
+                        // Last pass, one solve: every open rule about the same
+                        // classes may break (e.g. a habit of the same
+                        // objects that the probe must break too).
+                        let mut all = with.clone();
+                        for &j in &open {
+                            all[j] |= related(&self.held.rules[k], &self.held.rules[j]);
+                        }
+                        if all != with && self.check(&mut checker, k, &all)? == Some(true) {
+                            with = all;
+                            probe_able = true;
                         }
                     }
                     if !probe_able {
@@ -564,11 +638,13 @@ impl Asker {
                         probe: p.clone(),
                     };
                     self.open = Some(name);
+                    self.alone = alone;
                     return Ok(Some(q));
                 }
             }
         }
         self.open = None;
+        self.alone = alone;
         Ok(None)
     }
 
@@ -598,12 +674,13 @@ impl Asker {
             self.demos = demos;
             self.learned = learned;
             self.known.clear();
+            self.alone.clear();
+            self.checks.get_mut().clear();
         } else {
             self.confirmed.insert(q.rule.clone());
-            // Recomputed from scratch, so that the next question depends
-            // only on the demonstrations, the held rules and the confirmed
-            // ones: a resumed session asks what an uninterrupted one would.
-            self.known.clear();
+            // The held rules are the same, so is every probe and every
+            // proof; a search a limit stopped is tried again.
+            self.known.retain(|_, k| !matches!(k, Known::Unknown));
         }
         self.held = self.held_rules();
         self.answers.push(a);
