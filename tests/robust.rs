@@ -404,3 +404,39 @@ fn object_count_limit() {
         "{e}"
     );
 }
+
+/// Found by the `synth` fuzz target: a space starting at y = −1 made a task
+/// of the redundant cumulative start at −1, which Pumpkin 0.5's time-table
+/// takes for its "no profile yet" mark, and it panicked ("negative
+/// resource usage"). Starts are now shifted to be at least 0.
+#[test]
+fn cumulative_start_at_minus_one_does_not_panic() {
+    let p = Scene::from_json(
+        r#"{"space":{"x":11,"y":-1,"width":60,"height":23},"grid":20,"objects":[
+            {"id":"o0","class":"B","width":10,"height":20},
+            {"id":"o1","class":"B","width":20,"height":10}]}"#,
+    )
+    .unwrap();
+    // The fuzz input's rules: r1 is infeasible (two Bs, each east of every
+    // other object), so `explain` solves again under assumptions.
+    let rules = parse_rules(
+        "rule r0: FL_E(B, at least 1 W) & EC_N(B, *) & AL_E(B, A) | (FL_E(B, at least 2 W) | DR_E(B, *) | DR_E(B, some *))
+rule r1 hard: (DR_E(B, *) & DR_E(B, at least 0 *)) & DR_E(B, *) & DR_S(B, no B)
+rule r2 weight 2: !AL_E(B, no B) & (DR_W(B, W) | DR_W(B, W) | DR_W(B, A))
+",
+    )
+    .unwrap();
+    let opts = SynthOptions {
+        contact: Contact::Point,
+        node_limit: Some(1691),
+        seed: 12948890938015724467,
+        symmetry_breaking: true,
+        redundant: true,
+        explain: true,
+        ..SynthOptions::default()
+    };
+    let r = synthesize(&p, &rules, &opts).unwrap();
+    assert_eq!(r.status, Status::Infeasible);
+    let c = r.conflict.expect("an explanation");
+    assert_eq!(c.hard_rules, vec!["r1".to_string()]);
+}

@@ -388,10 +388,10 @@ impl Engine {
             ));
         }
         let grid = i32_of(model.grid, || "grid".into())?;
-        let origin = (
-            i32_of(model.origin.0, || "space.x".into())?,
-            i32_of(model.origin.1, || "space.y".into())?,
-        );
+        // The origin fits in 32 bits (every coordinate the engine sees is
+        // one of its offsets).
+        i32_of(model.origin.0, || "space.x".into())?;
+        i32_of(model.origin.1, || "space.y".into())?;
         let mut solver = Solver::with_options(SolverOptions {
             random_generator: SmallRng::seed_from_u64(seed),
             memory_preallocated: 1,
@@ -444,18 +444,26 @@ impl Engine {
         let mut cumulative_starts: Vec<Vec<AffineView<DomainId>>> = Vec::new();
         for cu in &model.cumulative {
             let mut starts = Vec::with_capacity(cu.tasks.len());
+            // Every start at least 0 (see `Model::cumulative_shift`).
+            let shift = model.cumulative_shift(cu);
             for &(o, _, _) in &cu.tasks {
                 let (cx, cy) = model.coords[o];
                 let (c, origin) = match cu.axis {
-                    super::model::Axis::X => (cx, origin.0),
-                    super::model::Axis::Y => (cy, origin.1),
+                    super::model::Axis::X => (cx, model.origin.0),
+                    super::model::Axis::Y => (cy, model.origin.1),
                 };
                 starts.push(match c {
                     Coord::Const(v) => {
-                        let v = i32_of(v, || format!("the position of {}", obj_name(o)))?;
+                        let v = i32_of(v.saturating_add(shift), || {
+                            format!("the position of {}", obj_name(o))
+                        })?;
                         solver.new_bounded_integer(v, v).scaled(1)
                     }
-                    Coord::Var(v) => vars[v].scaled(grid).offset(origin),
+                    Coord::Var(v) => vars[v]
+                        .scaled(grid)
+                        .offset(i32_of(origin.saturating_add(shift), || {
+                            "the space's origin".into()
+                        })?),
                 });
             }
             cumulative_starts.push(starts);

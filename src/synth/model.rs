@@ -597,18 +597,41 @@ impl Model {
         sum <= i128::from(i32::MAX)
     }
 
+    /// The shift added to every start of a cumulative in the engine, so
+    /// that every start is at least 0: Pumpkin 0.5's time-table uses the
+    /// time `-1` as "no profile yet" and panics ("negative resource usage")
+    /// when a task really starts at `-1` (found by the `synth` fuzz target:
+    /// `fuzz/regressions/synth/pumpkin-cumulative-negative-usage.bin`). The
+    /// relaxation is invariant under a shift of the axis.
+    pub fn cumulative_shift(&self, c: &Cumulative) -> i64 {
+        let lowest = c
+            .tasks
+            .iter()
+            .map(|&(o, _, _)| match self.coord(o, c.axis) {
+                Coord::Const(v) => v,
+                Coord::Var(_) => self.axis_origin(c.axis),
+            })
+            .min()
+            .unwrap_or(0);
+        -lowest
+    }
+
     /// Whether a cumulative's numbers stay within `i32` in the engine:
     /// the sum of every demand plus the capacity, and every task's largest
-    /// start plus its duration.
+    /// start (shifted by [`Model::cumulative_shift`]) plus its duration.
     pub fn cumulative_fits_i32(&self, c: &Cumulative) -> bool {
         let demands: i128 = c.tasks.iter().map(|t| i128::from(t.2).abs()).sum();
         let origin = i128::from(self.axis_origin(c.axis));
+        let shift = i128::from(self.cumulative_shift(c));
         let ends_fit = c.tasks.iter().all(|&(o, dur, _)| {
             let start = match self.coord(o, c.axis) {
-                Coord::Const(v) => i128::from(v).abs(),
-                Coord::Var(v) => origin.abs() + i128::from(self.grid) * i128::from(self.vars[v].ub),
+                Coord::Const(v) => i128::from(v) + shift,
+                Coord::Var(v) => {
+                    origin + shift + i128::from(self.grid) * i128::from(self.vars[v].ub)
+                }
             };
-            start + i128::from(dur).abs() <= i128::from(i32::MAX)
+            (0..=i128::from(i32::MAX)).contains(&start)
+                && start + i128::from(dur).abs() <= i128::from(i32::MAX)
         });
         ends_fit && demands + i128::from(c.capacity).abs() <= i128::from(i32::MAX)
     }
