@@ -309,3 +309,26 @@ fn score_require_is_an_oracle() {
     assert!(text(&o).contains("red_inside_box"), "{}", text(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The node budgets take whole numbers of at least 1; anything else is a
+/// usage error: exit 1, naming the flag and the value.
+#[test]
+fn bad_node_budgets_exit_1() {
+    let dir = task("budgets");
+    for (flag, value) in [
+        ("--node-limit", "0"),
+        ("--check-nodes", "0"),
+        ("--check-nodes", "abc"),
+        ("--node-limit", "-5"),
+    ] {
+        let o = Command::new(bin())
+            .arg("ask")
+            .arg(&dir)
+            .args([flag, value])
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(1), "{flag} {value}: {}", text(&o));
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert!(e.contains(flag) && e.contains(value), "{flag} {value}: {e}");
+    }
+}

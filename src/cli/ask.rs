@@ -53,11 +53,11 @@ pub struct AskArgs {
     time_limit: Duration,
     /// Stop a probe search after this many search nodes (the best probe
     /// found so far is shown).
-    #[arg(long, value_name = "N", default_value_t = rccpack::ask::DEFAULT_PROBE_NODES, value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(long, value_name = "N", default_value_t = rccpack::ask::DEFAULT_PROBE_NODES, value_parser = clap::value_parser!(u64).range(1..), allow_hyphen_values = true)]
     node_limit: u64,
     /// Stop a check (does a probe exist? does one rule imply another?) after
     /// this many search nodes (the rule is then left unsettled, not asked).
-    #[arg(long, value_name = "N", default_value_t = rccpack::ask::DEFAULT_CHECK_NODES, value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(long, value_name = "N", default_value_t = rccpack::ask::DEFAULT_CHECK_NODES, value_parser = clap::value_parser!(u64).range(1..), allow_hyphen_values = true)]
     check_nodes: u64,
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
     #[arg(long, default_value = "point")]
