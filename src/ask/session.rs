@@ -100,7 +100,7 @@ pub struct AnswersFile {
 }
 
 impl AnswersFile {
-    /// Parse `answers.json`; the error names the field (`at `answers[0].rule`: …`).
+    /// Parse `answers.json`; the error names the JSON field (e.g. `answers[0].rule`).
     pub fn from_json(text: &str) -> Result<AnswersFile, String> {
         let de = &mut serde_json::Deserializer::from_str(text);
         serde_path_to_error::deserialize(de)
