@@ -563,21 +563,14 @@ impl Asker {
                     // alone implies), weakest evidence first, until the
                     // firm rules no longer imply `k`; then keep hard every
                     // part that can be kept: the fewest break with `k`.
-                    let mut probe_able = false;
-                    // `None`: the equivalents alone.
-                    let grow: Vec<Option<usize>> = std::iter::once(None)
-                        .chain(order.iter().filter(|&&j| parts[j]).map(|&j| Some(j)))
-                        .collect();
-                    for j in grow {
-                        match j {
-                            Some(j) => with[j] = true,
-                            None if !with.iter().any(|&w| w) => continue,
-                            None => {}
-                        }
-                        if self.check(&mut checker, k, &with)? == Some(true) {
-                            probe_able = true;
+                    let mut probe_able = with.iter().any(|&w| w)
+                        && self.check(&mut checker, k, &with)? == Some(true);
+                    for &j in order.iter().filter(|&&j| parts[j]) {
+                        if probe_able {
                             break;
                         }
+                        with[j] = true;
+                        probe_able = self.check(&mut checker, k, &with)? == Some(true);
                     }
                     if !probe_able && pass == 2 {
                         // Last pass, one solve: every open rule about the same
