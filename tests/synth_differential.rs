@@ -47,6 +47,7 @@ use rccpack::resemblance::Likeness;
 use rccpack::rules::{Atom, Formula, Rule, RuleSet, Scope, Strength, Target};
 use rccpack::scene::{Object, Scene, Space};
 use rccpack::synth::brute_force::{self, approx_eq, BruteResult};
+use rccpack::synth::lns::LnsOptions;
 use rccpack::synth::model::{BoolDef, BuildOptions, Model};
 use rccpack::synth::verify::verify_solution;
 use rccpack::synth::{synthesize, Status, SynthOptions};
@@ -510,6 +511,36 @@ fn check_conflict(case: &Case, c: &rccpack::synth::Conflict) -> Result<(), Strin
 
 /// Run the engine on `case` and compare with brute force.
 fn check(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<BruteResult, String> {
+    check_search(
+        case,
+        symmetry_breaking,
+        redundant,
+        SynthOptions::default().lns,
+    )
+}
+
+/// [`check`] with large-neighbourhood search forced on every problem,
+/// however small: windows of one or two objects, so that the rounds (each
+/// a sub-problem with the other objects placed) do the improving and the
+/// main engine only proves.
+fn check_lns(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<BruteResult, String> {
+    let lns = LnsOptions {
+        min_objects: 0,
+        window: 1,
+        max_window: 2,
+        patience: 3,
+        round_nodes: 200,
+        budget_nodes: 5_000,
+    };
+    check_search(case, symmetry_breaking, redundant, Some(lns))
+}
+
+fn check_search(
+    case: &Case,
+    symmetry_breaking: bool,
+    redundant: bool,
+    lns: Option<LnsOptions>,
+) -> Result<BruteResult, String> {
     let bf = brute_force::solve(&case.scene, &case.rules, case.contact)
         .map_err(|e| format!("brute force: {e}"))?;
     let opts = SynthOptions {
@@ -517,6 +548,7 @@ fn check(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<BruteR
         time_limit: Some(Duration::from_secs(20)),
         symmetry_breaking,
         redundant,
+        lns,
         ..SynthOptions::default()
     };
     let r =
@@ -986,6 +1018,15 @@ fn second_edition_generator_covers_the_language() {
 #[test]
 fn engine_matches_brute_force() {
     assert_clean(run(0..600, SMALL, true, true));
+}
+
+/// Large-neighbourhood search on (forced onto tiny problems) and off: both
+/// reach brute force's optimum, first- and second-edition rules.
+#[test]
+fn engine_matches_brute_force_with_lns_forced_on() {
+    assert_clean(run_with(0..400, SMALL, true, true, check_lns));
+    assert_clean(run_with(0..600, SMALL2, true, true, check_lns));
+    assert_clean(run_with(0..200, SMALL2, false, false, check_lns));
 }
 
 #[test]

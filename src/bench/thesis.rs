@@ -20,6 +20,7 @@
 //! so a quick run's problems are the first problems of a full run with the
 //! same seed (as long as the engine decides viability the same way).
 
+use super::peers::{self, Peer, PeerStatus};
 use super::pool::{formula_text, pool_for};
 use crate::relations::Contact;
 use crate::relations::Kind;
@@ -102,6 +103,16 @@ pub struct StudyConfig {
     /// Contact mode.
     #[serde(serialize_with = "ser_display")]
     pub contact: Contact,
+    /// Large-neighbourhood search on large problems (`SynthOptions::lns`).
+    pub lns: bool,
+    /// Peer solvers run beside rccpack on every problem (same model, same
+    /// time limit).
+    #[serde(serialize_with = "ser_peers")]
+    pub peers: Vec<Peer>,
+}
+
+fn ser_peers<S: serde::Serializer>(p: &[Peer], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_seq(p.iter().map(|p| p.name()))
 }
 
 fn ser_secs<S: serde::Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> {
@@ -114,7 +125,7 @@ fn ser_display<S: serde::Serializer>(c: &Contact, s: S) -> Result<S::Ok, S::Erro
 
 impl StudyConfig {
     /// The full study: 10 sets, n = 2..6 × k = 1..5, and the scale series
-    /// n ∈ {8, 12, 16, 24, 32, 48} × k ∈ {3, 5}.
+    /// n ∈ {8, 12, 16, 24, 32, 48, 64, 96} × k ∈ {3, 5}.
     pub fn full(seed: u64, time_limit: Duration) -> Self {
         StudyConfig {
             seed,
@@ -125,9 +136,11 @@ impl StudyConfig {
             max_draws: 50_000,
             ns: (2..=6).collect(),
             ks: (1..=5).collect(),
-            scale_ns: vec![8, 12, 16, 24, 32, 48],
+            scale_ns: vec![8, 12, 16, 24, 32, 48, 64, 96],
             scale_ks: vec![3, 5],
             contact: Contact::Point,
+            lns: true,
+            peers: Vec::new(),
         }
     }
 
@@ -339,16 +352,96 @@ pub struct Row {
     pub verified: Option<bool>,
     /// The checker's complaint, or the engine's error.
     pub error: Option<String>,
+    /// The peers' answers on the same problem.
+    pub peers: Vec<PeerRow>,
 }
 
-/// Solve one problem and check its solution.
-pub fn solve_problem(engine: Engine<'_>, cfg: &StudyConfig, p: &Problem) -> Row {
-    let opts = SynthOptions {
+/// One peer's answer on one problem, scored by rccpack's evaluator.
+#[derive(Debug, Clone, Serialize)]
+pub struct PeerRow {
+    /// `cp-sat` or `gecode`.
+    pub peer: String,
+    /// How its solve ended (`None`: it failed to run; see `error`).
+    pub status: Option<PeerStatus>,
+    /// Its solve time as it reports it, ms.
+    pub time_ms: f64,
+    /// Wall time around its process, ms.
+    pub process_ms: f64,
+    /// rccpack's evaluator score of its layout.
+    pub score: Option<f64>,
+    /// Whether its layout passed the checker.
+    pub verified: Option<bool>,
+    /// What went wrong.
+    pub error: Option<String>,
+}
+
+/// Run `peer` on problem `p` (the model rccpack solves, emitted) and score
+/// its layout with the evaluator and the checker.
+pub fn solve_peer(engine: Engine<'_>, cfg: &StudyConfig, p: &Problem, peer: Peer) -> PeerRow {
+    let mut row = PeerRow {
+        peer: peer.name().into(),
+        status: None,
+        time_ms: 0.0,
+        process_ms: 0.0,
+        score: None,
+        verified: None,
+        error: None,
+    };
+    let e = match crate::synth::emit::emitted(&p.scene, &p.rules, &study_options(cfg)) {
+        Ok(e) => e,
+        Err(e) => {
+            row.error = Some(e.to_string());
+            return row;
+        }
+    };
+    match peers::solve(peer, &e, cfg.time_limit) {
+        Err(msg) => row.error = Some(msg),
+        Ok(r) => {
+            row.status = Some(r.status);
+            row.time_ms = r.time_ms;
+            row.process_ms = r.process_ms;
+            if let Some(v) = &r.values {
+                if v.len() == e.model.vars.len() {
+                    let sol = e.model.scene(&p.scene, v);
+                    let ev = crate::eval::evaluate(&sol, &p.rules, cfg.contact);
+                    row.score = Some(ev.score);
+                    match (engine.verify)(&p.scene, &sol, &p.rules, cfg.contact) {
+                        Ok(()) => row.verified = Some(true),
+                        Err(msg) => {
+                            row.verified = Some(false);
+                            row.error = Some(msg);
+                        }
+                    }
+                } else {
+                    row.error = Some(format!(
+                        "{} values for {} variables",
+                        v.len(),
+                        e.model.vars.len()
+                    ));
+                }
+            }
+        }
+    }
+    row
+}
+
+/// The synthesis options of every solve of the study.
+pub fn study_options(cfg: &StudyConfig) -> SynthOptions {
+    let mut opts = SynthOptions {
         contact: cfg.contact,
         time_limit: Some(cfg.time_limit),
         seed: cfg.seed,
         ..SynthOptions::default()
     };
+    if !cfg.lns {
+        opts.lns = None;
+    }
+    opts
+}
+
+/// Solve one problem and check its solution.
+pub fn solve_problem(engine: Engine<'_>, cfg: &StudyConfig, p: &Problem) -> Row {
+    let opts = study_options(cfg);
     let t0 = Instant::now();
     let res = (engine.solve)(&p.scene, &p.rules, &opts);
     let time_ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -367,6 +460,7 @@ pub fn solve_problem(engine: Engine<'_>, cfg: &StudyConfig, p: &Problem) -> Row 
         total_weight: None,
         verified: None,
         error: None,
+        peers: Vec::new(),
     };
     match res {
         Err(e) => row.error = Some(e.to_string()),
@@ -440,6 +534,11 @@ pub struct StudyReport {
     pub rows: Vec<Row>,
     /// One line per (series, n, k).
     pub summary: Vec<Summary>,
+    /// One line per (series, n, k, peer), when peers ran.
+    pub peer_summary: Vec<PeerSummary>,
+    /// The drawn sets themselves (to rebuild the problems).
+    #[serde(skip)]
+    pub drawn: Vec<DrawnSet>,
 }
 
 /// Whether no layout of two or more objects of the subject class can let
@@ -472,12 +571,7 @@ pub fn find_viable_sets(
         .flat_map(|c| std::iter::repeat_n(*c, cfg.viability_objects_per_class))
         .collect();
     let scene = with_blocks(box_scene(200), &classes);
-    let opts = SynthOptions {
-        contact: cfg.contact,
-        time_limit: Some(cfg.time_limit),
-        seed: cfg.seed,
-        ..SynthOptions::default()
-    };
+    let opts = study_options(cfg);
     let mut sets = Vec::new();
     let mut draws = 0;
     while sets.len() < cfg.sets && draws < cfg.max_draws {
@@ -509,6 +603,22 @@ pub fn find_viable_sets(
     (sets, draws)
 }
 
+/// Every problem of the study for the drawn `sets`: the pilot grid, then
+/// the scale series.
+pub fn study_problems(cfg: &StudyConfig, sets: &[DrawnSet]) -> Vec<Problem> {
+    let mut all = problems(cfg, sets, Series::Pilot, &cfg.ns, &cfg.ks);
+    if !cfg.scale_ns.is_empty() {
+        all.extend(problems(
+            cfg,
+            sets,
+            Series::Scale,
+            &cfg.scale_ns,
+            &cfg.scale_ks,
+        ));
+    }
+    all
+}
+
 /// Run the whole study.
 pub fn run_study(
     engine: Engine<'_>,
@@ -516,20 +626,15 @@ pub fn run_study(
     progress: &mut dyn FnMut(&Progress),
 ) -> StudyReport {
     let (sets, draws) = find_viable_sets(engine, cfg, progress);
-    let mut all = problems(cfg, &sets, Series::Pilot, &cfg.ns, &cfg.ks);
-    if !cfg.scale_ns.is_empty() {
-        all.extend(problems(
-            cfg,
-            &sets,
-            Series::Scale,
-            &cfg.scale_ns,
-            &cfg.scale_ks,
-        ));
-    }
+    let all = study_problems(cfg, &sets);
     let total = all.len();
     let mut rows = Vec::with_capacity(total);
     for (i, p) in all.iter().enumerate() {
-        rows.push(solve_problem(engine, cfg, p));
+        let mut row = solve_problem(engine, cfg, p);
+        for &peer in &cfg.peers {
+            row.peers.push(solve_peer(engine, cfg, p, peer));
+        }
+        rows.push(row);
         progress(&Progress::Solving {
             done: i + 1,
             total,
@@ -537,7 +642,8 @@ pub fn run_study(
         });
     }
     let summary = summarize(&rows);
-    let sets = sets
+    let sets_drawn = sets.clone();
+    let reports = sets
         .iter()
         .enumerate()
         .map(|(index, s)| SetReport {
@@ -560,9 +666,11 @@ pub fn run_study(
     StudyReport {
         config: cfg.clone(),
         draws,
-        sets,
+        sets: reports,
+        peer_summary: summarize_peers(&rows),
         rows,
         summary,
+        drawn: sets_drawn,
     }
 }
 
@@ -648,6 +756,143 @@ pub fn summarize(rows: &[Row]) -> Vec<Summary> {
             }
         })
         .collect()
+}
+
+/// One peer's aggregates in one (series, n, k) cell, beside rccpack's.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct PeerSummary {
+    /// Series.
+    pub series: Series,
+    /// Objects.
+    pub n: usize,
+    /// Rules per class.
+    pub k: usize,
+    /// The peer.
+    pub peer: String,
+    /// Problems in the cell.
+    pub total: usize,
+    /// Proved optimal by the peer.
+    pub optimal: usize,
+    /// Proved optimal by rccpack.
+    pub rccpack_optimal: usize,
+    /// Median peer solve time, ms (time-outs at the limit).
+    pub median_ms: f64,
+    /// Largest peer solve time, ms.
+    pub max_ms: f64,
+    /// Median rccpack time, ms.
+    pub rccpack_median_ms: f64,
+    /// Peer median over rccpack median (above 1: rccpack is faster).
+    pub ratio: f64,
+    /// Problems where rccpack's score is below the peer's.
+    pub rccpack_worse: usize,
+    /// Problems where the peer's score is below rccpack's.
+    pub peer_worse: usize,
+    /// Peer layouts the checker rejected, or peer failures.
+    pub failures: usize,
+}
+
+/// One [`PeerSummary`] per (series, n, k, peer), sorted.
+pub fn summarize_peers(rows: &[Row]) -> Vec<PeerSummary> {
+    let mut keys: Vec<(Series, usize, usize, String)> = rows
+        .iter()
+        .flat_map(|r| r.peers.iter().map(|p| (r.series, r.n, r.k, p.peer.clone())))
+        .collect();
+    keys.sort();
+    keys.dedup();
+    keys.into_iter()
+        .map(|(series, n, k, peer)| {
+            let cell: Vec<(&Row, &PeerRow)> = rows
+                .iter()
+                .filter(|r| r.series == series && r.n == n && r.k == k)
+                .filter_map(|r| r.peers.iter().find(|p| p.peer == peer).map(|p| (r, p)))
+                .collect();
+            let ptimes: Vec<f64> = cell.iter().map(|(_, p)| p.time_ms).collect();
+            let rtimes: Vec<f64> = cell.iter().map(|(r, _)| r.time_ms).collect();
+            let (pm, rm) = (median(&ptimes), median(&rtimes));
+            let score = |s: Option<f64>| s.unwrap_or(f64::NEG_INFINITY);
+            PeerSummary {
+                series,
+                n,
+                k,
+                peer,
+                total: cell.len(),
+                optimal: cell
+                    .iter()
+                    .filter(|(_, p)| p.status == Some(PeerStatus::Optimal))
+                    .count(),
+                rccpack_optimal: cell
+                    .iter()
+                    .filter(|(r, _)| r.status == Some(Status::Optimal))
+                    .count(),
+                median_ms: pm,
+                max_ms: ptimes.iter().copied().fold(0.0, f64::max),
+                rccpack_median_ms: rm,
+                ratio: pm / rm,
+                rccpack_worse: cell
+                    .iter()
+                    .filter(|(r, p)| score(r.score) < score(p.score) - 1e-9)
+                    .count(),
+                peer_worse: cell
+                    .iter()
+                    .filter(|(r, p)| score(p.score) < score(r.score) - 1e-9)
+                    .count(),
+                failures: cell
+                    .iter()
+                    .filter(|(_, p)| p.status.is_none() || p.verified == Some(false))
+                    .count(),
+            }
+        })
+        .collect()
+}
+
+/// The peer summary as a fixed-width text table.
+pub fn peer_table_text(summary: &[PeerSummary]) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:<6} {:>3} {:>2} {:<7} {:>8} {:>8} {:>10} {:>10} {:>10} {:>7} {:>8} {:>8}",
+        "series",
+        "n",
+        "k",
+        "peer",
+        "optimal",
+        "rcc_opt",
+        "median_ms",
+        "max_ms",
+        "rcc_med",
+        "ratio",
+        "rcc_wrs",
+        "peer_wrs"
+    );
+    for r in summary {
+        let series = match r.series {
+            Series::Pilot => "pilot",
+            Series::Scale => "scale",
+        };
+        let _ = writeln!(
+            s,
+            "{:<6} {:>3} {:>2} {:<7} {:>8} {:>8} {:>10.1} {:>10.1} {:>10.1} {:>7.2} {:>8} {:>8}{}",
+            series,
+            r.n,
+            r.k,
+            r.peer,
+            format!("{}/{}", r.optimal, r.total),
+            format!("{}/{}", r.rccpack_optimal, r.total),
+            r.median_ms,
+            r.max_ms,
+            r.rccpack_median_ms,
+            r.ratio,
+            r.rccpack_worse,
+            r.peer_worse,
+            if r.failures > 0 {
+                format!("  failures {}", r.failures)
+            } else {
+                String::new()
+            }
+        );
+    }
+    s
 }
 
 /// The summary as a fixed-width text table.

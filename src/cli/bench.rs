@@ -2,6 +2,7 @@ use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use rccpack::bench::chart;
+use rccpack::bench::peers::{self, Peer};
 use rccpack::bench::thesis::{self, Engine, Progress, Series, StudyConfig};
 use rccpack::relations::Contact;
 use rccpack::synth::synthesize;
@@ -21,7 +22,7 @@ pub struct BenchArgs {
 enum Which {
     /// Reproduce the thesis runtime study (§4.1, Figure 4-1): 10 viable rule
     /// sets, n = 2..6 objects × k = 1..5 rules per class, plus a scale series
-    /// (n up to 48, k = 3 and 5). Prints a table; writes `thesis.json` and
+    /// (n up to 96, k = 3 and 5). Prints a table; writes `thesis.json` and
     /// PNG charts to `--out`.
     Thesis(ThesisArgs),
 }
@@ -43,6 +44,28 @@ struct ThesisArgs {
     /// Skip the scale series.
     #[arg(long = "no-scale")]
     no_scale: bool,
+    /// Object counts of the scale series, comma-separated (default
+    /// 8,12,16,24,32,48,64,96).
+    #[arg(long = "scale-ns", value_delimiter = ',', value_parser = clap::value_parser!(u16).range(1..=512))]
+    scale_ns: Option<Vec<u16>>,
+    /// Rules per class of the scale series, comma-separated (default 3,5).
+    #[arg(long = "scale-ks", value_delimiter = ',', value_parser = clap::value_parser!(u8).range(1..=5))]
+    scale_ks: Option<Vec<u8>>,
+    /// Also write every problem as `PROBLEM.json` + `PROBLEM.rcc` here.
+    #[arg(long = "problems-out", value_name = "DIR")]
+    problems_out: Option<PathBuf>,
+    /// Run peer solvers beside rccpack on every problem: `cp-sat`
+    /// (OR-Tools, one worker) and/or `gecode` (MiniZinc), comma-separated;
+    /// `--peers` alone means both. A peer that is not installed is skipped
+    /// with a message.
+    #[arg(long, value_delimiter = ',', num_args = 0.., value_parser = parse_peer)]
+    peers: Option<Vec<Peer>>,
+    /// Skip the pilot grid (n = 2..6); the scale series only.
+    #[arg(long = "no-pilot")]
+    no_pilot: bool,
+    /// Solve without large-neighbourhood search (for comparison).
+    #[arg(long = "no-lns")]
+    no_lns: bool,
     /// Output directory for `thesis.json`, `thesis.png` and `thesis-scale.png`.
     #[arg(long, default_value = "bench-out")]
     out: PathBuf,
@@ -70,10 +93,33 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
         }
         cfg.sets = s;
     }
+    if let Some(ns) = &a.scale_ns {
+        cfg.scale_ns = ns.iter().map(|&n| usize::from(n)).collect();
+    }
+    if let Some(ks) = &a.scale_ks {
+        cfg.scale_ks = ks.iter().map(|&k| usize::from(k)).collect();
+    }
     if a.no_scale {
         cfg.scale_ns.clear();
     }
     cfg.contact = a.contact;
+    cfg.lns = !a.no_lns;
+    if a.no_pilot {
+        cfg.ns.clear();
+    }
+    if let Some(ps) = &a.peers {
+        let wanted: Vec<Peer> = if ps.is_empty() {
+            Peer::ALL.to_vec()
+        } else {
+            ps.clone()
+        };
+        for p in wanted {
+            match peers::check_available(p) {
+                Ok(()) => cfg.peers.push(p),
+                Err(why) => eprintln!("rccpack bench thesis: skipping peer {p}: {why}"),
+            }
+        }
+    }
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("{}: cannot create directory", a.out.display()))?;
 
@@ -110,6 +156,9 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
         verify: &verify_solution,
     };
     let report = thesis::run_study(engine, &cfg, &mut progress);
+    if let Some(dir) = &a.problems_out {
+        write_problems(dir, &cfg, &report)?;
+    }
     bar.finish_and_clear();
 
     println!(
@@ -121,6 +170,12 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
         report.rows.len()
     );
     print!("{}", thesis::table_text(&report.summary));
+    if !report.peer_summary.is_empty() {
+        println!(
+            "peers (ratio = peer median / rccpack median; rcc_wrs / peer_wrs = problems where that side's score is lower):"
+        );
+        print!("{}", thesis::peer_table_text(&report.peer_summary));
+    }
     let bad = report
         .rows
         .iter()
@@ -173,4 +228,38 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// Every problem of the study as a scene and a rule file, named
+/// `SERIES-sSET-nN-kK`.
+fn write_problems(
+    dir: &std::path::Path,
+    cfg: &StudyConfig,
+    report: &thesis::StudyReport,
+) -> Result<()> {
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("{}: cannot create directory", dir.display()))?;
+    for p in thesis::study_problems(cfg, &report.drawn) {
+        let name = format!(
+            "{}-s{}-n{}-k{}",
+            match p.series {
+                Series::Pilot => "pilot",
+                Series::Scale => "scale",
+            },
+            p.set,
+            p.n,
+            p.k
+        );
+        let json = dir.join(format!("{name}.json"));
+        std::fs::write(&json, p.scene.to_json() + "\n")
+            .with_context(|| format!("{}: cannot write", json.display()))?;
+        let rcc = dir.join(format!("{name}.rcc"));
+        std::fs::write(&rcc, rccpack::rules::print_rules(&p.rules))
+            .with_context(|| format!("{}: cannot write", rcc.display()))?;
+    }
+    Ok(())
+}
+
+fn parse_peer(s: &str) -> Result<Peer, String> {
+    s.parse()
 }

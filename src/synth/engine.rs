@@ -29,23 +29,15 @@
 //!
 //! # Optimisation
 //!
-//! [`Strategy::UpperBoundFirst`] (the default, chosen by measurement) finds a
-//! first solution, then asks twice for `obj ≥ hi` with `hi` the largest
-//! objective value the coefficients can reach below the proven bound (a
-//! refutation adds `obj ≤ hi − 1` and steps `hi` down to the next reachable
-//! subset sum); after that it bisects between the incumbent and the bound.
-//! Pure stepping was slow on real-valued weights with many reachable sums
-//! (max 800 ms on the study set); pure bisection was 10× slower on the
-//! near-satisfiable 24-object problem. [`Strategy::ImproveFromFirst`] adds
-//! `obj ≥ best + 1` after each solution until the solver refutes it.
-//!
-//! Pumpkin's `LinearUnsatSat` is not used: its final callback reports the
-//! first solution, and it steps the bound by one unit, which is hopeless for
-//! scaled real weights.
+//! None here: [`Engine`] is a [`Backend`]; the procedures that call it
+//! (maximise the score, minimise the resemblance cost, shrink conflicts)
+//! are in [`super::driver`]. Pumpkin's `LinearUnsatSat` is not used: its
+//! final callback reports the first solution, and it steps the bound by one
+//! unit, which is hopeless for scaled real weights.
 
-use super::like::{total_cost, LikeTerm};
+use super::backend::{Answer, Assumption, Backend, Core, Fact};
+use super::like::LikeTerm;
 use super::model::{BoolDef, Coord, Lit, Model};
-use super::weights::SubsetSums;
 use super::SynthError;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
 use pumpkin_constraints::{boolean_equals, cumulative, equals, less_than_or_equals};
@@ -69,9 +61,6 @@ use pumpkin_core::variables::{AffineView, DomainId, Literal, TransformableVariab
 use pumpkin_core::Solver;
 use std::cell::Cell;
 use std::rc::Rc;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
-use std::time::Instant;
 
 /// `v` as an `i32`, or [`SynthError::TooLarge`] naming `what`.
 fn i32_of(v: i64, what: impl FnOnce() -> String) -> Result<i32, SynthError> {
@@ -90,30 +79,8 @@ fn clamp_i32(v: i64) -> i32 {
     v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
 
-/// How many times [`Strategy::UpperBoundFirst`] asks for the proven upper
-/// bound itself before it bisects between incumbent and bound.
-const UPPER_BOUND_PROBES: u32 = 2;
-
-/// How to optimise.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Strategy {
-    /// First solution, then `obj ≥ hi` stepping down from the upper bound.
-    #[default]
-    UpperBoundFirst,
-    /// First solution, then `obj ≥ best + 1` until refuted.
-    ImproveFromFirst,
-}
-
-/// When to stop.
-#[derive(Debug, Clone, Default)]
-pub struct Limits {
-    /// Wall-clock deadline.
-    pub deadline: Option<Instant>,
-    /// Maximum number of decisions (over the whole engine's life).
-    pub node_limit: Option<u64>,
-    /// External stop flag.
-    pub cancel: Option<Arc<AtomicBool>>,
-}
+pub use super::backend::Limits;
+pub use super::driver::{CostOutcome, OptOutcome, Strategy};
 
 #[derive(Debug, Clone, Default)]
 struct Counters {
@@ -134,12 +101,7 @@ impl TerminationCondition for Stop {
             .limits
             .node_limit
             .is_some_and(|n| self.nodes.get() >= n)
-            || self
-                .limits
-                .cancel
-                .as_ref()
-                .is_some_and(|c| c.load(Ordering::Relaxed))
-            || self.limits.deadline.is_some_and(|d| Instant::now() >= d);
+            || self.limits.expired();
         if stop {
             self.fired.set(true);
         }
@@ -263,7 +225,8 @@ impl Brancher for Phased {
     }
 }
 
-/// The result of one satisfiability call.
+/// The result of one satisfiability call (the two-valued view of an
+/// [`Answer`] for callers that need no core).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Sat {
     /// A solution: grid values per model variable.
@@ -274,34 +237,33 @@ pub enum Sat {
     Unknown,
 }
 
-/// How an optimisation ended.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum OptOutcome {
-    /// Proved optimal.
-    Optimal(Vec<i64>),
-    /// Best found before a limit.
-    Feasible(Vec<i64>),
-    /// No solution exists.
-    Infeasible,
-    /// A limit stopped the search before any solution.
-    Unknown,
+impl From<Answer> for Sat {
+    fn from(a: Answer) -> Sat {
+        match a {
+            Answer::Solution(v) => Sat::Solution(v),
+            Answer::Infeasible(_) => Sat::Unsat,
+            Answer::Unknown => Sat::Unknown,
+        }
+    }
 }
 
-/// A Pumpkin solver holding one model.
+/// A Pumpkin solver holding one model: the [`Backend`] the driver runs on.
 pub struct Engine {
     solver: Solver,
     brancher: Counting,
     resolver: ResolutionResolver,
     vars: Vec<DomainId>,
     guards: Vec<Literal>,
+    /// The objective variable and its coefficients (variable terms only).
     objective: Option<(DomainId, Vec<i64>)>,
     counters: Counters,
     tag: ConstraintTag,
     first_phase: Rc<Cell<bool>>,
-    /// The resemblance terms and the total-cost variable (SPEC §12).
-    like: Option<(Vec<LikeTerm>, DomainId)>,
+    /// The resemblance total-cost variable (SPEC §12).
+    like_total: Option<DomainId>,
     /// Proved infeasible whatever the assumptions: Pumpkin's solver must not
-    /// be called again (it asserts), and every later call is `Unsat`.
+    /// be called again (it asserts), and every later call is infeasible
+    /// with an empty core.
     dead: bool,
     /// A limit stopped a solve: Pumpkin 0.5 asserts when solving again after
     /// a timeout, so every later call is `Unknown` (the limits are over the
@@ -309,23 +271,402 @@ pub struct Engine {
     spent: bool,
 }
 
-/// How the second phase ended.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct CostOutcome {
-    /// The layout to return: the numerator is at least the first phase's.
-    pub values: Vec<i64>,
-    /// Its resemblance cost.
-    pub cost: u64,
-    /// Whether the cost is proven minimal among layouts with at least its
-    /// numerator.
-    pub proven: bool,
-}
-
 impl std::fmt::Debug for Engine {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Engine")
             .field("vars", &self.vars.len())
             .finish()
+    }
+}
+
+/// Check every number of `model` (and of the resemblance terms) that will
+/// be handed to Pumpkin before the solver exists.
+fn check_ranges(model: &Model, like: &[LikeTerm]) -> Result<(), SynthError> {
+    for v in &model.vars {
+        i32_of(v.ub, || {
+            format!("the position range of objects[{}]", v.object)
+        })?;
+    }
+    for s in &model.symmetry {
+        if !model.lin_fits_i32(s) {
+            return Err(SynthError::TooLarge(
+                "a symmetry-breaking order is too large for the solver's 32-bit arithmetic".into(),
+            ));
+        }
+    }
+    for c in &model.cumulative {
+        if !model.cumulative_fits_i32(c) {
+            return Err(SynthError::TooLarge(
+                "the area relaxation is too large for the solver's 32-bit arithmetic".into(),
+            ));
+        }
+    }
+    if !like_fits(like) {
+        return Err(SynthError::TooLarge(
+            "resemblance costs are too large for the solver's 32-bit arithmetic".into(),
+        ));
+    }
+    i32_of(model.grid, || "grid".into())?;
+    // The origin fits in 32 bits (every coordinate the engine sees is one of
+    // its offsets).
+    i32_of(model.origin.0, || "space.x".into())?;
+    i32_of(model.origin.1, || "space.y".into())?;
+    Ok(())
+}
+
+/// The solver being filled with one model. Pumpkin panics when a variable
+/// is created after a post made the root inconsistent (e.g. objects that
+/// cannot fit at all), so every `create_*` step runs before every `post_*`
+/// step.
+struct Builder<'m> {
+    model: &'m Model,
+    solver: Solver,
+    tag: ConstraintTag,
+    vars: Vec<DomainId>,
+    /// One Pumpkin literal per model Boolean.
+    lits: Vec<Literal>,
+    truth: Literal,
+}
+
+impl<'m> Builder<'m> {
+    /// The solver with one integer variable per grid variable.
+    fn new(model: &'m Model, seed: u64) -> Result<Self, SynthError> {
+        let mut solver = Solver::with_options(SolverOptions {
+            random_generator: SmallRng::seed_from_u64(seed),
+            memory_preallocated: 1,
+            ..Default::default()
+        });
+        let tag = solver.new_constraint_tag();
+        let vars = model
+            .vars
+            .iter()
+            .map(|v| i32_of(v.ub, String::new).map(|ub| solver.new_bounded_integer(0, ub)))
+            .collect::<Result<_, _>>()?;
+        let truth = solver.get_true_literal();
+        Ok(Builder {
+            model,
+            solver,
+            tag,
+            vars,
+            lits: Vec::new(),
+            truth,
+        })
+    }
+
+    /// A model literal as a Pumpkin literal.
+    fn lit(&self, l: Lit) -> Literal {
+        match l {
+            Lit::Const(true) => self.truth,
+            Lit::Const(false) => !self.truth,
+            Lit::Var { id, neg } => {
+                let x = self.lits[id as usize];
+                if neg {
+                    !x
+                } else {
+                    x
+                }
+            }
+        }
+    }
+
+    /// One literal per model Boolean: a bound predicate for `Ge` (no
+    /// propagator needed), a fresh literal for the others (defined by
+    /// [`Builder::post_definitions`]).
+    fn create_literals(&mut self) -> Result<(), SynthError> {
+        for def in &self.model.bools {
+            let l = match def {
+                BoolDef::Ge { var, k } => {
+                    let x = self.vars[*var];
+                    let k = i32_of(*k, || "a position bound".into())?;
+                    self.solver
+                        .new_literal_for_predicate(predicate![x >= k], self.tag)
+                }
+                BoolDef::DiffGe { .. } | BoolDef::And(_) | BoolDef::AtLeast { .. } => {
+                    self.solver.new_literal()
+                }
+            };
+            self.lits.push(l);
+        }
+        Ok(())
+    }
+
+    /// One assumption literal per hard rule (core extraction), or none.
+    fn create_guards(&mut self, guarded: bool) -> Vec<Literal> {
+        if guarded {
+            (0..self.model.hard.len())
+                .map(|_| self.solver.new_literal())
+                .collect()
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// The start views of every cumulative task (shifted to be ≥ 0, see
+    /// `Model::cumulative_shift`); a fixed object's start is a constant
+    /// variable.
+    fn create_cumulative_starts(&mut self) -> Result<Vec<Vec<AffineView<DomainId>>>, SynthError> {
+        let model = self.model;
+        let grid = i32_of(model.grid, || "grid".into())?;
+        let mut all = Vec::with_capacity(model.cumulative.len());
+        for cu in &model.cumulative {
+            let mut starts = Vec::with_capacity(cu.tasks.len());
+            let shift = model.cumulative_shift(cu);
+            for &(o, _, _) in &cu.tasks {
+                let (cx, cy) = model.coords[o];
+                let (c, origin) = match cu.axis {
+                    super::model::Axis::X => (cx, model.origin.0),
+                    super::model::Axis::Y => (cy, model.origin.1),
+                };
+                starts.push(match c {
+                    Coord::Const(v) => {
+                        let v = i32_of(v.saturating_add(shift), || {
+                            format!("the position of objects[{o}]")
+                        })?;
+                        self.solver.new_bounded_integer(v, v).scaled(1)
+                    }
+                    Coord::Var(v) => self.vars[v]
+                        .scaled(grid)
+                        .offset(i32_of(origin.saturating_add(shift), || {
+                            "the space's origin".into()
+                        })?),
+                });
+            }
+            all.push(starts);
+        }
+        Ok(all)
+    }
+
+    /// Per resemblance term a cost variable, and the total (none without
+    /// terms). The ranges were checked by [`like_fits`].
+    fn create_like(&mut self, like: &[LikeTerm]) -> (Vec<DomainId>, Option<DomainId>) {
+        let hi_of = |t: &LikeTerm| t.map.cost.iter().copied().max().unwrap_or(0);
+        let costs = like
+            .iter()
+            .map(|t| {
+                self.solver
+                    .new_bounded_integer(clamp_i32(t.map.min() as i64), clamp_i32(hi_of(t) as i64))
+            })
+            .collect();
+        let total = (!like.is_empty()).then(|| {
+            let lo: u64 = like.iter().map(|t| t.map.min()).sum();
+            let hi: u64 = like.iter().map(hi_of).sum();
+            self.solver
+                .new_bounded_integer(clamp_i32(lo as i64), clamp_i32(hi as i64))
+        });
+        (costs, total)
+    }
+
+    /// The objective variable `0..=Σ coefs` over the variable soft terms.
+    fn create_objective(&mut self, coefs: Option<&[i64]>) -> Result<Option<DomainId>, SynthError> {
+        let Some(coefs) = coefs else {
+            return Ok(None);
+        };
+        let total: i128 = self
+            .model
+            .soft
+            .iter()
+            .zip(coefs)
+            .filter(|(s, _)| matches!(s.lit, Lit::Var { .. }))
+            .map(|(_, &c)| i128::from(c))
+            .sum();
+        let total = i64::try_from(total).unwrap_or(i64::MAX);
+        let total = i32_of(total, || "the total of the rule weights".into())?;
+        Ok(Some(self.solver.new_bounded_integer(0, total)))
+    }
+
+    /// The exact definition of every non-`Ge` Boolean.
+    fn post_definitions(&mut self) -> Result<(), SynthError> {
+        let model = self.model;
+        let tag = self.tag;
+        for (i, def) in model.bools.iter().enumerate() {
+            let l = self.lits[i];
+            match def {
+                BoolDef::Ge { .. } => {}
+                BoolDef::DiffGe { a, b, k } => {
+                    // a − b ≥ k  ⇔  b − a ≤ −k
+                    let rhs = i32_of(k.saturating_neg(), || "a distance bound".into())?;
+                    let terms = vec![self.vars[*b].scaled(1), self.vars[*a].scaled(-1)];
+                    self.solver
+                        .add_constraint(less_than_or_equals(terms, rhs, tag))
+                        .reify(l);
+                }
+                BoolDef::And(children) => {
+                    let cs: Vec<Literal> = children.iter().map(|&c| self.lit(c)).collect();
+                    for &c in &cs {
+                        self.solver
+                            .add_clause([(!l).get_true_predicate(), c.get_true_predicate()], tag);
+                    }
+                    let mut big: Vec<Predicate> = vec![l.get_true_predicate()];
+                    big.extend(cs.iter().map(|c| (!*c).get_true_predicate()));
+                    self.solver.add_clause(big, tag);
+                }
+                BoolDef::AtLeast { lits: counted, k } => {
+                    // l ⇔ Σ counted ≥ k  ⇔  Σ −[counted] ≤ −k. A literal
+                    // counted m times is one term with coefficient −m (the
+                    // model keeps one polarity per Boolean), so no solver
+                    // variable appears twice in the sum.
+                    let terms: Vec<AffineView<DomainId>> = counted
+                        .chunk_by(|a, b| a == b)
+                        .map(|g| {
+                            // (counts fit: at most one term per object)
+                            let m = i32::try_from(g.len()).unwrap_or(i32::MAX);
+                            self.lit(g[0]).get_integer_variable().scaled(-m)
+                        })
+                        .collect();
+                    let rhs = i32_of(-i64::from(*k), || "a count bound".into())?;
+                    self.solver
+                        .add_constraint(less_than_or_equals(terms, rhs, tag))
+                        .reify(l);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The model's clauses (non-overlap).
+    fn post_clauses(&mut self) {
+        for c in &self.model.clauses {
+            let c: Vec<Predicate> = c
+                .iter()
+                .map(|&l| self.lit(l).get_true_predicate())
+                .collect();
+            self.solver.add_clause(c, self.tag);
+        }
+    }
+
+    /// Every hard literal, as a unit or under its rule's guard.
+    fn post_hard(&mut self, guards: &[Literal]) {
+        for (i, h) in self.model.hard.iter().enumerate() {
+            let g = guards.get(i).copied();
+            for &l in &h.lits {
+                let mut c = vec![self.lit(l).get_true_predicate()];
+                if let Some(g) = g {
+                    c.push((!g).get_true_predicate());
+                }
+                self.solver.add_clause(c, self.tag);
+            }
+        }
+    }
+
+    /// The symmetry-breaking orders (linear `≤`).
+    fn post_symmetry(&mut self) -> Result<(), SynthError> {
+        for s in &self.model.symmetry {
+            let mut terms: Vec<AffineView<DomainId>> = Vec::with_capacity(s.terms.len());
+            for &(c, v) in &s.terms {
+                terms.push(self.vars[v].scaled(i32_of(c, || "a symmetry coefficient".into())?));
+            }
+            let rhs = i32_of(s.rhs, || "a symmetry bound".into())?;
+            self.solver
+                .add_constraint(less_than_or_equals(terms, rhs, self.tag))
+                .post();
+        }
+        Ok(())
+    }
+
+    /// The redundant cumulative relaxations, over the starts made by
+    /// [`Builder::create_cumulative_starts`].
+    fn post_cumulative(
+        &mut self,
+        starts: Vec<Vec<AffineView<DomainId>>>,
+    ) -> Result<(), SynthError> {
+        for (cu, starts) in self.model.cumulative.iter().zip(starts) {
+            let mut durs: Vec<i32> = Vec::with_capacity(cu.tasks.len());
+            let mut dems: Vec<i32> = Vec::with_capacity(cu.tasks.len());
+            for &(o, dur, dem) in &cu.tasks {
+                durs.push(i32_of(dur, || format!("the size of objects[{o}]"))?);
+                dems.push(i32_of(dem, || format!("the size of objects[{o}]"))?);
+            }
+            let capacity = i32_of(cu.capacity, || "the space size".into())?;
+            self.solver
+                .add_constraint(cumulative(starts, durs, dems, capacity, self.tag))
+                .post();
+        }
+        Ok(())
+    }
+
+    /// `obj = Σ cᵢ·[litᵢ]` over the variable soft terms; returns the
+    /// objective with its coefficients.
+    fn post_objective(
+        &mut self,
+        coefs: Option<&[i64]>,
+        obj: Option<DomainId>,
+    ) -> Result<Option<(DomainId, Vec<i64>)>, SynthError> {
+        let (Some(coefs), Some(obj)) = (coefs, obj) else {
+            return Ok(None);
+        };
+        let mut ws = Vec::new();
+        let mut ws32 = Vec::new();
+        let mut ls = Vec::new();
+        for (s, &c) in self.model.soft.iter().zip(coefs) {
+            if let Lit::Var { .. } = s.lit {
+                ws.push(c);
+                ws32.push(i32_of(c, || "a rule weight".into())?);
+                ls.push(self.lit(s.lit));
+            }
+        }
+        self.solver
+            .add_constraint(boolean_equals(ws32, ls, obj, self.tag))
+            .post();
+        Ok(Some((obj, ws)))
+    }
+
+    /// Each resemblance cost bounded below by its distance map, and the
+    /// total their sum.
+    fn post_like(&mut self, like: &[LikeTerm], costs: &[DomainId], total: Option<DomainId>) {
+        let Some(total) = total else {
+            return;
+        };
+        let mut sum: Vec<AffineView<DomainId>> = Vec::with_capacity(like.len() + 1);
+        for (t, &c) in like.iter().zip(costs) {
+            post_like(
+                &mut self.solver,
+                t,
+                self.vars[t.x],
+                self.vars[t.y],
+                c,
+                self.tag,
+            );
+            sum.push(c.scaled(1));
+        }
+        sum.push(total.scaled(-1));
+        self.solver.add_constraint(equals(sum, 0, self.tag)).post();
+    }
+
+    /// The engine, with its two-phase brancher (created only now that every
+    /// variable exists).
+    fn finish(
+        self,
+        guards: Vec<Literal>,
+        objective: Option<(DomainId, Vec<i64>)>,
+        like_total: Option<DomainId>,
+    ) -> Engine {
+        let counters = Counters::default();
+        let main: Box<dyn Brancher> = Box::new(self.solver.default_brancher());
+        let first_phase = Rc::new(Cell::new(true));
+        let inner: Box<dyn Brancher> = Box::new(Phased {
+            first: IndependentVariableValueBrancher::new(FirstFail::new(&self.vars), InDomainMin),
+            main,
+            use_first: first_phase.clone(),
+        });
+        let brancher = Counting {
+            inner,
+            nodes: counters.nodes.clone(),
+            conflicts: counters.conflicts.clone(),
+        };
+        Engine {
+            solver: self.solver,
+            brancher,
+            resolver: ResolutionResolver::default(),
+            vars: self.vars,
+            guards,
+            objective,
+            counters,
+            tag: self.tag,
+            first_phase,
+            like_total,
+            dead: false,
+            spent: false,
+        }
     }
 }
 
@@ -345,7 +686,7 @@ impl Engine {
         guarded: bool,
         coefs: Option<&[i64]>,
     ) -> Result<Engine, SynthError> {
-        Self::with_like(model, seed, guarded, coefs, Vec::new())
+        Self::with_like(model, seed, guarded, coefs, &[])
     }
 
     /// [`Engine::new`] with the resemblance terms of the second objective
@@ -358,331 +699,31 @@ impl Engine {
         seed: u64,
         guarded: bool,
         coefs: Option<&[i64]>,
-        like: Vec<LikeTerm>,
+        like: &[LikeTerm],
     ) -> Result<Engine, SynthError> {
-        let obj_name = |o: usize| format!("objects[{o}]");
-        // Range-check everything before the solver exists.
-        for v in &model.vars {
-            i32_of(v.ub, || {
-                format!("the position range of {}", obj_name(v.object))
-            })?;
-        }
-        for s in &model.symmetry {
-            if !model.lin_fits_i32(s) {
-                return Err(SynthError::TooLarge(
-                    "a symmetry-breaking order is too large for the solver's 32-bit arithmetic"
-                        .into(),
-                ));
-            }
-        }
-        for c in &model.cumulative {
-            if !model.cumulative_fits_i32(c) {
-                return Err(SynthError::TooLarge(
-                    "the area relaxation is too large for the solver's 32-bit arithmetic".into(),
-                ));
-            }
-        }
-        if !like_fits(&like) {
-            return Err(SynthError::TooLarge(
-                "resemblance costs are too large for the solver's 32-bit arithmetic".into(),
-            ));
-        }
-        let grid = i32_of(model.grid, || "grid".into())?;
-        // The origin fits in 32 bits (every coordinate the engine sees is
-        // one of its offsets).
-        i32_of(model.origin.0, || "space.x".into())?;
-        i32_of(model.origin.1, || "space.y".into())?;
-        let mut solver = Solver::with_options(SolverOptions {
-            random_generator: SmallRng::seed_from_u64(seed),
-            memory_preallocated: 1,
-            ..Default::default()
-        });
-        let tag = solver.new_constraint_tag();
-        let vars: Vec<DomainId> = model
-            .vars
-            .iter()
-            .map(|v| i32_of(v.ub, String::new).map(|ub| solver.new_bounded_integer(0, ub)))
-            .collect::<Result<_, _>>()?;
-        let t = solver.get_true_literal();
-        let tb = Instant::now();
-        let mut lits: Vec<Literal> = Vec::with_capacity(model.bools.len());
-        let conv = |lits: &[Literal], l: Lit| -> Literal {
-            match l {
-                Lit::Const(true) => t,
-                Lit::Const(false) => !t,
-                Lit::Var { id, neg } => {
-                    let x = lits[id as usize];
-                    if neg {
-                        !x
-                    } else {
-                        x
-                    }
-                }
-            }
-        };
-        let mut tcat = [0f64; 3];
-        // Pumpkin panics when a variable is created after a post made the
-        // root inconsistent (e.g. objects that cannot fit at all). So create
-        // every literal and variable first, and post constraints after.
-        for def in &model.bools {
-            lits.push(match def {
-                BoolDef::Ge { var, k } => {
-                    let x = vars[*var];
-                    let k = i32_of(*k, || "a position bound".into())?;
-                    solver.new_literal_for_predicate(predicate![x >= k], tag)
-                }
-                BoolDef::DiffGe { .. } | BoolDef::And(_) | BoolDef::AtLeast { .. } => {
-                    solver.new_literal()
-                }
-            });
-        }
-        let guard_lits: Vec<Literal> = if guarded {
-            model.hard.iter().map(|_| solver.new_literal()).collect()
-        } else {
-            Vec::new()
-        };
-        let mut cumulative_starts: Vec<Vec<AffineView<DomainId>>> = Vec::new();
-        for cu in &model.cumulative {
-            let mut starts = Vec::with_capacity(cu.tasks.len());
-            // Every start at least 0 (see `Model::cumulative_shift`).
-            let shift = model.cumulative_shift(cu);
-            for &(o, _, _) in &cu.tasks {
-                let (cx, cy) = model.coords[o];
-                let (c, origin) = match cu.axis {
-                    super::model::Axis::X => (cx, model.origin.0),
-                    super::model::Axis::Y => (cy, model.origin.1),
-                };
-                starts.push(match c {
-                    Coord::Const(v) => {
-                        let v = i32_of(v.saturating_add(shift), || {
-                            format!("the position of {}", obj_name(o))
-                        })?;
-                        solver.new_bounded_integer(v, v).scaled(1)
-                    }
-                    Coord::Var(v) => vars[v]
-                        .scaled(grid)
-                        .offset(i32_of(origin.saturating_add(shift), || {
-                            "the space's origin".into()
-                        })?),
-                });
-            }
-            cumulative_starts.push(starts);
-        }
-        // Resemblance variables: per term a cost variable, bounded below by
-        // clauses over the position (see `post_like`).
-        let like_costs: Vec<DomainId> = like
-            .iter()
-            .map(|t| {
-                let (lo, hi) = (t.map.min(), t.map.cost.iter().copied().max().unwrap_or(0));
-                solver.new_bounded_integer(lo as i32, hi as i32)
-            })
-            .collect();
-        let like_total = (!like.is_empty()).then(|| {
-            let lo: u64 = like.iter().map(|t| t.map.min()).sum();
-            let hi: u64 = like
-                .iter()
-                .map(|t| t.map.cost.iter().copied().max().unwrap_or(0))
-                .sum();
-            solver.new_bounded_integer(lo as i32, hi as i32)
-        });
-        let objective_var = match coefs {
-            None => None,
-            Some(coefs) => {
-                let total: i128 = model
-                    .soft
-                    .iter()
-                    .zip(coefs)
-                    .filter(|(s, _)| matches!(s.lit, Lit::Var { .. }))
-                    .map(|(_, &c)| i128::from(c))
-                    .sum();
-                let total = i64::try_from(total).unwrap_or(i64::MAX);
-                let total = i32_of(total, || "the total of the rule weights".into())?;
-                Some(solver.new_bounded_integer(0, total))
-            }
-        };
-        for (i, def) in model.bools.iter().enumerate() {
-            let tt = Instant::now();
-            let cat = match def {
-                BoolDef::Ge { .. } => 0,
-                BoolDef::DiffGe { .. } => 1,
-                BoolDef::And(_) | BoolDef::AtLeast { .. } => 2,
-            };
-            let l = lits[i];
-            match def {
-                BoolDef::Ge { .. } => {}
-                BoolDef::DiffGe { a, b, k } => {
-                    // a − b ≥ k  ⇔  b − a ≤ −k
-                    let rhs = i32_of(k.saturating_neg(), || "a distance bound".into())?;
-                    solver
-                        .add_constraint(less_than_or_equals(
-                            vec![vars[*b].scaled(1), vars[*a].scaled(-1)],
-                            rhs,
-                            tag,
-                        ))
-                        .reify(l);
-                }
-                BoolDef::And(children) => {
-                    let cs: Vec<Literal> = children.iter().map(|&c| conv(&lits, c)).collect();
-                    for &c in &cs {
-                        solver.add_clause([(!l).get_true_predicate(), c.get_true_predicate()], tag);
-                    }
-                    let mut big: Vec<Predicate> = vec![l.get_true_predicate()];
-                    big.extend(cs.iter().map(|c| (!*c).get_true_predicate()));
-                    solver.add_clause(big, tag);
-                }
-                BoolDef::AtLeast { lits: counted, k } => {
-                    // l ⇔ Σ counted ≥ k  ⇔  Σ −[counted] ≤ −k. A literal
-                    // counted m times is one term with coefficient −m (the
-                    // model keeps one polarity per Boolean), so no solver
-                    // variable appears twice in the sum.
-                    let terms: Vec<AffineView<DomainId>> = counted
-                        .chunk_by(|a, b| a == b)
-                        .map(|g| {
-                            let m = i32::try_from(g.len()).unwrap_or(i32::MAX);
-                            // (counts fit: at most one term per object)
-                            conv(&lits, g[0]).get_integer_variable().scaled(-m)
-                        })
-                        .collect();
-                    solver
-                        .add_constraint(less_than_or_equals(
-                            terms,
-                            i32_of(-i64::from(*k), || "a count bound".into())?,
-                            tag,
-                        ))
-                        .reify(l);
-                }
-            }
-            tcat[cat] += tt.elapsed().as_secs_f64() * 1e3;
-        }
-        let dbg = std::env::var_os("RCCPACK_DEBUG").is_some();
-        let t0 = Instant::now();
-        if dbg {
-            let n_ge = model
-                .bools
-                .iter()
-                .filter(|b| matches!(b, BoolDef::Ge { .. }))
-                .count();
-            let n_diff = model
-                .bools
-                .iter()
-                .filter(|b| matches!(b, BoolDef::DiffGe { .. }))
-                .count();
-            eprintln!(
-                "  bools: {n_ge} ge, {n_diff} diff, {} and",
-                model.bools.len() - n_ge - n_diff
-            );
-        }
-        if dbg {
-            eprintln!(
-                "  bools posted in {:.1} ms {tcat:?}",
-                tb.elapsed().as_secs_f64() * 1e3
-            );
-        }
-        for c in &model.clauses {
-            let c: Vec<Predicate> = c
-                .iter()
-                .map(|&l| conv(&lits, l).get_true_predicate())
-                .collect();
-            solver.add_clause(c, tag);
-        }
-        let mut guards = Vec::new();
-        for (i, h) in model.hard.iter().enumerate() {
-            let g = guard_lits.get(i).copied();
-            for &l in &h.lits {
-                let mut c = vec![conv(&lits, l).get_true_predicate()];
-                if let Some(g) = g {
-                    c.push((!g).get_true_predicate());
-                }
-                solver.add_clause(c, tag);
-            }
-            if let Some(g) = g {
-                guards.push(g);
-            }
-        }
-        for s in &model.symmetry {
-            let mut terms: Vec<AffineView<DomainId>> = Vec::with_capacity(s.terms.len());
-            for &(c, v) in &s.terms {
-                terms.push(vars[v].scaled(i32_of(c, || "a symmetry coefficient".into())?));
-            }
-            let rhs = i32_of(s.rhs, || "a symmetry bound".into())?;
-            solver
-                .add_constraint(less_than_or_equals(terms, rhs, tag))
-                .post();
-        }
-        for (cu, starts) in model.cumulative.iter().zip(cumulative_starts) {
-            let mut durs: Vec<i32> = Vec::with_capacity(cu.tasks.len());
-            let mut dems: Vec<i32> = Vec::with_capacity(cu.tasks.len());
-            for &(o, dur, dem) in &cu.tasks {
-                durs.push(i32_of(dur, || format!("the size of {}", obj_name(o)))?);
-                dems.push(i32_of(dem, || format!("the size of {}", obj_name(o)))?);
-            }
-            let capacity = i32_of(cu.capacity, || "the space size".into())?;
-            solver
-                .add_constraint(cumulative(starts, durs, dems, capacity, tag))
-                .post();
-        }
-        if dbg {
-            eprintln!(
-                "  clauses+hard+sym+cumulative {:.1} ms",
-                t0.elapsed().as_secs_f64() * 1e3
-            );
-        }
-        let mut objective = None;
-        if let (Some(coefs), Some(obj)) = (coefs, objective_var) {
-            let mut ws = Vec::new();
-            let mut ls = Vec::new();
-            for (s, &c) in model.soft.iter().zip(coefs) {
-                if let Lit::Var { .. } = s.lit {
-                    ws.push(c);
-                    ls.push(conv(&lits, s.lit));
-                }
-            }
-            let mut ws32: Vec<i32> = Vec::with_capacity(ws.len());
-            for &w in &ws {
-                ws32.push(i32_of(w, || "a rule weight".into())?);
-            }
-            solver
-                .add_constraint(boolean_equals(ws32, ls, obj, tag))
-                .post();
-            objective = Some((obj, ws));
-        }
-        if let Some(total) = like_total {
-            let mut sum: Vec<AffineView<DomainId>> = Vec::with_capacity(like.len() + 1);
-            for (t, &c) in like.iter().zip(&like_costs) {
-                post_like(&mut solver, t, vars[t.x], vars[t.y], c, tag);
-                sum.push(c.scaled(1));
-            }
-            sum.push(total.scaled(-1));
-            solver.add_constraint(equals(sum, 0, tag)).post();
-        }
-        let counters = Counters::default();
-        // The brancher only after every variable exists.
-        let main: Box<dyn Brancher> = Box::new(solver.default_brancher());
-        let first_phase = Rc::new(Cell::new(true));
-        let inner: Box<dyn Brancher> = Box::new(Phased {
-            first: IndependentVariableValueBrancher::new(FirstFail::new(&vars), InDomainMin),
-            main,
-            use_first: first_phase.clone(),
-        });
-        let brancher = Counting {
-            inner,
-            nodes: counters.nodes.clone(),
-            conflicts: counters.conflicts.clone(),
-        };
-        Ok(Engine {
-            solver,
-            brancher,
-            resolver: ResolutionResolver::default(),
-            vars,
-            guards,
-            objective,
-            counters,
-            tag,
-            first_phase,
-            like: like_total.map(|t| (like, t)),
-            dead: false,
-            spent: false,
-        })
+        check_ranges(model, like)?;
+        let mut b = Builder::new(model, seed)?;
+        // Every variable and literal first ...
+        b.create_literals()?;
+        let guards = b.create_guards(guarded);
+        let starts = b.create_cumulative_starts()?;
+        let (like_costs, like_total) = b.create_like(like);
+        let obj = b.create_objective(coefs)?;
+        // ... then every constraint.
+        b.post_definitions()?;
+        b.post_clauses();
+        b.post_hard(&guards);
+        b.post_symmetry()?;
+        b.post_cumulative(starts)?;
+        let objective = b.post_objective(coefs, obj)?;
+        b.post_like(like, &like_costs, like_total);
+        Ok(b.finish(guards, objective, like_total))
+    }
+
+    /// The objective's coefficients, variable terms only, in
+    /// [`Model::soft`] order (none: no objective).
+    pub fn objective_coefs(&self) -> Option<&[i64]> {
+        self.objective.as_ref().map(|(_, c)| c.as_slice())
     }
 
     /// Decisions so far.
@@ -711,260 +752,149 @@ impl Engine {
 
     /// Find any solution.
     pub fn satisfy(&mut self, limits: &Limits) -> Sat {
-        if self.dead {
-            return Sat::Unsat;
-        }
-        if self.spent {
-            return Sat::Unknown;
-        }
-        let mut stop = self.stop(limits);
-        let vars = self.vars.clone();
-        match self
-            .solver
-            .satisfy(&mut self.brancher, &mut stop, &mut self.resolver)
-        {
-            SatisfactionResult::Satisfiable(s) => Sat::Solution(Self::values(&vars, &s.solution())),
-            SatisfactionResult::Unsatisfiable(..) => {
-                self.dead = true;
-                Sat::Unsat
-            }
-            SatisfactionResult::Unknown(..) => {
-                self.spent = true;
-                Sat::Unknown
-            }
-        }
+        self.solve(&[], limits).into()
     }
 
     /// Solve with the guards of the hard rules in `rules` (indices into
     /// `Model::hard`) assumed true.
-    ///
-    /// `Sat::Unsat` carries no core: Pumpkin 0.5's `extract_core` can panic
-    /// (`ConstraintTag::create_from_index`) or run for minutes without
-    /// checking the termination condition on infeasible probe problems of
-    /// the bundled example (`tests/fixtures/regressions/core-hang.rcc`), so
-    /// the caller shrinks conflicts by deletion, where every solve obeys the
-    /// limits.
     pub fn satisfy_rules(&mut self, rules: &[usize], limits: &Limits) -> Sat {
-        let assumptions: Vec<Predicate> = rules
-            .iter()
-            .map(|&r| self.guards[r].get_true_predicate())
-            .collect();
-        self.under(&assumptions, limits)
+        let a: Vec<Assumption> = rules.iter().map(|&r| Assumption::Rule(r)).collect();
+        self.solve(&a, limits).into()
     }
 
-    fn under(&mut self, assumptions: &[Predicate], limits: &Limits) -> Sat {
+    /// A Pumpkin call under `assumptions` (none: a plain `satisfy`).
+    ///
+    /// An infeasible call under assumptions carries no core: Pumpkin 0.5's
+    /// `extract_core` can panic (`ConstraintTag::create_from_index`) or run
+    /// for minutes without checking the termination condition on infeasible
+    /// probe problems of the bundled example
+    /// (`tests/fixtures/regressions/core-hang.rcc`), so the driver shrinks
+    /// conflicts by deletion, where every solve obeys the limits.
+    fn call(&mut self, assumptions: &[Predicate], limits: &Limits) -> Answer {
         if self.dead {
-            return Sat::Unsat;
+            return Answer::Infeasible(Core::Rules(Vec::new()));
         }
         if self.spent {
-            return Sat::Unknown;
+            return Answer::Unknown;
         }
         let mut stop = self.stop(limits);
         let vars = self.vars.clone();
-        match self.solver.satisfy_under_assumptions(
-            &mut self.brancher,
-            &mut stop,
-            &mut self.resolver,
-            assumptions,
-        ) {
-            SatisfactionResultUnderAssumptions::Satisfiable(s) => {
-                Sat::Solution(Self::values(&vars, &s.solution()))
+        let answer = if assumptions.is_empty() {
+            match self
+                .solver
+                .satisfy(&mut self.brancher, &mut stop, &mut self.resolver)
+            {
+                SatisfactionResult::Satisfiable(s) => {
+                    Answer::Solution(Self::values(&vars, &s.solution()))
+                }
+                SatisfactionResult::Unsatisfiable(..) => {
+                    self.dead = true;
+                    Answer::Infeasible(Core::Rules(Vec::new()))
+                }
+                SatisfactionResult::Unknown(..) => Answer::Unknown,
             }
-            SatisfactionResultUnderAssumptions::UnsatisfiableUnderAssumptions(_) => Sat::Unsat,
-            SatisfactionResultUnderAssumptions::Unsatisfiable(_) => {
-                self.dead = true;
-                Sat::Unsat
+        } else {
+            match self.solver.satisfy_under_assumptions(
+                &mut self.brancher,
+                &mut stop,
+                &mut self.resolver,
+                assumptions,
+            ) {
+                SatisfactionResultUnderAssumptions::Satisfiable(s) => {
+                    Answer::Solution(Self::values(&vars, &s.solution()))
+                }
+                SatisfactionResultUnderAssumptions::UnsatisfiableUnderAssumptions(_) => {
+                    Answer::Infeasible(Core::Unknown)
+                }
+                SatisfactionResultUnderAssumptions::Unsatisfiable(_) => {
+                    self.dead = true;
+                    Answer::Infeasible(Core::Rules(Vec::new()))
+                }
+                SatisfactionResultUnderAssumptions::Unknown(_) => Answer::Unknown,
             }
-            SatisfactionResultUnderAssumptions::Unknown(_) => {
-                self.spent = true;
-                Sat::Unknown
+        };
+        if answer == Answer::Unknown {
+            self.spent = true;
+        }
+        answer
+    }
+}
+
+impl Backend for Engine {
+    /// `Rule(r)` on an engine built without guards is a no-op (its rule is
+    /// posted as units); `ObjectiveAtLeast(k)` without an objective holds
+    /// iff `k ≤ 0`, `CostAtMost` without a second objective always holds.
+    fn solve(&mut self, assumptions: &[Assumption], limits: &Limits) -> Answer {
+        let mut preds: Vec<Predicate> = Vec::with_capacity(assumptions.len());
+        for a in assumptions {
+            match *a {
+                Assumption::ObjectiveAtLeast(k) => match &self.objective {
+                    Some((obj, _)) => {
+                        let obj = *obj;
+                        preds.push(predicate![obj >= clamp_i32(k)]);
+                    }
+                    None if k <= 0 => {}
+                    None => return Answer::Infeasible(Core::Unknown),
+                },
+                Assumption::CostAtMost(k) => {
+                    if let Some(total) = self.like_total {
+                        let k = i32::try_from(k).unwrap_or(i32::MAX);
+                        preds.push(predicate![total <= k]);
+                    }
+                }
+                Assumption::Rule(r) => {
+                    if let Some(g) = self.guards.get(r) {
+                        preds.push(g.get_true_predicate());
+                    }
+                }
             }
+        }
+        self.call(&preds, limits)
+    }
+
+    fn add(&mut self, fact: Fact) {
+        if self.dead {
+            return;
+        }
+        let p = match fact {
+            Fact::ObjectiveAtMost(k) => self
+                .objective
+                .as_ref()
+                .map(|&(obj, _)| predicate![obj <= clamp_i32(k)]),
+            Fact::ObjectiveAtLeast(k) => self
+                .objective
+                .as_ref()
+                .map(|&(obj, _)| predicate![obj >= clamp_i32(k)]),
+            Fact::CostAtLeast(k) => self
+                .like_total
+                .map(|total| predicate![total >= i32::try_from(k).unwrap_or(i32::MAX)]),
+        };
+        if let Some(p) = p {
+            self.solver.add_clause([p], self.tag);
         }
     }
 
-    /// The objective value of grid values `vals` under the model's
-    /// coefficients (the variable part only).
-    fn objective_value(&self, model: &Model, vals: &[i64]) -> i64 {
-        let Some((_, coefs)) = &self.objective else {
-            return 0;
-        };
-        let bools = model.eval_bools(vals);
-        model
-            .soft
-            .iter()
-            .filter(|s| matches!(s.lit, Lit::Var { .. }))
-            .zip(coefs)
-            .filter(|(s, _)| s.lit.value(&bools))
-            .map(|(_, &c)| c)
-            .sum()
+    fn objective_bound(&self) -> Option<i64> {
+        self.objective
+            .as_ref()
+            .map(|(obj, _)| i64::from(self.solver.upper_bound(obj)))
     }
 
-    /// Maximise the objective. `on_incumbent` is called with every improving
-    /// solution.
-    pub fn optimise(
-        &mut self,
-        model: &Model,
-        limits: &Limits,
-        strategy: Strategy,
-        on_incumbent: &mut dyn FnMut(&[i64]),
-    ) -> OptOutcome {
-        let mut best = match self.satisfy(limits) {
-            Sat::Solution(v) => v,
-            Sat::Unsat => return OptOutcome::Infeasible,
-            Sat::Unknown => return OptOutcome::Unknown,
-        };
-        on_incumbent(&best);
+    fn cost_bound(&self) -> Option<u64> {
+        self.like_total
+            .map(|t| u64::try_from(self.solver.lower_bound(&t)).unwrap_or(0))
+    }
+
+    fn found_first(&mut self) {
         self.first_phase.set(false);
-        let Some((obj, coefs)) = self.objective.clone() else {
-            return OptOutcome::Optimal(best);
-        };
-        let mut best_val = self.objective_value(model, &best);
-        if strategy == Strategy::ImproveFromFirst {
-            // Improve from the incumbent.
-            loop {
-                let a = [predicate![obj >= clamp_i32(best_val + 1)]];
-                match self.under(&a, limits) {
-                    Sat::Solution(v) => {
-                        best_val = self.objective_value(model, &v);
-                        best = v;
-                        on_incumbent(&best);
-                    }
-                    Sat::Unsat => return OptOutcome::Optimal(best),
-                    Sat::Unknown => return OptOutcome::Feasible(best),
-                }
-            }
-        }
-        let sums = SubsetSums::new(&coefs).unwrap_or_else(SubsetSums::all);
-        let total: i64 = coefs.iter().sum();
-        let snap = |v: i64| -> i64 {
-            if v < 0 || sums.contains(v) {
-                v
-            } else {
-                sums.below(v).unwrap_or(-1)
-            }
-        };
-        let probes = UPPER_BOUND_PROBES;
-        let mut hi = snap(total);
-        let mut step = 0u32;
-        loop {
-            let root_ub = self.solver.upper_bound(&obj) as i64;
-            if root_ub < hi {
-                hi = snap(root_ub);
-            }
-            if best_val >= hi {
-                return OptOutcome::Optimal(best);
-            }
-            // Upper bound first; then bisect between the incumbent and the bound.
-            let target = if step < probes {
-                hi
-            } else {
-                best_val + (hi - best_val + 1) / 2
-            };
-            step += 1;
-            let a = [predicate![obj >= clamp_i32(target)]];
-            match self.under(&a, limits) {
-                Sat::Solution(v) => {
-                    best_val = self.objective_value(model, &v);
-                    best = v;
-                    on_incumbent(&best);
-                }
-                Sat::Unsat => {
-                    self.solver
-                        .add_clause([predicate![obj <= clamp_i32(target - 1)]], self.tag);
-                    hi = snap(target - 1);
-                }
-                Sat::Unknown => return OptOutcome::Feasible(best),
-            }
-        }
     }
 
-    /// The second phase (SPEC §12): keep the numerator at least that of
-    /// `best` (the first phase's layout) and minimise the resemblance cost,
-    /// by bisection between the proven lower bound and the incumbent. A
-    /// layout with a larger numerator, should one turn up (only when a limit
-    /// stopped the first phase), replaces the incumbent and raises the
-    /// numerator floor: the score is never traded for resemblance.
-    /// `on_incumbent` is called with every improving layout.
-    pub fn minimise_cost(
-        &mut self,
-        model: &Model,
-        best: Vec<i64>,
-        limits: &Limits,
-        on_incumbent: &mut dyn FnMut(&[i64]),
-    ) -> CostOutcome {
-        let Some((terms, total)) = self.like.clone() else {
-            return CostOutcome {
-                values: best,
-                cost: 0,
-                proven: true,
-            };
-        };
-        self.first_phase.set(false);
-        let mut best_num = self.objective_value(model, &best);
-        if let Some((obj, _)) = &self.objective {
-            let obj = *obj;
-            self.solver
-                .add_clause([predicate![obj >= clamp_i32(best_num)]], self.tag);
-        }
-        let mut best_cost = total_cost(&terms, &best);
-        let mut best = best;
-        let mut lo = self.solver.lower_bound(&total) as u64;
-        while lo < best_cost {
-            let mid = lo + (best_cost - lo - 1) / 2;
-            let a = [predicate![total <= i32::try_from(mid).unwrap_or(i32::MAX)]];
-            let t = Instant::now();
-            let r = self.under(&a, limits);
-            if std::env::var_os("RCCPACK_DEBUG").is_some() {
-                eprintln!(
-                    "  cost <= {mid} (lo {lo}, best {best_cost}): {} in {:.1} ms",
-                    match &r {
-                        Sat::Solution(_) => "sat",
-                        Sat::Unsat => "unsat",
-                        Sat::Unknown => "unknown",
-                    },
-                    t.elapsed().as_secs_f64() * 1e3
-                );
-            }
-            match r {
-                Sat::Solution(v) => {
-                    let num = self.objective_value(model, &v);
-                    best_cost = total_cost(&terms, &v);
-                    best = v;
-                    on_incumbent(&best);
-                    if num > best_num {
-                        best_num = num;
-                        if let Some((obj, _)) = &self.objective {
-                            let obj = *obj;
-                            self.solver
-                                .add_clause([predicate![obj >= clamp_i32(best_num)]], self.tag);
-                        }
-                        // The cost floor was proven for a lower numerator
-                        // floor; it still holds (fewer layouts now).
-                    }
-                }
-                Sat::Unsat => {
-                    self.solver.add_clause(
-                        [predicate![
-                            total >= i32::try_from(mid + 1).unwrap_or(i32::MAX)
-                        ]],
-                        self.tag,
-                    );
-                    lo = mid + 1;
-                }
-                Sat::Unknown => {
-                    return CostOutcome {
-                        values: best,
-                        cost: best_cost,
-                        proven: false,
-                    }
-                }
-            }
-        }
-        CostOutcome {
-            values: best,
-            cost: best_cost,
-            proven: true,
-        }
+    fn nodes(&self) -> u64 {
+        self.counters.nodes.get()
+    }
+
+    fn conflicts(&self) -> u64 {
+        self.counters.conflicts.get()
     }
 }
 

@@ -35,9 +35,13 @@ use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 use std::time::Duration;
 
+pub mod backend;
 pub mod brute_force;
+pub mod driver;
+pub mod emit;
 pub mod engine;
 pub mod like;
+pub mod lns;
 pub mod model;
 pub mod verify;
 pub mod weights;
@@ -73,6 +77,10 @@ pub struct SynthOptions {
     /// `infeasible` (a probe needs no more, and the shrinking costs one solve
     /// per hard rule).
     pub explain: bool,
+    /// Large-neighbourhood search before the proof (see [`lns`]), on
+    /// problems with at least [`lns::LnsOptions::min_objects`] movable
+    /// objects; `None`: the engine's own search only.
+    pub lns: Option<lns::LnsOptions>,
 }
 
 /// An improving layout found during the search.
@@ -108,6 +116,7 @@ impl Default for SynthOptions {
             progress: None,
             like: None,
             explain: true,
+            lns: Some(lns::LnsOptions::default()),
         }
     }
 }
@@ -315,7 +324,9 @@ pub fn synthesize(
     rules: &RuleSet,
     opts: &SynthOptions,
 ) -> Result<SynthResult, SynthError> {
-    use engine::{Engine, Limits, OptOutcome};
+    use backend::{Backend, Limits};
+    use driver::OptOutcome;
+    use engine::Engine;
     use model::{BuildOptions, Model};
     use std::time::Instant;
 
@@ -388,7 +399,7 @@ pub fn synthesize(
         opts.seed,
         false,
         Some(&coefs),
-        like_terms.clone().unwrap_or_default(),
+        like_terms.as_deref().unwrap_or(&[]),
     )?;
     if std::env::var_os("RCCPACK_DEBUG").is_some() {
         eprintln!(
@@ -415,12 +426,76 @@ pub fn synthesize(
             });
         }
     };
-    let mut outcome = engine.optimise(&model, &limits, opts.strategy, &mut on_incumbent);
+    let ws: Vec<i64> = engine.objective_coefs().unwrap_or(&[]).to_vec();
+    let value = |v: &[i64]| model.objective_value(&coefs, v);
+    let objective = driver::Objective {
+        coefs: &ws,
+        value: &value,
+    };
+    let mut lns_nodes = 0u64;
+    let mut lns_conflicts = 0u64;
+    let mut outcome = match driver::first_solution(&mut engine, &limits) {
+        Err(o) => o,
+        Ok(first) => {
+            on_incumbent(&first);
+            let movable = model.vars.len() / 2;
+            let bound = engine.objective_bound().unwrap_or(0);
+            let mut best = first;
+            let mut main_limits = limits.clone();
+            if let Some(lopts) = opts.lns.filter(|l| movable >= l.min_objects) {
+                let search = lns::Lns {
+                    problem,
+                    rules,
+                    model: &model,
+                    build,
+                    coefs: &coefs,
+                    opts: lopts,
+                    seed: opts.seed,
+                };
+                // The phase's node budget comes out of the whole solve's.
+                let lns_limits = Limits {
+                    node_limit: limits.node_limit.map(|n| n.saturating_sub(engine.nodes())),
+                    ..limits.clone()
+                };
+                let r = search.improve(best, bound, &lns_limits, &mut on_incumbent)?;
+                lns_nodes = r.nodes;
+                lns_conflicts = r.conflicts;
+                best = r.values;
+                main_limits.node_limit = limits.node_limit.map(|n| n.saturating_sub(r.nodes));
+                if std::env::var_os("RCCPACK_DEBUG").is_some() {
+                    eprintln!(
+                        "lns: {} rounds, {} improving, {} nodes, value {} of bound {bound}, {:.1} ms",
+                        r.rounds,
+                        r.improved,
+                        r.nodes,
+                        r.value,
+                        ms(start.elapsed())
+                    );
+                }
+            }
+            driver::optimise_from(
+                &mut engine,
+                Some(&objective),
+                best,
+                &main_limits,
+                opts.strategy,
+                &mut on_incumbent,
+            )
+        }
+    };
     // The second phase: with the numerator held, the cheapest layout.
     let mut resemblance = None;
     if let (Some(like), Some(terms)) = (&opts.like, &like_terms) {
         if let OptOutcome::Optimal(v) | OptOutcome::Feasible(v) = &mut outcome {
-            let r = engine.minimise_cost(&model, std::mem::take(v), &limits, &mut on_incumbent);
+            let cost = |v: &[i64]| like::total_cost(terms, v);
+            let r = driver::minimise_cost(
+                &mut engine,
+                Some(&objective),
+                &cost,
+                std::mem::take(v),
+                &limits,
+                &mut on_incumbent,
+            );
             debug_assert_eq!(r.cost, like::total_cost(terms, &r.values));
             *v = r.values;
             let cost = like.cost(problem, &model.scene(problem, v));
@@ -431,8 +506,8 @@ pub fn synthesize(
             });
         }
     }
-    stats.nodes = engine.nodes();
-    stats.conflicts = engine.conflicts();
+    stats.nodes = engine.nodes() + lns_nodes;
+    stats.conflicts = engine.conflicts() + lns_conflicts;
     stats.time_to_first_ms = first.map(ms);
     stats.time_to_best_ms = best.map(ms);
     drop(engine);
@@ -492,7 +567,7 @@ fn explain(
     problem: &Scene,
     rules: &RuleSet,
     opts: &SynthOptions,
-    limits: &engine::Limits,
+    limits: &backend::Limits,
     stats: &mut SolveStats,
 ) -> Result<Conflict, SynthError> {
     use engine::{Engine, Sat};
@@ -539,25 +614,10 @@ fn explain(
         Sat::Solution(_) => {}
     }
     let mut eg = Engine::new(&mg, opts.seed, true, None)?;
-    // Deletion: drop each rule in turn; keep it out when the rest still
-    // conflict. Every solve obeys the limits (a limit keeps the rule, so the
-    // set stays conflicting, perhaps not minimal).
-    let mut core: Vec<usize> = (0..mg.hard.len()).collect();
-    let mut i = 0;
-    while i < core.len() {
-        let trial: Vec<usize> = core
-            .iter()
-            .enumerate()
-            .filter(|&(j, _)| j != i)
-            .map(|(_, &r)| r)
-            .collect();
-        match eg.satisfy_rules(&trial, limits) {
-            // The rules before `i` were each needed in a superset, so they
-            // are needed here too: `i` stays put.
-            Sat::Unsat => core = trial,
-            Sat::Solution(_) | Sat::Unknown => i += 1,
-        }
-    }
+    // Deletion through the driver: every solve obeys the limits (a limit
+    // keeps the rule, so the set stays conflicting, perhaps not minimal).
+    let all: Vec<usize> = (0..mg.hard.len()).collect();
+    let (core, _minimal) = driver::shrink_conflict(&mut eg, &all, limits);
     stats.nodes += eg.nodes();
     stats.conflicts += eg.conflicts();
     Ok(Conflict {

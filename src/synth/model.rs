@@ -259,6 +259,20 @@ fn floor_div(a: i64, b: i64) -> i64 {
 }
 
 impl Model {
+    /// The objective value of grid values `vals`: `Σ coefs[i]` over the
+    /// soft terms whose literal is a variable and holds (`coefs` in
+    /// [`Model::soft`] order; constant terms are left out, as in the
+    /// engine's objective).
+    pub fn objective_value(&self, coefs: &[i64], vals: &[i64]) -> i64 {
+        let bools = self.eval_bools(vals);
+        self.soft
+            .iter()
+            .zip(coefs)
+            .filter(|(s, _)| matches!(s.lit, Lit::Var { .. }) && s.lit.value(&bools))
+            .map(|(_, &c)| c)
+            .sum()
+    }
+
     /// Build the model of `problem` with `rules`.
     ///
     /// The problem must be a valid scene (see [`Scene::validate`]).

@@ -1,0 +1,126 @@
+//! The seam between the optimisation [`driver`](super::driver) and an
+//! engine that can solve a [`Model`](super::model::Model).
+//!
+//! # Background
+//!
+//! Every procedure of synthesis — maximise the score, then minimise the
+//! resemblance cost, shrink a conflict to a minimal set of hard rules, ask
+//! whether the held rules imply another — is a sequence of satisfiability
+//! calls *under assumptions* on one loaded model, plus facts learnt along the
+//! way ("the objective is at most 41"). None of it depends on how the
+//! engine propagates or branches. So the procedures live once, in the
+//! driver, against the small [`Backend`] trait; the Pumpkin encoding lives
+//! in [`engine`](super::engine) behind it.
+//!
+//! # Practical
+//!
+//! - [`Backend::solve`] answers one call. A limit that stops it gives
+//!   [`Answer::Unknown`]; a backend may refuse further calls afterwards (it
+//!   answers `Unknown` again — Pumpkin 0.5 cannot resume after a stop), so
+//!   the limits are over the backend's life.
+//! - An infeasible call carries a [`Core`]: [`Core::Unknown`] when the
+//!   backend does not say which assumptions are to blame, and
+//!   [`Core::Rules`] with the guilty hard-rule assumptions otherwise. An
+//!   *empty* `Core::Rules` is the strongest answer: the model is infeasible
+//!   whatever is assumed. "No core" and "empty core" are different answers,
+//!   and the driver treats them differently (no core: shrink by deletion;
+//!   empty core: stop at once).
+//! - Solutions are grid values, one per model variable
+//!   ([`Model::vars`](super::model::Model::vars) order).
+//!
+//! # How to extend
+//!
+//! A new engine implements [`Backend`] for a loaded model; the driver's
+//! tests (`driver::tests`, against a mock backend) state what each answer
+//! must mean, and the synthesis differential tests run it against brute
+//! force.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// When to stop.
+#[derive(Debug, Clone, Default)]
+pub struct Limits {
+    /// Wall-clock deadline.
+    pub deadline: Option<Instant>,
+    /// Maximum number of decisions (over the whole backend's life).
+    pub node_limit: Option<u64>,
+    /// External stop flag.
+    pub cancel: Option<Arc<AtomicBool>>,
+}
+
+impl Limits {
+    /// Whether a limit other than the node count has fired (the deadline
+    /// has passed or the stop flag is set).
+    pub fn expired(&self) -> bool {
+        self.cancel
+            .as_ref()
+            .is_some_and(|c| c.load(Ordering::Relaxed))
+            || self.deadline.is_some_and(|d| Instant::now() >= d)
+    }
+}
+
+/// One assumption of a call: holds for this call only.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Assumption {
+    /// The objective (the integer score numerator) is at least this.
+    ObjectiveAtLeast(i64),
+    /// The resemblance cost is at most this.
+    CostAtMost(u64),
+    /// Hard rule `i` (index into `Model::hard`) holds. Only a backend
+    /// loaded with guarded hard rules accepts it.
+    Rule(usize),
+}
+
+/// A fact added for good: every later call obeys it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Fact {
+    /// The objective is at most this (after a refutation of more).
+    ObjectiveAtMost(i64),
+    /// The objective is at least this (the score is never traded away).
+    ObjectiveAtLeast(i64),
+    /// The resemblance cost is at least this (after a refutation of less).
+    CostAtLeast(u64),
+}
+
+/// Which assumptions an infeasible call is to blame on.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Core {
+    /// The backend does not say.
+    Unknown,
+    /// These `Rule` assumptions (hard-rule indices) are enough to make the
+    /// call infeasible; empty: infeasible whatever is assumed.
+    Rules(Vec<usize>),
+}
+
+/// The answer to one call.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Answer {
+    /// A solution: grid values per model variable.
+    Solution(Vec<i64>),
+    /// Proved impossible under the assumptions.
+    Infeasible(Core),
+    /// A limit stopped the search.
+    Unknown,
+}
+
+/// An engine holding one model.
+pub trait Backend {
+    /// Solve under `assumptions` within `limits`.
+    fn solve(&mut self, assumptions: &[Assumption], limits: &Limits) -> Answer;
+    /// Add a fact for every later call.
+    fn add(&mut self, fact: Fact);
+    /// The largest objective value not yet excluded at the root (`None`:
+    /// the backend has no objective).
+    fn objective_bound(&self) -> Option<i64>;
+    /// The smallest resemblance cost not yet excluded at the root (`None`:
+    /// no second objective).
+    fn cost_bound(&self) -> Option<u64>;
+    /// Told once a first solution exists (a backend may change its search).
+    fn found_first(&mut self) {}
+    /// Decisions so far.
+    fn nodes(&self) -> u64;
+    /// Conflicts so far.
+    fn conflicts(&self) -> u64;
+}
