@@ -4,11 +4,12 @@ use clap::Args;
 use rccpack::eval::RuleReport;
 use rccpack::relations::Contact;
 use rccpack::resemblance::Likeness;
+use rccpack::studio::storage::atomic_write_path;
 use rccpack::synth::{
-    synthesize, Progress, ProgressFn, Resemblance, Status, SynthError, SynthOptions,
+    emit, synthesize, Progress, ProgressFn, Resemblance, Status, SynthError, SynthOptions,
 };
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -58,6 +59,60 @@ pub struct SynthArgs {
     /// (one scene or an array, usually the demonstrations; SPEC §12).
     #[arg(long, value_name = "SCENES.json")]
     like: Option<PathBuf>,
+    /// Also write the solver-free model for other solvers: MiniZinc when FILE
+    /// ends in `.mzn`, `rccpack-model/1` JSON when it ends in `.json` (see
+    /// `benches/peers/`). Only the score objective is written, not `--like`.
+    /// The model is written before the solve, which then runs as usual.
+    #[arg(long, value_name = "FILE")]
+    emit: Option<PathBuf>,
+}
+
+/// The model formats `--emit` writes.
+#[derive(Clone, Copy)]
+enum EmitFormat {
+    MiniZinc,
+    Json,
+}
+
+/// The format named by `path`'s extension (`.mzn`, `.json`), or an error
+/// naming the file.
+fn emit_format(path: &Path) -> Result<EmitFormat> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("mzn") => Ok(EmitFormat::MiniZinc),
+        Some("json") => Ok(EmitFormat::Json),
+        _ => Err(Reported(format!(
+            "error: {}: cannot tell the model format from the file name; expected a name ending in `.mzn` (MiniZinc) or `.json` (rccpack-model/1 JSON)",
+            path.display()
+        ))
+        .into()),
+    }
+}
+
+/// `--emit`: build the model `synthesize` solves and write it atomically.
+fn write_emitted(
+    path: &Path,
+    format: EmitFormat,
+    problem_path: &Path,
+    problem: &rccpack::scene::Scene,
+    rules: &rccpack::rules::RuleSet,
+    opts: &SynthOptions,
+) -> Result<()> {
+    let e = emit::emitted(problem, rules, opts)
+        .map_err(|e| Reported(format!("error: {}: {e}", problem_path.display())))?;
+    let text = match format {
+        EmitFormat::MiniZinc => emit::to_minizinc(&e),
+        EmitFormat::Json => emit::to_json(&e),
+    };
+    atomic_write_path(path, &text).map_err(|e| {
+        Reported(format!(
+            "error: {}: cannot write the model: {e}",
+            path.display()
+        ))
+    })?;
+    Ok(())
 }
 
 #[derive(serde::Serialize)]
@@ -79,6 +134,10 @@ struct Report<'a> {
 }
 
 pub fn run(a: SynthArgs) -> Result<ExitCode> {
+    let emit_to = match &a.emit {
+        Some(p) => Some((p.clone(), emit_format(p)?)),
+        None => None,
+    };
     let problem = read_scene(&a.problem)?;
     let rules = read_rules(&a.rules, std::slice::from_ref(&problem))?;
     let time_limit = a.time_limit;
@@ -113,6 +172,15 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         },
         ..SynthOptions::default()
     };
+    if let Some((path, format)) = &emit_to {
+        write_emitted(path, *format, &a.problem, &problem, &rules, &opts)?;
+        if opts.like.is_some() && !a.quiet {
+            eprintln!(
+                "note: {}: the model holds the score objective only, not --like's resemblance",
+                path.display()
+            );
+        }
+    }
     let result = synthesize(&problem, &rules, &opts)
         .map_err(|e: SynthError| Reported(format!("error: {}: {e}", a.problem.display())))?;
     let ev = result.evaluation.as_ref();

@@ -66,8 +66,8 @@
 //! `values = [v0, v1, …]` and `objective = N` (the objective includes
 //! the constant).
 
-use super::model::{Axis, BoolDef, BuildOptions, Coord, Cumulative, Lit, Model};
-use super::{check_problem, weights, SynthError, SynthOptions};
+use super::model::{Axis, BoolDef, Coord, Cumulative, Lit, Model};
+use super::{SynthError, SynthOptions};
 use crate::relations::Contact;
 use crate::rules::RuleSet;
 use crate::scene::Scene;
@@ -133,37 +133,7 @@ pub fn emitted(
     rules: &RuleSet,
     opts: &SynthOptions,
 ) -> Result<Emitted, SynthError> {
-    check_problem(problem)?;
-    let build = BuildOptions {
-        contact: opts.contact,
-        rules: true,
-        symmetry_breaking: opts.symmetry_breaking,
-        redundant: opts.redundant,
-    };
-    let model = Model::build(problem, rules, build);
-    // The same weight check as `synthesize` (a rule built in code may carry
-    // any weight; NaN would silently become a coefficient of 1).
-    if let Some(s) = model
-        .soft
-        .iter()
-        .find(|s| !(s.weight.is_finite() && s.weight > 0.0))
-    {
-        let name = rules
-            .rules
-            .get(s.rule)
-            .map(|r| r.name.as_str())
-            .unwrap_or("?");
-        return Err(SynthError::BadProblem(format!(
-            "rule `{name}` has weight {}; expected a finite number greater than 0",
-            s.weight
-        )));
-    }
-    let ws: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();
-    let coefs = weights::integer_weights(&ws).ok_or_else(|| {
-        SynthError::TooLarge(
-            "rule weights are too large for the solver: their integer scaling exceeds 2^30".into(),
-        )
-    })?;
+    let (model, coefs, _) = super::objective_model(problem, rules, opts)?;
     let constant = model
         .soft
         .iter()

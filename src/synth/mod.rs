@@ -313,6 +313,46 @@ fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1000.0
 }
 
+/// The model [`synthesize`] solves for `problem` under `rules` and `opts`
+/// (checked first), its integer objective coefficients (one per soft term)
+/// and the options it was built with. Shared with [`emit`], so that the
+/// emitted model is the solved one. (An object too large for the space
+/// gives a model with `too_large` set and no rules.)
+pub(crate) fn objective_model(
+    problem: &Scene,
+    rules: &RuleSet,
+    opts: &SynthOptions,
+) -> Result<(model::Model, Vec<i64>, model::BuildOptions), SynthError> {
+    check_problem(problem)?;
+    let build = model::BuildOptions {
+        contact: opts.contact,
+        rules: true,
+        symmetry_breaking: opts.symmetry_breaking,
+        redundant: opts.redundant,
+    };
+    let model = model::Model::build(problem, rules, build);
+    // Weights from the parser are finite and positive; a rule built in code
+    // may carry anything, and NaN would silently become a coefficient of 1.
+    if let Some(s) = model
+        .soft
+        .iter()
+        .find(|s| !(s.weight.is_finite() && s.weight > 0.0))
+    {
+        let name = rules.rules.get(s.rule).map_or("?", |r| r.name.as_str());
+        return Err(SynthError::BadProblem(format!(
+            "rule `{name}` has weight {}; expected a finite number greater than 0",
+            s.weight
+        )));
+    }
+    let weights: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();
+    let coefs = weights::integer_weights(&weights).ok_or_else(|| {
+        SynthError::TooLarge(
+            "rule weights are too large for the solver: their integer scaling exceeds 2^30".into(),
+        )
+    })?;
+    Ok((model, coefs, build))
+}
+
 /// Synthesise a layout (SPEC §9): place every unplaced object on the grid,
 /// inside the space, without overlap, so that every hard rule holds and the
 /// §6 numerator over all objects is maximal.
@@ -327,24 +367,16 @@ pub fn synthesize(
     use backend::{Backend, Limits};
     use driver::OptOutcome;
     use engine::Engine;
-    use model::{BuildOptions, Model};
     use std::time::Instant;
 
     let start = Instant::now();
-    check_problem(problem)?;
     let limits = Limits {
         // A limit past what `Instant` can represent means no deadline.
         deadline: opts.time_limit.and_then(|t| start.checked_add(t)),
         node_limit: opts.node_limit,
         cancel: opts.cancel.clone(),
     };
-    let build = BuildOptions {
-        contact: opts.contact,
-        rules: true,
-        symmetry_breaking: opts.symmetry_breaking,
-        redundant: opts.redundant,
-    };
-    let model = Model::build(problem, rules, build);
+    let (model, coefs, build) = objective_model(problem, rules, opts)?;
     let mut stats = SolveStats::default();
     let infeasible = |conflict: Conflict, mut stats: SolveStats| {
         stats.time_ms = ms(start.elapsed());
@@ -366,24 +398,6 @@ pub fn synthesize(
             stats,
         ));
     }
-    // Weights from the parser are finite and positive; a rule built in code
-    // may carry anything, and NaN would silently become a coefficient of 1.
-    if let Some(s) = model
-        .soft
-        .iter()
-        .find(|s| !(s.weight.is_finite() && s.weight > 0.0))
-    {
-        return Err(SynthError::BadProblem(format!(
-            "rule `{}` has weight {}; expected a finite number greater than 0",
-            rules.rules[s.rule].name, s.weight
-        )));
-    }
-    let weights: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();
-    let coefs = weights::integer_weights(&weights).ok_or_else(|| {
-        SynthError::TooLarge(
-            "rule weights are too large for the solver: their integer scaling exceeds 2^30".into(),
-        )
-    })?;
     let like_terms = match &opts.like {
         Some(like) => {
             // The engine refuses costs past its 32-bit arithmetic.
