@@ -535,7 +535,7 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
         .collect();
     let rules = rule_set(u, &fixed_ids, 4)?;
     let contact = *u.choose(&Contact::ALL)?;
-    let opts = SynthOptions {
+    let mut opts = SynthOptions {
         contact,
         node_limit: Some(u.int_in_range(50..=4000)?),
         seed: u.arbitrary()?,
@@ -543,6 +543,18 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
         redundant: u.arbitrary()?,
         ..SynthOptions::default()
     };
+    // Large-neighbourhood search forced onto the tiny problem now and then
+    // (it runs only from 16 objects by default).
+    if u.arbitrary::<bool>()? {
+        opts.lns = Some(crate::synth::lns::LnsOptions {
+            min_objects: 0,
+            window: 1,
+            max_window: 2,
+            patience: 2,
+            round_nodes: 100,
+            budget_nodes: 1_000,
+        });
+    }
     if std::env::var_os("RCCPACK_FUZZ_DEBUG").is_some() {
         eprintln!("{}{}\n{opts:?}", p.to_json(), print_rules(&rules));
     }

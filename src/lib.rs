@@ -10,7 +10,7 @@
 //!                                          │
 //!                  demos ─► infer ─────────┤ learned .rcc
 //!                                          ▼
-//!                problem ─► synth (model ─► engine) ─► scene
+//!                problem ─► synth (model ─► driver ─► engine) ─► scene
 //!                                          │
 //!                       eval re-checks every output scene
 //! ```

@@ -34,7 +34,7 @@
 //! # How to extend
 //!
 //! A new procedure is a new function here over `&mut dyn Backend`; its
-//! tests go in `tests` below against [`MockBackend`](tests), which states
+//! tests go in the `tests` module below, against its `MockBackend`, which states
 //! the answers a backend may give.
 
 use super::backend::{Answer, Assumption, Backend, Core, Fact, Limits};

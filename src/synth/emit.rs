@@ -6,7 +6,7 @@
 //! # What is written
 //!
 //! [`emitted`] runs the checks of [`super::synthesize`] ([`super::check_problem`],
-//! the weight check) and builds the same [`Model`] (same [`BuildOptions`]:
+//! the weight check) and builds the same [`Model`] (same [`BuildOptions`](super::model::BuildOptions):
 //! contact mode, rules, symmetry breaking and redundant cumulatives as in
 //! the [`SynthOptions`]) and the same integer objective coefficients
 //! ([`super::weights::integer_weights`]). It must stay in step with

@@ -14,7 +14,7 @@
 //!
 //! A sub-problem is an ordinary problem — the same scene with the other
 //! objects placed — so it is built by [`Model::build`] and solved by a fresh
-//! engine through the same [`driver`](super::driver); its objective is the
+//! engine through the same [`driver`]; its objective is the
 //! full objective minus a constant (the terms no freed object can change).
 //!
 //! # Practical
@@ -31,7 +31,7 @@
 //! # How to extend
 //!
 //! Other neighbourhoods (a class, a band of rows, the objects of one broken
-//! rule) go into [`Lns::window`]; the differential tests in `tests/synth.rs`
+//! rule) go into `Lns::window`; the differential tests in `tests/synth.rs`
 //! run synthesis with LNS on and off and compare with brute force.
 
 use super::backend::{Backend, Limits};

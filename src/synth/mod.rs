@@ -1,7 +1,22 @@
 //! Synthesis (SPEC §9): place every unplaced object on the grid so that hard
 //! rules hold and the §6 numerator is as large as possible.
 //!
-//! This file fixes the public API; the model and engine live in submodules.
+//! This file fixes the public API; the rest lives in submodules:
+//!
+//! - [`model`] — the solver-free model (variables, exact Boolean
+//!   definitions, clauses, hard literals, objective terms);
+//! - [`backend`] — the seam: what an engine must answer (solve under
+//!   assumptions with limits, facts, root bounds);
+//! - [`driver`] — every procedure as calls to a backend: maximise the
+//!   score, minimise the resemblance cost, shrink a conflict;
+//! - [`engine`] — the Pumpkin backend (the only module naming solver types);
+//! - [`lns`] — large-neighbourhood search for the anytime phase on large
+//!   problems;
+//! - [`emit`] — the model written out for other solvers (MiniZinc, JSON);
+//! - [`verify`], [`brute_force`] — the independent checker and the
+//!   exhaustive reference of the tests;
+//! - [`weights`], [`like`] — integer objective weights, the second
+//!   objective's terms.
 //!
 //! # Second-edition rules (SPEC §11)
 //!
@@ -46,7 +61,7 @@ pub mod model;
 pub mod verify;
 pub mod weights;
 
-pub use engine::Strategy;
+pub use driver::Strategy;
 
 /// Limits and switches for one solve.
 #[derive(Debug, Clone)]
