@@ -105,16 +105,7 @@ impl Emitted {
         if vals.len() != self.model.vars.len() {
             return None;
         }
-        let bools = self.model.eval_bools(vals);
-        Some(
-            self.model
-                .soft
-                .iter()
-                .zip(&self.coefs)
-                .filter(|(s, _)| s.lit.value(&bools))
-                .map(|(_, &c)| c)
-                .sum(),
-        )
+        Some(self.model.objective_value(&self.coefs, vals) + self.constant)
     }
 
     /// Whether the model is trivially infeasible (an object too large for

@@ -286,16 +286,9 @@ impl Lns<'_> {
         let to_sub: Vec<i64> = sub
             .vars
             .iter()
-            .map(|v| {
-                let (cx, cy) = model.coords[v.object];
-                let c = match v.axis {
-                    super::model::Axis::X => cx,
-                    super::model::Axis::Y => cy,
-                };
-                match c {
-                    Coord::Var(i) => vals[i],
-                    Coord::Const(_) => 0,
-                }
+            .map(|v| match model.coord_of(v) {
+                Coord::Var(i) => vals[i],
+                Coord::Const(_) => 0,
             })
             .collect();
         let mut engine = Engine::new(&sub, seed, false, Some(self.coefs))?;
@@ -322,12 +315,7 @@ impl Lns<'_> {
             OptOutcome::Optimal(v) | OptOutcome::Feasible(v) => {
                 let mut full = vals.to_vec();
                 for (sv, x) in sub.vars.iter().zip(&v) {
-                    let (cx, cy) = model.coords[sv.object];
-                    let c = match sv.axis {
-                        super::model::Axis::X => cx,
-                        super::model::Axis::Y => cy,
-                    };
-                    if let Coord::Var(i) = c {
+                    if let Coord::Var(i) = model.coord_of(sv) {
                         full[i] = *x;
                     }
                 }

@@ -259,6 +259,16 @@ fn floor_div(a: i64, b: i64) -> i64 {
 }
 
 impl Model {
+    /// The coordinate, in this model, of the object and axis that `v` (a
+    /// variable of this or of another model of the same problem) positions.
+    pub fn coord_of(&self, v: &IntVar) -> Coord {
+        let (cx, cy) = self.coords[v.object];
+        match v.axis {
+            Axis::X => cx,
+            Axis::Y => cy,
+        }
+    }
+
     /// The objective value of grid values `vals`: `Σ coefs[i]` over the
     /// soft terms whose literal is a variable and holds (`coefs` in
     /// [`Model::soft`] order; constant terms are left out, as in the
