@@ -238,6 +238,35 @@ fn usage_errors_exit_1_help_exits_0() {
     }
 }
 
+/// `bench thesis` refuses out-of-range series, set counts and peers at
+/// once (exit 1, naming the flag and the value), before drawing anything.
+#[test]
+fn bench_flags_out_of_range_are_refused() {
+    for (args, names) in [
+        (vec!["--scale-ns", "0"], "--scale-ns"),
+        (vec!["--scale-ns", "16,513"], "513"),
+        (vec!["--scale-ks", "6"], "--scale-ks"),
+        (vec!["--scale-ks", "3,0"], "0"),
+        (vec!["--sets", "0"], "--sets"),
+        (vec!["--sets", "1001"], "1001"),
+        (vec!["--peers", "cplex"], "cplex"),
+        (vec!["--time-limit", "nan"], "--time-limit"),
+    ] {
+        let out = std::env::temp_dir().join(format!("rccpack-bench-refuse-{}", std::process::id()));
+        let mut all = vec!["bench", "thesis", "--out", out.to_str().unwrap()];
+        all.extend(&args);
+        let o = rccpack(&all);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert!(e.contains(names), "{args:?}: message names {names}: {e}");
+        assert!(
+            !out.exists(),
+            "{args:?}: refused before writing {}",
+            out.display()
+        );
+    }
+}
+
 /// `learn --samples 1000000000000000` ran until killed; now refused at
 /// once, naming the documented cap. The cap itself is accepted (checked on
 /// the parameters, without drawing a million scenes here).
