@@ -461,8 +461,6 @@ pub fn synthesize(
         coefs: &ws,
         value: &value,
     };
-    let mut lns_nodes = 0u64;
-    let mut lns_conflicts = 0u64;
     let mut outcome = match driver::first_solution(&mut engine, &limits) {
         Err(o) => o,
         Ok(first) => {
@@ -487,8 +485,9 @@ pub fn synthesize(
                     ..limits.clone()
                 };
                 let r = search.improve(best, bound, &lns_limits, &mut on_incumbent)?;
-                lns_nodes = r.nodes;
-                lns_conflicts = r.conflicts;
+                // Sub-engines' work counts toward the solve's statistics.
+                stats.nodes += r.nodes;
+                stats.conflicts += r.conflicts;
                 best = r.values;
                 main_limits.node_limit = limits.node_limit.map(|n| n.saturating_sub(r.nodes));
                 if std::env::var_os("RCCPACK_DEBUG").is_some() {
@@ -535,8 +534,8 @@ pub fn synthesize(
             });
         }
     }
-    stats.nodes = engine.nodes() + lns_nodes;
-    stats.conflicts = engine.conflicts() + lns_conflicts;
+    stats.nodes += engine.nodes();
+    stats.conflicts += engine.conflicts();
     stats.time_to_first_ms = first.map(ms);
     stats.time_to_best_ms = best.map(ms);
     drop(engine);
