@@ -243,14 +243,23 @@ fn usage_errors_exit_1_help_exits_0() {
 #[test]
 fn bench_flags_out_of_range_are_refused() {
     for (args, names) in [
-        (vec!["--scale-ns", "0"], "--scale-ns"),
-        (vec!["--scale-ns", "16,513"], "513"),
-        (vec!["--scale-ks", "6"], "--scale-ks"),
-        (vec!["--scale-ks", "3,0"], "0"),
-        (vec!["--sets", "0"], "--sets"),
-        (vec!["--sets", "1001"], "1001"),
-        (vec!["--peers", "cplex"], "cplex"),
-        (vec!["--time-limit", "nan"], "--time-limit"),
+        (vec!["--scale-ns", "0"], "invalid value '0' for '--scale-ns"),
+        (
+            vec!["--scale-ns", "16,513"],
+            "invalid value '513' for '--scale-ns",
+        ),
+        (vec!["--scale-ks", "6"], "invalid value '6' for '--scale-ks"),
+        (
+            vec!["--scale-ks", "3,0"],
+            "invalid value '0' for '--scale-ks",
+        ),
+        (vec!["--sets", "0"], "invalid value '0' for '--sets"),
+        (vec!["--sets", "1001"], "invalid value '1001' for '--sets"),
+        (vec!["--peers", "cplex"], "unknown peer `cplex`"),
+        (
+            vec!["--time-limit", "nan"],
+            "invalid value 'nan' for '--time-limit",
+        ),
     ] {
         let out = std::env::temp_dir().join(format!("rccpack-bench-refuse-{}", std::process::id()));
         let mut all = vec!["bench", "thesis", "--out", out.to_str().unwrap()];
