@@ -242,6 +242,7 @@ fn usage_errors_exit_1_help_exits_0() {
 /// once (exit 1, naming the flag and the value), before drawing anything.
 #[test]
 fn bench_flags_out_of_range_are_refused() {
+    let out = std::env::temp_dir().join(format!("rccpack-bench-refuse-{}", std::process::id()));
     for (args, names) in [
         (vec!["--scale-ns", "0"], "invalid value '0' for '--scale-ns"),
         (
@@ -261,7 +262,6 @@ fn bench_flags_out_of_range_are_refused() {
             "invalid value 'nan' for '--time-limit",
         ),
     ] {
-        let out = std::env::temp_dir().join(format!("rccpack-bench-refuse-{}", std::process::id()));
         let mut all = vec!["bench", "thesis", "--out", out.to_str().unwrap()];
         all.extend(&args);
         let o = rccpack(&all);
