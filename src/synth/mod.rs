@@ -96,6 +96,13 @@ pub struct SynthOptions {
     /// problems with at least [`lns::LnsOptions::min_objects`] movable
     /// objects; `None`: the engine's own search only.
     pub lns: Option<lns::LnsOptions>,
+    /// Complete scenes whose placements hint at a good first layout (usually
+    /// the demonstrations): objects of the problem are matched to their
+    /// objects by class and size, and the layout assembled from them (then
+    /// repaired) is the search's first incumbent when it is valid. A hint
+    /// never changes the optimum, only the time to reach it; an unusable
+    /// hint is ignored. Empty: no warm start.
+    pub warm_start: Vec<Scene>,
 }
 
 /// An improving layout found during the search.
@@ -132,6 +139,7 @@ impl Default for SynthOptions {
             like: None,
             explain: true,
             lns: Some(lns::LnsOptions::default()),
+            warm_start: Vec::new(),
         }
     }
 }
