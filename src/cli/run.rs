@@ -109,6 +109,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         time_limit: Some(a.time_limit),
         seed: a.seed,
         like: like.clone(),
+        warm_start: read_scenes(&a.dir.join("demos.json"))?.0,
         ..SynthOptions::default()
     };
     let result = synthesize(&problem, &rules, &opts)

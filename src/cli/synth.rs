@@ -59,6 +59,13 @@ pub struct SynthArgs {
     /// (one scene or an array, usually the demonstrations; SPEC §12).
     #[arg(long, value_name = "SCENES.json")]
     like: Option<PathBuf>,
+    /// Start from a layout assembled from these complete scenes (one scene
+    /// or an array, usually the demonstrations): objects are matched by
+    /// class and size, the positions tried first, the rest placed by the
+    /// search. Changes only how fast a good layout is found, never the
+    /// optimum. Default: the `--like` scenes; `none` turns it off.
+    #[arg(long = "warm-start", value_name = "SCENES.json")]
+    warm_start: Option<PathBuf>,
     /// Also write the solver-free model for other solvers: MiniZinc when FILE
     /// ends in `.mzn`, `rccpack-model/1` JSON when it ends in `.json` (see
     /// `benches/peers/`). Only the score objective is written, not `--like`.
@@ -157,6 +164,15 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             );
         }))
     });
+    let like_scenes = match &a.like {
+        Some(p) => Some(read_scenes(p)?.0),
+        None => None,
+    };
+    let warm_start = match a.warm_start.as_deref() {
+        Some(p) if p == std::path::Path::new("none") => Vec::new(),
+        Some(p) => read_scenes(p)?.0,
+        None => like_scenes.clone().unwrap_or_default(),
+    };
     let opts = SynthOptions {
         contact: a.contact,
         time_limit,
@@ -166,10 +182,8 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         redundant: !a.no_redundant,
         cancel: Some(cancel),
         progress,
-        like: match &a.like {
-            Some(p) => Some(Likeness::new(&read_scenes(p)?.0)),
-            None => None,
-        },
+        like: like_scenes.as_deref().map(Likeness::new),
+        warm_start,
         ..SynthOptions::default()
     };
     if let Some((path, format)) = &emit_to {

@@ -936,10 +936,8 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
             ))
             .at("time_limit")
         })?;
-    let like = match b.like.unwrap_or(true) {
-        true => Some(Likeness::new(&read_demos(&st)?)),
-        false => None,
-    };
+    let demos = read_demos(&st)?;
+    let like = b.like.unwrap_or(true).then(|| Likeness::new(&demos));
     let cancel = Arc::new(AtomicBool::new(false));
     let best = Arc::new(Mutex::new(None));
     let id = st.next_job.fetch_add(1, Ordering::Relaxed);
@@ -970,6 +968,7 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
             *progress_best.lock().expect("best lock") = Some(p.score);
         }))),
         like,
+        warm_start: demos,
         ..SynthOptions::default()
     };
     let st2 = st.clone();

@@ -119,6 +119,12 @@ pub trait Backend {
     fn cost_bound(&self) -> Option<u64>;
     /// Told once a first solution exists (a backend may change its search).
     fn found_first(&mut self) {}
+
+    /// Try these values first (one per model variable, `None`: no
+    /// preference) until the next solution: a warm start or the incumbent
+    /// of a neighbourhood. A value-ordering hint only: it changes which
+    /// solution is found first, never what is feasible or optimal.
+    fn hint(&mut self, _values: &[Option<i64>]) {}
     /// Decisions so far.
     fn nodes(&self) -> u64;
     /// Conflicts so far.

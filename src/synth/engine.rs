@@ -42,6 +42,7 @@ use super::SynthError;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
 use pumpkin_constraints::{boolean_equals, cumulative, equals, less_than_or_equals};
 use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
+use pumpkin_core::branching::branchers::warm_start::WarmStart;
 use pumpkin_core::branching::tie_breaking::InOrderTieBreaker;
 use pumpkin_core::branching::value_selection::InDomainMin;
 use pumpkin_core::branching::variable_selection::FirstFail;
@@ -111,8 +112,8 @@ impl TerminationCondition for Stop {
 
 /// A brancher wrapper that counts decisions and conflicts.
 #[derive(Debug)]
-pub struct Counting {
-    inner: Box<dyn Brancher>,
+struct Counting {
+    inner: Phased,
     nodes: Rc<Cell<u64>>,
     conflicts: Rc<Cell<u64>>,
 }
@@ -172,8 +173,15 @@ type StaticBrancher = IndependentVariableValueBrancher<
 /// (first-fail over the grid variables, smallest value first), which finds a
 /// packing at once; afterwards the main (learning) brancher. Every event
 /// goes to both.
+///
+/// A *hint* ([`Engine::set_hint`]) comes before both: each hinted grid
+/// variable is tried at its hinted value (Pumpkin's `WarmStart`), skipping
+/// the ones that propagation already decided, until the next solution. The
+/// hint is a value-ordering heuristic only: a hinted value that conflicts is
+/// learned away like any decision, so it never changes what is provable.
 #[derive(Debug)]
 struct Phased {
+    hint: Option<WarmStart<DomainId>>,
     first: StaticBrancher,
     main: Box<dyn Brancher>,
     use_first: Rc<Cell<bool>>,
@@ -181,6 +189,11 @@ struct Phased {
 
 impl Brancher for Phased {
     fn next_decision(&mut self, context: &mut SelectionContext) -> Option<Predicate> {
+        if let Some(h) = &mut self.hint {
+            if let Some(d) = h.next_decision(context) {
+                return Some(d);
+            }
+        }
         if self.use_first.get() {
             if let Some(d) = self.first.next_decision(context) {
                 return Some(d);
@@ -195,6 +208,8 @@ impl Brancher for Phased {
         self.main.on_backtrack()
     }
     fn on_solution(&mut self, solution: SolutionReference) {
+        // A hint lasts until the next solution.
+        self.hint = None;
         self.main.on_solution(solution)
     }
     fn on_unassign_integer(&mut self, variable: DomainId, value: i32) {
@@ -208,6 +223,9 @@ impl Brancher for Phased {
         self.main.on_restart()
     }
     fn synchronise(&mut self, context: &mut SelectionContext) {
+        if let Some(h) = &mut self.hint {
+            h.synchronise(context);
+        }
         self.first.synchronise(context);
         self.main.synchronise(context)
     }
@@ -216,7 +234,14 @@ impl Brancher for Phased {
     }
     fn subscribe_to_events(&self) -> Vec<BrancherEvent> {
         let mut v = self.main.subscribe_to_events();
-        for e in self.first.subscribe_to_events() {
+        // A hint may be set later: its events (solution, synchronise) are
+        // always subscribed.
+        for e in self
+            .first
+            .subscribe_to_events()
+            .into_iter()
+            .chain([BrancherEvent::Solution, BrancherEvent::Synchronise])
+        {
             if !v.contains(&e) {
                 v.push(e);
             }
@@ -643,11 +668,12 @@ impl<'m> Builder<'m> {
         let counters = Counters::default();
         let main: Box<dyn Brancher> = Box::new(self.solver.default_brancher());
         let first_phase = Rc::new(Cell::new(true));
-        let inner: Box<dyn Brancher> = Box::new(Phased {
+        let inner = Phased {
+            hint: None,
             first: IndependentVariableValueBrancher::new(FirstFail::new(&self.vars), InDomainMin),
             main,
             use_first: first_phase.clone(),
-        });
+        };
         let brancher = Counting {
             inner,
             nodes: counters.nodes.clone(),
@@ -887,6 +913,16 @@ impl Backend for Engine {
 
     fn found_first(&mut self) {
         self.first_phase.set(false);
+    }
+
+    fn hint(&mut self, values: &[Option<i64>]) {
+        let (vars, vals): (Vec<DomainId>, Vec<i32>) = self
+            .vars
+            .iter()
+            .zip(values)
+            .filter_map(|(&v, h)| Some((v, i32::try_from((*h)?).ok()?)))
+            .unzip();
+        self.brancher.inner.hint = (!vars.is_empty()).then(|| WarmStart::new(&vars, &vals));
     }
 
     fn nodes(&self) -> u64 {

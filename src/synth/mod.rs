@@ -59,6 +59,7 @@ pub mod like;
 pub mod lns;
 pub mod model;
 pub mod verify;
+pub mod warm;
 pub mod weights;
 
 pub use driver::Strategy;
@@ -469,6 +470,9 @@ pub fn synthesize(
         coefs: &ws,
         value: &value,
     };
+    if let Some(h) = warm::hint_values(&model, problem, &opts.warm_start) {
+        engine.hint(&h);
+    }
     let mut outcome = match driver::first_solution(&mut engine, &limits) {
         Err(o) => o,
         Ok(first) => {
