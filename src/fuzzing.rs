@@ -553,6 +553,7 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
             patience: 2,
             round_nodes: 100,
             budget_nodes: 1_000,
+            proof_nodes: 50,
         });
     }
     if std::env::var_os("RCCPACK_FUZZ_DEBUG").is_some() {

@@ -516,6 +516,7 @@ fn check(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<BruteR
         symmetry_breaking,
         redundant,
         SynthOptions::default().lns,
+        Vec::new(),
     )
 }
 
@@ -531,8 +532,66 @@ fn check_lns(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<Br
         patience: 3,
         round_nodes: 200,
         budget_nodes: 5_000,
+        // Tiny proof attempts: the main engine is stopped by its budget and
+        // solved again many times per problem (the engine must stay usable
+        // after every limit), with LNS phases in between.
+        proof_nodes: 3,
     };
-    check_search(case, symmetry_breaking, redundant, Some(lns))
+    check_search(case, symmetry_breaking, redundant, Some(lns), Vec::new())
+}
+
+/// Warm-start hints that are mostly wrong: every movable object of the
+/// problem at a scrambled position (off the grid, outside the space,
+/// overlapping, breaking hard rules), plus, when it exists, the brute-force
+/// optimum with its objects shifted by one grid step.
+fn bad_hints(case: &Case) -> Vec<Scene> {
+    let mut scrambled = case.scene.clone();
+    let sp = case.scene.space;
+    for (i, o) in scrambled.objects.iter_mut().enumerate() {
+        if o.fixed || o.is_placed() {
+            continue;
+        }
+        let k = (i as i64 + 1) * (case.index as i64 % 7 + 3);
+        o.x = Some(sp.x + (k * 13) % (sp.width + 20) - 10);
+        o.y = Some(sp.y + (k * 7) % (sp.height + 20) - 10);
+    }
+    let mut out = vec![scrambled];
+    if let Ok(bf) = brute_force::solve(&case.scene, &case.rules, case.contact) {
+        if let Some(mut best) = bf.best {
+            for (o, p) in best.objects.iter_mut().zip(&case.scene.objects) {
+                if !p.is_placed() {
+                    o.x = o.x.map(|x| x + case.scene.grid);
+                }
+            }
+            out.push(best);
+        }
+    }
+    out
+}
+
+/// With warm-start hints (wrong ones and a near-optimal one) and LNS with
+/// tiny proof attempts: the same optimum as brute force.
+fn check_warm(
+    case: &Case,
+    symmetry_breaking: bool,
+    redundant: bool,
+) -> Result<BruteResult, String> {
+    let lns = LnsOptions {
+        min_objects: 0,
+        window: 1,
+        max_window: 2,
+        patience: 3,
+        round_nodes: 200,
+        budget_nodes: 5_000,
+        proof_nodes: 5,
+    };
+    check_search(
+        case,
+        symmetry_breaking,
+        redundant,
+        Some(lns),
+        bad_hints(case),
+    )
 }
 
 fn check_search(
@@ -540,6 +599,7 @@ fn check_search(
     symmetry_breaking: bool,
     redundant: bool,
     lns: Option<LnsOptions>,
+    warm_start: Vec<Scene>,
 ) -> Result<BruteResult, String> {
     let bf = brute_force::solve(&case.scene, &case.rules, case.contact)
         .map_err(|e| format!("brute force: {e}"))?;
@@ -549,6 +609,7 @@ fn check_search(
         symmetry_breaking,
         redundant,
         lns,
+        warm_start,
         ..SynthOptions::default()
     };
     let r =
@@ -651,7 +712,27 @@ fn check_like(
     symmetry_breaking: bool,
     redundant: bool,
 ) -> Result<BruteResult, String> {
-    let like = Likeness::new(&random_like(case));
+    check_like_with(case, symmetry_breaking, redundant, false)
+}
+
+/// [`check_like`] with the like-scenes also as warm-start hints (what
+/// `synth --like` does) and LNS forced on.
+fn check_like_warm(
+    case: &Case,
+    symmetry_breaking: bool,
+    redundant: bool,
+) -> Result<BruteResult, String> {
+    check_like_with(case, symmetry_breaking, redundant, true)
+}
+
+fn check_like_with(
+    case: &Case,
+    symmetry_breaking: bool,
+    redundant: bool,
+    warm: bool,
+) -> Result<BruteResult, String> {
+    let scenes = random_like(case);
+    let like = Likeness::new(&scenes);
     let bf = brute_force::solve_like(
         &case.scene,
         &case.rules,
@@ -665,6 +746,20 @@ fn check_like(
         time_limit: Some(Duration::from_secs(20)),
         symmetry_breaking,
         redundant,
+        warm_start: if warm { scenes } else { Vec::new() },
+        lns: if warm {
+            Some(LnsOptions {
+                min_objects: 0,
+                window: 1,
+                max_window: 2,
+                patience: 3,
+                round_nodes: 200,
+                budget_nodes: 5_000,
+                proof_nodes: 5,
+            })
+        } else {
+            SynthOptions::default().lns
+        },
         ..SynthOptions::default()
     };
     let plain =
@@ -1044,6 +1139,24 @@ fn engine_matches_brute_force_large() {
 #[ignore = "slow: run with `cargo test --release --test synth_differential -- --ignored`"]
 fn engine_matches_brute_force_large_plain() {
     assert_clean(run(200_000..202_000, LARGE, false, false));
+}
+
+#[test]
+fn engine_matches_brute_force_with_warm_starts() {
+    // Wrong and near-optimal hints never change the optimum or the
+    // conflict; first- and second-edition rules, both symmetry settings.
+    assert_clean(run_with(0..400, SMALL, true, true, check_warm));
+    assert_clean(run_with(0..600, SMALL2, true, true, check_warm));
+    assert_clean(run_with(0..200, SMALL2, false, false, check_warm));
+}
+
+#[test]
+fn engine_matches_brute_force_with_like_scenes_as_warm_starts() {
+    // What `synth --like` does: the like-scenes are also the warm start;
+    // (numerator, cost) stay brute force's lexicographic optimum.
+    let t = run_with(0..600, SMALL2, true, true, check_like_warm);
+    assert!(t.infeasible > 50, "{}", t.infeasible);
+    assert_clean(t);
 }
 
 #[test]

@@ -87,17 +87,30 @@ pub use super::driver::{CostOutcome, OptOutcome, Strategy};
 struct Counters {
     nodes: Rc<Cell<u64>>,
     conflicts: Rc<Cell<u64>>,
+    safe: Rc<Cell<bool>>,
 }
 
 /// Polled by Pumpkin; stops on deadline, node limit or cancel flag.
+///
+/// Only ever stops *above the root*: Pumpkin 0.5 restores its state after
+/// a timeout only when the timeout struck at a decision level above 0 (at
+/// the root it stays "timed out", and the next solve asserts). `safe` is
+/// set by [`Counting`] after each decision and cleared by each conflict
+/// (which may jump back to the root), so a limit waits at most for the
+/// next decision; an engine can then be solved again after any limit,
+/// keeping what it learned.
 struct Stop {
     limits: Limits,
     nodes: Rc<Cell<u64>>,
+    safe: Rc<Cell<bool>>,
     fired: Rc<Cell<bool>>,
 }
 
 impl TerminationCondition for Stop {
     fn should_stop(&mut self) -> bool {
+        if !self.safe.get() {
+            return false;
+        }
         let stop = self
             .limits
             .node_limit
@@ -116,6 +129,8 @@ struct Counting {
     inner: Phased,
     nodes: Rc<Cell<u64>>,
     conflicts: Rc<Cell<u64>>,
+    /// Whether the search is above the root (see [`Stop`]).
+    safe: Rc<Cell<bool>>,
 }
 
 impl Brancher for Counting {
@@ -126,10 +141,12 @@ impl Brancher for Counting {
         let d = self.inner.next_decision(context);
         if d.is_some() {
             self.nodes.set(self.nodes.get() + 1);
+            self.safe.set(true);
         }
         d
     }
     fn on_conflict(&mut self) {
+        self.safe.set(false);
         self.conflicts.set(self.conflicts.get() + 1);
         self.inner.on_conflict()
     }
@@ -146,6 +163,7 @@ impl Brancher for Counting {
         self.inner.on_appearance_in_conflict_predicate(predicate)
     }
     fn on_restart(&mut self) {
+        self.safe.set(false);
         self.inner.on_restart()
     }
     fn synchronise(&mut self, context: &mut SelectionContext) {
@@ -290,10 +308,6 @@ pub struct Engine {
     /// be called again (it asserts), and every later call is infeasible
     /// with an empty core.
     dead: bool,
-    /// A limit stopped a solve: Pumpkin 0.5 asserts when solving again after
-    /// a timeout, so every later call is `Unknown` (the limits are over the
-    /// engine's life anyway). Make a new engine to go on.
-    spent: bool,
 }
 
 impl std::fmt::Debug for Engine {
@@ -678,6 +692,7 @@ impl<'m> Builder<'m> {
             inner,
             nodes: counters.nodes.clone(),
             conflicts: counters.conflicts.clone(),
+            safe: counters.safe.clone(),
         };
         Engine {
             solver: self.solver,
@@ -691,7 +706,6 @@ impl<'m> Builder<'m> {
             first_phase,
             like_total,
             dead: false,
-            spent: false,
         }
     }
 }
@@ -763,9 +777,12 @@ impl Engine {
     }
 
     fn stop(&self, limits: &Limits) -> Stop {
+        // Every call starts at the root.
+        self.counters.safe.set(false);
         Stop {
             limits: limits.clone(),
             nodes: self.counters.nodes.clone(),
+            safe: self.counters.safe.clone(),
             fired: Rc::new(Cell::new(false)),
         }
     }
@@ -799,9 +816,6 @@ impl Engine {
     fn call(&mut self, assumptions: &[Predicate], limits: &Limits) -> Answer {
         if self.dead {
             return Answer::Infeasible(Core::Rules(Vec::new()));
-        }
-        if self.spent {
-            return Answer::Unknown;
         }
         let mut stop = self.stop(limits);
         let vars = self.vars.clone();
@@ -839,9 +853,6 @@ impl Engine {
                 SatisfactionResultUnderAssumptions::Unknown(_) => Answer::Unknown,
             }
         };
-        if answer == Answer::Unknown {
-            self.spent = true;
-        }
         answer
     }
 }

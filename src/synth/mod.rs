@@ -478,49 +478,49 @@ pub fn synthesize(
         Ok(first) => {
             on_incumbent(&first);
             let movable = model.vars.len() / 2;
-            let bound = engine.objective_bound().unwrap_or(0);
-            let mut best = first;
-            let mut main_limits = limits.clone();
-            if let Some(lopts) = opts.lns.filter(|l| movable >= l.min_objects) {
-                let search = lns::Lns {
-                    problem,
-                    rules,
-                    model: &model,
-                    build,
-                    coefs: &coefs,
-                    opts: lopts,
-                    seed: opts.seed,
-                };
-                // The phase's node budget comes out of the whole solve's.
-                let lns_limits = Limits {
-                    node_limit: limits.node_limit.map(|n| n.saturating_sub(engine.nodes())),
-                    ..limits.clone()
-                };
-                let r = search.improve(best, bound, &lns_limits, &mut on_incumbent)?;
-                // Sub-engines' work counts toward the solve's statistics.
-                stats.nodes += r.nodes;
-                stats.conflicts += r.conflicts;
-                best = r.values;
-                main_limits.node_limit = limits.node_limit.map(|n| n.saturating_sub(r.nodes));
-                if std::env::var_os("RCCPACK_DEBUG").is_some() {
-                    eprintln!(
-                        "lns: {} rounds, {} improving, {} nodes, value {} of bound {bound}, {:.1} ms",
-                        r.rounds,
-                        r.improved,
-                        r.nodes,
-                        r.value,
-                        ms(start.elapsed())
-                    );
+            match opts.lns.filter(|l| movable >= l.min_objects) {
+                Some(lopts) => {
+                    let search = lns::Lns {
+                        problem,
+                        rules,
+                        model: &model,
+                        build,
+                        coefs: &coefs,
+                        opts: lopts,
+                        seed: opts.seed,
+                    };
+                    let (outcome, r) = search.alternate(
+                        &mut engine,
+                        &objective,
+                        first,
+                        &limits,
+                        opts.strategy,
+                        &mut on_incumbent,
+                    )?;
+                    // Sub-engines' work counts toward the solve's statistics.
+                    stats.nodes += r.nodes;
+                    stats.conflicts += r.conflicts;
+                    if std::env::var_os("RCCPACK_DEBUG").is_some() {
+                        eprintln!(
+                            "lns: {} rounds, {} improving, {} nodes; engine {} nodes; {:.1} ms",
+                            r.rounds,
+                            r.improved,
+                            r.nodes,
+                            engine.nodes(),
+                            ms(start.elapsed())
+                        );
+                    }
+                    outcome
                 }
+                None => driver::optimise_from(
+                    &mut engine,
+                    Some(&objective),
+                    first,
+                    &limits,
+                    opts.strategy,
+                    &mut on_incumbent,
+                ),
             }
-            driver::optimise_from(
-                &mut engine,
-                Some(&objective),
-                best,
-                &main_limits,
-                opts.strategy,
-                &mut on_incumbent,
-            )
         }
     };
     // The second phase: with the numerator held, the cheapest layout.
