@@ -143,7 +143,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
                 .map(|r| format!("{} {}/{}", r.name, r.satisfied, r.subjects))
                 .collect();
             println!(
-                "placed {} objects: {} score {:.6} (weight {:.3} / {:.3}){} in {:.1} ms -> {}, {}",
+                "placed {} objects: {} score {:.6} (weight {:.3} / {:.3}){}{} in {:.1} ms -> {}, {}",
                 problem.objects.iter().filter(|o| !o.is_placed()).count(),
                 match result.status {
                     Status::Optimal => "optimal,",
@@ -152,6 +152,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
                 ev.score,
                 ev.satisfied_weight,
                 ev.total_weight,
+                super::synth::bound_text(&result),
                 super::synth::resemblance_text(result.resemblance),
                 result.stats.time_ms,
                 out.join("solution.json").display(),

@@ -138,6 +138,9 @@ struct Report<'a> {
     rules: &'a [RuleReport],
     #[serde(skip_serializing_if = "Option::is_none")]
     resemblance: Option<Resemblance>,
+    /// A proven upper bound on the score of any layout.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    score_bound: Option<f64>,
 }
 
 pub fn run(a: SynthArgs) -> Result<ExitCode> {
@@ -212,6 +215,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             conflict: result.conflict.as_ref(),
             rules: ev.map(|e| e.rules.as_slice()).unwrap_or(&[]),
             resemblance: result.resemblance,
+            score_bound: result.score_bound,
         };
         let text = serde_json::to_string_pretty(&report)? + "\n";
         std::fs::write(path, text).map_err(|e| {
@@ -237,7 +241,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             if !a.quiet {
                 let e = ev.expect("a solution has an evaluation");
                 eprintln!(
-                    "{}: score {:.6} ({} / {}){}, {:.1} ms, {} nodes",
+                    "{}: score {:.6} ({} / {}){}{}, {:.1} ms, {} nodes",
                     match result.status {
                         Status::Optimal => "optimal",
                         _ => "feasible (limit reached)",
@@ -245,6 +249,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
                     e.score,
                     e.satisfied_weight,
                     e.total_weight,
+                    bound_text(&result),
                     resemblance_text(result.resemblance),
                     result.stats.time_ms,
                     result.stats.nodes
@@ -278,6 +283,17 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             );
             Ok(ExitCode::from(3))
         }
+    }
+}
+
+/// `, no layout scores above B (proven)` for a `feasible` summary line:
+/// how far the layout returned may be from the optimum.
+pub fn bound_text(result: &rccpack::synth::SynthResult) -> String {
+    match (result.status, result.score_bound) {
+        (rccpack::synth::Status::Feasible, Some(b)) => {
+            format!(", no layout scores above {b:.6} (proven)")
+        }
+        _ => String::new(),
     }
 }
 

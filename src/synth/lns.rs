@@ -64,8 +64,7 @@ pub struct LnsOptions {
     pub patience: u32,
     /// Search nodes per round.
     pub round_nodes: u64,
-    /// Search nodes for one LNS phase of [`Lns::alternate`] (and the whole
-    /// of [`Lns::improve`]).
+    /// Search nodes without an improvement that end [`Lns::improve`].
     pub budget_nodes: u64,
     /// Search nodes of the main engine's first proof attempt in
     /// [`Lns::alternate`]; each later attempt gets twice as many (default
@@ -148,7 +147,8 @@ impl Lns<'_> {
 
     /// Alternate proof attempts of the main `engine` (the driver's
     /// optimisation from the incumbent, with a node budget that doubles
-    /// each time) with LNS phases (the same budget), until the engine
+    /// each time) with LNS phases (each ends after as many nodes without an
+    /// improvement, so it goes on while it pays off), until the engine
     /// proves the incumbent optimal or a limit of `limits` (over the whole
     /// solve: the engine's nodes plus the sub-engines') fires.
     ///
@@ -235,9 +235,9 @@ impl Lns<'_> {
         }
     }
 
-    /// One LNS phase of at most `budget` nodes: rounds until the incumbent
-    /// reaches `bound`, the rounds stop paying off at the largest window,
-    /// or a limit fires (`limits.node_limit` counts the phase's nodes from
+    /// One LNS phase: rounds until the incumbent reaches `bound`, `budget`
+    /// nodes pass without an improvement, the rounds stop paying off at the
+    /// largest window, or a limit fires (`limits.node_limit` counts the phase's nodes from
     /// the state's total).
     fn run(
         &self,
@@ -249,7 +249,9 @@ impl Lns<'_> {
     ) -> Result<(), SynthError> {
         let model = self.model;
         let opts = self.opts;
-        let start_nodes = st.out.nodes;
+        // The budget counts the nodes since the last improvement: a phase
+        // goes on while it pays off.
+        let mut start_nodes = st.out.nodes;
         st.fails = 0;
         while st.out.value < bound && st.window > 0 {
             let phase = st.out.nodes - start_nodes;
@@ -286,6 +288,7 @@ impl Lns<'_> {
                         st.out.values = v;
                         st.out.improved += 1;
                         st.fails = 0;
+                        start_nodes = st.out.nodes;
                         on_incumbent(&st.out.values);
                         continue;
                     }

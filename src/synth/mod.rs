@@ -202,6 +202,11 @@ pub struct SynthResult {
     pub stats: SolveStats,
     /// With [`SynthOptions::like`] and a layout: its resemblance cost.
     pub resemblance: Option<Resemblance>,
+    /// An upper bound on the §6 score of any layout, proven by the search
+    /// (the score itself when `optimal`; for `feasible`, how far the layout
+    /// returned may be from the optimum). Computed from the integer
+    /// objective, so exact up to the weights' scaling (`weights`).
+    pub score_bound: Option<f64>,
 }
 
 /// The second objective's result (the report's `resemblance`).
@@ -411,6 +416,7 @@ pub fn synthesize(
             conflict: Some(conflict),
             stats,
             resemblance: None,
+            score_bound: None,
         }
     };
     if !model.too_large.is_empty() {
@@ -550,6 +556,21 @@ pub fn synthesize(
     stats.conflicts += engine.conflicts();
     stats.time_to_first_ms = first.map(ms);
     stats.time_to_best_ms = best.map(ms);
+    let score_bound = engine.objective_bound().map(|b| {
+        let constant: i64 = model
+            .soft
+            .iter()
+            .zip(&coefs)
+            .filter(|(t, _)| t.lit == model::Lit::TRUE)
+            .map(|(_, &c)| c)
+            .sum();
+        let total: i64 = coefs.iter().sum();
+        if total <= 0 {
+            1.0
+        } else {
+            (b.saturating_add(constant) as f64 / total as f64).min(1.0)
+        }
+    });
     drop(engine);
     let (status, vals) = match outcome {
         OptOutcome::Optimal(v) => (Status::Optimal, v),
@@ -563,6 +584,7 @@ pub fn synthesize(
                 conflict: None,
                 stats,
                 resemblance: None,
+                score_bound: None,
             });
         }
         OptOutcome::Infeasible if !opts.explain => {
@@ -574,6 +596,7 @@ pub fn synthesize(
                 conflict: None,
                 stats,
                 resemblance: None,
+                score_bound: None,
             });
         }
         OptOutcome::Infeasible => {
@@ -589,6 +612,10 @@ pub fn synthesize(
         verify::verify_solution(problem, &scene, rules, opts.contact)
     );
     stats.time_ms = ms(start.elapsed());
+    let score_bound = match status {
+        Status::Optimal => Some(evaluation.score),
+        _ => score_bound.map(|b| b.max(evaluation.score)),
+    };
     Ok(SynthResult {
         status,
         scene: Some(scene),
@@ -596,6 +623,7 @@ pub fn synthesize(
         conflict: None,
         stats,
         resemblance,
+        score_bound,
     })
 }
 
