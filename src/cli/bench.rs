@@ -316,7 +316,7 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
 fn parse_size(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 && v <= 10.0 => Ok(v),
-        _ => Err(format!("expected a multiplier in (0, 10], e.g. 1.5")),
+        _ => Err("expected a multiplier in (0, 10], e.g. 1.5".to_string()),
     }
 }
 
