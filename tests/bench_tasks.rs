@@ -178,6 +178,9 @@ fn quick_cli_run_exits_zero_and_problems_rerun() {
         String::from_utf8_lossy(&o.stderr)
     );
     assert!(stdout.contains("tasks    1x"), "{stdout}");
+    // Not a terminal: one progress line per solved problem on stderr.
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("[5/5] example-5 (15 objects"), "{stderr}");
     assert!(stdout.contains("example  5/class"), "{stdout}");
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("tasks.json")).unwrap()).unwrap();

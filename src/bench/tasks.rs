@@ -1084,18 +1084,14 @@ pub struct TaskRow {
 /// What the benchmark is doing, for a progress bar.
 #[derive(Debug, Clone)]
 pub enum Progress {
-    /// A task was generated and learned.
-    Generated {
-        /// Its series.
-        series: TaskSeries,
-        /// Its index.
-        index: usize,
-        /// Demonstrations.
-        demos: usize,
-        /// Learned rules.
-        rules: usize,
-        /// The style in words.
-        style: String,
+    /// A problem was solved: one line about it.
+    Solved {
+        /// Problems solved.
+        done: usize,
+        /// Problems in all.
+        total: usize,
+        /// e.g. `task03-1.5x (31 objects): score-only optimal 1.000 in 0.2 s; …`.
+        line: String,
     },
     /// A problem is about to be solved (`done` solved before it).
     Solving {
@@ -1172,7 +1168,7 @@ pub fn run_tasks(
                     solve_peer(engine, cfg, &p.scene, &t.rules, peer)
                 })
                 .collect();
-            rows.push(TaskRow {
+            let row = TaskRow {
                 series: t.series,
                 task: t.index,
                 size_index: p.size_index,
@@ -1183,7 +1179,13 @@ pub fn run_tasks(
                 score_only,
                 like,
                 peers,
+            };
+            progress(&Progress::Solved {
+                done: done + 1,
+                total,
+                line: row_line(&row),
             });
+            rows.push(row);
         }
     }
     progress(&Progress::Solving {
@@ -1207,6 +1209,53 @@ pub fn run_tasks(
         summary: summarize(&rows),
         rows,
     }
+}
+
+/// One line about a solved problem, e.g. `task03-1.5x (31 objects, 42
+/// rules): score-only optimal 1.000 0.2s; like optimal 1.000 cost 12 0.4s;
+/// cp-sat optimal 1.000 3.1s`.
+pub fn row_line(r: &TaskRow) -> String {
+    let solve = |s: &SolveRow| {
+        let status = s
+            .status
+            .map(|st| format!("{st:?}").to_lowercase())
+            .unwrap_or_else(|| "ERROR".into());
+        let score = s.score.map(|v| format!(" {v:.3}")).unwrap_or_default();
+        let cost = s
+            .cost
+            .map(|c| {
+                format!(
+                    " cost {c}{}",
+                    if s.cost_proven == Some(true) { "" } else { "?" }
+                )
+            })
+            .unwrap_or_default();
+        let bad = if s.verified == Some(false) || s.status.is_none() {
+            " !!FAILED"
+        } else {
+            ""
+        };
+        format!("{status}{score}{cost} {}{bad}", ms(s.time_ms))
+    };
+    let mut line = format!(
+        "{} ({} objects, {} rules): score-only {}",
+        r.name,
+        r.movable,
+        r.rules,
+        solve(&r.score_only)
+    );
+    if let Some(l) = &r.like {
+        line.push_str(&format!("; like {}", solve(l)));
+    }
+    for p in &r.peers {
+        let status = p
+            .status
+            .map(|st| format!("{st:?}").to_lowercase())
+            .unwrap_or_else(|| "failed".into());
+        let score = p.score.map(|v| format!(" {v:.3}")).unwrap_or_default();
+        line.push_str(&format!("; {} {status}{score} {}", p.peer, ms(p.time_ms)));
+    }
+    line
 }
 
 /// One peer's aggregates in one (series, size) cell.

@@ -260,10 +260,20 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
             .progress_chars("=> "),
     );
     bar.set_prefix("solving");
-    let mut progress = |p: &tasks::Progress| {
-        if let tasks::Progress::Solving { done, label, .. } = p {
+    // indicatif draws nothing when stderr is not a terminal: then one line
+    // per solved problem instead.
+    let tty = std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let mut progress = |p: &tasks::Progress| match p {
+        tasks::Progress::Solving { done, label, .. } => {
             bar.set_position(*done as u64);
             bar.set_message(label.clone());
+        }
+        tasks::Progress::Solved { done, total, line } => {
+            if tty {
+                bar.println(line);
+            } else {
+                eprintln!("[{done}/{total}] {line}");
+            }
         }
     };
     let engine = tasks::Engine {
