@@ -213,3 +213,37 @@ fn quick_cli_run_exits_zero_and_problems_rerun() {
     );
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// Out-of-range flags are refused at once (exit 1, naming the flag and the
+/// value), before anything is generated or written.
+#[test]
+fn bad_flags_are_refused() {
+    let out = tmp("refuse");
+    let bin = env!("CARGO_BIN_EXE_rccpack");
+    for (args, names) in [
+        (vec!["--sizes", "0"], "invalid value '0' for '--sizes"),
+        (vec!["--sizes", "1,11"], "invalid value '11' for '--sizes"),
+        (vec!["--sizes", "nan"], "invalid value 'nan' for '--sizes"),
+        (vec!["--tasks", "1001"], "invalid value '1001' for '--tasks"),
+        (
+            vec!["--example-counts", "5,0"],
+            "invalid value '0' for '--example-counts",
+        ),
+        (vec!["--peers", "cplex"], "unknown peer `cplex`"),
+        (
+            vec!["--time-limit", "nan"],
+            "invalid value 'nan' for '--time-limit",
+        ),
+    ] {
+        let o = Command::new(bin)
+            .args(["bench", "tasks", "--out"])
+            .arg(&out)
+            .args(&args)
+            .output()
+            .unwrap();
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+        assert!(e.contains(names), "{args:?}: message names {names}: {e}");
+        assert!(!out.exists(), "{args:?}: refused before writing");
+    }
+}
