@@ -54,7 +54,7 @@ enum Command {
     /// Check the learned rules of a task folder with the person: show probe
     /// layouts that break one rule each, drop or confirm it (SPEC §13).
     Ask(ask::AskArgs),
-    /// Benchmarks: `bench thesis` reproduces the thesis runtime study.
+    /// Benchmarks: `bench thesis` reproduces the thesis runtime study; `bench tasks` measures realistic learned tasks.
     Bench(bench::BenchArgs),
 }
 

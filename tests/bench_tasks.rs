@@ -1,0 +1,249 @@
+//! `rccpack bench tasks` (issue 20): the realistic-task generator is
+//! deterministic, its demonstrations are valid scenes that keep every rule
+//! learned from them, its problems have the requested counts and fit their
+//! box; and a quick CLI run exits 0 and writes problems that `synth` reruns.
+
+use rccpack::bench::tasks::{all_tasks, scaled, TaskSeries, TasksConfig, TASK_CLASSES};
+use rccpack::eval::evaluate;
+use rccpack::relations::Contact;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::process::Command;
+use std::time::Duration;
+
+fn counts(scene: &rccpack::scene::Scene) -> BTreeMap<String, usize> {
+    let mut m = BTreeMap::new();
+    for o in scene.objects.iter().filter(|o| !o.fixed) {
+        *m.entry(o.class.clone()).or_insert(0) += 1;
+    }
+    m
+}
+
+#[test]
+fn generator_is_deterministic_valid_and_sized() {
+    let mut cfg = TasksConfig::quick(5, Duration::from_secs(1));
+    cfg.tasks = 4;
+    cfg.sizes = vec![1.0, 1.5, 2.0, 3.0];
+    cfg.example_counts = vec![5, 12];
+    let a = all_tasks(&cfg).expect("tasks");
+    let b = all_tasks(&cfg).expect("tasks");
+    assert_eq!(a, b, "same seed, same tasks");
+    assert_eq!(a.len(), 5);
+    // Another seed gives other tasks.
+    let mut other = cfg.clone();
+    other.seed = 6;
+    assert_ne!(all_tasks(&other).unwrap()[0].demos, a[0].demos);
+    // Fewer sizes (up to 3) do not change the problems that remain.
+    let mut fewer = cfg.clone();
+    fewer.sizes = vec![1.5];
+    let f = all_tasks(&fewer).unwrap();
+    assert_eq!(f[1].problems[0].scene, a[1].problems[1].scene);
+    assert_eq!(f[1].rcc, a[1].rcc);
+
+    for t in &a {
+        let label = format!("{} {}", t.series.name(), t.index);
+        assert!(
+            (3..=8).contains(&t.demos.len()),
+            "{label}: {} demos",
+            t.demos.len()
+        );
+        assert!(!t.rules.rules.is_empty(), "{label}: no rules learned");
+        let walls: Vec<_> = t.demos[0].objects.iter().filter(|o| o.fixed).collect();
+        assert_eq!(walls.len(), 4, "{label}: four walls");
+        assert!(walls.iter().all(|w| w.class == "W"));
+        // The interior: between the west and east, south and north walls.
+        let r = |id: &str| {
+            walls
+                .iter()
+                .find(|w| w.id == id)
+                .and_then(|w| w.rect())
+                .unwrap()
+        };
+        let (ix0, iy0) = (
+            r("w_west").x + r("w_west").w,
+            r("w_south").y + r("w_south").h,
+        );
+        let (ix1, iy1) = (r("w_east").x, r("w_north").y);
+        let interior = (ix1 - ix0) * (iy1 - iy0);
+        for (i, d) in t.demos.iter().enumerate() {
+            d.validate()
+                .unwrap_or_else(|e| panic!("{label} demo {i} invalid: {e}"));
+            assert!(d.is_complete(), "{label} demo {i} incomplete");
+            assert_eq!(d.space, t.demos[0].space, "{label}: one space");
+            for o in d.objects.iter().filter(|o| !o.fixed) {
+                assert!(d.on_grid(o), "{label} demo {i}: {} off grid", o.id);
+                let q = o.rect().unwrap();
+                assert!(
+                    q.x >= ix0 && q.y >= iy0 && q.x + q.w <= ix1 && q.y + q.h <= iy1,
+                    "{label} demo {i}: {} outside the box",
+                    o.id
+                );
+            }
+            // Every learned rule is a candidate: every demonstration keeps it.
+            let ev = evaluate(d, &t.rules, Contact::Point);
+            assert!(ev.hard_ok());
+            let broken: Vec<_> = ev
+                .rules
+                .iter()
+                .filter(|r| r.satisfied < r.subjects || !r.violators.is_empty())
+                .map(|r| r.name.clone())
+                .collect();
+            assert!(
+                (ev.score - 1.0).abs() < 1e-12,
+                "{label} demo {i} scores {} under its learned rules; broken: {broken:?}",
+                ev.score
+            );
+        }
+        if t.series == TaskSeries::Tasks {
+            assert!((2..=4).contains(&t.classes.len()));
+            let max_shown: BTreeMap<String, usize> =
+                t.demos.iter().fold(BTreeMap::new(), |mut m, d| {
+                    for (c, n) in counts(d) {
+                        let e = m.entry(c).or_insert(0);
+                        *e = (*e).max(n);
+                    }
+                    m
+                });
+            for (ci, c) in t.classes.iter().enumerate() {
+                assert_eq!(c.class, TASK_CLASSES[ci]);
+                assert_eq!(max_shown[&c.class], c.max_count, "{label}: {}", c.class);
+                assert!((2..=6).contains(&c.max_count));
+            }
+            assert_eq!(t.problems.len(), cfg.sizes.len());
+            for (p, &m) in t.problems.iter().zip(&cfg.sizes) {
+                let got = counts(&p.scene);
+                let mut area = 0;
+                for c in &t.classes {
+                    assert_eq!(got[&c.class], scaled(c.max_count, m), "{}", p.name);
+                    area += got[&c.class] as i64 * c.width * c.height;
+                }
+                assert!(
+                    (10..=60).contains(&p.movable),
+                    "{}: {} objects",
+                    p.name,
+                    p.movable
+                );
+                assert!(
+                    2 * area <= interior,
+                    "{}: blocks of area {area} in an interior of {interior}",
+                    p.name
+                );
+            }
+        } else {
+            for (p, n) in t.problems.iter().zip([5usize, 12]) {
+                assert!(counts(&p.scene).values().all(|&k| k == n), "{}", p.name);
+                assert_eq!(p.movable, 3 * n);
+            }
+        }
+        for p in &t.problems {
+            p.scene.validate().unwrap();
+            assert_eq!(
+                p.scene.space, t.demos[0].space,
+                "{}: the demos' space",
+                p.name
+            );
+            assert!(p
+                .scene
+                .objects
+                .iter()
+                .filter(|o| !o.fixed)
+                .all(|o| o.x.is_none()));
+        }
+    }
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("rccpack-bench-tasks-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+#[test]
+fn quick_cli_run_exits_zero_and_problems_rerun() {
+    let out = tmp("quick");
+    let problems = out.join("problems");
+    let bin = env!("CARGO_BIN_EXE_rccpack");
+    let o = Command::new(bin)
+        .args(["bench", "tasks", "--quick", "--time-limit", "0.2", "--out"])
+        .arg(&out)
+        .arg("--problems-out")
+        .arg(&problems)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "exit {:?}\nstdout:\n{stdout}\nstderr:\n{}",
+        o.status,
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(stdout.contains("tasks    1x"), "{stdout}");
+    // Not a terminal: one progress line per solved problem on stderr.
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("[5/5] example-5 (15 objects"), "{stderr}");
+    assert!(stdout.contains("example  5/class"), "{stdout}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("tasks.json")).unwrap()).unwrap();
+    // 2 tasks × 2 sizes + the example at 5 per class.
+    assert_eq!(json["rows"].as_array().unwrap().len(), 5);
+    for f in ["task00-1x.json", "task01-1.5x.rcc", "example-5.demos.json"] {
+        assert!(problems.join(f).is_file(), "{f} missing");
+    }
+    let o = Command::new(bin)
+        .current_dir(&problems)
+        .args([
+            "synth",
+            "task00-1x.json",
+            "--rules",
+            "task00-1x.rcc",
+            "--like",
+            "task00-1x.demos.json",
+            "--time-limit",
+            "0.2",
+            "-o",
+            "sol.json",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        matches!(o.status.code(), Some(0) | Some(3)),
+        "synth rerun: {:?}\n{}",
+        o.status,
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// Out-of-range flags are refused at once (exit 1, naming the flag and the
+/// value), before anything is generated or written.
+#[test]
+fn bad_flags_are_refused() {
+    let out = tmp("refuse");
+    let bin = env!("CARGO_BIN_EXE_rccpack");
+    for (args, names) in [
+        (vec!["--sizes", "0"], "invalid value '0' for '--sizes"),
+        (vec!["--sizes", "1,11"], "invalid value '11' for '--sizes"),
+        (vec!["--sizes", "nan"], "invalid value 'nan' for '--sizes"),
+        (vec!["--tasks", "1001"], "invalid value '1001' for '--tasks"),
+        (
+            vec!["--example-counts", "5,0"],
+            "invalid value '0' for '--example-counts",
+        ),
+        (vec!["--peers", "cplex"], "unknown peer `cplex`"),
+        (
+            vec!["--time-limit", "nan"],
+            "invalid value 'nan' for '--time-limit",
+        ),
+    ] {
+        let o = Command::new(bin)
+            .args(["bench", "tasks", "--out"])
+            .arg(&out)
+            .args(&args)
+            .output()
+            .unwrap();
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+        assert!(e.contains(names), "{args:?}: message names {names}: {e}");
+        assert!(!out.exists(), "{args:?}: refused before writing");
+    }
+}
