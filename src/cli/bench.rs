@@ -1,3 +1,4 @@
+use super::{out, outln, write_file};
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -159,20 +160,18 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
     }
     bar.finish_and_clear();
 
-    println!(
+    outln(format!(
         "rccpack bench thesis: seed {}, time limit {} s, {} viable sets from {} draws, {} problems",
         cfg.seed,
         a.time_limit.as_secs_f64(),
         report.sets.len(),
         report.draws,
         report.rows.len()
-    );
-    print!("{}", thesis::table_text(&report.summary));
+    ))?;
+    out(thesis::table_text(&report.summary))?;
     if !report.peer_summary.is_empty() {
-        println!(
-            "peers (ratio = peer median / rccpack median; rcc_wrs / peer_wrs = problems where that side's score is lower):"
-        );
-        print!("{}", thesis::peer_table_text(&report.peer_summary));
+        outln("peers (ratio = peer median / rccpack median; rcc_wrs / peer_wrs = problems where that side's score is lower):")?;
+        out(thesis::peer_table_text(&report.peer_summary))?;
     }
     let bad = report
         .rows
@@ -180,12 +179,15 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
         .filter(|r| r.verified == Some(false) || r.status.is_none())
         .count();
     if bad > 0 {
-        println!("{bad} problems failed (engine error or solution rejected by the checker): see thesis.json");
+        outln(format!("{bad} problems failed (engine error or solution rejected by the checker): see thesis.json"))?;
     }
 
     let json = a.out.join("thesis.json");
-    std::fs::write(&json, serde_json::to_string_pretty(&report)? + "\n")
-        .with_context(|| format!("{}: cannot write", json.display()))?;
+    write_file(
+        &json,
+        serde_json::to_string_pretty(&report)? + "\n",
+        "the report",
+    )?;
     let png = a.out.join("thesis.png");
     chart::draw(
         &png,
@@ -249,11 +251,9 @@ fn write_problems(
             p.k
         );
         let json = dir.join(format!("{name}.json"));
-        std::fs::write(&json, p.scene.to_json() + "\n")
-            .with_context(|| format!("{}: cannot write", json.display()))?;
+        write_file(&json, p.scene.to_json() + "\n", "the problem")?;
         let rcc = dir.join(format!("{name}.rcc"));
-        std::fs::write(&rcc, rccpack::rules::print_rules(&p.rules))
-            .with_context(|| format!("{}: cannot write", rcc.display()))?;
+        write_file(&rcc, rccpack::rules::print_rules(&p.rules), "the rules")?;
     }
     Ok(())
 }
