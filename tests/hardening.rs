@@ -463,6 +463,23 @@ fn a_class_the_problem_lacks_is_noted() {
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("`B`"), "{}", stderr(&o));
+    // `ask` notes it too, and asks.
+    let o = rccpack(&[
+        "ask",
+        task.to_str().unwrap(),
+        "--oracle",
+        "false",
+        "--max-questions",
+        "1",
+        "--samples",
+        "200",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("note: the problem has no objects of class B"),
+        "{}",
+        stdout(&o)
+    );
 }
 
 /// Items 7 and 13: one `ask` per folder; a hung oracle is stopped after

@@ -288,6 +288,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         resemble: true,
     };
     let n_demos = demos.len();
+    let problem_classes = problem.clone();
     let mut asker = Asker::new(problem, demos, statements, answers, opts).map_err(|e| {
         let file = match e {
             rccpack::ask::AskError::BadAnswer { .. } => &answers_path,
@@ -315,6 +316,11 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             "resuming: {resumed} answers in {}",
             answers_path.display()
         ))?;
+    }
+    // SPEC §15: learned rules about a class today's problem lacks.
+    let missing = rccpack::rules::missing_classes(asker.held(), &problem_classes);
+    if let Some(note) = rccpack::rules::missing_classes_note(&missing) {
+        outln(note)?;
     }
     let probes = dir.join("probes");
     let mut asked_now = 0usize;
