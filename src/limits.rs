@@ -38,7 +38,7 @@ pub const MAX_SAMPLES: usize = 1_000_000;
 /// Most statements one learning run weighs (generated from the templates
 /// or given with `--statements`). Each is evaluated on every object of
 /// every random scene: past this, learning would take minutes and
-/// gigabytes (200 classes generate over a million) and is refused.
+/// gigabytes (200 classes generate about a million) and is refused.
 pub const MAX_STATEMENTS: usize = 50_000;
 
 /// Largest `.rcc` rule text, in bytes (16 MiB): about 300,000 rules of

@@ -97,6 +97,47 @@ fn area_decides_at_once_and_nothing_unproven_is_blamed() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }
 
+/// Item 2: when a limit strikes before the conflict is explained (here the
+/// node limit stops the "do the objects fit at all?" check of 36 blocks
+/// filling their space exactly), no rule is blamed: the rule might be
+/// harmless for all that was proven.
+#[test]
+fn a_limit_during_the_explanation_blames_nothing() {
+    let d = dir("explain");
+    let p = write(&d, "p36.json", &blocks(36, 60, 10, 10));
+    let x = write(&d, "x.rcc", "rule x hard: DR_N(R, R)\n");
+    let report = d.join("report.json");
+    let o = rccpack(&[
+        "synth",
+        &p,
+        "--rules",
+        &x,
+        "--node-limit",
+        "5",
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("infeasible: a limit struck before the conflict was explained"),
+        "{e}"
+    );
+    assert!(!e.contains("`x`"), "{e}");
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(r["conflict"]["limit_struck"], true, "{r}");
+    assert_eq!(r["conflict"]["hard_rules"], serde_json::json!([]), "{r}");
+    // Without the limit the rule is proven to blame.
+    let o = rccpack(&["synth", &p, "--rules", &x]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("the hard rules `x` cannot all hold together") && !e.contains("limit"),
+        "{e}"
+    );
+}
+
 /// Item 4: a failed write to standard output is an error naming it, not a
 /// panic (exit 101).
 #[cfg(target_os = "linux")]

@@ -189,16 +189,17 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
         "the report",
     )?;
     let png = a.out.join("thesis.png");
-    chart::draw(
-        &png,
-        &format!(
-            "rccpack bench thesis: median runtime, n = 2..6 objects (seed {}, {} sets)",
-            cfg.seed,
-            report.sets.len()
-        ),
-        &chart::lines(&report.summary, &[Series::Pilot]),
-    )
-    .map_err(anyhow::Error::msg)?;
+    draw_atomic(&png, |tmp| {
+        chart::draw(
+            tmp,
+            &format!(
+                "rccpack bench thesis: median runtime, n = 2..6 objects (seed {}, {} sets)",
+                cfg.seed,
+                report.sets.len()
+            ),
+            &chart::lines(&report.summary, &[Series::Pilot]),
+        )
+    })?;
     let mut written = vec![json, png];
     if report.summary.iter().any(|s| s.series == Series::Scale) {
         let png = a.out.join("thesis-scale.png");
@@ -209,15 +210,16 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
             .filter(|s| ks.contains(&s.k))
             .cloned()
             .collect();
-        chart::draw(
-            &png,
-            &format!(
-                "rccpack bench thesis: scale series, k = {:?} (seed {})",
-                ks, cfg.seed
-            ),
-            &chart::lines(&cells, &[Series::Pilot, Series::Scale]),
-        )
-        .map_err(anyhow::Error::msg)?;
+        draw_atomic(&png, |tmp| {
+            chart::draw(
+                tmp,
+                &format!(
+                    "rccpack bench thesis: scale series, k = {:?} (seed {})",
+                    ks, cfg.seed
+                ),
+                &chart::lines(&cells, &[Series::Pilot, Series::Scale]),
+            )
+        })?;
         written.push(png);
     }
     for p in written {
@@ -228,6 +230,26 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// Draw a chart whole or not at all (as `fsutil::atomic_write`): to a
+/// temporary `.png` beside `png`, then renamed over it.
+fn draw_atomic(
+    png: &std::path::Path,
+    draw: impl FnOnce(&std::path::Path) -> Result<(), String>,
+) -> Result<()> {
+    let name = png
+        .file_stem()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = png.with_file_name(format!(".{name}.tmp-{}.png", std::process::id()));
+    let done = draw(&tmp).map_err(anyhow::Error::msg).and_then(|()| {
+        std::fs::rename(&tmp, png).with_context(|| format!("{}: cannot write", png.display()))
+    });
+    if done.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    done
 }
 
 /// Every problem of the study as a scene and a rule file, named

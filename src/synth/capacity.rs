@@ -177,8 +177,8 @@ mod tests {
         assert!(!cannot_fit(&problem((100, 100), 10, &[(10, 10); 100], &[])));
         assert!(cannot_fit(&problem((100, 100), 10, &[(10, 10); 101], &[])));
         assert!(cannot_fit(&problem((120, 120), 10, &[(10, 10); 145], &[])));
-        // Walls take area (overlapping walls counted once).
-        let walls = [[0, 0, 100, 10], [0, 0, 10, 100], [0, 0, 10, 10]];
+        // Walls take area.
+        let walls = [[0, 0, 100, 10], [0, 10, 10, 90]];
         assert!(!cannot_fit(&problem(
             (100, 100),
             10,
@@ -191,6 +191,13 @@ mod tests {
             &[(10, 10); 82],
             &walls
         )));
+    }
+
+    #[test]
+    fn union_area_counts_overlaps_once() {
+        let boxes = [[0, 0, 100, 10], [0, 0, 10, 100], [0, 0, 10, 10]];
+        assert_eq!(union_area(&boxes), 1000 + 900);
+        assert_eq!(union_area(&[]), 0);
     }
 
     #[test]
