@@ -115,7 +115,7 @@ impl RulesError {
     }
 
     /// Render as `file:line:col: message`, the source line and a caret;
-    /// past [`MAX_SHOWN_DIAGNOSTICS`] only their number.
+    /// past the first 20 only their number.
     pub fn render(&self, file: &str, src: &str, color: bool) -> String {
         // ariadne ends lines at `\n` only: lone `\r` line ends become `\n`
         // (the same length, so every span still holds) so that the header
