@@ -631,6 +631,15 @@ fn explain(
             ..Conflict::default()
         });
     }
+    // Building an engine does not look at the clock: past the deadline,
+    // build none (the time limit would otherwise be overshot by up to two
+    // engine builds) and blame nothing.
+    if limits.expired() {
+        return Ok(Conflict {
+            limit_struck: true,
+            ..Conflict::default()
+        });
+    }
     let m0 = Model::build(problem, rules, base);
     let mut e0 = Engine::new(&m0, opts.seed, false, None)?;
     let fit = e0.satisfy(limits);
@@ -653,6 +662,24 @@ fn explain(
             })
         }
         Sat::Solution(_) => {}
+    }
+    // The objects fit, so the hard rules together conflict (the main solve
+    // proved it); past the deadline they are named together, unshrunk.
+    let hard_names = || -> Vec<String> {
+        let mut seen = Vec::new();
+        for r in rules.rules.iter().filter(|r| r.strength.is_hard()) {
+            if !seen.contains(&r.name) {
+                seen.push(r.name.clone());
+            }
+        }
+        seen
+    };
+    if limits.expired() {
+        return Ok(Conflict {
+            hard_rules: hard_names(),
+            limit_struck: true,
+            ..Conflict::default()
+        });
     }
     let mg = Model::build(
         problem,
