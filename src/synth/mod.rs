@@ -665,18 +665,14 @@ fn explain(
     }
     // The objects fit, so the hard rules together conflict (the main solve
     // proved it); past the deadline they are named together, unshrunk.
-    let hard_names = || -> Vec<String> {
-        let mut seen = Vec::new();
-        for r in rules.rules.iter().filter(|r| r.strength.is_hard()) {
-            if !seen.contains(&r.name) {
-                seen.push(r.name.clone());
-            }
-        }
-        seen
-    };
     if limits.expired() {
         return Ok(Conflict {
-            hard_rules: hard_names(),
+            hard_rules: rules
+                .rules
+                .iter()
+                .filter(|r| r.strength.is_hard())
+                .map(|r| r.name.clone())
+                .collect(),
             limit_struck: true,
             ..Conflict::default()
         });
