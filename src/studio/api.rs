@@ -428,17 +428,33 @@ fn parse_demo(st: &AppState, body: &[u8]) -> Result<Scene, ApiError> {
     Ok(scene)
 }
 
+/// Run `f` (parsing, validation: work that grows with the input) on a
+/// blocking thread, so one large request never stalls the other routes.
+async fn off_async<T: Send + 'static>(
+    f: impl FnOnce() -> Result<T, ApiError> + Send + 'static,
+) -> Result<T, ApiError> {
+    tokio::task::spawn_blocking(f)
+        .await
+        .map_err(|_| internal("reading the files"))?
+}
+
 pub(crate) async fn list_demos(State(st): St) -> ApiResult {
-    let (demos, version) = read_demos_versioned(&st)?;
-    ok(json!({
-        "count": demos.len(),
-        "version": version,
-        "demos": demos.iter().map(scene_value).collect::<Vec<_>>(),
-    }))
+    let st2 = st.clone();
+    let v = off_async(move || {
+        let (demos, version) = read_demos_versioned(&st2)?;
+        Ok(json!({
+            "count": demos.len(),
+            "version": version,
+            "demos": demos.iter().map(scene_value).collect::<Vec<_>>(),
+        }))
+    })
+    .await?;
+    ok(v)
 }
 
 pub(crate) async fn save_demo(State(st): St, body: Bytes) -> ApiResult {
-    let scene = parse_demo(&st, &body)?;
+    let st2 = st.clone();
+    let scene = off_async(move || parse_demo(&st2, &body)).await?;
     let _guard = st.write_lock.lock().await;
     let _folder = folder_lock(&st)?;
     let mut demos = read_demos(&st)?;
@@ -464,9 +480,14 @@ fn demo_index(raw: &str, len: usize) -> Result<usize, ApiError> {
 }
 
 pub(crate) async fn get_demo(State(st): St, Path(index): Path<String>) -> ApiResult {
-    let demos = read_demos(&st)?;
-    let i = demo_index(&index, demos.len())?;
-    ok(scene_value(&demos[i]))
+    let st2 = st.clone();
+    let v = off_async(move || {
+        let demos = read_demos(&st2)?;
+        let i = demo_index(&index, demos.len())?;
+        Ok(scene_value(&demos[i]))
+    })
+    .await?;
+    ok(v)
 }
 
 #[derive(Deserialize)]
