@@ -856,6 +856,9 @@ fn studio_inner(u: &mut Unstructured, root: &std::path::Path) -> AResult<()> {
         if let Some(h) = &req.host {
             b = b.header(axum::http::header::HOST, h.as_str());
         }
+        // The page's own requests are JSON (issue 21: any other content type
+        // is refused before a handler runs, which would hide the handlers).
+        b = b.header(axum::http::header::CONTENT_TYPE, "application/json");
         // A URI or header the HTTP types refuse never reaches the server.
         let Ok(http_req) = b.body(axum::body::Body::from(req.body.clone())) else {
             continue;
@@ -887,7 +890,7 @@ fn studio_inner(u: &mut Unstructured, root: &std::path::Path) -> AResult<()> {
             matches!(
                 name.as_str(),
                 "problem.json" | "demos.json" | "statements.rcc" | "learned.rcc"
-            ),
+            ) || name == crate::fsutil::LOCK_FILE,
             "unexpected file {name} in the task folder"
         );
     }

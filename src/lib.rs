@@ -56,6 +56,7 @@
 //! - [`render`]: SVG and PNG pictures.
 //! - [`synth`]: synthesis of layouts.
 //! - [`limits`]: the documented limits on user-supplied numbers.
+//! - [`fsutil`]: the one atomic file writer every writer uses.
 //!
 //! The command-line tool `rccpack` wraps these (`check`, `score`, `render`,
 //! …); see the README.
@@ -64,6 +65,7 @@
 pub mod ask;
 pub mod bench;
 pub mod eval;
+pub mod fsutil;
 #[cfg(feature = "fuzzing")]
 #[doc(hidden)]
 pub mod fuzzing;

@@ -7,6 +7,9 @@
 //! | sizes `width`, `height`, `grid` | `1 ≤ v ≤` [`MAX_COORD`] | [`crate::scene::Scene::validate`] |
 //! | time limits (`--time-limit`, studio `time_limit`) | finite, `0 ≤ t ≤` [`MAX_TIME_LIMIT_SECS`] | [`time_limit`] |
 //! | null-model samples (`--samples`, studio `samples`) | `1 ≤ n ≤` [`MAX_SAMPLES`] | [`check_samples`] |
+//! | statements weighed by one learning run | at most [`MAX_STATEMENTS`] | `infer::learn` |
+//! | `.rcc` rule text | at most [`MAX_RULES_BYTES`] (16 MiB) | `rules::parse_rules` |
+//! | values echoed in error messages | cut past [`MAX_ECHO`] characters | [`cut`] |
 //! | synthesis coordinates | `|v| ≤ 2^28` (the engine works in `i32`) | `synth::synthesize` ([`crate::synth::MAX_COORD`]) |
 //! | synthesis grid positions per object and axis | `≤ 2^18` | `synth::synthesize` ([`crate::synth::MAX_POSITIONS`]) |
 //!
@@ -31,6 +34,34 @@ pub const MAX_OBJECTS: usize = 10_000;
 
 /// Most random scenes the null model may draw (`--samples`).
 pub const MAX_SAMPLES: usize = 1_000_000;
+
+/// Most statements one learning run weighs (generated from the templates
+/// or given with `--statements`). Each is evaluated on every object of
+/// every random scene: past this, learning would take minutes and
+/// gigabytes (200 classes generate about a million) and is refused.
+pub const MAX_STATEMENTS: usize = 50_000;
+
+/// Largest `.rcc` rule text, in bytes (16 MiB): about 300,000 rules of
+/// the learner's length. A larger file is refused before parsing (a 50 MB
+/// file took 2.8 GB of memory to check).
+pub const MAX_RULES_BYTES: usize = 16 << 20;
+
+/// Longest value echoed whole in an error message, in characters; a longer
+/// one is cut to its first [`CUT_TO`] characters and `…`.
+pub const MAX_ECHO: usize = 80;
+/// What is kept of a value longer than [`MAX_ECHO`].
+pub const CUT_TO: usize = 60;
+
+/// A user-supplied value as echoed in an error message: whole up to
+/// [`MAX_ECHO`] characters, else its first [`CUT_TO`] and `…` (a 10 MB id
+/// must not become a 10 MB message).
+pub fn cut(value: &str) -> String {
+    if value.chars().count() > MAX_ECHO {
+        value.chars().take(CUT_TO).collect::<String>() + "…"
+    } else {
+        value.to_string()
+    }
+}
 
 /// A number outside its documented limit.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -66,7 +97,7 @@ pub fn parse_time_limit(text: &str) -> Result<Duration, LimitError> {
     match text.trim().parse::<f64>() {
         Ok(v) => time_limit(v),
         Err(_) => Err(LimitError::TimeLimit {
-            value: format!("`{text}`"),
+            value: format!("`{}`", cut(text)),
         }),
     }
 }

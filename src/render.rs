@@ -113,22 +113,30 @@ fn class_colour(class: &str) -> Option<&'static str> {
 }
 
 /// Colours per class: the R/G/B names first, others from the palette by
-/// order of first appearance among movable objects.
-fn colours(scene: &Scene) -> HashMap<String, &'static str> {
-    let mut out = HashMap::new();
+/// order of first appearance among movable objects. A named colour goes to
+/// the first class that names it only, so `R`, `r` and `red` (three
+/// classes) are drawn in three colours. The studio uses the same colours.
+pub fn class_colours(scene: &Scene) -> HashMap<String, &'static str> {
+    let mut out: HashMap<String, &'static str> = HashMap::new();
     let mut next = 0;
     for o in scene.objects.iter().filter(|o| !o.fixed) {
         if out.contains_key(&o.class) {
             continue;
         }
-        let c = class_colour(&o.class).unwrap_or_else(|| {
-            let c = PALETTE[next % PALETTE.len()];
-            next += 1;
-            c
-        });
+        let c = class_colour(&o.class)
+            .filter(|named| !out.values().any(|c| c == named))
+            .unwrap_or_else(|| {
+                let c = PALETTE[next % PALETTE.len()];
+                next += 1;
+                c
+            });
         out.insert(o.class.clone(), c);
     }
     out
+}
+
+fn colours(scene: &Scene) -> HashMap<String, &'static str> {
+    class_colours(scene)
 }
 
 fn rgb(hex: &str) -> (f64, f64, f64) {
@@ -806,9 +814,9 @@ pub fn render_to_path(
             if !(opts.scale.is_finite() && opts.scale > 0.0) {
                 return Err(RenderError::Scale(opts.scale));
             }
-            std::fs::write(path, render_svg(scene, rules, opts))?;
+            crate::fsutil::atomic_write(path, render_svg(scene, rules, opts))?;
         }
-        Some("png") => std::fs::write(path, render_png(scene, rules, opts)?)?,
+        Some("png") => crate::fsutil::atomic_write(path, render_png(scene, rules, opts)?)?,
         Some(other) => {
             return Err(RenderError::UnknownExtension {
                 found: format!("`.{other}`"),

@@ -6,6 +6,7 @@
 //! (`objects[3].x`) or the objects involved. This module does no file I/O:
 //! callers read the text and pass it in.
 
+use crate::limits::cut;
 use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
 use std::fmt;
@@ -54,14 +55,16 @@ impl Rect {
 #[serde(deny_unknown_fields)]
 pub struct Space {
     /// Min x; defaults to 0.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "int")]
     pub x: i64,
     /// Min y; defaults to 0.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "int")]
     pub y: i64,
     /// Width, ≥ 1.
+    #[serde(deserialize_with = "int")]
     pub width: i64,
     /// Height, ≥ 1.
+    #[serde(deserialize_with = "int")]
     pub height: i64,
 }
 
@@ -195,7 +198,7 @@ impl SceneError {
 #[serde(deny_unknown_fields)]
 struct SceneJson {
     space: Space,
-    #[serde(default = "default_grid")]
+    #[serde(default = "default_grid", deserialize_with = "int")]
     grid: i64,
     objects: Vec<ObjectJson>,
 }
@@ -210,14 +213,78 @@ struct ObjectJson {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     id: Option<String>,
     class: String,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "opt_int"
+    )]
     x: Option<i64>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "opt_int"
+    )]
     y: Option<i64>,
+    #[serde(deserialize_with = "int")]
     width: i64,
+    #[serde(deserialize_with = "int")]
     height: i64,
     #[serde(default, skip_serializing_if = "is_false")]
     fixed: bool,
+}
+
+/// A JSON integer as `i64`: `-0` (which JSON readers hand over as a
+/// floating-point zero) is 0, and a whole number past 64 bits (`2^64`,
+/// handed over as floating point too) is out of range, not "floating
+/// point"; a fraction stays an invalid type.
+struct IntVisitor;
+
+impl serde::de::Visitor<'_> for IntVisitor {
+    type Value = i64;
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("i64")
+    }
+    fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<i64, E> {
+        Ok(v)
+    }
+    fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<i64, E> {
+        i64::try_from(v).map_err(|_| out_of_range(&v.to_string()))
+    }
+    fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<i64, E> {
+        if v == 0.0 && v.is_sign_negative() {
+            return Ok(0);
+        }
+        if v.is_finite() && v.fract() == 0.0 && v.abs() >= 9.0e18 {
+            return Err(out_of_range(&format!("{v:e}")));
+        }
+        Err(E::invalid_type(serde::de::Unexpected::Float(v), &self))
+    }
+}
+
+fn out_of_range<E: serde::de::Error>(v: &str) -> E {
+    E::custom(format!(
+        "integer {} is out of range; expected at most 10^15 in absolute value",
+        crate::limits::cut(v)
+    ))
+}
+
+fn int<'de, D: serde::Deserializer<'de>>(d: D) -> Result<i64, D::Error> {
+    d.deserialize_i64(IntVisitor)
+}
+
+fn opt_int<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<i64>, D::Error> {
+    struct Int(i64);
+    impl<'de> Deserialize<'de> for Int {
+        fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+            int(d).map(Int)
+        }
+    }
+    Ok(Option::<Int>::deserialize(d)?.map(|i| i.0))
+}
+
+/// `text` without a leading UTF-8 byte-order mark (accepted everywhere).
+pub fn strip_bom(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
 fn is_false(b: &bool) -> bool {
@@ -300,6 +367,7 @@ fn is_identifier(s: &str) -> bool {
 impl Scene {
     /// Parse and validate one scene from JSON text.
     pub fn from_json(text: &str) -> Result<Scene, SceneError> {
+        let text = strip_bom(text);
         if text.trim_start().starts_with('[') {
             return Err(SceneError::Json {
                 path: ".".into(),
@@ -309,7 +377,11 @@ impl Scene {
             });
         }
         let de = &mut serde_json::Deserializer::from_str(text);
-        let raw: SceneJson = serde_path_to_error::deserialize(de).map_err(json_error)?;
+        let raw: SceneJson = serde_path_to_error::deserialize(&mut *de).map_err(json_error)?;
+        de.end().map_err(|e| SceneError::Json {
+            path: ".".into(),
+            message: e.to_string(),
+        })?;
         let scene = raw.into_scene();
         scene.validate()?;
         Ok(scene)
@@ -403,7 +475,7 @@ impl Scene {
                     format!("{path}.class"),
                     format!(
                         "class `{}` is not an identifier; expected letters, digits and `_`, not starting with a digit",
-                        o.class
+                        cut(&o.class)
                     ),
                 ));
             }
@@ -417,7 +489,10 @@ impl Scene {
                 let first = self.objects.iter().position(|p| p.id == o.id).unwrap_or(0);
                 return Err(SceneError::invalid(
                     format!("{path}.id"),
-                    format!("duplicate object id `{}` (also objects[{first}])", o.id),
+                    format!(
+                        "duplicate object id `{}` (also objects[{first}])",
+                        cut(&o.id)
+                    ),
                 ));
             }
             if o.width < 1 || o.height < 1 {
@@ -425,7 +500,9 @@ impl Scene {
                     path,
                     format!(
                         "object `{}` has size {}x{}; width and height must be at least 1",
-                        o.id, o.width, o.height
+                        cut(&o.id),
+                        o.width,
+                        o.height
                     ),
                 ));
             }
@@ -435,7 +512,7 @@ impl Scene {
                     format!("{path}.{missing}"),
                     format!(
                         "object `{}` has only one coordinate; give both x and y or neither",
-                        o.id
+                        cut(&o.id)
                     ),
                 ));
             }
@@ -444,7 +521,7 @@ impl Scene {
                     path,
                     format!(
                         "fixed object `{}` has no position; fixed objects must be placed",
-                        o.id
+                        cut(&o.id)
                     ),
                 ));
             }
@@ -454,7 +531,7 @@ impl Scene {
                         path,
                         format!(
                             "object `{}` at [{}, {}]x[{}, {}] lies outside the space [{}, {}]x[{}, {}]",
-                            o.id,
+                            cut(&o.id),
                             r.x,
                             r.x2(),
                             r.y,
@@ -488,7 +565,8 @@ impl Scene {
                         format!("objects[{j}]"),
                         format!(
                             "objects `{}` (objects[{i}]) and `{}` (objects[{j}]) overlap",
-                            self.objects[i].id, self.objects[j].id
+                            cut(&self.objects[i].id),
+                            cut(&self.objects[j].id)
                         ),
                     ));
                 }
@@ -540,34 +618,28 @@ impl fmt::Display for Scene {
 /// Error paths are prefixed with the scene index: `[2].objects[3].x`.
 /// A single scene object (not an array) is accepted as a one-element list.
 pub fn scenes_from_json(text: &str) -> Result<Vec<Scene>, SceneError> {
-    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| SceneError::Json {
+    let text = strip_bom(text);
+    if !text.trim_start().starts_with('[') {
+        return Ok(vec![Scene::from_json(text)?]);
+    }
+    // Straight from the text (not through a JSON value, which would keep
+    // only the last of two equal keys): a key given twice is refused in a
+    // demonstrations array as in a single scene.
+    let de = &mut serde_json::Deserializer::from_str(text);
+    let raws: Vec<SceneJson> = serde_path_to_error::deserialize(&mut *de).map_err(json_error)?;
+    de.end().map_err(|e| SceneError::Json {
         path: ".".into(),
         message: e.to_string(),
     })?;
-    match value {
-        serde_json::Value::Array(items) => {
-            let mut out = Vec::with_capacity(items.len());
-            // Re-serialising each element keeps the field path precise; line
-            // numbers are then relative to the element, so report paths only.
-            for (i, item) in items.into_iter().enumerate() {
-                let raw: SceneJson = serde_path_to_error::deserialize(item).map_err(|e| {
-                    let path = e.path().to_string();
-                    SceneError::Json {
-                        path,
-                        message: e.into_inner().to_string(),
-                    }
-                    .prefixed(&format!("[{i}]"))
-                })?;
-                let scene = raw.into_scene();
-                scene
-                    .validate()
-                    .map_err(|e| e.prefixed(&format!("[{i}]")))?;
-                out.push(scene);
-            }
-            Ok(out)
-        }
-        _ => Ok(vec![Scene::from_json(text)?]),
+    let mut out = Vec::with_capacity(raws.len());
+    for (i, raw) in raws.into_iter().enumerate() {
+        let scene = raw.into_scene();
+        scene
+            .validate()
+            .map_err(|e| e.prefixed(&format!("[{i}]")))?;
+        out.push(scene);
     }
+    Ok(out)
 }
 
 /// Serialise scenes as a pretty JSON array.

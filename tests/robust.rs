@@ -478,3 +478,59 @@ rule r2 weight 2: !AL_E(B, no B) & (DR_W(B, W) | DR_W(B, W) | DR_W(B, A))
     let c = r.conflict.expect("an explanation");
     assert_eq!(c.hard_rules, vec!["r1".to_string()]);
 }
+
+/// Issue 21's limits, at and just past their bounds: the rule text size,
+/// the statements one learning run weighs, values echoed in messages,
+/// `--oracle-timeout`.
+#[test]
+fn issue_21_limits_at_and_past_their_bounds() {
+    use rccpack::limits::{cut, MAX_ECHO, MAX_RULES_BYTES, MAX_STATEMENTS};
+    // Rule text: at the limit parsed, one byte past refused before parsing.
+    let mut text = String::from("rule r: DR_N(R, R)\n");
+    text.push_str(&"#".repeat(MAX_RULES_BYTES - text.len() - 1));
+    text.push('\n');
+    assert_eq!(text.len(), MAX_RULES_BYTES);
+    assert!(parse_rules(&text).is_ok());
+    text.push(' ');
+    let e = parse_rules(&text).unwrap_err().to_string();
+    assert!(e.contains("expected at most 16777216 bytes"), "{e}");
+    // Statements: exactly MAX_STATEMENTS given statements are weighed,
+    // one more is refused.
+    let demo = Scene::from_json(
+        r#"{"space": {"width": 100, "height": 100}, "objects": [
+            {"class": "R", "x": 0, "y": 0, "width": 10, "height": 10},
+            {"class": "G", "x": 50, "y": 50, "width": 10, "height": 10}]}"#,
+    )
+    .unwrap();
+    let statements = |n: usize| {
+        let text: String = (0..n)
+            .map(|i| format!("rule s{i}: DR_N(R, G) | DR_E(R, G)\n"))
+            .collect();
+        parse_rules(&text).unwrap()
+    };
+    let params = rccpack::infer::LearnParams {
+        samples: 1,
+        ..rccpack::infer::LearnParams::default()
+    };
+    let demos = [demo];
+    let at = statements(MAX_STATEMENTS);
+    assert!(rccpack::infer::learn(&demos, Some(&at), &params).is_ok());
+    let past = statements(MAX_STATEMENTS + 1);
+    let e = rccpack::infer::learn(&demos, Some(&past), &params)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("50001 statements") && e.contains("at most 50000"),
+        "{e}"
+    );
+    // Echoed values: whole at 80 characters, cut past it.
+    let v = "x".repeat(MAX_ECHO);
+    assert_eq!(cut(&v), v);
+    let past = cut(&"x".repeat(MAX_ECHO + 1));
+    assert_eq!(past.chars().count(), 61);
+    assert!(past.ends_with('…'));
+    // --oracle-timeout takes the time-limit range.
+    let o = rccpack(&["ask", "examples/box-packing", "--oracle-timeout", "1000001"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("expected a number of seconds from 0 to 1000000"));
+}

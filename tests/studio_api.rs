@@ -297,8 +297,10 @@ async fn oversize_body_is_refused() {
     let big = format!("{{\"pad\": \"{}\"}}", "x".repeat(2 << 20));
     let (s, _) = call(&app, Method::POST, "/api/demos", big.clone()).await;
     assert_eq!(s, StatusCode::PAYLOAD_TOO_LARGE);
-    let (s, _) = call(&app, Method::PUT, "/api/learned", big).await;
+    let (s, v) = call(&app, Method::PUT, "/api/learned", big).await;
     assert_eq!(s, StatusCode::PAYLOAD_TOO_LARGE);
+    // The documented JSON error form, not plain text.
+    assert!(v["error"].as_str().unwrap().contains("too large"), "{v}");
     assert_eq!(demos_on_disk(&dir), 0);
 }
 
@@ -920,4 +922,273 @@ async fn ask_keeps_a_different_learned_rcc_as_backup() {
         std::fs::read_to_string(dir.join("learned.rcc")).unwrap(),
         "rule mine: DR_N(B, R)\n"
     );
+}
+
+/// A request with the given headers (`None` content type: none sent).
+async fn call_with(
+    app: &axum::Router,
+    method: Method,
+    uri: &str,
+    headers: &[(&str, &str)],
+    body: impl Into<Body>,
+) -> (StatusCode, Value) {
+    let mut req = Request::builder().method(method).uri(uri);
+    for (k, v) in headers {
+        req = req.header(*k, *v);
+    }
+    let res = app
+        .clone()
+        .oneshot(req.body(body.into()).unwrap())
+        .await
+        .unwrap();
+    let status = res.status();
+    let bytes = res.into_body().collect().await.unwrap().to_bytes();
+    let v = serde_json::from_slice(&bytes)
+        .unwrap_or(Value::String(String::from_utf8_lossy(&bytes).into()));
+    (status, v)
+}
+
+/// Issue 21, item 1: a page elsewhere cannot change a file or start work
+/// (SPEC §15, trust of the studio).
+#[tokio::test]
+async fn foreign_origins_and_simple_requests_are_refused() {
+    let dir = task_dir("origin", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let before = std::fs::read(dir.join("demos.json")).unwrap();
+    let scene = demo(&[("R", 20, 20)]).to_string();
+    let host = ("host", "127.0.0.1:7777");
+    let json_ct = ("content-type", "application/json");
+    let refused: Vec<Vec<(&str, &str)>> = vec![
+        // A "simple" cross-site request: no preflight in a browser.
+        vec![
+            host,
+            ("content-type", "text/plain"),
+            ("origin", "http://evil.example"),
+        ],
+        vec![host, json_ct, ("origin", "http://evil.example")],
+        vec![host, json_ct, ("origin", "null")],
+        vec![host, json_ct, ("origin", "http://127.0.0.1:8888")],
+        vec![host, json_ct, ("sec-fetch-site", "cross-site")],
+        vec![host, json_ct, ("sec-fetch-site", "same-site")],
+        // A form post, and no content type at all, even without an Origin.
+        vec![host, ("content-type", "application/x-www-form-urlencoded")],
+        vec![host, ("content-type", "multipart/form-data; boundary=x")],
+        vec![host, ("content-type", "text/plain")],
+        vec![host],
+    ];
+    for headers in &refused {
+        for (method, uri) in [
+            (Method::POST, "/api/demos"),
+            (Method::POST, "/api/learn"),
+            (Method::POST, "/api/synth"),
+            (Method::POST, "/api/ask/next"),
+            (Method::POST, "/api/ask/answer"),
+            (Method::PUT, "/api/learned"),
+            (Method::DELETE, "/api/demos/0"),
+            (Method::POST, "/api/synth/1/cancel"),
+        ] {
+            let (s, v) = call_with(&app, method.clone(), uri, headers, scene.clone()).await;
+            assert_eq!(s, StatusCode::FORBIDDEN, "{method} {uri} {headers:?}: {v}");
+            assert_eq!(v["kind"], "foreign_request", "{v}");
+            assert!(v["error"].as_str().unwrap().contains("refused"), "{v}");
+        }
+    }
+    assert_eq!(std::fs::read(dir.join("demos.json")).unwrap(), before);
+    assert!(!dir.join("learned.rcc").exists());
+    // The page itself (same origin, JSON) and tools without an Origin pass.
+    let (s, v) = call_with(
+        &app,
+        Method::POST,
+        "/api/demos",
+        &[
+            host,
+            json_ct,
+            ("origin", "http://127.0.0.1:7777"),
+            ("sec-fetch-site", "same-origin"),
+        ],
+        scene.clone(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::CREATED, "{v}");
+    let (s, v) = call_with(
+        &app,
+        Method::POST,
+        "/api/demos",
+        &[host, ("content-type", "application/json; charset=utf-8")],
+        scene,
+    )
+    .await;
+    assert_eq!(s, StatusCode::CREATED, "{v}");
+    // Reading stays open to a GET without any of these headers.
+    let (s, _) = call_with(&app, Method::GET, "/api/demos", &[host], Body::empty()).await;
+    assert_eq!(s, StatusCode::OK);
+}
+
+/// Issue 21, item 6: with a question open, a demonstration added to
+/// demos.json and a rule added to learned.rcc by hand are never lost when
+/// the question is answered.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn answering_never_overwrites_hand_edits() {
+    let dir = task_dir("hand-edits", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let q = next_question(&app).await["question"].clone();
+    // Hand edits while the question is open.
+    let mut demos: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("demos.json")).unwrap()).unwrap();
+    demos.as_array_mut().unwrap().push(demo(&[("R", 20, 20)]));
+    let demos_text = serde_json::to_string_pretty(&demos).unwrap();
+    std::fs::write(dir.join("demos.json"), &demos_text).unwrap();
+    let mut rcc = std::fs::read_to_string(dir.join("learned.rcc")).unwrap();
+    rcc.push_str("\nrule by_hand: DR_N(B, R)\n");
+    std::fs::write(dir.join("learned.rcc"), &rcc).unwrap();
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/ask/answer",
+        json!({"rule": q["rule"], "accepted": true}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::CONFLICT, "{v}");
+    assert_eq!(v["kind"], "stale_files", "{v}");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("demos.json")).unwrap(),
+        demos_text
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("learned.rcc")).unwrap(),
+        rcc
+    );
+    assert!(!dir.join("answers.json").exists());
+    // The next question starts from the files as they are now.
+    let v = next_question(&app).await;
+    assert!(v["question"].is_object() || v["question"].is_null(), "{v}");
+}
+
+/// Issue 21, item 7 (studio side): while `rccpack ask` holds the task
+/// folder's lock, the studio writes nothing and says why.
+#[tokio::test]
+async fn studio_writes_wait_for_the_folder_lock() {
+    let dir = task_dir("lock", false);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let held = rccpack::fsutil::DirLock::try_lock(&dir).unwrap().unwrap();
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/demos",
+        demo(&[("R", 20, 20)]).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::CONFLICT, "{v}");
+    assert_eq!(v["kind"], "folder_locked");
+    assert!(v["error"].as_str().unwrap().contains("rccpack ask"), "{v}");
+    assert_eq!(demos_on_disk(&dir), 0);
+    drop(held);
+    let (s, _) = call(
+        &app,
+        Method::POST,
+        "/api/demos",
+        demo(&[("R", 20, 20)]).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::CREATED);
+}
+
+/// Issue 21, item 8: many errors in one rule text are reported in linear
+/// time (timed as a ratio against a text ten times smaller), at most 20 of
+/// them and the count of the rest.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn many_rule_errors_are_reported_in_linear_time() {
+    let dir = task_dir("errors", false);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let texts = |n: usize| -> Vec<String> {
+        vec![
+            "rule same: DR_N(B, R)\n".repeat(n),
+            (0..n).map(|i| format!("rule r{i}: XX_N(B, R)\n")).collect(),
+            (0..n)
+                .map(|i| format!("rule r{i}: DR_N(B, @nowhere)\n"))
+                .collect(),
+        ]
+    };
+    let time = |text: String| {
+        let app = app.clone();
+        async move {
+            let start = std::time::Instant::now();
+            let (s, v) = call(
+                &app,
+                Method::PUT,
+                "/api/learned",
+                json!({"text": text, "base_version": "absent"}).to_string(),
+            )
+            .await;
+            assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
+            (start.elapsed().as_secs_f64(), v)
+        }
+    };
+    for (small, big) in texts(800).into_iter().zip(texts(8000)) {
+        // Warm up, then the best of two runs each.
+        let _ = time(small.clone()).await;
+        let (a1, _) = time(small.clone()).await;
+        let (a2, _) = time(small).await;
+        let (b1, v) = time(big.clone()).await;
+        let (b2, _) = time(big).await;
+        let (a, b) = (a1.min(a2), b1.min(b2));
+        eprintln!("TIMING small {a:.4} big {b:.4}");
+        let e = v["error"].as_str().unwrap();
+        assert!(e.lines().count() < 200, "{} lines", e.lines().count());
+        assert!(e.contains("more error"), "{e}");
+        // Ten times the input: at most ~10× the time (quadratic would be
+        // 100×); generous for a loaded machine.
+        assert!(b < 30.0 * a.max(0.002), "small {a:.4} s, big {b:.4} s");
+    }
+}
+
+/// Issue 21, items 11 and 14: learned rules about a class the problem
+/// lacks are noted, not refused; `cutoff` is named as the body's field.
+#[tokio::test]
+async fn absent_classes_are_noted_and_fields_named() {
+    let dir = task_dir("absent", false);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let (s, v) = call(
+        &app,
+        Method::PUT,
+        "/api/learned",
+        json!({"text": "rule y: DR_N(Y, R)\n", "base_version": "absent"}).to_string(),
+    )
+    .await;
+    // Y is in no demonstration either: a typo, refused.
+    assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
+    // A demonstration with a class the problem lacks: rules about it are
+    // noted, not refused.
+    let mut d = demo(&[("R", 20, 20)]);
+    d["objects"]
+        .as_array_mut()
+        .unwrap()
+        .push(json!({"id": "y0", "class": "Y", "x": 60, "y": 60, "width": 20, "height": 20}));
+    std::fs::write(dir.join("demos.json"), json!([d]).to_string()).unwrap();
+    let (s, v) = call(
+        &app,
+        Method::PUT,
+        "/api/learned",
+        json!({"text": "rule y: DR_N(Y, R)\n", "base_version": "absent"}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    assert!(
+        v["note"]
+            .as_str()
+            .unwrap()
+            .contains("no objects of class Y"),
+        "{v}"
+    );
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/learn",
+        json!({"cutoff": 2.0}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
+    let e = v["error"].as_str().unwrap();
+    assert!(e.contains("cutoff") && !e.contains("--cutoff"), "{e}");
+    assert_eq!(v["path"], "cutoff");
 }

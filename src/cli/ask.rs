@@ -9,7 +9,7 @@
 //! abort (end of input, `q`, an oracle failure, Ctrl-C) loses nothing
 //! already answered; running again resumes.
 
-use super::{read_rules, read_scene, read_scenes, read_text, Reported};
+use super::{out, outln, read_rules, read_scene, read_scenes, read_text, write_file, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::ask::{AnswersFile, AskOptions, Asker, ProbeOptions, Question};
@@ -17,10 +17,11 @@ use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
 use rccpack::render::{render_to_path, RenderOptions};
 use rccpack::rules::RuleSet;
-use rccpack::studio::storage::{self, atomic_write_path};
-use std::io::{BufRead, Write};
+use rccpack::studio::storage;
+use std::io::BufRead;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
+use std::sync::atomic::{AtomicI32, Ordering};
 use std::time::{Duration, Instant};
 
 /// `rccpack ask DIR [--max-questions N] [--oracle CMD]`
@@ -37,6 +38,11 @@ pub struct AskArgs {
     /// 0 means acceptable, 1 not acceptable, anything else aborts.
     #[arg(long, value_name = "CMD")]
     oracle: Option<String>,
+    /// Stop an oracle that has not answered after this many seconds (its
+    /// whole process group is ended) and abort with exit 1; what was
+    /// answered before is kept.
+    #[arg(long, value_name = "SECONDS", default_value = "600", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
+    oracle_timeout: Duration,
     /// Random scenes in the null model.
     #[arg(long, default_value_t = 1000)]
     samples: usize,
@@ -68,8 +74,7 @@ pub struct AskArgs {
 }
 
 fn write(path: &Path, contents: &str) -> Result<()> {
-    atomic_write_path(path, contents)
-        .map_err(|e| Reported(format!("error: {}: cannot write: {e}", path.display())).into())
+    write_file(path, contents, "file")
 }
 
 enum Verdict {
@@ -78,29 +83,40 @@ enum Verdict {
     Abort(String),
 }
 
-fn ask_terminal(q: &Question, number: usize, picture: &Path) -> Verdict {
-    println!();
-    println!("question {number}: rule `{}`: {}", q.rule, q.english);
-    println!("  rule {}: {}", q.rule, q.statement);
+fn show_question(q: &Question, number: usize, picture: &Path) -> Result<()> {
+    outln("")?;
+    outln(format!(
+        "question {number}: rule `{}`: {}",
+        q.rule, q.english
+    ))?;
+    outln(format!("  rule {}: {}", q.rule, q.statement))?;
     if q.probe.broken.is_empty() {
-        println!("  this layout breaks it and keeps every other learned rule");
+        outln("  this layout breaks it and keeps every other learned rule")?;
     } else {
-        println!(
+        outln(format!(
             "  this layout breaks it for {} and keeps every other learned rule",
             q.probe.broken.join(", ")
-        );
+        ))?;
     }
     if !q.also_broken.is_empty() {
-        println!(
+        outln(format!(
             "  it also breaks {}, which the other rules imply",
             q.also_broken.join(", ")
-        );
+        ))?;
     }
-    println!("  picture: {}", picture.display());
+    outln(format!("  picture: {}", picture.display()))?;
+    Ok(())
+}
+
+fn ask_terminal(q: &Question, number: usize, picture: &Path) -> Verdict {
+    if let Err(e) = show_question(q, number, picture) {
+        return Verdict::Abort(e.to_string());
+    }
     let stdin = std::io::stdin();
     loop {
-        print!("  is this layout acceptable? [y/n, q to stop] ");
-        let _ = std::io::stdout().flush();
+        if let Err(e) = out("  is this layout acceptable? [y/n, q to stop] ") {
+            return Verdict::Abort(e.to_string());
+        }
         let mut line = String::new();
         match stdin.lock().read_line(&mut line) {
             Ok(0) => return Verdict::Abort("end of input".into()),
@@ -111,20 +127,76 @@ fn ask_terminal(q: &Question, number: usize, picture: &Path) -> Verdict {
             "y" | "yes" => return Verdict::Yes,
             "n" | "no" => return Verdict::No,
             "q" | "quit" => return Verdict::Abort("stopped by the person".into()),
-            _ => println!("  please answer y (acceptable) or n (not acceptable)"),
+            _ => {
+                if let Err(e) = outln("  please answer y (acceptable) or n (not acceptable)") {
+                    return Verdict::Abort(e.to_string());
+                }
+            }
         }
     }
 }
 
-fn ask_oracle(cmd: &str, probe: &Path) -> Verdict {
-    let status = Command::new("sh")
+/// The process group of the oracle running now (0: none), for the Ctrl-C
+/// handler.
+static ORACLE_GROUP: AtomicI32 = AtomicI32::new(0);
+
+/// End the oracle's whole process group (the shell and whatever it
+/// started).
+fn kill_group(pgid: i32) {
+    #[cfg(unix)]
+    if pgid > 0 {
+        // SAFETY: sending a signal to a process group this process
+        // created; no memory is involved.
+        unsafe {
+            libc::kill(-pgid, libc::SIGKILL);
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = pgid;
+}
+
+fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
+    let mut command = Command::new("sh");
+    command
         .arg("-c")
         .arg(format!("{cmd} \"$1\""))
         .arg("rccpack-ask")
         .arg(probe)
         .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .status();
+        .stdout(Stdio::null());
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::CommandExt;
+        // Its own process group: a hung oracle is ended whole.
+        command.process_group(0);
+    }
+    let mut child = match command.spawn() {
+        Ok(c) => c,
+        Err(e) => return Verdict::Abort(format!("cannot run the oracle `{cmd}`: {e}")),
+    };
+    let pgid = i32::try_from(child.id()).unwrap_or(0);
+    ORACLE_GROUP.store(pgid, Ordering::SeqCst);
+    let start = Instant::now();
+    let status = loop {
+        match child.try_wait() {
+            Ok(Some(s)) => break Ok(s),
+            Ok(None) if start.elapsed() >= timeout => {
+                kill_group(pgid);
+                let _ = child.kill();
+                let _ = child.wait();
+                ORACLE_GROUP.store(0, Ordering::SeqCst);
+                return Verdict::Abort(format!(
+                    "the oracle `{cmd}` gave no answer within {} s (--oracle-timeout); it was stopped",
+                    timeout.as_secs_f64()
+                ));
+            }
+            Ok(None) => std::thread::sleep(Duration::from_millis(10)),
+            Err(e) => break Err(e),
+        }
+    };
+    // Whatever the shell left running goes with it.
+    kill_group(pgid);
+    ORACLE_GROUP.store(0, Ordering::SeqCst);
     match status {
         Ok(s) => match s.code() {
             Some(0) => Verdict::Yes,
@@ -138,12 +210,48 @@ fn ask_oracle(cmd: &str, probe: &Path) -> Verdict {
     }
 }
 
+/// Ctrl-C: end the oracle (its process group), remove this process's
+/// temporary files in the task folder, say what is saved, exit 1 (README:
+/// an abort loses nothing answered; the next run resumes).
+fn on_interrupt(dir: PathBuf, answers: PathBuf) {
+    let _ = ctrlc::set_handler(move || {
+        kill_group(ORACLE_GROUP.load(Ordering::SeqCst));
+        rccpack::fsutil::remove_own_temp_files(&dir);
+        rccpack::fsutil::remove_own_temp_files(&dir.join("probes"));
+        eprintln!(
+            "error: interrupted (Ctrl-C); every answer given is saved in {}, run again to resume",
+            answers.display()
+        );
+        std::process::exit(1);
+    });
+}
+
 pub fn run(a: AskArgs) -> Result<ExitCode> {
     let dir = &a.dir;
     let problem_path = dir.join("problem.json");
     let demos_path = dir.join("demos.json");
     let answers_path = dir.join("answers.json");
     let learned_path = dir.join("learned.rcc");
+    // One session per task folder (the studio takes the same lock to write).
+    let _lock = match rccpack::fsutil::DirLock::try_lock(dir) {
+        Ok(Some(l)) => l,
+        Ok(None) => {
+            return Err(Reported(format!(
+                "error: {}: another `rccpack ask` or the studio is writing this task folder (it holds {}); wait until it ends, then run again",
+                dir.display(),
+                rccpack::fsutil::LOCK_FILE
+            ))
+            .into())
+        }
+        Err(e) => {
+            return Err(Reported(format!(
+                "error: {}: cannot lock the task folder: {e}",
+                dir.join(rccpack::fsutil::LOCK_FILE).display()
+            ))
+            .into())
+        }
+    };
+    on_interrupt(dir.clone(), answers_path.clone());
     let problem = read_scene(&problem_path)?;
     let (demos, _) = read_scenes(&demos_path)?;
     let statements_path = dir.join("statements.rcc");
@@ -180,6 +288,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         resemble: true,
     };
     let n_demos = demos.len();
+    let problem_classes = problem.clone();
     let mut asker = Asker::new(problem, demos, statements, answers, opts).map_err(|e| {
         let file = match e {
             rccpack::ask::AskError::BadAnswer { .. } => &answers_path,
@@ -195,15 +304,23 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         ))
     };
     if storage::write_session_start(dir, &asker, n_demos, resumed).map_err(io_error)? {
-        println!(
+        outln(format!(
             "note: {} was not learned from {} with these settings; kept as {}",
             learned_path.display(),
             demos_path.display(),
             dir.join(storage::LEARNED_BACKUP).display()
-        );
+        ))?;
     }
     if resumed > 0 {
-        println!("resuming: {resumed} answers in {}", answers_path.display());
+        outln(format!(
+            "resuming: {resumed} answers in {}",
+            answers_path.display()
+        ))?;
+    }
+    // SPEC §15: learned rules about a class today's problem lacks.
+    let missing = rccpack::rules::missing_classes(asker.held(), &problem_classes);
+    if let Some(note) = rccpack::rules::missing_classes_note(&missing) {
+        outln(note)?;
     }
     let probes = dir.join("probes");
     let mut asked_now = 0usize;
@@ -255,7 +372,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         )
         .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;
         let verdict = match &a.oracle {
-            Some(cmd) => ask_oracle(cmd, &json),
+            Some(cmd) => ask_oracle(cmd, &json, a.oracle_timeout),
             None => ask_terminal(&q, number, &png),
         };
         let accepted = match verdict {
@@ -267,7 +384,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             }
         };
         if a.oracle.is_some() {
-            println!(
+            outln(format!(
                 "question {number}: `{}` ({}) -> {}",
                 q.rule,
                 q.english,
@@ -276,7 +393,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
                 } else {
                     "not acceptable: confirmed"
                 }
-            );
+            ))?;
         }
         asker
             .answer(&q, accepted)
@@ -290,8 +407,8 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         t.sort_by(f64::total_cmp);
         t.get(t.len() / 2).copied()
     };
-    println!();
-    println!(
+    outln("")?;
+    outln(format!(
         "asked {} questions ({} in this run{}): {} rules dropped, {} confirmed; {} rules held, {} need no question (the others imply them{}){} -> {}",
         p.asked,
         asked_now,
@@ -311,12 +428,12 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             String::new()
         },
         learned_path.display()
-    );
+    ))?;
     if out_of_budget {
-        println!(
+        outln(format!(
             "stopped at --max-questions {}; run again to go on",
             a.max_questions
-        );
+        ))?;
     }
     if let Some(why) = aborted {
         eprintln!(

@@ -1,3 +1,4 @@
+use super::{out, outln, write_file};
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -152,11 +153,6 @@ pub fn run(a: BenchArgs) -> Result<ExitCode> {
     }
 }
 
-fn write_file(path: &std::path::Path, text: &str) -> Result<()> {
-    rccpack::studio::storage::atomic_write_path(path, text)
-        .with_context(|| format!("{}: cannot write", path.display()))
-}
-
 fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
     let limit = a
         .time_limit
@@ -240,12 +236,14 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
             for p in &t.problems {
                 write_file(
                     &dir.join(format!("{}.json", p.name)),
-                    &(p.scene.to_json() + "\n"),
+                    p.scene.to_json() + "\n",
+                    "the problem",
                 )?;
-                write_file(&dir.join(format!("{}.rcc", p.name)), &t.rcc)?;
+                write_file(&dir.join(format!("{}.rcc", p.name)), &t.rcc, "the rules")?;
                 write_file(
                     &dir.join(format!("{}.demos.json", p.name)),
-                    &(demos.clone() + "\n"),
+                    demos.clone() + "\n",
+                    "the demonstrations",
                 )?;
             }
         }
@@ -314,7 +312,11 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
         }
     }
     let json = a.out.join("tasks.json");
-    write_file(&json, &(serde_json::to_string_pretty(&report)? + "\n"))?;
+    write_file(
+        &json,
+        serde_json::to_string_pretty(&report)? + "\n",
+        "the report",
+    )?;
     eprintln!("wrote {}", json.display());
     Ok(if bad.is_empty() {
         ExitCode::SUCCESS
@@ -408,20 +410,18 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
     }
     bar.finish_and_clear();
 
-    println!(
+    outln(format!(
         "rccpack bench thesis: seed {}, time limit {} s, {} viable sets from {} draws, {} problems",
         cfg.seed,
         a.time_limit.as_secs_f64(),
         report.sets.len(),
         report.draws,
         report.rows.len()
-    );
-    print!("{}", thesis::table_text(&report.summary));
+    ))?;
+    out(thesis::table_text(&report.summary))?;
     if !report.peer_summary.is_empty() {
-        println!(
-            "peers (ratio = peer median / rccpack median; rcc_wrs / peer_wrs = problems where that side's score is lower):"
-        );
-        print!("{}", thesis::peer_table_text(&report.peer_summary));
+        outln("peers (ratio = peer median / rccpack median; rcc_wrs / peer_wrs = problems where that side's score is lower):")?;
+        out(thesis::peer_table_text(&report.peer_summary))?;
     }
     let bad = report
         .rows
@@ -429,23 +429,27 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
         .filter(|r| r.verified == Some(false) || r.status.is_none())
         .count();
     if bad > 0 {
-        println!("{bad} problems failed (engine error or solution rejected by the checker): see thesis.json");
+        outln(format!("{bad} problems failed (engine error or solution rejected by the checker): see thesis.json"))?;
     }
 
     let json = a.out.join("thesis.json");
-    std::fs::write(&json, serde_json::to_string_pretty(&report)? + "\n")
-        .with_context(|| format!("{}: cannot write", json.display()))?;
+    write_file(
+        &json,
+        serde_json::to_string_pretty(&report)? + "\n",
+        "the report",
+    )?;
     let png = a.out.join("thesis.png");
-    chart::draw(
-        &png,
-        &format!(
-            "rccpack bench thesis: median runtime, n = 2..6 objects (seed {}, {} sets)",
-            cfg.seed,
-            report.sets.len()
-        ),
-        &chart::lines(&report.summary, &[Series::Pilot]),
-    )
-    .map_err(anyhow::Error::msg)?;
+    draw_atomic(&png, |tmp| {
+        chart::draw(
+            tmp,
+            &format!(
+                "rccpack bench thesis: median runtime, n = 2..6 objects (seed {}, {} sets)",
+                cfg.seed,
+                report.sets.len()
+            ),
+            &chart::lines(&report.summary, &[Series::Pilot]),
+        )
+    })?;
     let mut written = vec![json, png];
     if report.summary.iter().any(|s| s.series == Series::Scale) {
         let png = a.out.join("thesis-scale.png");
@@ -456,15 +460,16 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
             .filter(|s| ks.contains(&s.k))
             .cloned()
             .collect();
-        chart::draw(
-            &png,
-            &format!(
-                "rccpack bench thesis: scale series, k = {:?} (seed {})",
-                ks, cfg.seed
-            ),
-            &chart::lines(&cells, &[Series::Pilot, Series::Scale]),
-        )
-        .map_err(anyhow::Error::msg)?;
+        draw_atomic(&png, |tmp| {
+            chart::draw(
+                tmp,
+                &format!(
+                    "rccpack bench thesis: scale series, k = {:?} (seed {})",
+                    ks, cfg.seed
+                ),
+                &chart::lines(&cells, &[Series::Pilot, Series::Scale]),
+            )
+        })?;
         written.push(png);
     }
     for p in written {
@@ -475,6 +480,26 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// Draw a chart whole or not at all (as `fsutil::atomic_write`): to a
+/// temporary `.png` beside `png`, then renamed over it.
+fn draw_atomic(
+    png: &std::path::Path,
+    draw: impl FnOnce(&std::path::Path) -> Result<(), String>,
+) -> Result<()> {
+    let name = png
+        .file_stem()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = png.with_file_name(format!(".{name}.tmp-{}.png", std::process::id()));
+    let done = draw(&tmp).map_err(anyhow::Error::msg).and_then(|()| {
+        std::fs::rename(&tmp, png).with_context(|| format!("{}: cannot write", png.display()))
+    });
+    if done.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    done
 }
 
 /// Every problem of the study as a scene and a rule file, named
@@ -498,11 +523,9 @@ fn write_problems(
             p.k
         );
         let json = dir.join(format!("{name}.json"));
-        std::fs::write(&json, p.scene.to_json() + "\n")
-            .with_context(|| format!("{}: cannot write", json.display()))?;
+        write_file(&json, p.scene.to_json() + "\n", "the problem")?;
         let rcc = dir.join(format!("{name}.rcc"));
-        std::fs::write(&rcc, rccpack::rules::print_rules(&p.rules))
-            .with_context(|| format!("{}: cannot write", rcc.display()))?;
+        write_file(&rcc, rccpack::rules::print_rules(&p.rules), "the rules")?;
     }
     Ok(())
 }

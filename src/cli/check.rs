@@ -1,4 +1,4 @@
-use super::{read_rules, read_scenes};
+use super::{outln, read_rules, read_scenes};
 use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
@@ -21,12 +21,12 @@ pub fn run(a: CheckArgs) -> Result<ExitCode> {
     };
     let set = read_rules(&a.rules, &scenes)?;
     let hard = set.rules.iter().filter(|r| r.strength.is_hard()).count();
-    println!(
+    outln(format!(
         "{}: ok, {} rules ({} hard, {} soft)",
         a.rules.display(),
         set.rules.len(),
         hard,
         set.rules.len() - hard
-    );
+    ))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -19,10 +19,28 @@ impl std::fmt::Display for Reported {
 
 impl std::error::Error for Reported {}
 
-/// Read a whole text file, naming it in the error.
+/// A limit stopped the command before any result (exit 3, SPEC §10); the
+/// text is printed as it is.
+#[derive(Debug)]
+pub struct LimitStruck(pub String);
+
+impl std::fmt::Display for LimitStruck {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for LimitStruck {}
+
+/// Read a whole text file, naming it in the error: UTF-8 (a leading
+/// byte-order mark is dropped); invalid UTF-8 is reported with its byte
+/// offset.
 pub fn read_text(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path)
-        .map_err(|e| Reported(format!("error: {}: cannot read file: {e}", path.display())).into())
+    let bytes = std::fs::read(path)
+        .map_err(|e| Reported(format!("error: {}: cannot read file: {e}", path.display())))?;
+    let text = rccpack::fsutil::utf8_text(bytes)
+        .map_err(|e| Reported(format!("error: {}: {e}", path.display())))?;
+    Ok(text)
 }
 
 fn scene_error(path: &Path, e: scene::SceneError) -> anyhow::Error {
@@ -63,4 +81,33 @@ pub fn parse_rules_text(path: &Path, text: &str) -> Result<RuleSet> {
     let color = std::io::stderr().is_terminal();
     rules::parse_rules(text)
         .map_err(|e| Reported(e.render(&path.display().to_string(), text, color)).into())
+}
+
+/// Write a whole file atomically ([`rccpack::fsutil::atomic_write`]: a
+/// temporary file beside it, then a rename; a failure keeps the previous
+/// file). `what` names the contents in the error ("cannot write report").
+pub fn write_file(path: &Path, contents: impl AsRef<[u8]>, what: &str) -> Result<()> {
+    rccpack::fsutil::atomic_write(path, contents).map_err(|e| {
+        Reported(format!(
+            "error: {}: cannot write {what}: {e}",
+            path.display()
+        ))
+        .into()
+    })
+}
+
+/// Print to standard output, reporting a failed write (a full disk,
+/// `> /dev/full`) as an error instead of panicking as `print!` does.
+pub fn out(text: impl AsRef<str>) -> Result<()> {
+    use std::io::Write as _;
+    let mut stdout = std::io::stdout().lock();
+    stdout
+        .write_all(text.as_ref().as_bytes())
+        .and_then(|()| stdout.flush())
+        .map_err(|e| Reported(format!("error: cannot write to standard output: {e}")).into())
+}
+
+/// [`out`] with a line end.
+pub fn outln(text: impl AsRef<str>) -> Result<()> {
+    out(format!("{}\n", text.as_ref()))
 }

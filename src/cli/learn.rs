@@ -1,10 +1,10 @@
 //! `rccpack learn`: learn rules from demonstrations (SPEC §7).
 
 use super::io::{parse_rules_text, read_text};
-use super::{read_scenes, Reported};
+use super::{out, read_scenes, write_file, LimitStruck, Reported};
 use anyhow::Result;
 use clap::Args;
-use rccpack::infer::{learn, InferError, LearnParams, Learned, Templates};
+use rccpack::infer::{learn_until, InferError, LearnParams, Learned, Templates};
 use rccpack::relations::Contact;
 use rccpack::rules::{Diagnostic, RulesError};
 use std::io::IsTerminal;
@@ -63,21 +63,19 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
         templates: a.templates,
     };
     let progress = std::io::stderr().is_terminal();
-    let learned = learn_files(&a.demos, a.statements.as_deref(), &params, progress)?;
+    let learned = learn_files(&a.demos, a.statements.as_deref(), &params, progress, None)?;
     let rcc = learned.to_rcc();
     match &a.output {
         Some(p) => {
-            std::fs::write(p, &rcc)
-                .map_err(|e| Reported(format!("error: {}: cannot write: {e}", p.display())))?;
+            write_file(p, &rcc, "rules")?;
             if progress {
                 eprintln!("wrote {}", p.display());
             }
         }
-        None => print!("{rcc}"),
+        None => out(&rcc)?,
     }
     if let Some(p) = &a.report {
-        std::fs::write(p, learned.report_json())
-            .map_err(|e| Reported(format!("error: {}: cannot write: {e}", p.display())))?;
+        write_file(p, learned.report_json(), "report")?;
         if progress {
             eprintln!("wrote {}", p.display());
         }
@@ -93,6 +91,7 @@ pub fn learn_files(
     statements_path: Option<&Path>,
     params: &LearnParams,
     progress: bool,
+    deadline: Option<Instant>,
 ) -> Result<Learned> {
     params
         .validate()
@@ -123,8 +122,11 @@ pub fn learn_files(
         );
     }
     let start = Instant::now();
-    let learned =
-        learn(&demos, statements.as_ref(), params).map_err(|e| match (&e, statements_path) {
+    let learned = learn_until(&demos, statements.as_ref(), params, deadline).map_err(|e| {
+        if let InferError::TimeLimit { .. } = e {
+            return anyhow::Error::new(LimitStruck(format!("unknown: {e}")));
+        }
+        match (&e, statements_path) {
             (
                 InferError::UnknownClass {
                     span: Some(span), ..
@@ -150,7 +152,9 @@ pub fn learn_files(
                 Reported(format!("error: {}: {e}", path.display()))
             }
             _ => Reported(format!("error: {}: {e}", demos_path.display())),
-        })?;
+        }
+        .into()
+    })?;
     if progress {
         let candidates = learned.statements.iter().filter(|s| s.candidate).count();
         eprintln!(

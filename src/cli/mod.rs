@@ -17,7 +17,9 @@ mod synth;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
-pub use io::{read_rules, read_scene, read_scenes, read_text, Reported};
+pub use io::{
+    out, outln, read_rules, read_scene, read_scenes, read_text, write_file, LimitStruck, Reported,
+};
 
 /// Clap value parser for `--time-limit SECONDS` (the library's shared,
 /// validated parser: finite, 0 to `limits::MAX_TIME_LIMIT_SECS`).
@@ -88,6 +90,10 @@ pub fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
+            if let Some(l) = e.downcast_ref::<LimitStruck>() {
+                eprintln!("{}", l.0);
+                return ExitCode::from(3);
+            }
             if let Some(r) = e.downcast_ref::<Reported>() {
                 eprint!("{}", r.0);
                 if !r.0.ends_with('\n') {

@@ -1,4 +1,4 @@
-use super::{read_rules, read_scenes};
+use super::{out, outln, read_rules, read_scenes};
 use anyhow::Result;
 use clap::Args;
 use rccpack::eval::{evaluate, Evaluation};
@@ -34,6 +34,18 @@ pub struct ScoreArgs {
 pub fn run(a: ScoreArgs) -> Result<ExitCode> {
     let (scenes, is_array) = read_scenes(&a.scene)?;
     let rules = read_rules(&a.rules, &scenes)?;
+    if scenes.is_empty() {
+        // An empty demonstrations array: say so rather than print nothing.
+        return if a.json {
+            outln("[]").map(|()| ExitCode::SUCCESS)
+        } else {
+            outln(format!(
+                "{}: no scenes to score (an empty array)",
+                a.scene.display()
+            ))
+            .map(|()| ExitCode::SUCCESS)
+        };
+    }
     let evals: Vec<Evaluation> = scenes
         .iter()
         .map(|s| evaluate(s, &rules, a.contact))
@@ -53,10 +65,10 @@ pub fn run(a: ScoreArgs) -> Result<ExitCode> {
                 .map(|r| format!("{} ({})", r.name, r.violators.join(", ")))
                 .collect();
             if broken.is_empty() {
-                println!("{label}: every rule holds for every object");
+                outln(format!("{label}: every rule holds for every object"))?;
             } else {
                 kept = false;
-                println!("{label}: rules broken: {}", broken.join("; "));
+                outln(format!("{label}: rules broken: {}", broken.join("; ")))?;
             }
         }
         return Ok(if kept {
@@ -71,19 +83,19 @@ pub fn run(a: ScoreArgs) -> Result<ExitCode> {
         } else {
             serde_json::to_string_pretty(&evals[0])?
         };
-        println!("{text}");
+        outln(text)?;
         return Ok(ExitCode::SUCCESS);
     }
     for (i, e) in evals.iter().enumerate() {
         if i > 0 {
-            println!();
+            outln("")?;
         }
         let label = if is_array {
             format!("{} [{i}]", a.scene.display())
         } else {
             a.scene.display().to_string()
         };
-        print!("{}", table(&label, e));
+        out(table(&label, e))?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -1,6 +1,5 @@
 use anyhow::{Context, Result};
 use clap::Args;
-use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -32,9 +31,8 @@ pub fn run(a: StudioArgs) -> Result<ExitCode> {
             .await
             .with_context(|| format!("cannot listen on 127.0.0.1:{}", a.port))?;
         let url = format!("http://{}/", listener.local_addr()?);
-        println!("rccpack studio: {} at {url}", a.dir.display());
-        println!("press Ctrl-C to stop");
-        let _ = std::io::stdout().flush();
+        super::outln(format!("rccpack studio: {} at {url}", a.dir.display()))?;
+        super::outln("press Ctrl-C to stop")?;
         if a.open {
             if let Err(e) = std::process::Command::new("xdg-open").arg(&url).spawn() {
                 eprintln!("warning: cannot open a browser ({e}); open {url} yourself");

@@ -4,7 +4,6 @@ use clap::Args;
 use rccpack::eval::RuleReport;
 use rccpack::relations::Contact;
 use rccpack::resemblance::Likeness;
-use rccpack::studio::storage::atomic_write_path;
 use rccpack::synth::{
     emit, synthesize, Progress, ProgressFn, Resemblance, Status, SynthError, SynthOptions,
 };
@@ -113,12 +112,7 @@ fn write_emitted(
         EmitFormat::MiniZinc => emit::to_minizinc(&e),
         EmitFormat::Json => emit::to_json(&e),
     };
-    atomic_write_path(path, &text).map_err(|e| {
-        Reported(format!(
-            "error: {}: cannot write the model: {e}",
-            path.display()
-        ))
-    })?;
+    super::write_file(path, &text, "the model")?;
     Ok(())
 }
 
@@ -218,25 +212,15 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             score_bound: result.score_bound,
         };
         let text = serde_json::to_string_pretty(&report)? + "\n";
-        std::fs::write(path, text).map_err(|e| {
-            Reported(format!(
-                "error: {}: cannot write report: {e}",
-                path.display()
-            ))
-        })?;
+        super::write_file(path, text, "report")?;
     }
     match result.status {
         Status::Optimal | Status::Feasible => {
             let scene = result.scene.as_ref().expect("a solution has a scene");
             let text = scene.to_json();
             match &a.output {
-                Some(p) => std::fs::write(p, text).map_err(|e| {
-                    Reported(format!(
-                        "error: {}: cannot write solution: {e}",
-                        p.display()
-                    ))
-                })?,
-                None => print!("{text}"),
+                Some(p) => super::write_file(p, text, "solution")?,
+                None => super::out(text)?,
             }
             if !a.quiet {
                 let e = ev.expect("a solution has an evaluation");
@@ -259,20 +243,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         }
         Status::Infeasible => {
             let c = result.conflict.clone().unwrap_or_default();
-            let mut msg = String::from("infeasible:");
-            if c.objects_cannot_fit {
-                msg.push_str(" the objects cannot all be placed in the space without overlap");
-            }
-            if !c.hard_rules.is_empty() {
-                msg.push_str(&format!(
-                    " the hard rules {} cannot all hold together",
-                    c.hard_rules
-                        .iter()
-                        .map(|r| format!("`{r}`"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ));
-            }
+            let msg = format!("infeasible: {}", conflict_text(&c));
             eprintln!("{msg}");
             Ok(ExitCode::from(2))
         }
@@ -295,6 +266,36 @@ pub fn bound_text(result: &rccpack::synth::SynthResult) -> String {
         }
         _ => String::new(),
     }
+}
+
+/// Why a problem is infeasible, in words (after `infeasible: `): only
+/// what was proven is blamed (issue 21, item 2).
+pub fn conflict_text(c: &rccpack::synth::Conflict) -> String {
+    let mut parts = Vec::new();
+    if c.objects_cannot_fit {
+        parts.push("the objects cannot all be placed in the space without overlap".to_string());
+    }
+    if !c.hard_rules.is_empty() {
+        parts.push(format!(
+            "the hard rules {} cannot all hold together{}",
+            c.hard_rules
+                .iter()
+                .map(|r| format!("`{r}`"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            if c.limit_struck {
+                " (a limit struck before the conflict was explained: not every one of them is proven needed)"
+            } else {
+                ""
+            }
+        ));
+    } else if c.limit_struck {
+        parts.push("a limit struck before the conflict was explained".to_string());
+    }
+    if parts.is_empty() {
+        parts.push("no layout keeps every hard rule".to_string());
+    }
+    parts.join("; ")
 }
 
 /// `, resemblance cost N (proven minimal)` for the summary lines.

@@ -142,6 +142,20 @@ pub enum InferError {
         /// Why.
         reason: String,
     },
+    /// Learning would weigh more statements than [`crate::limits::MAX_STATEMENTS`].
+    #[error("learning would weigh {statements} statements ({classes} classes); expected at most {max} — use fewer classes or give the statements to weigh (`--statements`)", max = crate::limits::MAX_STATEMENTS)]
+    TooManyStatements {
+        /// How many.
+        statements: usize,
+        /// Classes of the demonstrations.
+        classes: usize,
+    },
+    /// The deadline passed while the null model drew its random scenes.
+    #[error("the time limit struck while learning ({samples} random scenes to draw); nothing was learned — allow more time or fewer samples")]
+    TimeLimit {
+        /// The samples asked for.
+        samples: usize,
+    },
 }
 
 /// Learning parameters (SPEC §7; the defaults are the spec's).
@@ -306,6 +320,18 @@ pub fn learn(
     statements: Option<&RuleSet>,
     params: &LearnParams,
 ) -> Result<Learned, InferError> {
+    learn_until(demos, statements, params, None)
+}
+
+/// [`learn`] that gives up with [`InferError::TimeLimit`] once `deadline`
+/// passes (checked per random scene of the null model), so a command's
+/// time limit covers learning too.
+pub fn learn_until(
+    demos: &[Scene],
+    statements: Option<&RuleSet>,
+    params: &LearnParams,
+    deadline: Option<std::time::Instant>,
+) -> Result<Learned, InferError> {
     params.validate()?;
     check_demos(demos)?;
     let class_list = templates::demo_classes(demos);
@@ -321,10 +347,23 @@ pub fn learn(
             (s, StatementSource::Given)
         }
         None => {
+            let estimate = templates::estimate_set(demos, params.templates);
+            if estimate > crate::limits::MAX_STATEMENTS {
+                return Err(InferError::TooManyStatements {
+                    statements: estimate,
+                    classes: class_list.len(),
+                });
+            }
             generated = templates::generate_set(demos, params.templates);
             (&generated, StatementSource::Templates)
         }
     };
+    if set.rules.len() > crate::limits::MAX_STATEMENTS {
+        return Err(InferError::TooManyStatements {
+            statements: set.rules.len(),
+            classes: class_list.len(),
+        });
+    }
     // Every landmark is interned before compiling, so that each scene's
     // atom table resolves it.
     for id in set.landmarks() {
@@ -346,11 +385,12 @@ pub fn learn(
     let counts = if cand.is_empty() {
         Vec::new()
     } else {
-        NullModel::new(demos, params.seed)?.count(
+        NullModel::new(demos, params.seed)?.count_until(
             params.samples,
             &classes,
             &cand,
             params.contact,
+            deadline,
         )?
     };
 

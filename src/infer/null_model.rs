@@ -307,6 +307,19 @@ impl<'a> NullModel<'a> {
         rules: &[CompiledRule],
         contact: Contact,
     ) -> Result<Vec<u64>, InferError> {
+        self.count_until(samples, classes, rules, contact, None)
+    }
+
+    /// [`NullModel::count`] that stops with [`InferError::TimeLimit`] once
+    /// `deadline` passes (checked before each random scene).
+    pub fn count_until(
+        &self,
+        samples: usize,
+        classes: &ClassIndex,
+        rules: &[CompiledRule],
+        contact: Contact,
+        deadline: Option<std::time::Instant>,
+    ) -> Result<Vec<u64>, InferError> {
         // Per demonstration, per class, the object indices.
         let by_class: Vec<Vec<Vec<usize>>> = self
             .demos
@@ -340,6 +353,11 @@ impl<'a> NullModel<'a> {
                 |(mut scratch, mut counts, err), i| {
                     if i > first_failure.load(Ordering::Relaxed) {
                         return (scratch, counts, err);
+                    }
+                    if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                        first_failure.fetch_min(i, Ordering::Relaxed);
+                        let e = InferError::TimeLimit { samples };
+                        return (scratch, counts, merge_err(err, Some((i, e))));
                     }
                     let d = i % self.demos.len();
                     let scene = &mut scratch[d];

@@ -465,6 +465,34 @@ pub fn generate_set(demos: &[Scene], which: Templates) -> RuleSet {
     RuleSet::new(out.rules)
 }
 
+/// An upper bound on the number of statements [`generate_set`] makes for
+/// `demos` (before duplicates are dropped), computed without making them:
+/// learning refuses demonstrations past [`crate::limits::MAX_STATEMENTS`]
+/// before spending memory on them.
+pub fn estimate_set(demos: &[Scene], which: Templates) -> usize {
+    let second = which == Templates::Second;
+    let classes = demo_classes(demos);
+    let per = |ts: &[Template]| -> usize {
+        ts.iter()
+            .map(|t| if t.per_direction() { 4 } else { 1 })
+            .sum()
+    };
+    let targets = classes.len() + 1;
+    let landmarks = if second {
+        demo_landmarks(demos).len()
+    } else {
+        0
+    };
+    let movable = classes.iter().filter(|(_, m)| *m).count();
+    let mut each = targets * per(PAIR_TEMPLATES)
+        + per(SUBJECT_TEMPLATES)
+        + landmarks * per(LANDMARK_TEMPLATES);
+    if second {
+        each += targets * per(FLUSH_PAIR_TEMPLATES) + per(SELF_TEMPLATES);
+    }
+    movable.saturating_mul(each)
+}
+
 #[derive(Default)]
 struct Generated {
     rules: Vec<Rule>,

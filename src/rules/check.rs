@@ -46,6 +46,43 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
     }
 }
 
+/// The classes named by `rules` (as subject or target) that `scene` has no
+/// object of, in order of first mention. For *learned* rules this is
+/// ordinary (SPEC §15: no blue blocks today) and their rules hold as §4
+/// says; [`check_classes`] guards hand-written rules instead.
+pub fn missing_classes(rules: &RuleSet, scene: &Scene) -> Vec<String> {
+    let classes = scene.classes();
+    let mut out: Vec<String> = Vec::new();
+    for rule in &rules.rules {
+        for atom in rule.formula.atoms() {
+            let mut named = vec![atom.subject.as_str()];
+            if let Target::Class(c) = &atom.target {
+                named.push(c);
+            }
+            for class in named {
+                if !classes.contains(&class) && !out.iter().any(|o| o == class) {
+                    out.push(class.to_string());
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The note a command prints for [`missing_classes`] (SPEC §15), or `None`.
+pub fn missing_classes_note(missing: &[String]) -> Option<String> {
+    match missing {
+        [] => None,
+        [one] => Some(format!(
+            "note: the problem has no objects of class {one}; its rules hold vacuously"
+        )),
+        many => Some(format!(
+            "note: the problem has no objects of classes {}; their rules hold vacuously",
+            many.join(", ")
+        )),
+    }
+}
+
 /// Check that every landmark `@ID` named by `rules` is a fixed object of
 /// `scene` (SPEC §11.3, §11.6).
 ///

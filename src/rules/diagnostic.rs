@@ -39,15 +39,61 @@ pub struct RulesError {
 }
 
 /// 1-based line and 1-based character column of byte `offset` in `src`
-/// (offsets past the end or inside a character are clamped).
+/// (offsets past the end or inside a character are clamped). A line ends at
+/// `\n`, `\r\n` or a lone `\r` (as the grammar's `NEWLINE`), so a file with
+/// old Mac line endings gets the same line numbers everywhere.
 pub(crate) fn line_col(src: &str, offset: usize) -> (usize, usize) {
-    let offset = floor_boundary(src, offset);
-    let before = &src[..offset];
-    let line = before.bytes().filter(|&b| b == b'\n').count() + 1;
-    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-    let col = before[line_start..].chars().count() + 1;
-    (line, col)
+    LineIndex::new(src).line_col(src, offset)
 }
+
+/// Start offsets of the lines of a text, computed once: `line_col` is then
+/// a binary search (linear error reports on texts with many errors).
+pub(crate) struct LineIndex {
+    starts: Vec<usize>,
+}
+
+impl LineIndex {
+    /// Index the lines of `src` (`\n`, `\r\n` and lone `\r` end a line).
+    pub(crate) fn new(src: &str) -> Self {
+        let b = src.as_bytes();
+        let mut starts = vec![0];
+        for (i, &c) in b.iter().enumerate() {
+            if c == b'\n' || (c == b'\r' && b.get(i + 1) != Some(&b'\n')) {
+                starts.push(i + 1);
+            }
+        }
+        LineIndex { starts }
+    }
+
+    /// 1-based line and character column of byte `offset`.
+    pub(crate) fn line_col(&self, src: &str, offset: usize) -> (usize, usize) {
+        let offset = floor_boundary(src, offset);
+        let line = self.starts.partition_point(|&s| s <= offset);
+        let start = self.starts[line - 1].min(offset);
+        let col = src[start..offset].chars().count() + 1;
+        (line, col)
+    }
+
+    /// Byte range of the line holding `offset` (without its line end).
+    fn line_range(&self, src: &str, offset: usize) -> (usize, usize) {
+        let line = self.starts.partition_point(|&s| s <= offset);
+        let start = self.starts[line - 1];
+        let end = self.starts.get(line).map_or(src.len(), |&next| {
+            let b = src.as_bytes();
+            let mut e = next;
+            while e > start && matches!(b[e - 1], b'\n' | b'\r') {
+                e -= 1;
+            }
+            e
+        });
+        (start, end.max(start))
+    }
+}
+
+/// At most this many diagnostics are rendered; the rest are counted
+/// ("… and N more errors"), so a file with 100,000 errors is reported in
+/// linear time and a screenful of text.
+pub const MAX_SHOWN_DIAGNOSTICS: usize = 20;
 
 fn floor_boundary(src: &str, mut i: usize) -> usize {
     i = i.min(src.len());
@@ -68,23 +114,58 @@ impl RulesError {
         self.diagnostics.first().map_or((1, 1), |d| d.line_col(src))
     }
 
-    /// Render as `file:line:col: message`, the source line and a caret.
+    /// Render as `file:line:col: message`, the source line and a caret;
+    /// past the first 20 only their number.
     pub fn render(&self, file: &str, src: &str, color: bool) -> String {
+        // ariadne ends lines at `\n` only: lone `\r` line ends become `\n`
+        // (the same length, so every span still holds) so that the header
+        // and the snippet agree on the line.
+        let has_lone_cr = src
+            .as_bytes()
+            .iter()
+            .enumerate()
+            .any(|(i, &c)| c == b'\r' && src.as_bytes().get(i + 1) != Some(&b'\n'));
+        let normalized;
+        let src = if has_lone_cr {
+            let b = src.as_bytes();
+            let bytes: Vec<u8> = b
+                .iter()
+                .enumerate()
+                .map(|(i, &c)| {
+                    if c == b'\r' && b.get(i + 1) != Some(&b'\n') {
+                        b'\n'
+                    } else {
+                        c
+                    }
+                })
+                .collect();
+            normalized = String::from_utf8(bytes).expect("ASCII replaced by ASCII");
+            normalized.as_str()
+        } else {
+            src
+        };
+        let index = LineIndex::new(src);
         let mut out = String::new();
-        for d in &self.diagnostics {
-            out.push_str(&render_one(d, file, src, color));
+        for d in self.diagnostics.iter().take(MAX_SHOWN_DIAGNOSTICS) {
+            out.push_str(&render_one(d, file, src, &index, color));
+        }
+        let more = self.diagnostics.len().saturating_sub(MAX_SHOWN_DIAGNOSTICS);
+        if more > 0 {
+            out.push_str(&format!(
+                "error: {file}: … and {more} more error{}\n",
+                if more == 1 { "" } else { "s" }
+            ));
         }
         out
     }
 }
 
-fn render_one(d: &Diagnostic, file: &str, src: &str, color: bool) -> String {
+fn render_one(d: &Diagnostic, file: &str, src: &str, index: &LineIndex, color: bool) -> String {
     let start = floor_boundary(src, d.span.start);
     let end = floor_boundary(src, d.span.end.max(start));
-    let (line, col) = line_col(src, start);
+    let (line, col) = index.line_col(src, start);
     let header = format!("{file}:{line}:{col}: {}", d.message);
-    let line_start = src[..start].rfind('\n').map_or(0, |i| i + 1);
-    let line_end = src[start..].find('\n').map_or(src.len(), |i| start + i);
+    let (line_start, line_end) = index.line_range(src, start);
     if line_end - line_start > MAX_SNIPPET_LINE {
         return format!("error: {header}\n");
     }

@@ -13,7 +13,7 @@
 //!    subject class per rule, or the scene scope's class; quantifier counts;
 //!    no quantifier before a landmark; unique names, modifier ranges).
 
-use super::diagnostic::{line_col, Diagnostic};
+use super::diagnostic::{Diagnostic, LineIndex};
 use super::{
     Atom, Formula, Quant, Rule, RuleOrigin, RuleSet, RulesError, Scope, Span, Strength, Target,
 };
@@ -39,6 +39,16 @@ use grammar::{RccParser, Rule as R};
 /// Parse and check `.rcc` text (syntax, one subject per rule, unique names,
 /// modifier ranges).
 pub fn parse_rules(src: &str) -> Result<RuleSet, RulesError> {
+    if src.len() > crate::limits::MAX_RULES_BYTES {
+        return Err(RulesError::new(vec![Diagnostic::new(
+            Span::new(0, 0),
+            format!(
+                "the rule text is {} bytes; expected at most {} bytes (16 MiB)",
+                src.len(),
+                crate::limits::MAX_RULES_BYTES
+            ),
+        )]));
+    }
     if let Some(d) = paren_depth_check(src) {
         return Err(RulesError::new(vec![d]));
     }
@@ -55,6 +65,7 @@ pub fn parse_rules(src: &str) -> Result<RuleSet, RulesError> {
     let mut diags = Vec::new();
     let mut rules = Vec::new();
     let mut seen: HashMap<String, Span> = HashMap::new();
+    let mut lines: Option<LineIndex> = None;
     for pair in file.into_inner() {
         if pair.as_rule() != R::rule_def {
             continue;
@@ -68,7 +79,8 @@ pub fn parse_rules(src: &str) -> Result<RuleSet, RulesError> {
         if let Some(rule) = rule {
             let origin = rule.origin.as_ref().map(|o| o.name).unwrap_or_default();
             if let Some(first) = seen.get(&rule.name) {
-                let (line, _) = line_col(src, first.start);
+                let index = lines.get_or_insert_with(|| LineIndex::new(src));
+                let (line, _) = index.line_col(src, first.start);
                 diags.push(Diagnostic::new(
                     origin,
                     format!(
@@ -127,28 +139,34 @@ fn too_deep(span: Span) -> Diagnostic {
 
 /// Stage 3a: nesting depth of one rule, iteratively over its tokens.
 fn token_depth_check(rule: &Pair<'_, R>) -> Option<Diagnostic> {
-    use pest::Token;
+    // The token walk as an explicit stack over the rule's pairs (not
+    // `Pair::tokens`, which re-checks the whole file's token queue on
+    // every call in debug builds: quadratic on a file of many rules).
+    enum Frame<'i> {
+        Enter(Pair<'i, R>),
+        Exit(R, usize),
+    }
     let mut depth = 0usize;
-    let mut saved: Vec<usize> = Vec::new();
-    for tok in rule.clone().tokens() {
-        match tok {
-            Token::Start { rule: R::unary, .. } => saved.push(depth),
-            Token::End { rule: R::unary, .. } => depth = saved.pop().unwrap_or(0),
-            Token::Start { rule: R::group, .. }
-            | Token::Start {
-                rule: R::not_op, ..
-            } => {
-                depth += 1;
-                if depth > MAX_DEPTH {
-                    let Token::Start { pos, .. } = tok else {
-                        unreachable!()
-                    };
-                    let s = pos.pos();
-                    return Some(too_deep(Span::new(s, s + 1)));
+    let mut stack = vec![Frame::Enter(rule.clone())];
+    while let Some(frame) = stack.pop() {
+        match frame {
+            Frame::Enter(p) => {
+                let r = p.as_rule();
+                let saved = depth;
+                if matches!(r, R::group | R::not_op) {
+                    depth += 1;
+                    if depth > MAX_DEPTH {
+                        let s = p.as_span().start();
+                        return Some(too_deep(Span::new(s, s + 1)));
+                    }
                 }
+                stack.push(Frame::Exit(r, saved));
+                let children: Vec<Pair<'_, R>> = p.into_inner().collect();
+                stack.extend(children.into_iter().rev().map(Frame::Enter));
             }
-            Token::End { rule: R::group, .. } => depth = depth.saturating_sub(1),
-            _ => {}
+            Frame::Exit(R::unary, saved) => depth = saved,
+            Frame::Exit(R::group, _) => depth = depth.saturating_sub(1),
+            Frame::Exit(..) => {}
         }
     }
     None

@@ -7,8 +7,11 @@ use crate::ask::{
     Answer, AnswersFile, AskError, AskOptions, Asker, ProbeOptions, Question, CONFIRMED,
 };
 use crate::infer::{learn as run_learn, statement_text, LearnParams, StatementSource};
+use crate::limits::cut;
 use crate::resemblance::Likeness;
-use crate::rules::{check_classes, check_landmarks, parse_rules, RuleSet};
+use crate::rules::{
+    check_classes, check_landmarks, missing_classes, missing_classes_note, parse_rules, RuleSet,
+};
 use crate::scene::{scenes_from_json, scenes_to_json, Scene};
 use crate::synth::{synthesize, Progress, ProgressFn, SynthOptions, SynthResult};
 use axum::body::Bytes;
@@ -142,32 +145,108 @@ pub(crate) async fn local_host_only(
     next.run(req).await
 }
 
+/// Refuse every request that changes a file or starts work (any method but
+/// `GET`/`HEAD`) unless it comes from the studio's own page (SPEC §15
+/// "Trust of the studio"): an `Origin` header, when sent, must be this
+/// server's own (`http://` + the `Host` header; `null` and every other
+/// origin are refused); a `Sec-Fetch-Site` header, when sent, must be
+/// `same-origin` (or `none`, typed by the person); and the body must be
+/// declared `application/json` — a type a page elsewhere cannot send
+/// without a CORS preflight, which the studio never grants. Requests with
+/// no `Origin` (curl, scripts on this machine) pass these checks.
+pub(crate) async fn same_origin_only(
+    req: axum::extract::Request,
+    next: axum::middleware::Next,
+) -> Response {
+    use axum::http::Method;
+    if matches!(*req.method(), Method::GET | Method::HEAD) {
+        return next.run(req).await;
+    }
+    let headers = req.headers();
+    let text = |name: &str| {
+        headers
+            .get(name)
+            .map(|v| String::from_utf8_lossy(v.as_bytes()).into_owned())
+    };
+    let refuse = |why: String| {
+        ApiError::new(StatusCode::FORBIDDEN, why)
+            .with("kind", json!("foreign_request"))
+            .into_response()
+    };
+    if let Some(origin) = text("origin") {
+        let host = text("host");
+        let own = match &host {
+            Some(h) => origin.eq_ignore_ascii_case(&format!("http://{h}")),
+            // No Host (HTTP/1.0, tests): a loopback origin only.
+            None => origin
+                .strip_prefix("http://")
+                .map(|o| match o.rsplit_once(':') {
+                    Some((n, p)) if p.bytes().all(|b| b.is_ascii_digit()) => n,
+                    _ => o,
+                })
+                .is_some_and(|n| matches!(n, "127.0.0.1" | "localhost" | "[::1]")),
+        };
+        if !own {
+            return refuse(format!(
+                "origin `{}` refused: only the studio's own page may change files or start work",
+                cut(&origin)
+            ));
+        }
+    }
+    if let Some(site) = text("sec-fetch-site") {
+        if !matches!(site.as_str(), "same-origin" | "none") {
+            return refuse(format!(
+                "a {} request refused (Sec-Fetch-Site: {}): only the studio's own page may change files or start work",
+                req.method(),
+                cut(&site)
+            ));
+        }
+    }
+    let json_body = text("content-type").is_some_and(|t| {
+        t.split(';')
+            .next()
+            .is_some_and(|m| m.trim().eq_ignore_ascii_case("application/json"))
+    });
+    if !json_body {
+        return refuse(format!(
+            "content type `{}` refused; expected application/json (a {} request changes files or starts work)",
+            cut(&text("content-type").unwrap_or_else(|| "(none)".into())),
+            req.method()
+        ));
+    }
+    next.run(req).await
+}
+
+/// Answer a body past [`super::BODY_LIMIT`] with the studio's JSON error
+/// form (the body-limit layers answer 413 in plain text).
+pub(crate) async fn json_413(
+    req: axum::extract::Request,
+    next: axum::middleware::Next,
+) -> Response {
+    let res = next.run(req).await;
+    let is_json = res
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .is_some_and(|t| t.as_bytes().starts_with(b"application/json"));
+    if res.status() == StatusCode::PAYLOAD_TOO_LARGE && !is_json {
+        return ApiError::new(
+            StatusCode::PAYLOAD_TOO_LARGE,
+            format!(
+                "request body is too large; expected at most {} bytes (1 MiB)",
+                super::BODY_LIMIT
+            ),
+        )
+        .with("kind", json!("too_large"))
+        .into_response();
+    }
+    res
+}
+
 // ---- task --------------------------------------------------------------------
 
-/// Class colours exactly as `render` draws them: R/G/B by name, other
-/// movable classes from the palette in order of first appearance.
+/// Class colours exactly as `render` draws them.
 fn class_colours(scene: &Scene) -> HashMap<String, &'static str> {
-    const PALETTE: [&str; 8] = [
-        "#f0ad4e", "#8e6cc0", "#1fa2a0", "#e07b39", "#c2577e", "#7f8c3a", "#5d7ea8", "#b08d57",
-    ];
-    let mut out = HashMap::new();
-    let mut next = 0;
-    for o in scene.objects.iter().filter(|o| !o.fixed) {
-        if out.contains_key(&o.class) {
-            continue;
-        }
-        let c = match o.class.to_ascii_lowercase().as_str() {
-            "r" | "red" => "#d9534f",
-            "g" | "green" => "#5cb85c",
-            "b" | "blue" => "#428bca",
-            _ => {
-                next += 1;
-                PALETTE[(next - 1) % PALETTE.len()]
-            }
-        };
-        out.insert(o.class.clone(), c);
-    }
-    out
+    crate::render::class_colours(scene)
 }
 
 pub(crate) async fn task(State(st): St) -> ApiResult {
@@ -227,6 +306,23 @@ fn read_demos_versioned(st: &AppState) -> Result<(Vec<Scene>, String), ApiError>
     }
     let demos = scenes_from_json(&text).map_err(|e| corrupt(&e.to_string()))?;
     Ok((demos, storage::version(Some(&text))))
+}
+
+/// The task folder's lock (shared with `rccpack ask`), taken while
+/// writing; a 409 naming it when an `ask` session holds it.
+fn folder_lock(st: &AppState) -> Result<crate::fsutil::DirLock, ApiError> {
+    match crate::fsutil::DirLock::try_lock(&st.dir) {
+        Ok(Some(l)) => Ok(l),
+        Ok(None) => Err(ApiError::new(
+            StatusCode::CONFLICT,
+            format!(
+                "the task folder is in use by `rccpack ask` (it holds {}); nothing was written — try again when it ends",
+                crate::fsutil::LOCK_FILE
+            ),
+        )
+        .with("kind", json!("folder_locked"))),
+        Err(e) => Err(ApiError::io(crate::fsutil::LOCK_FILE, e)),
+    }
 }
 
 fn corrupt(why: &str) -> ApiError {
@@ -332,18 +428,35 @@ fn parse_demo(st: &AppState, body: &[u8]) -> Result<Scene, ApiError> {
     Ok(scene)
 }
 
+/// Run `f` (parsing, validation: work that grows with the input) on a
+/// blocking thread, so one large request never stalls the other routes.
+async fn off_async<T: Send + 'static>(
+    f: impl FnOnce() -> Result<T, ApiError> + Send + 'static,
+) -> Result<T, ApiError> {
+    tokio::task::spawn_blocking(f)
+        .await
+        .map_err(|_| internal("reading the files"))?
+}
+
 pub(crate) async fn list_demos(State(st): St) -> ApiResult {
-    let (demos, version) = read_demos_versioned(&st)?;
-    ok(json!({
-        "count": demos.len(),
-        "version": version,
-        "demos": demos.iter().map(scene_value).collect::<Vec<_>>(),
-    }))
+    let st2 = st.clone();
+    let v = off_async(move || {
+        let (demos, version) = read_demos_versioned(&st2)?;
+        Ok(json!({
+            "count": demos.len(),
+            "version": version,
+            "demos": demos.iter().map(scene_value).collect::<Vec<_>>(),
+        }))
+    })
+    .await?;
+    ok(v)
 }
 
 pub(crate) async fn save_demo(State(st): St, body: Bytes) -> ApiResult {
-    let scene = parse_demo(&st, &body)?;
+    let st2 = st.clone();
+    let scene = off_async(move || parse_demo(&st2, &body)).await?;
     let _guard = st.write_lock.lock().await;
+    let _folder = folder_lock(&st)?;
     let mut demos = read_demos(&st)?;
     demos.push(scene);
     st.reset_ask();
@@ -367,9 +480,14 @@ fn demo_index(raw: &str, len: usize) -> Result<usize, ApiError> {
 }
 
 pub(crate) async fn get_demo(State(st): St, Path(index): Path<String>) -> ApiResult {
-    let demos = read_demos(&st)?;
-    let i = demo_index(&index, demos.len())?;
-    ok(scene_value(&demos[i]))
+    let st2 = st.clone();
+    let v = off_async(move || {
+        let demos = read_demos(&st2)?;
+        let i = demo_index(&index, demos.len())?;
+        Ok(scene_value(&demos[i]))
+    })
+    .await?;
+    ok(v)
 }
 
 #[derive(Deserialize)]
@@ -386,6 +504,7 @@ pub(crate) async fn delete_demo(
     Query(q): Query<DeleteQuery>,
 ) -> ApiResult {
     let _guard = st.write_lock.lock().await;
+    let _folder = folder_lock(&st)?;
     let (mut demos, version) = read_demos_versioned(&st)?;
     if q.version.as_ref().is_some_and(|v| *v != version) {
         return Err(ApiError::new(
@@ -450,6 +569,18 @@ fn learn_params(b: &LearnBody) -> Result<LearnParams, ApiError> {
     }
     if let Some(c) = b.cutoff {
         params.cutoff = c;
+    }
+    // Name the field of the body, not the command line's flag.
+    if let Err(crate::infer::InferError::BadParameter {
+        flag,
+        value,
+        expected,
+    }) = params.validate()
+    {
+        return Err(ApiError::bad(format!(
+            "request body: {flag}: {value} is invalid; expected {expected}"
+        ))
+        .at(flag));
     }
     Ok(params)
 }
@@ -518,11 +649,14 @@ fn learned_value(st: &AppState, text: Option<&str>) -> Value {
     });
     if let Some(t) = text {
         match parse_rules(t).and_then(|set| {
-            check_classes(&set, &st.problem)?;
             check_landmarks(&set, &st.problem)?;
             Ok(set)
         }) {
             Ok(set) => {
+                // SPEC §15: a class today's problem lacks is ordinary.
+                if let Some(note) = missing_classes_note(&missing_classes(&set, &st.problem)) {
+                    v["note"] = json!(note);
+                }
                 let confirmed = confirmed_names(t);
                 let mut rules = rule_summary(&set);
                 for r in rules.as_array_mut().expect("an array") {
@@ -574,7 +708,7 @@ fn rule_summary(set: &RuleSet) -> Value {
 
 pub(crate) async fn get_learned(State(st): St) -> ApiResult {
     let text = storage::read_optional(&st.dir, LEARNED).map_err(|e| ApiError::io(LEARNED, e))?;
-    ok(learned_value(&st, text.as_deref()))
+    ok(learned_value_async(&st, text).await)
 }
 
 #[derive(Deserialize, Default)]
@@ -585,22 +719,59 @@ struct PutLearned {
     base_version: String,
 }
 
+/// Parse and check `.rcc` text off the async threads (a large text must
+/// not stall every other route).
+async fn parse_checked(
+    st: &Arc<AppState>,
+    file: &'static str,
+    text: String,
+) -> Result<(RuleSet, String), ApiError> {
+    let st = st.clone();
+    tokio::task::spawn_blocking(move || {
+        let set = parse_rules(&text).map_err(|e| rules_error(file, &text, e))?;
+        check_landmarks(&set, &st.problem).map_err(|e| rules_error(file, &text, e))?;
+        // A class of neither the problem nor the demonstrations is a typo;
+        // one only the demonstrations have is ordinary (SPEC §15: noted).
+        let mut known = st.problem.clone();
+        for d in read_demos(&st).unwrap_or_default() {
+            known.objects.extend(d.objects);
+        }
+        check_classes(&set, &known).map_err(|e| rules_error(file, &text, e))?;
+        Ok((set, text))
+    })
+    .await
+    .map_err(|_| internal("reading the rules"))?
+}
+
+/// [`learned_value`] off the async threads.
+async fn learned_value_async(st: &Arc<AppState>, text: Option<String>) -> Value {
+    let st = st.clone();
+    tokio::task::spawn_blocking(move || learned_value(&st, text.as_deref()))
+        .await
+        .unwrap_or_else(
+            |_| json!({"error": "reading the rules failed unexpectedly (internal error)"}),
+        )
+}
+
 pub(crate) async fn put_learned(State(st): St, body: Bytes) -> ApiResult {
     let b: PutLearned = parse_body(&body)?;
-    let set = parse_rules(&b.text).map_err(|e| rules_error(LEARNED, &b.text, e))?;
-    check_classes(&set, &st.problem).map_err(|e| rules_error(LEARNED, &b.text, e))?;
-    check_landmarks(&set, &st.problem).map_err(|e| rules_error(LEARNED, &b.text, e))?;
+    let (_, text) = parse_checked(&st, LEARNED, b.text).await?;
+    let b = PutLearned {
+        text,
+        base_version: b.base_version,
+    };
     let _guard = st.write_lock.lock().await;
+    let _folder = folder_lock(&st)?;
     let current = storage::read_optional(&st.dir, LEARNED).map_err(|e| ApiError::io(LEARNED, e))?;
     if storage::version(current.as_deref()) != b.base_version {
         return Err(ApiError::new(
             StatusCode::CONFLICT,
             format!("{LEARNED} changed on disk since the page loaded it; not overwritten — the page shows the file as it is now"),
         )
-        .with("current", learned_value(&st, current.as_deref())));
+        .with("current", learned_value_async(&st, current).await));
     }
     storage::atomic_write(&st.dir, LEARNED, &b.text).map_err(|e| ApiError::io(LEARNED, e))?;
-    ok(learned_value(&st, Some(&b.text)))
+    ok(learned_value_async(&st, Some(b.text)).await)
 }
 
 // ---- questions ("Check rules", SPEC §13) ------------------------------------------
@@ -613,6 +784,20 @@ pub(crate) struct AskSession {
     /// [`AppState::ask_generation`] when the session read the files.
     generation: u64,
     params: LearnParams,
+    /// Versions of demos.json and learned.rcc as the session last wrote
+    /// them: a file changed outside the studio since (a hand edit) is
+    /// never overwritten by an answer.
+    versions: (String, String),
+}
+
+/// Versions ([`storage::version`]) of demos.json and learned.rcc on disk.
+fn disk_versions(st: &AppState) -> Result<(String, String), ApiError> {
+    let demos = storage::read_optional(&st.dir, DEMOS).map_err(|e| ApiError::io(DEMOS, e))?;
+    let learned = storage::read_optional(&st.dir, LEARNED).map_err(|e| ApiError::io(LEARNED, e))?;
+    Ok((
+        storage::version(demos.as_deref()),
+        storage::version(learned.as_deref()),
+    ))
 }
 
 impl AppState {
@@ -683,6 +868,7 @@ async fn start_session(
     params: LearnParams,
 ) -> Result<(AskSession, Option<&'static str>), ApiError> {
     let _guard = st.write_lock.lock().await;
+    let _folder = folder_lock(st)?;
     let generation = st.ask_generation.load(Ordering::SeqCst);
     let demos = read_demos(st)?;
     let n_demos = demos.len();
@@ -714,6 +900,7 @@ async fn start_session(
             question: None,
             generation,
             params,
+            versions: disk_versions(st)?,
         },
         backup,
     ))
@@ -742,10 +929,12 @@ pub(crate) async fn ask_next(State(st): St, body: Bytes) -> ApiResult {
     let params = learn_params(&b)?;
     let mut guard = st.ask.clone().lock_owned().await;
     let generation = st.ask_generation.load(Ordering::SeqCst);
+    let on_disk = disk_versions(&st)?;
     let keep = guard.as_ref().is_some_and(|s| {
         // Parameters given in the body must match the session's; omitted
-        // ones keep it.
+        // ones keep it. A file edited outside the studio starts afresh.
         s.generation == generation
+            && s.versions == on_disk
             && b.samples.is_none_or(|n| n == s.params.samples)
             && b.seed.is_none_or(|x| x == s.params.seed)
             && b.cutoff.is_none_or(|c| c == s.params.cutoff)
@@ -861,6 +1050,13 @@ pub(crate) async fn ask_answer(State(st): St, body: Bytes) -> ApiResult {
         return Err(ask_error(e));
     }
     let _write = st.write_lock.lock().await;
+    let _folder = match folder_lock(&st) {
+        Ok(l) => l,
+        Err(e) => {
+            *guard = None;
+            return Err(e);
+        }
+    };
     let s = guard.as_ref().expect("answered above");
     if s.generation != st.ask_generation.load(Ordering::SeqCst) {
         *guard = None;
@@ -870,16 +1066,42 @@ pub(crate) async fn ask_answer(State(st): St, body: Bytes) -> ApiResult {
         )
         .with("kind", json!("no_question")));
     }
+    // The version check of the other routes: a demonstration or a rule
+    // added by hand since the session read the files is never lost.
+    let on_disk = match disk_versions(&st) {
+        Ok(v) => v,
+        Err(e) => {
+            *guard = None;
+            return Err(e);
+        }
+    };
+    if on_disk != s.versions {
+        *guard = None;
+        return Err(ApiError::new(
+            StatusCode::CONFLICT,
+            format!("{DEMOS} or {LEARNED} changed on disk since the question was asked; the answer was not saved and nothing was overwritten — ask again"),
+        )
+        .with("kind", json!("stale_files")));
+    }
     // As `rccpack ask`: the journal first, then the demonstrations, then the
     // rules; each write atomic. A failed write drops the session, so the
     // next question starts again from what is on disk.
     let rcc = s.asker.learned_rcc();
     let written = storage::write_after_answer(&st.dir, &s.asker, accepted)
-        .map_err(|(f, e)| ApiError::io(f, e));
-    if let Err(e) = written {
-        *guard = None;
-        return Err(e);
+        .map_err(|(f, e)| ApiError::io(f, e))
+        .and_then(|()| disk_versions(&st));
+    match written {
+        Ok(v) => {
+            if let Some(s) = guard.as_mut() {
+                s.versions = v;
+            }
+        }
+        Err(e) => {
+            *guard = None;
+            return Err(e);
+        }
     }
+    let s = guard.as_ref().expect("answered above");
     let answer = s.asker.answers().last().expect("just answered");
     let v = json!({
         "answer": {"rule": answer.rule, "accepted": answer.accepted, "demo": answer.demo},
@@ -922,9 +1144,10 @@ const STUDIO_MAX_TIME_LIMIT_SECS: u64 = 600;
 
 pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
     let b: SynthBody = parse_body(&body)?;
-    let set = parse_rules(&b.rules).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
-    check_classes(&set, &st.problem).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
-    check_landmarks(&set, &st.problem).map_err(|e| rules_error(CHOSEN, &b.rules, e))?;
+    let (set, _) = parse_checked(&st, CHOSEN, b.rules).await?;
+    // SPEC §15: the chosen rules are learned ones; a class the problem
+    // lacks is noted, not refused.
+    let note = missing_classes_note(&missing_classes(&set, &st.problem));
     let secs = b.time_limit.unwrap_or(30.0);
     // The shared validated parser, then the studio's own tighter cap.
     let limit = crate::limits::time_limit(secs)
@@ -986,7 +1209,11 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
             j.outcome = Some(outcome);
         }
     });
-    Ok((StatusCode::ACCEPTED, Json(json!({ "job": id }))).into_response())
+    Ok((
+        StatusCode::ACCEPTED,
+        Json(json!({ "job": id, "note": note })),
+    )
+        .into_response())
 }
 
 fn synth_value(r: &SynthResult) -> Value {

@@ -113,8 +113,10 @@ pub fn router(dir: &Path) -> Result<Router, StudioError> {
         .route("/api/synth/{job}", get(api::synth_status))
         .route("/api/synth/{job}/cancel", post(api::cancel_synth))
         .fallback(api::not_found)
+        .layer(axum::middleware::from_fn(api::same_origin_only))
         .layer(axum::middleware::from_fn(api::local_host_only))
         .layer(DefaultBodyLimit::max(BODY_LIMIT))
         .layer(RequestBodyLimitLayer::new(BODY_LIMIT))
+        .layer(axum::middleware::from_fn(api::json_413))
         .with_state(state))
 }

@@ -1,9 +1,7 @@
 //! Files of a task folder: fixed names only, atomic writes, content versions.
 
 use std::fs;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The problem: space, fixed objects, objects to place (read only).
 pub const PROBLEM: &str = "problem.json";
@@ -20,8 +18,6 @@ pub const ANSWERS: &str = "answers.json";
 /// The previous `learned.rcc`, kept when a first question replaces it.
 pub const LEARNED_BACKUP: &str = "learned.rcc.bak";
 
-static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
-
 /// The path of one of the fixed file names inside `dir`.
 pub fn file(dir: &Path, name: &'static str) -> PathBuf {
     dir.join(name)
@@ -34,41 +30,17 @@ pub fn atomic_write(dir: &Path, name: &'static str, contents: &str) -> std::io::
     atomic_write_path(&dir.join(name), contents)
 }
 
-/// [`atomic_write`] to any path: a temporary file beside it, flushed, then
-/// renamed over it.
+/// [`atomic_write`] to any path: [`crate::fsutil::atomic_write`].
 pub fn atomic_write_path(path: &Path, contents: &str) -> std::io::Result<()> {
-    let n = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.tmp-{}-{n}", std::process::id()));
-    let result = (|| {
-        let mut f = fs::File::create(&tmp)?;
-        f.write_all(contents.as_bytes())?;
-        f.sync_all()?;
-        drop(f);
-        fs::rename(&tmp, path)?;
-        // Make the rename itself durable.
-        if let Ok(d) = fs::File::open(dir) {
-            let _ = d.sync_all();
-        }
-        Ok(())
-    })();
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
-    }
-    result
+    crate::fsutil::atomic_write(path, contents)
 }
 
 /// Read `dir/name`; `Ok(None)` when it does not exist.
 pub fn read_optional(dir: &Path, name: &'static str) -> std::io::Result<Option<String>> {
-    match fs::read_to_string(dir.join(name)) {
-        Ok(s) => Ok(Some(s)),
+    match fs::read(dir.join(name)) {
+        Ok(b) => crate::fsutil::utf8_text(b)
+            .map(Some)
+            .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e)),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
         Err(e) => Err(e),
     }

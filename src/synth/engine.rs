@@ -634,14 +634,32 @@ impl<'m> Builder<'m> {
             return Ok(None);
         };
         let mut ws = Vec::new();
-        let mut ws32 = Vec::new();
-        let mut ls = Vec::new();
         for (s, &c) in self.model.soft.iter().zip(coefs) {
             if let Lit::Var { .. } = s.lit {
                 ws.push(c);
-                ws32.push(i32_of(c, || "a rule weight".into())?);
-                ls.push(self.lit(s.lit));
             }
+        }
+        // One term per distinct literal (coefficients summed): many rules
+        // or objects sharing a literal would otherwise register the same
+        // literal once per term with the engine (quadratic).
+        let mut index: std::collections::HashMap<Lit, usize> = std::collections::HashMap::new();
+        let mut agg: Vec<(Lit, i64)> = Vec::new();
+        for (s, &c) in self.model.soft.iter().zip(coefs) {
+            if let Lit::Var { .. } = s.lit {
+                match index.get(&s.lit) {
+                    Some(&k) => agg[k].1 += c,
+                    None => {
+                        index.insert(s.lit, agg.len());
+                        agg.push((s.lit, c));
+                    }
+                }
+            }
+        }
+        let mut ws32 = Vec::with_capacity(agg.len());
+        let mut ls = Vec::with_capacity(agg.len());
+        for (l, c) in agg {
+            ws32.push(i32_of(c, || "a rule weight".into())?);
+            ls.push(self.lit(l));
         }
         self.solver
             .add_constraint(boolean_equals(ws32, ls, obj, self.tag))

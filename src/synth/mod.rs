@@ -52,6 +52,7 @@ use std::time::Duration;
 
 pub mod backend;
 pub mod brute_force;
+pub mod capacity;
 pub mod driver;
 pub mod emit;
 pub mod engine;
@@ -169,6 +170,13 @@ pub struct Conflict {
     /// impossible; minimal: dropping any one makes the rest satisfiable.
     /// Scene-level rules (§11.4) appear by name like the others.
     pub hard_rules: Vec<String>,
+    /// A limit struck before the conflict was explained: nothing is blamed
+    /// that was not proven. With `hard_rules` empty (and not
+    /// `objects_cannot_fit`) no reason is known; otherwise those rules
+    /// conflict together but were not all proven needed. Absent from JSON
+    /// when false.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub limit_struck: bool,
 }
 
 /// Search statistics.
@@ -406,6 +414,9 @@ pub fn synthesize(
         cancel: opts.cancel.clone(),
     };
     let (model, coefs, build) = objective_model(problem, rules, opts)?;
+    if let Some(r) = capacity::infeasible_at_once(problem, opts) {
+        return Ok(r);
+    }
     let mut stats = SolveStats::default();
     let infeasible = |conflict: Conflict, mut stats: SolveStats| {
         stats.time_ms = ms(start.elapsed());
@@ -423,7 +434,7 @@ pub fn synthesize(
         return Ok(infeasible(
             Conflict {
                 objects_cannot_fit: true,
-                hard_rules: Vec::new(),
+                ..Conflict::default()
             },
             stats,
         ));
@@ -646,18 +657,58 @@ fn explain(
         symmetry_breaking: opts.symmetry_breaking,
         redundant: opts.redundant,
     };
-    let all_rules = |m: &Model| -> Vec<String> {
-        m.hard
-            .iter()
-            .map(|h| rules.rules[h.rule].name.clone())
-            .collect()
-    };
+    if capacity::cannot_fit(problem) {
+        return Ok(Conflict {
+            objects_cannot_fit: true,
+            ..Conflict::default()
+        });
+    }
+    // Building an engine does not look at the clock: past the deadline,
+    // build none (the time limit would otherwise be overshot by up to two
+    // engine builds) and blame nothing.
+    if limits.expired() {
+        return Ok(Conflict {
+            limit_struck: true,
+            ..Conflict::default()
+        });
+    }
     let m0 = Model::build(problem, rules, base);
     let mut e0 = Engine::new(&m0, opts.seed, false, None)?;
     let fit = e0.satisfy(limits);
     stats.nodes += e0.nodes();
     stats.conflicts += e0.conflicts();
     drop(e0);
+    match fit {
+        Sat::Unsat => {
+            return Ok(Conflict {
+                objects_cannot_fit: true,
+                ..Conflict::default()
+            })
+        }
+        // Whether the objects fit is not known: blame nothing (every hard
+        // rule may be harmless).
+        Sat::Unknown => {
+            return Ok(Conflict {
+                limit_struck: true,
+                ..Conflict::default()
+            })
+        }
+        Sat::Solution(_) => {}
+    }
+    // The objects fit, so the hard rules together conflict (the main solve
+    // proved it); past the deadline they are named together, unshrunk.
+    if limits.expired() {
+        return Ok(Conflict {
+            hard_rules: rules
+                .rules
+                .iter()
+                .filter(|r| r.strength.is_hard())
+                .map(|r| r.name.clone())
+                .collect(),
+            limit_struck: true,
+            ..Conflict::default()
+        });
+    }
     let mg = Model::build(
         problem,
         rules,
@@ -666,26 +717,11 @@ fn explain(
             ..base
         },
     );
-    match fit {
-        Sat::Unsat => {
-            return Ok(Conflict {
-                objects_cannot_fit: true,
-                hard_rules: Vec::new(),
-            })
-        }
-        Sat::Unknown => {
-            return Ok(Conflict {
-                objects_cannot_fit: false,
-                hard_rules: all_rules(&mg),
-            })
-        }
-        Sat::Solution(_) => {}
-    }
     let mut eg = Engine::new(&mg, opts.seed, true, None)?;
     // Deletion through the driver: every solve obeys the limits (a limit
     // keeps the rule, so the set stays conflicting, perhaps not minimal).
     let all: Vec<usize> = (0..mg.hard.len()).collect();
-    let (core, _minimal) = driver::shrink_conflict(&mut eg, &all, limits);
+    let (core, minimal) = driver::shrink_conflict(&mut eg, &all, limits);
     stats.nodes += eg.nodes();
     stats.conflicts += eg.conflicts();
     Ok(Conflict {
@@ -694,5 +730,6 @@ fn explain(
             .iter()
             .map(|&k| rules.rules[mg.hard[k].rule].name.clone())
             .collect(),
+        limit_struck: !minimal || core.is_empty(),
     })
 }

@@ -259,6 +259,62 @@ try {
   await page.waitForFunction((n) => document.getElementById('demo-count').textContent === String(n), exampleDemos.length);
   assert.equal(JSON.parse(fs.readFileSync(path.join(task, 'demos.json'), 'utf8')).length, exampleDemos.length);
 
+  // A page on another origin (a second local server, another port) tries a
+  // "simple" fetch, a JSON fetch, a PUT and a form post: no file changes
+  // (issue 21, item 1; SPEC §15, trust of the studio).
+  {
+    const http = await import('node:http');
+    const demosPath = path.join(task, 'demos.json');
+    const learnedPath = path.join(task, 'learned.rcc');
+    const demosBefore = fs.readFileSync(demosPath, 'utf8');
+    const learnedBefore = fs.existsSync(learnedPath) ? fs.readFileSync(learnedPath, 'utf8') : null;
+    const demo = JSON.stringify(JSON.parse(demosBefore)[0]);
+    const evilHtml = `<!doctype html><html><body>
+<form id="f" method="POST" action="${url}api/demos" enctype="text/plain" target="sink">
+<input type="hidden" name="x" value="1"></form>
+<iframe name="sink"></iframe>
+<script>
+const STUDIO = ${JSON.stringify(url)};
+const DEMO = ${JSON.stringify(demo)};
+window.results = [];
+(async () => {
+  const tries = [
+    ['api/demos', { method: 'POST', mode: 'no-cors', headers: { 'Content-Type': 'text/plain' }, body: DEMO }],
+    ['api/demos', { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: DEMO }],
+    ['api/learn', { method: 'POST', mode: 'no-cors', headers: { 'Content-Type': 'text/plain' }, body: '{}' }],
+    ['api/learned', { method: 'PUT', headers: { 'Content-Type': 'application/json' },
+      body: JSON.stringify({ text: 'rule evil: DR_N(R, G)\\n', base_version: 'absent' }) }],
+    ['api/demos/0', { method: 'DELETE', mode: 'no-cors' }],
+  ];
+  for (const [p, init] of tries) {
+    try { const r = await fetch(STUDIO + p, init); window.results.push(p + ' ' + r.status); }
+    catch (e) { window.results.push(p + ' blocked'); }
+  }
+  document.getElementById('f').submit();
+  window.done = true;
+})();
+</script></body></html>`;
+    const evil = http.createServer((req, res) => {
+      res.writeHead(200, { 'content-type': 'text/html; charset=utf-8' });
+      res.end(evilHtml);
+    });
+    await new Promise((r) => evil.listen(0, '127.0.0.1', r));
+    const evilUrl = `http://127.0.0.1:${evil.address().port}/`;
+    const evilPage = await context.newPage();
+    try {
+      await evilPage.goto(evilUrl);
+      await evilPage.waitForFunction(() => window.done === true, null, { timeout: 20000 });
+      await evilPage.waitForTimeout(1500); // let the form post land
+      log('foreign page:', await evilPage.evaluate(() => window.results.join(', ')));
+    } finally {
+      await evilPage.close();
+      evil.close();
+    }
+    assert.equal(fs.readFileSync(demosPath, 'utf8'), demosBefore, 'demos.json unchanged by a foreign page');
+    assert.equal(fs.existsSync(learnedPath) ? fs.readFileSync(learnedPath, 'utf8') : null, learnedBefore,
+      'learned.rcc unchanged by a foreign page');
+  }
+
   assert.deepEqual(errors, [], 'no errors in the page');
   log('ok; screenshots in', out);
 } catch (e) {

@@ -23,9 +23,11 @@ const state = {
 
 async function api(method, url, body) {
   const init = { method, headers: {} };
+  // Every request that changes something is JSON: the studio refuses any
+  // other content type (SPEC §15, trust of the studio).
+  if (method !== 'GET') init.headers['content-type'] = 'application/json';
   if (body !== undefined) {
     init.body = typeof body === 'string' ? body : JSON.stringify(body);
-    init.headers['content-type'] = 'application/json';
   }
   const res = await fetch(url, init);
   let data = null;
@@ -462,7 +464,8 @@ function showResult(r, cancelled) {
   if (r.conflict) {
     const c = r.conflict;
     conflict = `<div class="error-box">${c.objects_cannot_fit ? 'The objects cannot all fit in the space.' : ''}
-      ${c.hard_rules.length ? `These hard rules cannot hold together: ${c.hard_rules.map(esc).join(', ')}` : ''}</div>`;
+      ${c.hard_rules.length ? `These hard rules cannot hold together: ${c.hard_rules.map(esc).join(', ')}` : ''}
+      ${c.limit_struck ? 'A limit struck before the conflict was explained.' : ''}</div>`;
   }
   box.innerHTML = `<div class="result-head"><span class="status ${r.status}">${r.status}</span>
       <span class="muted small">${(r.time_ms / 1000).toFixed(2)} s · ${r.stats.nodes} nodes${cancelled ? ' · cancelled' : ''}</span></div>
