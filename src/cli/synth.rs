@@ -132,7 +132,7 @@ struct Report<'a> {
     rules: &'a [RuleReport],
     #[serde(skip_serializing_if = "Option::is_none")]
     resemblance: Option<Resemblance>,
-    /// A proven upper bound on the score of any layout.
+    /// With `feasible`: a proven upper bound on the score of any layout.
     #[serde(skip_serializing_if = "Option::is_none")]
     score_bound: Option<f64>,
 }
@@ -209,7 +209,11 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             conflict: result.conflict.as_ref(),
             rules: ev.map(|e| e.rules.as_slice()).unwrap_or(&[]),
             resemblance: result.resemblance,
-            score_bound: result.score_bound,
+            // Only for `feasible` (for `optimal` it is the score): the
+            // first-edition report of an optimal solve is unchanged.
+            score_bound: result
+                .score_bound
+                .filter(|_| result.status == Status::Feasible),
         };
         let text = serde_json::to_string_pretty(&report)? + "\n";
         super::write_file(path, text, "report")?;

@@ -168,6 +168,7 @@ impl Lns<'_> {
     ) -> Result<(OptOutcome, LnsOutcome), SynthError> {
         let mut state = self.state(best);
         let mut budget = self.opts.proof_nodes.max(1);
+        let mut attempt = 0u32;
         loop {
             let lns_nodes = state.out.nodes;
             let used = engine.nodes().saturating_add(lns_nodes);
@@ -185,12 +186,22 @@ impl Lns<'_> {
                 ..limits.clone()
             };
             let best = state.out.values.clone();
+            // Every other attempt asks for the incumbent plus one (the
+            // proof a below-the-bound optimum needs); the others use the
+            // caller's strategy (upper bound first: what reaches a score-1
+            // layout at once).
+            let this = if attempt % 2 == 1 {
+                Strategy::ImproveFromFirst
+            } else {
+                strategy
+            };
+            attempt += 1;
             match driver::optimise_from(
                 engine,
                 Some(objective),
                 best,
                 &proof_limits,
-                strategy,
+                this,
                 on_incumbent,
             ) {
                 OptOutcome::Feasible(v) => {
