@@ -603,3 +603,39 @@ fn ask_lock_and_oracle_timeout() {
         .collect();
     assert!(stray.is_empty(), "{stray:?}");
 }
+
+/// Item 3's overshoot: the time limit covers posting the model to the
+/// engine (144 blocks exactly filling their space with a hard contact
+/// rule: about a second of posting in release builds). Timed as a ratio
+/// against the same problem without a limit.
+#[test]
+fn the_time_limit_covers_building_the_engine() {
+    let d = dir("build-limit");
+    let p = write(&d, "p144.json", &blocks(144, 120, 10, 10));
+    let touch = write(
+        &d,
+        "touch.rcc",
+        "rule touch hard: EC_N(R, *) | EC_S(R, *) | EC_E(R, *) | EC_W(R, *)\n",
+    );
+    let timed = |limit: &str| {
+        let t = Instant::now();
+        let o = rccpack(&[
+            "synth",
+            &p,
+            "--rules",
+            &touch,
+            "--time-limit",
+            limit,
+            "--quiet",
+        ]);
+        (o, t.elapsed())
+    };
+    let (full, t_full) = timed("600");
+    assert_eq!(full.status.code(), Some(0), "{}", stderr(&full));
+    let (cut, t_cut) = timed("0.01");
+    assert_eq!(cut.status.code(), Some(3), "{}", stderr(&cut));
+    assert!(
+        t_cut * 3 < t_full,
+        "limited {t_cut:?}, unlimited {t_full:?}: the limit did not cut the build short"
+    );
+}

@@ -365,9 +365,19 @@ struct Builder<'m> {
     /// One Pumpkin literal per model Boolean.
     lits: Vec<Literal>,
     truth: Literal,
+    /// Building stops (and the engine is not made) past this instant.
+    deadline: Option<std::time::Instant>,
 }
 
 impl<'m> Builder<'m> {
+    /// Whether the deadline has passed (checked between the steps and
+    /// every few thousand definitions: posting a large model can take
+    /// longer than the whole time limit).
+    fn late(&self) -> bool {
+        self.deadline
+            .is_some_and(|d| std::time::Instant::now() >= d)
+    }
+
     /// The solver with one integer variable per grid variable.
     fn new(model: &'m Model, seed: u64) -> Result<Self, SynthError> {
         let mut solver = Solver::with_options(SolverOptions {
@@ -389,6 +399,7 @@ impl<'m> Builder<'m> {
             vars,
             lits: Vec::new(),
             truth,
+            deadline: None,
         })
     }
 
@@ -518,6 +529,9 @@ impl<'m> Builder<'m> {
         let model = self.model;
         let tag = self.tag;
         for (i, def) in model.bools.iter().enumerate() {
+            if i % 4096 == 4095 && self.late() {
+                return Ok(());
+            }
             let l = self.lits[i];
             match def {
                 BoolDef::Ge { .. } => {}
@@ -759,23 +773,50 @@ impl Engine {
         coefs: Option<&[i64]>,
         like: &[LikeTerm],
     ) -> Result<Engine, SynthError> {
+        let e = Self::with_like_until(model, seed, guarded, coefs, like, None)?;
+        Ok(e.expect("no deadline"))
+    }
+
+    /// [`Engine::with_like`], given up (`None`) once `deadline` passes:
+    /// posting a large model can take longer than the solve's time limit.
+    pub fn with_like_until(
+        model: &Model,
+        seed: u64,
+        guarded: bool,
+        coefs: Option<&[i64]>,
+        like: &[LikeTerm],
+        deadline: Option<std::time::Instant>,
+    ) -> Result<Option<Engine>, SynthError> {
         check_ranges(model, like)?;
         let mut b = Builder::new(model, seed)?;
+        b.deadline = deadline;
         // Every variable and literal first ...
         b.create_literals()?;
         let guards = b.create_guards(guarded);
         let starts = b.create_cumulative_starts()?;
         let (like_costs, like_total) = b.create_like(like);
         let obj = b.create_objective(coefs)?;
+        if b.late() {
+            return Ok(None);
+        }
         // ... then every constraint.
         b.post_definitions()?;
+        if b.late() {
+            return Ok(None);
+        }
         b.post_clauses();
         b.post_hard(&guards);
         b.post_symmetry()?;
         b.post_cumulative(starts)?;
+        if b.late() {
+            return Ok(None);
+        }
         let objective = b.post_objective(coefs, obj)?;
         b.post_like(like, &like_costs, like_total);
-        Ok(b.finish(guards, objective, like_total))
+        if b.late() {
+            return Ok(None);
+        }
+        Ok(Some(b.finish(guards, objective, like_total)))
     }
 
     /// The objective's coefficients, variable terms only, in

@@ -449,13 +449,27 @@ pub fn synthesize(
         None => None,
     };
     let t_model = start.elapsed();
-    let mut engine = Engine::with_like(
+    let Some(mut engine) = Engine::with_like_until(
         &model,
         opts.seed,
         false,
         Some(&coefs),
         like_terms.as_deref().unwrap_or(&[]),
-    )?;
+        limits.deadline,
+    )?
+    else {
+        // The time limit struck while the model was being posted.
+        stats.time_ms = ms(start.elapsed());
+        return Ok(SynthResult {
+            status: Status::Unknown,
+            scene: None,
+            evaluation: None,
+            conflict: None,
+            stats,
+            resemblance: None,
+            score_bound: None,
+        });
+    };
     if std::env::var_os("RCCPACK_DEBUG").is_some() {
         eprintln!(
             "model {:.1} ms ({} vars, {} bools, {} clauses), engine {:.1} ms",
