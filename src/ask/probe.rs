@@ -272,7 +272,8 @@ impl ProbeChecker {
 
     /// `Some(true)`: rule `k` has a probe; `Some(false)`: proven none (the
     /// others imply it on this problem); `None`: a limit stopped the solve
-    /// (the engine is then spent: make a new checker).
+    /// (the session then makes a new checker, so that later checks do not
+    /// depend on how far the stopped search got).
     /// Rules with `removed[j]` (allowed to break with `k`) are left out of
     /// the assumptions.
     pub fn has_probe(&mut self, k: usize, removed: &[bool]) -> Option<bool> {

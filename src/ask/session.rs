@@ -429,7 +429,8 @@ impl Asker {
             Some(v) => {
                 self.checks.borrow_mut().insert(key, v);
             }
-            // A spent engine answers nothing more.
+            // A stopped search: a fresh engine for the next checks, so
+            // that they do not depend on how far this one got.
             None => *checker = None,
         }
         Ok(verdict)
@@ -467,7 +468,7 @@ impl Asker {
         } else {
             let verdict = self.checker(checker)?.implies(a, b);
             if verdict.is_none() {
-                // A spent engine answers nothing more.
+                // A stopped search: a fresh engine for the next checks.
                 *checker = None;
             }
             verdict == Some(true)
