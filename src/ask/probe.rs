@@ -251,7 +251,7 @@ impl ProbeChecker {
             BuildOptions {
                 contact: opts.contact,
                 rules: true,
-                symmetry_breaking: false,
+                symmetry_breaking: true,
                 redundant: true,
             },
         );
