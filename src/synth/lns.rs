@@ -132,6 +132,12 @@ pub struct Lns<'a> {
     pub opts: LnsOptions,
     /// Seed of the window choice and the sub-engines.
     pub seed: u64,
+    /// Whether the incumbent came from a warm start. Without one it is a
+    /// greedy packing far from the optimum, so [`Lns::alternate`]'s first
+    /// LNS phase runs until it stops paying off at the largest window
+    /// (`budget_nodes`), as LNS did before the alternation; with one, every
+    /// phase is as short as the proof attempt before it.
+    pub warm: bool,
 }
 
 impl Lns<'_> {
@@ -229,7 +235,12 @@ impl Lns<'_> {
                 node_limit: limits.node_limit.map(|n| n.saturating_sub(engine.nodes())),
                 ..limits.clone()
             };
-            self.run(&mut state, bound, budget, &lns_limits, on_incumbent)?;
+            let phase_budget = if attempt == 1 && !self.warm {
+                self.opts.budget_nodes
+            } else {
+                budget
+            };
+            self.run(&mut state, bound, phase_budget, &lns_limits, on_incumbent)?;
             budget = budget.saturating_mul(2);
         }
     }
@@ -560,6 +571,7 @@ mod tests {
                 proof_nodes: 1_000,
             },
             seed: 3,
+            warm: false,
         };
         let mut seen = Vec::new();
         let out = lns

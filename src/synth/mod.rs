@@ -501,8 +501,9 @@ pub fn synthesize(
         coefs: &ws,
         value: &value,
     };
-    if let Some(h) = warm::hint_values(&model, problem, &opts.warm_start) {
-        engine.hint(&h);
+    let hint = warm::hint_values(&model, problem, &opts.warm_start);
+    if let Some(h) = &hint {
+        engine.hint(h);
     }
     let mut outcome = match driver::first_solution(&mut engine, &limits) {
         Err(o) => o,
@@ -519,6 +520,7 @@ pub fn synthesize(
                         coefs: &coefs,
                         opts: lopts,
                         seed: opts.seed,
+                        warm: hint.is_some(),
                     };
                     let (outcome, r) = search.alternate(
                         &mut engine,
