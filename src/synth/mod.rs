@@ -520,7 +520,7 @@ pub fn synthesize(
                         coefs: &coefs,
                         opts: lopts,
                         seed: opts.seed,
-                        warm: hint.is_some(),
+                        long_first_phase: hint.is_none() && movable >= 16,
                     };
                     let (outcome, r) = search.alternate(
                         &mut engine,
