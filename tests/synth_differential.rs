@@ -525,19 +525,30 @@ fn check(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<BruteR
 /// a sub-problem with the other objects placed) do the improving and the
 /// main engine only proves.
 fn check_lns(case: &Case, symmetry_breaking: bool, redundant: bool) -> Result<BruteResult, String> {
-    let lns = LnsOptions {
+    // Tiny proof attempts: the main engine is stopped by its budget and
+    // solved again many times per problem (the engine must stay usable
+    // after every limit), with LNS phases in between.
+    check_search(
+        case,
+        symmetry_breaking,
+        redundant,
+        Some(tiny_lns(3)),
+        Vec::new(),
+    )
+}
+
+/// LNS on every problem however small: windows of one or two objects,
+/// proof attempts of `proof_nodes` nodes.
+fn tiny_lns(proof_nodes: u64) -> LnsOptions {
+    LnsOptions {
         min_objects: 0,
         window: 1,
         max_window: 2,
         patience: 3,
         round_nodes: 200,
         budget_nodes: 5_000,
-        // Tiny proof attempts: the main engine is stopped by its budget and
-        // solved again many times per problem (the engine must stay usable
-        // after every limit), with LNS phases in between.
-        proof_nodes: 3,
-    };
-    check_search(case, symmetry_breaking, redundant, Some(lns), Vec::new())
+        proof_nodes,
+    }
 }
 
 /// Warm-start hints that are mostly wrong: every movable object of the
@@ -576,20 +587,11 @@ fn check_warm(
     symmetry_breaking: bool,
     redundant: bool,
 ) -> Result<BruteResult, String> {
-    let lns = LnsOptions {
-        min_objects: 0,
-        window: 1,
-        max_window: 2,
-        patience: 3,
-        round_nodes: 200,
-        budget_nodes: 5_000,
-        proof_nodes: 5,
-    };
     check_search(
         case,
         symmetry_breaking,
         redundant,
-        Some(lns),
+        Some(tiny_lns(5)),
         bad_hints(case),
     )
 }
@@ -748,15 +750,7 @@ fn check_like_with(
         redundant,
         warm_start: if warm { scenes } else { Vec::new() },
         lns: if warm {
-            Some(LnsOptions {
-                min_objects: 0,
-                window: 1,
-                max_window: 2,
-                patience: 3,
-                round_nodes: 200,
-                budget_nodes: 5_000,
-                proof_nodes: 5,
-            })
+            Some(tiny_lns(5))
         } else {
             SynthOptions::default().lns
         },

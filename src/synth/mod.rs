@@ -217,6 +217,21 @@ pub struct SynthResult {
     pub score_bound: Option<f64>,
 }
 
+impl SynthResult {
+    /// A result without a layout (`unknown`, `infeasible`).
+    fn without_layout(status: Status, conflict: Option<Conflict>, stats: SolveStats) -> Self {
+        SynthResult {
+            status,
+            scene: None,
+            evaluation: None,
+            conflict,
+            stats,
+            resemblance: None,
+            score_bound: None,
+        }
+    }
+}
+
 /// The second objective's result (the report's `resemblance`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub struct Resemblance {
@@ -420,15 +435,7 @@ pub fn synthesize(
     let mut stats = SolveStats::default();
     let infeasible = |conflict: Conflict, mut stats: SolveStats| {
         stats.time_ms = ms(start.elapsed());
-        SynthResult {
-            status: Status::Infeasible,
-            scene: None,
-            evaluation: None,
-            conflict: Some(conflict),
-            stats,
-            resemblance: None,
-            score_bound: None,
-        }
+        SynthResult::without_layout(Status::Infeasible, Some(conflict), stats)
     };
     if !model.too_large.is_empty() {
         return Ok(infeasible(
@@ -460,15 +467,7 @@ pub fn synthesize(
     else {
         // The time limit struck while the model was being posted.
         stats.time_ms = ms(start.elapsed());
-        return Ok(SynthResult {
-            status: Status::Unknown,
-            scene: None,
-            evaluation: None,
-            conflict: None,
-            stats,
-            resemblance: None,
-            score_bound: None,
-        });
+        return Ok(SynthResult::without_layout(Status::Unknown, None, stats));
     };
     if std::env::var_os("RCCPACK_DEBUG").is_some() {
         eprintln!(
@@ -604,27 +603,11 @@ pub fn synthesize(
         OptOutcome::Feasible(v) => (Status::Feasible, v),
         OptOutcome::Unknown => {
             stats.time_ms = ms(start.elapsed());
-            return Ok(SynthResult {
-                status: Status::Unknown,
-                scene: None,
-                evaluation: None,
-                conflict: None,
-                stats,
-                resemblance: None,
-                score_bound: None,
-            });
+            return Ok(SynthResult::without_layout(Status::Unknown, None, stats));
         }
         OptOutcome::Infeasible if !opts.explain => {
             stats.time_ms = ms(start.elapsed());
-            return Ok(SynthResult {
-                status: Status::Infeasible,
-                scene: None,
-                evaluation: None,
-                conflict: None,
-                stats,
-                resemblance: None,
-                score_bound: None,
-            });
+            return Ok(SynthResult::without_layout(Status::Infeasible, None, stats));
         }
         OptOutcome::Infeasible => {
             let conflict = explain(problem, rules, opts, &limits, &mut stats)?;
