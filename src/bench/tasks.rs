@@ -262,7 +262,7 @@ pub struct TasksConfig {
     /// Seed of every random choice (and of the solver).
     pub seed: u64,
     /// Per-solve time limit (each mode, each peer).
-    #[serde(serialize_with = "ser_secs")]
+    #[serde(serialize_with = "super::thesis::ser_secs")]
     pub time_limit: Duration,
     /// Generated tasks.
     pub tasks: usize,
@@ -278,16 +278,8 @@ pub struct TasksConfig {
     /// Large-neighbourhood search (`SynthOptions::lns`).
     pub lns: bool,
     /// Peer solvers on the score-only model.
-    #[serde(serialize_with = "ser_peers")]
+    #[serde(serialize_with = "super::thesis::ser_peers")]
     pub peers: Vec<Peer>,
-}
-
-fn ser_peers<S: serde::Serializer>(p: &[Peer], s: S) -> Result<S::Ok, S::Error> {
-    s.collect_seq(p.iter().map(|p| p.name()))
-}
-
-fn ser_secs<S: serde::Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> {
-    s.serialize_f64(d.as_secs_f64())
 }
 
 impl TasksConfig {

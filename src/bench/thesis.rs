@@ -111,11 +111,11 @@ pub struct StudyConfig {
     pub peers: Vec<Peer>,
 }
 
-fn ser_peers<S: serde::Serializer>(p: &[Peer], s: S) -> Result<S::Ok, S::Error> {
+pub(crate) fn ser_peers<S: serde::Serializer>(p: &[Peer], s: S) -> Result<S::Ok, S::Error> {
     s.collect_seq(p.iter().map(|p| p.name()))
 }
 
-fn ser_secs<S: serde::Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> {
+pub(crate) fn ser_secs<S: serde::Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> {
     s.serialize_f64(d.as_secs_f64())
 }
 

@@ -153,6 +153,26 @@ pub fn run(a: BenchArgs) -> Result<ExitCode> {
     }
 }
 
+/// The peers asked for (`--peers` alone: all) that are installed; the
+/// others are skipped with a message.
+fn available_peers(asked: &[Peer], bench: &str) -> Vec<Peer> {
+    let wanted: Vec<Peer> = if asked.is_empty() {
+        Peer::ALL.to_vec()
+    } else {
+        asked.to_vec()
+    };
+    wanted
+        .into_iter()
+        .filter(|&p| match peers::check_available(p) {
+            Ok(()) => true,
+            Err(why) => {
+                eprintln!("rccpack bench {bench}: skipping peer {p}: {why}");
+                false
+            }
+        })
+        .collect()
+}
+
 fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
     let limit = a
         .time_limit
@@ -178,17 +198,7 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
     cfg.warm_start = !a.no_warm_start;
     cfg.lns = !a.no_lns;
     if let Some(ps) = &a.peers {
-        let wanted: Vec<Peer> = if ps.is_empty() {
-            Peer::ALL.to_vec()
-        } else {
-            ps.clone()
-        };
-        for p in wanted {
-            match peers::check_available(p) {
-                Ok(()) => cfg.peers.push(p),
-                Err(why) => eprintln!("rccpack bench tasks: skipping peer {p}: {why}"),
-            }
-        }
+        cfg.peers = available_peers(ps, "tasks");
     }
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("{}: cannot create directory", a.out.display()))?;
@@ -357,17 +367,7 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
         cfg.ns.clear();
     }
     if let Some(ps) = &a.peers {
-        let wanted: Vec<Peer> = if ps.is_empty() {
-            Peer::ALL.to_vec()
-        } else {
-            ps.clone()
-        };
-        for p in wanted {
-            match peers::check_available(p) {
-                Ok(()) => cfg.peers.push(p),
-                Err(why) => eprintln!("rccpack bench thesis: skipping peer {p}: {why}"),
-            }
-        }
+        cfg.peers = available_peers(ps, "thesis");
     }
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("{}: cannot create directory", a.out.display()))?;
