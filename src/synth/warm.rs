@@ -12,8 +12,10 @@
 //! # Practical
 //!
 //! [`hint_values`] turns complete scenes into one preferred grid value per
-//! model variable: the scenes are ranked by how many of the problem's
-//! movable objects they can host (same class and exact size), and their
+//! model variable: the scenes are ranked by how typical they are (how often
+//! the other scenes show their positions for the same class and exact
+//! size; ties: how many of the problem's movable objects they host), and
+//! their
 //! positions are handed out in that order — the best scene's whole layout
 //! first, then positions of the other scenes that overlap nothing chosen
 //! so far (a *mosaic*). Positions off the problem's grid or outside an
@@ -91,8 +93,25 @@ pub fn hint_values(model: &Model, problem: &Scene, scenes: &[Scene]) -> Option<V
             .map(|(k, ps)| ps.len().min(wanted.get(k).map_or(0, Vec::len)))
             .sum()
     };
+    // The most typical scene first: the one whose positions the other
+    // scenes show most often (a layout only one demonstration used comes
+    // late); ties: the one that hosts the most objects. The mosaic fills
+    // what the first leaves from the others.
+    let typical = |i: usize| -> usize {
+        per_scene[i]
+            .iter()
+            .flat_map(|(k, ps)| ps.iter().map(move |p| (k, p)))
+            .map(|(k, p)| {
+                per_scene
+                    .iter()
+                    .enumerate()
+                    .filter(|&(j, m)| j != i && m.get(k).is_some_and(|q| q.contains(p)))
+                    .count()
+            })
+            .sum()
+    };
     let mut order: Vec<usize> = (0..scenes.len()).collect();
-    order.sort_by_key(|&i| std::cmp::Reverse(hosts(&per_scene[i])));
+    order.sort_by_key(|&i| std::cmp::Reverse((typical(i), hosts(&per_scene[i]))));
 
     // Rectangles (real units) already taken: the problem's placed objects
     // and every hinted position.
