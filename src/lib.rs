@@ -78,3 +78,14 @@ pub mod rules;
 pub mod scene;
 pub mod studio;
 pub mod synth;
+
+// The curated surface: what an embedder calls, one name per concept.
+pub use eval::{evaluate, Evaluation, RuleReport};
+pub use infer::{learn, InferError, LearnParams, Learned, Templates};
+pub use relations::Contact;
+pub use render::{render_svg, RenderOptions};
+pub use rules::{parse_rules, Diagnostic, Rule, RuleSet, RulesError};
+pub use scene::{Object, Scene, SceneError, Space};
+pub use synth::{
+    synthesize, Conflict, Resemblance, SolveStats, Status, SynthError, SynthOptions, SynthResult,
+};
