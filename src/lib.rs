@@ -63,6 +63,7 @@
 #![warn(missing_docs)]
 
 pub mod ask;
+#[cfg(feature = "bench")]
 pub mod bench;
 pub mod eval;
 pub mod fsutil;
@@ -76,6 +77,7 @@ pub mod render;
 pub mod resemblance;
 pub mod rules;
 pub mod scene;
+#[cfg(feature = "studio")]
 pub mod studio;
 pub mod synth;
 
