@@ -80,6 +80,7 @@ pub mod scene;
 #[cfg(feature = "studio")]
 pub mod studio;
 pub mod synth;
+pub mod task;
 
 // The curated surface: what an embedder calls, one name per concept.
 pub use eval::{evaluate, Evaluation, RuleReport};
@@ -88,6 +89,7 @@ pub use relations::Contact;
 pub use render::{render_svg, RenderOptions};
 pub use rules::{parse_rules, Diagnostic, Rule, RuleSet, RulesError};
 pub use scene::{Object, Scene, SceneError, Space};
+pub use task::{Task, TaskError};
 pub use synth::{
     synthesize, Conflict, Resemblance, SolveStats, Status, SynthError, SynthOptions, SynthResult,
 };
