@@ -89,7 +89,7 @@ pub use relations::Contact;
 pub use render::{render_svg, RenderOptions};
 pub use rules::{parse_rules, Diagnostic, Rule, RuleSet, RulesError};
 pub use scene::{Object, Scene, SceneError, Space};
-pub use task::{Task, TaskError};
 pub use synth::{
     synthesize, Conflict, Resemblance, SolveStats, Status, SynthError, SynthOptions, SynthResult,
 };
+pub use task::{Task, TaskError};

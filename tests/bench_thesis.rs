@@ -4,7 +4,7 @@
 use rccpack::bench::thesis::{run_study, Engine, Series, StudyConfig};
 use rccpack::eval::evaluate;
 use rccpack::synth::synthesize;
-use rccpack::synth::verify::verify_solution;
+use rccpack::synth::verify_solution;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
@@ -23,7 +23,7 @@ fn tiny_quick_study_solutions_verify() {
                   r: &rccpack::rules::RuleSet,
                   c: rccpack::relations::Contact| {
         checked.fetch_add(1, Ordering::Relaxed);
-        verify_solution(p, s, r, c)?;
+        verify_solution(p, s, r, c).map_err(|e| e.to_string())?;
         // The engine's layout must also keep the evaluator's view: every
         // object placed, no hard rule (there are none here) broken.
         let ev = evaluate(s, r, c);

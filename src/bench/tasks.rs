@@ -904,8 +904,7 @@ pub fn all_tasks(cfg: &TasksConfig) -> Result<Vec<Task>, TaskError> {
 pub type SolveFn<'a> =
     &'a (dyn Fn(&Scene, &RuleSet, &SynthOptions) -> Result<SynthResult, SynthError> + Sync);
 /// A solution checker `(problem, solution, rules, contact)`.
-pub type VerifyFn<'a> =
-    &'a (dyn Fn(&Scene, &Scene, &RuleSet, Contact) -> Result<(), String> + Sync);
+pub use super::thesis::VerifyFn;
 
 /// The solver and checker the benchmark runs with.
 #[derive(Clone, Copy)]

@@ -524,7 +524,7 @@ fn within_synth_bound(p: &Scene) -> bool {
 
 fn synth_inner(u: &mut Unstructured) -> AResult<()> {
     use crate::synth::brute_force::{approx_eq, solve_with_limit};
-    use crate::synth::verify::verify_solution;
+    use crate::synth::verify_solution;
     use crate::synth::{synthesize, Status, SynthError, SynthOptions};
     let p = problem(u)?;
     let fixed_ids: Vec<String> = p
@@ -546,7 +546,7 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
     // Large-neighbourhood search forced onto the tiny problem now and then
     // (it runs only from 16 objects by default).
     if u.arbitrary::<bool>()? {
-        opts.lns = Some(crate::synth::lns::LnsOptions {
+        opts.lns = Some(crate::synth::LnsOptions {
             min_objects: 0,
             window: 1,
             max_window: 2,
@@ -562,8 +562,8 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
     let valid = p.validate().is_ok();
     let r = match synthesize(&p, &rules, &opts) {
         Ok(r) => r,
-        Err(SynthError::BadProblem(m)) => {
-            assert!(!valid, "a valid problem refused as bad: {m}");
+        Err(e @ (SynthError::Scene(_) | SynthError::BadWeight { .. })) => {
+            assert!(!valid, "a valid problem refused as bad: {e}");
             return Ok(());
         }
         Err(SynthError::TooLarge(m)) => {
@@ -574,6 +574,8 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
             );
             return Ok(());
         }
+        // No resemblance target here; a failed independent check is a bug.
+        Err(e) => panic!("unexpected refusal: {e}\n{}", p.to_json()),
     };
     assert!(valid, "an invalid problem was solved");
     // Brute force enumerates every position first: only when they are few.

@@ -8,12 +8,12 @@ use crate::ask::{
 };
 use crate::infer::{learn as run_learn, statement_text, LearnParams, StatementSource};
 use crate::limits::cut;
-use crate::task::Like;
 use crate::rules::{
     check_classes, check_landmarks, missing_classes, missing_classes_note, parse_rules, RuleSet,
 };
 use crate::scene::{scenes_from_json, scenes_to_json, Scene};
 use crate::synth::{Progress, ProgressFn, SynthOptions, SynthResult};
+use crate::task::Like;
 use axum::body::Bytes;
 use axum::extract::{Path, Query, State};
 use axum::http::{header, StatusCode};

@@ -127,6 +127,4 @@ pub trait Backend {
     fn hint(&mut self, _values: &[Option<i64>]) {}
     /// Decisions so far.
     fn nodes(&self) -> u64;
-    /// Conflicts so far.
-    fn conflicts(&self) -> u64;
 }

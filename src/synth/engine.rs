@@ -81,7 +81,6 @@ fn clamp_i32(v: i64) -> i32 {
 }
 
 pub use super::backend::Limits;
-pub use super::driver::{CostOutcome, OptOutcome, Strategy};
 
 #[derive(Debug, Clone, Default)]
 struct Counters {
@@ -997,10 +996,6 @@ impl Backend for Engine {
 
     fn nodes(&self) -> u64 {
         self.counters.nodes.get()
-    }
-
-    fn conflicts(&self) -> u64 {
-        self.counters.conflicts.get()
     }
 }
 
