@@ -22,7 +22,7 @@
 
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rccpack::ask::probe::probe_rules;
+use rccpack::ask::probe_rules;
 use rccpack::ask::{find_probe, negation, ProbeOptions, ProbeOutcome};
 use rccpack::bench::pool::{among, atom, corner, formula_text, touches};
 use rccpack::eval::{evaluate, Evaluator};

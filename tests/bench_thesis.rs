@@ -1,7 +1,8 @@
 //! The thesis study generator in a tiny quick configuration: every solved
 //! problem's solution passes `verify_solution`, and the summary adds up.
 
-use rccpack::bench::thesis::{run_study, Engine, Series, StudyConfig};
+use rccpack::bench::thesis::{run_study, Series, StudyConfig};
+use rccpack::bench::Solver;
 use rccpack::eval::evaluate;
 use rccpack::synth::synthesize;
 use rccpack::synth::verify_solution;
@@ -32,7 +33,7 @@ fn tiny_quick_study_solutions_verify() {
         }
         Ok(())
     };
-    let engine = Engine {
+    let engine = Solver {
         solve: &synthesize,
         verify: &verify,
     };

@@ -3,7 +3,7 @@
 //! and typed errors for bad input.
 
 use rccpack::eval::Evaluator;
-use rccpack::infer::posterior::Posterior;
+use rccpack::infer::Posterior;
 use rccpack::infer::templates::generate_set;
 use rccpack::infer::{learn, InferError, LearnParams, NullModel, Templates};
 use rccpack::relations::{Contact, Dir, Kind, Relation};

@@ -658,7 +658,7 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
 /// The probe for one rule of `rules` breaks it and keeps the others (by the
 /// evaluator); "no probe" only when brute force finds none either.
 fn probe_check(u: &mut Unstructured, p: &Scene, rules: &RuleSet, contact: Contact) -> AResult<()> {
-    use crate::ask::probe::{find_probe, probe_rules, ProbeOptions, ProbeOutcome};
+    use crate::ask::{find_probe, probe_rules, ProbeOptions, ProbeOutcome};
     use crate::synth::brute_force::solve_with_limit;
     let k = u.choose_index(rules.rules.len())?;
     let opts = ProbeOptions {

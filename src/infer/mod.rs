@@ -29,15 +29,16 @@
 //! assert!(learned.statements.iter().any(|s| s.name == "B_dr_n_R" && s.candidate));
 //! ```
 
-pub mod candidates;
-pub mod english;
-pub mod null_model;
-pub mod posterior;
+mod candidates;
+pub(crate) mod english;
+mod null_model;
+mod posterior;
 pub mod templates;
 
 pub use candidates::{find_candidates, Provenance};
+pub use english::{reading, statement_reading};
 pub use null_model::NullModel;
-pub use posterior::{Posterior, P_FLOOR};
+pub use posterior::{chance_p, log10_posterior, Posterior, P_FLOOR};
 pub use templates::Templates;
 
 use crate::eval::CompiledRule;
@@ -343,7 +344,7 @@ pub fn learn_until(
     let (set, source) = match statements {
         Some(s) => {
             check_statements(s, &classes)?;
-            check_landmarks(s, demos)?;
+            check_demo_landmarks(s, demos)?;
             (s, StatementSource::Given)
         }
         None => {
@@ -562,7 +563,7 @@ pub fn check_statements(set: &RuleSet, classes: &ClassIndex) -> Result<(), Infer
 /// Landmarks of given statements: every `@ID` must be a fixed, placed
 /// object of every demonstration (SPEC §11.3: evaluating a rule whose
 /// landmark the scene lacks is bad input).
-pub fn check_landmarks(set: &RuleSet, demos: &[Scene]) -> Result<(), InferError> {
+pub(crate) fn check_demo_landmarks(set: &RuleSet, demos: &[Scene]) -> Result<(), InferError> {
     for rule in &set.rules {
         for (i, a) in rule.formula.atoms().into_iter().enumerate() {
             let Target::Landmark(id) = &a.target else {
