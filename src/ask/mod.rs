@@ -15,6 +15,4 @@ pub use probe::{
     find_probe, negation, probe_rules, Probe, ProbeOptions, ProbeOutcome, DEFAULT_CHECK_NODES,
     DEFAULT_PROBE_NODES,
 };
-pub use session::{
-    Answer, AnswersFile, AskError, AskOptions, Asker, Question, Tally, CONFIRMED,
-};
+pub use session::{Answer, AnswersFile, AskError, AskOptions, Asker, Question, Tally, CONFIRMED};

@@ -295,7 +295,11 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             rccpack::ask::AskError::Synth(_) => &problem_path,
             _ => &demos_path,
         };
-        Reported(format!("error: {}: {e}", file.display()))
+        let text = match &e {
+            rccpack::ask::AskError::Learn(e) => super::learn_error_text(e),
+            _ => e.to_string(),
+        };
+        Reported(format!("error: {}: {text}", file.display()))
     })?;
     let io_error = |(file, e): (&str, std::io::Error)| {
         Reported(format!(

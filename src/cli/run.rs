@@ -103,8 +103,13 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         seed: a.seed,
         ..SynthOptions::default()
     };
-    let placement = task::place(&problem, &rules, &demos, &like, &opts)
-        .map_err(|e| Reported(format!("error: {}: {e}", problem_path.display())))?;
+    let placement = task::place(&problem, &rules, &demos, &like, &opts).map_err(|e| {
+        Reported(format!(
+            "error: {}: {}",
+            problem_path.display(),
+            super::task_error_text(&e)
+        ))
+    })?;
     let result = placement.result;
     let like = placement.like;
     // Learned rules about a class today's problem lacks hold as SPEC §4

@@ -54,10 +54,11 @@ use std::fmt::Write as _;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum InferError {
     /// A parameter is out of its range.
-    #[error("invalid --{flag} {value}: expected {expected}")]
+    #[error("learning parameter `{param}` is {value}; expected {expected}")]
     BadParameter {
-        /// The command-line flag (without `--`), e.g. `cutoff`.
-        flag: &'static str,
+        /// The parameter's name, as in [`LearnParams`] (`samples`,
+        /// `cutoff`, `prior`, `epsilon`).
+        param: &'static str,
         /// The value given.
         value: String,
         /// The expected range, in words.
@@ -144,7 +145,7 @@ pub enum InferError {
         reason: String,
     },
     /// Learning would weigh more statements than [`crate::limits::MAX_STATEMENTS`].
-    #[error("learning would weigh {statements} statements ({classes} classes); expected at most {max} — use fewer classes or give the statements to weigh (`--statements`)", max = crate::limits::MAX_STATEMENTS)]
+    #[error("learning would weigh {statements} statements ({classes} classes); expected at most {max} — use fewer classes or give the statements to weigh", max = crate::limits::MAX_STATEMENTS)]
     TooManyStatements {
         /// How many.
         statements: usize,
@@ -195,14 +196,14 @@ impl Default for LearnParams {
 }
 
 impl LearnParams {
-    /// Check every range; the error names the flag.
+    /// Check every range; the error names the parameter.
     pub fn validate(&self) -> Result<(), InferError> {
-        let open_unit = |flag: &'static str, v: f64| {
+        let open_unit = |param: &'static str, v: f64| {
             if v > 0.0 && v < 1.0 {
                 Ok(())
             } else {
                 Err(InferError::BadParameter {
-                    flag,
+                    param,
                     value: v.to_string(),
                     expected: "a number strictly between 0 and 1",
                 })
@@ -210,14 +211,14 @@ impl LearnParams {
         };
         if self.samples == 0 {
             return Err(InferError::BadParameter {
-                flag: "samples",
+                param: "samples",
                 value: "0".into(),
                 expected: "a whole number of at least 1",
             });
         }
         if self.samples > crate::limits::MAX_SAMPLES {
             return Err(InferError::BadParameter {
-                flag: "samples",
+                param: "samples",
                 value: self.samples.to_string(),
                 // `crate::limits::MAX_SAMPLES`, written out.
                 expected: "a whole number of at most 1000000",

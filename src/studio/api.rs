@@ -572,15 +572,15 @@ fn learn_params(b: &LearnBody) -> Result<LearnParams, ApiError> {
     }
     // Name the field of the body, not the command line's flag.
     if let Err(crate::infer::InferError::BadParameter {
-        flag,
+        param,
         value,
         expected,
     }) = params.validate()
     {
         return Err(ApiError::bad(format!(
-            "request body: {flag}: {value} is invalid; expected {expected}"
+            "request body: {param}: {value} is invalid; expected {expected}"
         ))
-        .at(flag));
+        .at(param));
     }
     Ok(params)
 }

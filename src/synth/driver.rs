@@ -37,7 +37,7 @@
 //! tests go in the `tests` module below, against its `MockBackend`, which states
 //! the answers a backend may give.
 
-use super::backend::{Verdict, Assumption, Backend, Core, Fact, Limits};
+use super::backend::{Assumption, Backend, Core, Fact, Limits, Verdict};
 use super::weights::SubsetSums;
 
 /// How many times [`Strategy::UpperBoundFirst`] asks for the proven upper

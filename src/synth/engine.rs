@@ -35,7 +35,7 @@
 //! final callback reports the first solution, and it steps the bound by one
 //! unit, which is hopeless for scaled real weights.
 
-use super::backend::{Verdict, Assumption, Backend, Core, Fact};
+use super::backend::{Assumption, Backend, Core, Fact, Verdict};
 use super::like::LikeTerm;
 use super::model::{BoolDef, Coord, Lit, Model};
 use super::SynthError;
