@@ -95,6 +95,28 @@ pub struct Object {
 }
 
 impl Object {
+    /// An unplaced movable object (what a problem asks to place).
+    pub fn movable(id: &str, class: &str, width: i64, height: i64) -> Self {
+        Object {
+            id: id.into(),
+            class: class.into(),
+            x: None,
+            y: None,
+            width,
+            height,
+            fixed: false,
+        }
+    }
+
+    /// A placed movable object (as in a demonstration).
+    pub fn placed(id: &str, class: &str, x: i64, y: i64, width: i64, height: i64) -> Self {
+        Object {
+            x: Some(x),
+            y: Some(y),
+            ..Object::movable(id, class, width, height)
+        }
+    }
+
     /// A fixed, placed object (a wall).
     pub fn fixed_at(id: &str, class: &str, x: i64, y: i64, width: i64, height: i64) -> Self {
         Object {
@@ -383,6 +405,17 @@ impl Scene {
             message: e.to_string(),
         })?;
         let scene = raw.into_scene();
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// A scene from its parts, validated ([`Scene::validate`]).
+    pub fn new(space: Space, grid: i64, objects: Vec<Object>) -> Result<Scene, SceneError> {
+        let scene = Scene {
+            space,
+            grid,
+            objects,
+        };
         scene.validate()?;
         Ok(scene)
     }

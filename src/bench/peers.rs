@@ -183,7 +183,7 @@ impl TempModel {
         let n = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
         let path =
             std::env::temp_dir().join(format!("rccpack-peer-{}-{n}.{ext}", std::process::id()));
-        std::fs::write(&path, text)
+        crate::fsutil::atomic_write(&path, text)
             .map_err(|e| format!("cannot write the model to {}: {e}", path.display()))?;
         Ok(TempModel(path))
     }
