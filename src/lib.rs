@@ -176,7 +176,7 @@ pub use infer::{learn, InferError, LearnParams, Learned, Templates};
 pub use relations::Contact;
 pub use render::{render_svg, RenderOptions};
 pub use rules::{parse_rules, Diagnostic, Rule, RuleSet, RulesError};
-pub use scene::{Object, Scene, SceneError, Space};
+pub use scene::{Object, Scene, SceneError, SceneErrorKind, Space};
 pub use synth::{
     synthesize, Conflict, Resemblance, SolveStats, Status, SynthError, SynthOptions, SynthResult,
 };
