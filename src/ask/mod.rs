@@ -15,4 +15,6 @@ pub use probe::{
     find_probe, negation, probe_rules, Probe, ProbeOptions, ProbeOutcome, DEFAULT_CHECK_NODES,
     DEFAULT_PROBE_NODES,
 };
-pub use session::{Answer, AnswersFile, AskError, AskOptions, Asker, Question, Tally, CONFIRMED};
+pub use session::{
+    Answer, AnswersFile, AnswersFileError, AskError, AskOptions, Asker, Question, Tally, CONFIRMED,
+};

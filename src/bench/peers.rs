@@ -23,6 +23,7 @@
 //! The caller re-checks a layout with [`crate::synth::verify`] and
 //! re-scores it with the evaluator like any other.
 
+use super::BenchError;
 use crate::synth::emit::{to_json, to_minizinc, Emitted};
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
@@ -132,7 +133,11 @@ fn output_of(cmd: &mut Command) -> Option<std::process::Output> {
 
 /// Whether `peer` can run here; the error says what is missing and how to
 /// install it.
-pub fn check_available(peer: Peer) -> Result<(), String> {
+pub fn check_available(peer: Peer) -> Result<(), BenchError> {
+    availability(peer).map_err(BenchError::PeerUnavailable)
+}
+
+fn availability(peer: Peer) -> Result<(), String> {
     let script = peer.script();
     if !script.is_file() {
         return Err(format!(
@@ -206,13 +211,22 @@ fn tail(text: &str, n: usize) -> String {
 const GRACE: Duration = Duration::from_secs(60);
 
 /// Solve `e` with `peer` on one worker under `time_limit`.
-pub fn solve(peer: Peer, e: &Emitted, time_limit: Duration) -> Result<PeerResult, String> {
+pub fn solve(peer: Peer, e: &Emitted, time_limit: Duration) -> Result<PeerResult, BenchError> {
     solve_with(peer, e, time_limit, 1)
 }
 
 /// [`solve`] with `workers` search threads (CP-SAT's `num_workers`,
 /// Gecode's `-p`).
 pub fn solve_with(
+    peer: Peer,
+    e: &Emitted,
+    time_limit: Duration,
+    workers: u32,
+) -> Result<PeerResult, BenchError> {
+    run_peer(peer, e, time_limit, workers).map_err(BenchError::PeerFailed)
+}
+
+fn run_peer(
     peer: Peer,
     e: &Emitted,
     time_limit: Duration,
