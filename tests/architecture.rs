@@ -299,3 +299,27 @@ fn every_module_is_documented() {
         "source files missing from ARCHITECTURE.md's code map: {missing:?}"
     );
 }
+
+/// With `autotests = false`, a test file not declared in
+/// `tests/integration.rs` would silently never run.
+#[test]
+fn every_test_file_is_in_the_integration_binary() {
+    let main = fs::read_to_string(root().join("tests/integration.rs")).expect("integration.rs");
+    let mut missing = Vec::new();
+    for entry in fs::read_dir(root().join("tests")).expect("tests/") {
+        let p = entry.expect("entry").path();
+        let Some(stem) = p.file_stem().map(|s| s.to_string_lossy().to_string()) else {
+            continue;
+        };
+        if p.extension().is_some_and(|e| e == "rs")
+            && stem != "integration"
+            && !main.contains(&format!("mod {stem};"))
+        {
+            missing.push(stem);
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "test files tests/integration.rs does not declare: {missing:?}"
+    );
+}
