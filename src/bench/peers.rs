@@ -20,7 +20,7 @@
 //! [`solve`] writes the model to a temporary file, runs the script, checks
 //! the answer's shape (values in the variables' domains) and returns it;
 //! every failure is an `Err` naming the peer, with the tail of its stderr.
-//! The caller re-checks a layout with [`crate::synth::verify`] and
+//! The caller re-checks a layout with `crate::synth::verify_solution` and
 //! re-scores it with the evaluator like any other.
 
 use super::BenchError;
