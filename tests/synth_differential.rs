@@ -53,6 +53,14 @@ use rccpack::synth::LnsOptions;
 use rccpack::synth::{synthesize, Status, SynthOptions};
 use std::time::Duration;
 
+use crate::support::formulas::{pick, q_atom, random_target, random_tree, Vocabulary};
+
+/// Classes A (weight 3), B (2), F (1); `@a1` is never a fixed object.
+const VOC: Vocabulary = Vocabulary {
+    classes: ["A", "A", "A", "B", "B", "F"],
+    absent: "a1",
+};
+
 const BASE_SEED: u64 = 0x5EED_D1FF;
 
 /// One random problem.
@@ -128,10 +136,6 @@ const LARGE2: Sizes = Sizes {
     ..LARGE
 };
 
-fn pick<T: Copy>(rng: &mut ChaCha8Rng, v: &[T]) -> T {
-    v[rng.random_range(0..v.len())]
-}
-
 fn random_formula(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
     let target = match rng.random_range(0..4) {
         0 => Target::Class("A".into()),
@@ -150,89 +154,17 @@ fn random_formula(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
     }
 }
 
-/// Second edition: a random quantifier for an atom (the default about
-/// half the time; `K` in 0..=4, around the number of target objects).
-fn random_quant(rng: &mut ChaCha8Rng, rel: Relation) -> Quant {
-    let k = rng.random_range(0..=4u32);
-    match rng.random_range(0..10) {
-        0..=4 => rel.default_quant(),
-        5 => Quant::Every,
-        6 => Quant::Some,
-        7 => Quant::No,
-        8 => Quant::AtLeast(k),
-        _ => Quant::AtMost(k),
-    }
-}
-
-/// Second edition: a random target. Landmarks: `@f`, `@g` (fixed objects
-/// when the case has them, else missing) and `@a1` (never fixed): the
-/// latter two are empty targets.
-fn random_target(rng: &mut ChaCha8Rng) -> Target {
-    match rng.random_range(0..12) {
-        0..=2 => Target::Class("A".into()),
-        3..=4 => Target::Class("B".into()),
-        5 => Target::Class("F".into()),
-        6..=7 => Target::Any,
-        8..=9 => Target::Landmark("f".into()),
-        10 => Target::Landmark("g".into()),
-        _ => Target::Landmark("a1".into()),
-    }
-}
-
-/// Second edition: one random atom of `subject` (a landmark keeps the
-/// default quantifier, SPEC §11.3).
-fn random_atom(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
-    let rel = pick(rng, &Relation::ALL);
-    let target = random_target(rng);
-    let quant = match target {
-        Target::Landmark(_) => rel.default_quant(),
-        _ => random_quant(rng, rel),
-    };
-    Formula::Atom(Atom::quantified(rel, subject, quant, target))
-}
-
-/// Second edition: a random formula of depth at most `depth`.
-fn random_tree(rng: &mut ChaCha8Rng, subject: &str, depth: u32) -> Formula {
-    if depth <= 1 {
-        return random_atom(rng, subject);
-    }
-    match rng.random_range(0..6) {
-        0 | 1 => random_atom(rng, subject),
-        2 => Formula::not(random_tree(rng, subject, depth - 1)),
-        k => {
-            let n = rng.random_range(2..=3);
-            let v = (0..n)
-                .map(|_| random_tree(rng, subject, depth - 1))
-                .collect();
-            if k == 3 {
-                Formula::And(v)
-            } else {
-                Formula::Or(v)
-            }
-        }
-    }
-}
-
-fn q_atom(kind: Kind, dir: Dir, subject: &str, quant: Quant, target: &Target) -> Formula {
-    Formula::Atom(Atom::quantified(
-        Relation::new(kind, dir),
-        subject,
-        quant,
-        target.clone(),
-    ))
-}
-
 /// Second edition: a random formula: a random tree, a SPEC §11.4/§11.5
 /// shape, or a first-edition shape.
 fn random_formula2(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
     let own = Target::Class(subject.into());
-    let target = random_target(rng);
+    let target = random_target(rng, &VOC);
     let dir = pick(rng, &Dir::ALL);
     let some = |kind, d, t: &Target| q_atom(kind, d, subject, Quant::Some, t);
     match rng.random_range(0..16) {
         0..=4 => {
             let depth = rng.random_range(1..=3);
-            random_tree(rng, subject, depth)
+            random_tree(rng, &VOC, subject, depth)
         }
         // "in one row with the other As" / "in one column"
         5 => {
