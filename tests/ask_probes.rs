@@ -198,28 +198,24 @@ fn random_case(index: u64) -> Case {
             1 => (10, 20),
             _ => (10, 10),
         };
-        objects.push(Object {
-            id: format!("{}{}", class.to_lowercase(), i),
-            class: class.into(),
-            x: None,
-            y: None,
-            width: bw,
-            height: bh,
-            fixed: false,
-        });
+        objects.push(Object::movable(
+            &format!("{}{}", class.to_lowercase(), i),
+            class,
+            bw,
+            bh,
+        ));
     }
     // Now and then an already-placed movable object.
     if rng.random_range(0..5) == 0 {
         let class = pick(&mut rng, classes);
-        let o = Object {
-            id: "p0".into(),
-            class: class.into(),
-            x: Some(10 * rng.random_range(0..w / 10)),
-            y: Some(10 * rng.random_range(0..h / 10)),
-            width: 10,
-            height: 10,
-            fixed: false,
-        };
+        let o = Object::placed(
+            "p0",
+            class,
+            10 * rng.random_range(0..w / 10),
+            10 * rng.random_range(0..h / 10),
+            10,
+            10,
+        );
         if !overlaps_any(&objects, &o) {
             objects.push(o);
         }

@@ -296,15 +296,12 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
             let side = if rng.random_range(0..4) == 0 { 20 } else { 10 };
             (side, side)
         };
-        objects.push(Object {
-            id: format!("{}{}", class.to_lowercase(), i),
-            class: class.into(),
-            x: None,
-            y: None,
-            width: bw,
-            height: bh,
-            fixed: false,
-        });
+        objects.push(Object::movable(
+            &format!("{}{}", class.to_lowercase(), i),
+            class,
+            bw,
+            bh,
+        ));
     }
     // Already-placed movable objects (subjects and targets that do not
     // move, but no landmarks), where they fit: they make the counts of
@@ -319,15 +316,7 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
         let class = pick(&mut rng, &["A", "B"]);
         let x = 10 * rng.random_range(0..w / 10);
         let y = 10 * rng.random_range(0..h / 10);
-        let o = Object {
-            id: format!("p{i}"),
-            class: class.into(),
-            x: Some(x),
-            y: Some(y),
-            width: 10,
-            height: 10,
-            fixed: false,
-        };
+        let o = Object::placed(&format!("p{i}"), class, x, y, 10, 10);
         let clash = objects.iter().any(|p| match (p.rect(), o.rect()) {
             (Some(a), Some(b)) => a.interiors_overlap(&b),
             _ => false,
@@ -624,15 +613,7 @@ fn random_like(case: &Case) -> Vec<Scene> {
             Scene {
                 space: sp,
                 grid: case.scene.grid,
-                objects: vec![Object {
-                    id: "l".into(),
-                    class: o.class.clone(),
-                    x: Some(x),
-                    y: Some(y),
-                    width: w,
-                    height: h,
-                    fixed: false,
-                }],
+                objects: vec![Object::placed("l", &o.class, x, y, w, h)],
             }
         })
         .collect()
@@ -892,15 +873,7 @@ fn brute_force_best_is_consistent() {
 /// state") instead of answering `infeasible`.
 #[test]
 fn infeasible_at_root_minimal_reproducers() {
-    let block = |id: &str, class: &str, side: i64| Object {
-        id: id.into(),
-        class: class.into(),
-        x: None,
-        y: None,
-        width: side,
-        height: side,
-        fixed: false,
-    };
+    let block = |id: &str, class: &str, side: i64| Object::movable(id, class, side, side);
     let space = Space {
         x: 0,
         y: 0,
