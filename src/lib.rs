@@ -75,6 +75,7 @@ pub mod relations;
 pub mod render;
 pub mod resemblance;
 pub mod rules;
+pub mod sample;
 pub mod scene;
 pub mod studio;
 pub mod synth;
@@ -85,6 +86,7 @@ pub use infer::{learn, InferError, LearnParams, Learned, Templates};
 pub use relations::Contact;
 pub use render::{render_svg, RenderOptions};
 pub use rules::{parse_rules, Diagnostic, Rule, RuleSet, RulesError};
+pub use sample::{sample, Quality, SampleError, SampleOptions, Sampler};
 pub use scene::{Object, Scene, SceneError, Space};
 pub use synth::{
     synthesize, Conflict, Resemblance, SolveStats, Status, SynthError, SynthOptions, SynthResult,

@@ -916,6 +916,42 @@ impl Engine {
     }
 }
 
+impl Engine {
+    /// Exclude the assignment `values` (one per model variable) from every
+    /// later call: the clause "some variable takes another value". Used by
+    /// `crate::sample` to draw distinct layouts. With no variable, the model
+    /// has one assignment, so every later call is infeasible.
+    pub(crate) fn exclude(&mut self, values: &[i64]) {
+        if self.dead {
+            return;
+        }
+        if self.vars.is_empty() {
+            self.dead = true;
+            return;
+        }
+        let clause: Vec<Predicate> = self
+            .vars
+            .iter()
+            .zip(values)
+            .map(|(&v, &x)| predicate![v != clamp_i32(x)])
+            .collect();
+        self.solver.add_clause(clause, self.tag);
+    }
+
+    /// Try `hints` (pairs of a model variable and a value) first, in this
+    /// order, until the next solution: [`Backend::hint`] with the order
+    /// chosen by the caller (`crate::sample` draws it at random).
+    pub(crate) fn hint_in_order(&mut self, hints: &[(usize, i64)]) {
+        // `WarmStart` tries its list from the back.
+        let (vars, vals): (Vec<DomainId>, Vec<i32>) = hints
+            .iter()
+            .rev()
+            .filter_map(|&(v, x)| Some((*self.vars.get(v)?, i32::try_from(x).ok()?)))
+            .unzip();
+        self.brancher.inner.hint = (!vars.is_empty()).then(|| WarmStart::new(&vars, &vals));
+    }
+}
+
 impl Backend for Engine {
     /// `Rule(r)` on an engine built without guards is a no-op (its rule is
     /// posted as units); `ObjectiveAtLeast(k)` without an objective holds
