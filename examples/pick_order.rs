@@ -84,9 +84,11 @@ fn check(planner: fn(&Scene) -> Vec<usize>) -> Result<(), TestError<Scene>> {
         failure_persistence: None,
         ..Config::default()
     });
-    runner.run(&strategy, |scene| match first_crossing(&scene, &planner(&scene)) {
-        None => Ok(()),
-        Some((a, b)) => Err(TestCaseError::fail(format!("{a} crosses {b}"))),
+    runner.run(&strategy, |scene| {
+        match first_crossing(&scene, &planner(&scene)) {
+            None => Ok(()),
+            Some((a, b)) => Err(TestCaseError::fail(format!("{a} crosses {b}"))),
+        }
     })
 }
 

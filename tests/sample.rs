@@ -14,12 +14,13 @@ use std::collections::BTreeSet;
 
 fn box_task() -> (Scene, RuleSet) {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing");
-    let demos = scenes_from_json(&std::fs::read_to_string(format!("{dir}/demos.json")).unwrap())
-        .unwrap();
+    let demos =
+        scenes_from_json(&std::fs::read_to_string(format!("{dir}/demos.json")).unwrap()).unwrap();
     let problem =
-        Scene::from_json(&std::fs::read_to_string(format!("{dir}/problem.json")).unwrap())
-            .unwrap();
-    let rules = learn(&demos, None, &LearnParams::default()).unwrap().rules();
+        Scene::from_json(&std::fs::read_to_string(format!("{dir}/problem.json")).unwrap()).unwrap();
+    let rules = learn(&demos, None, &LearnParams::default())
+        .unwrap()
+        .rules();
     (problem, rules)
 }
 
@@ -40,7 +41,10 @@ fn check_all(problem: &Scene, rules: &RuleSet, layouts: &[Scene], min: f64) {
         let e = evaluate(s, rules, Contact::Point);
         assert!(e.hard_ok());
         assert!(e.score >= min - 1e-9, "score {} < {min}", e.score);
-        assert!(keys.insert(canonical_key(problem, s)), "a layout came twice");
+        assert!(
+            keys.insert(canonical_key(problem, s)),
+            "a layout came twice"
+        );
     }
 }
 
@@ -77,7 +81,10 @@ fn same_seed_same_layouts_other_seed_other_order() {
 fn drawing_to_the_end_returns_exactly_the_brute_force_layouts() {
     for (name, problem, rules) in tiny_problems() {
         let all = enumerate(&problem, &rules, Contact::Point, 1 << 22).unwrap();
-        let best = all.iter().map(|(_, n)| *n).fold(f64::NEG_INFINITY, f64::max);
+        let best = all
+            .iter()
+            .map(|(_, n)| *n)
+            .fold(f64::NEG_INFINITY, f64::max);
         let total = rules.rules.len();
         assert!(total > 0);
         for (quality, keep) in [
@@ -156,5 +163,94 @@ fn first_draws_cover_every_tiny_layout() {
         let u = uniformity(&problem, &rules, Quality::Optimum, 20 * 12).unwrap();
         assert!(u.exhaustive_ok, "{name}");
         eprintln!("{name}: {u:?}");
+    }
+}
+
+// ---- strategies: every shrunk value stays valid ---------------------------
+
+use proptest::strategy::{Strategy, ValueTree};
+use proptest::test_runner::{Config, TestRunner};
+use rccpack::sample::strategy::{demo_scenes, layouts, ruleset_strategy};
+
+/// Generate `cases` values of `strategy` and shrink each all the way
+/// (always simplifying, as if every value failed), checking `valid` on the
+/// first value and on every shrunk one.
+fn shrink_all<S: Strategy>(strategy: &S, cases: usize, valid: impl Fn(&S::Value)) {
+    let mut runner = TestRunner::new(Config::default());
+    for _ in 0..cases {
+        let mut tree = strategy.new_tree(&mut runner).unwrap();
+        valid(&tree.current());
+        let mut steps = 0;
+        while tree.simplify() && steps < 200 {
+            valid(&tree.current());
+            steps += 1;
+        }
+    }
+}
+
+#[test]
+fn shrunk_layouts_still_keep_every_rule() {
+    let (problem, rules) = box_task();
+    let s = layouts(&problem, &rules, &opts(Quality::AllRules, 1), 40).unwrap();
+    shrink_all(&s, 10, |scene| {
+        verify_solution(&problem, scene, &rules, Contact::Point).unwrap();
+        assert_eq!(evaluate(scene, &rules, Contact::Point).score, 1.0);
+    });
+}
+
+#[test]
+fn shrunk_demo_scenes_stay_valid_and_keep_the_rules() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing");
+    let demos =
+        scenes_from_json(&std::fs::read_to_string(format!("{dir}/demos.json")).unwrap()).unwrap();
+    // Without rules: valid complete scenes, never more objects than a demo.
+    shrink_all(&demo_scenes(demos.clone(), None), 10, |s| {
+        s.validate().unwrap();
+        assert!(s.is_complete());
+    });
+    // Keeping rules: every object that remains keeps them.
+    let rules =
+        parse_rules("rule r_low: DR_S(R, B)\nrule b_apart hard: EC_N(B, no B) & EC_S(B, no B)\n")
+            .unwrap();
+    shrink_all(
+        &demo_scenes(demos, Some((rules.clone(), Contact::Point))),
+        10,
+        |s| {
+            s.validate().unwrap();
+            let e = evaluate(s, &rules, Contact::Point);
+            assert!(e.hard_ok() && e.score == 1.0, "{e:?}");
+        },
+    );
+}
+
+#[test]
+fn shrunk_rule_sets_print_and_parse_back() {
+    shrink_all(&ruleset_strategy(), 20, |rs| {
+        let text = rccpack::rules::print_rules(rs);
+        assert!(parse_rules(&text).unwrap().same_rules(rs), "{text}");
+    });
+}
+
+// ---- Arbitrary ------------------------------------------------------------
+
+#[test]
+fn arbitrary_scenes_rules_and_tasks_are_valid_inputs() {
+    use arbitrary::{Arbitrary, Unstructured};
+    use rand::{RngExt, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(24);
+    for _ in 0..300 {
+        let bytes: Vec<u8> = (0..rng.random_range(0..400))
+            .map(|_| rng.random())
+            .collect();
+        let mut u = Unstructured::new(&bytes);
+        let scene = Scene::arbitrary(&mut u).unwrap();
+        scene.validate().unwrap();
+        Scene::from_json(&scene.to_json()).unwrap();
+        let rules = RuleSet::arbitrary(&mut u).unwrap();
+        let text = rccpack::rules::print_rules(&rules);
+        assert!(parse_rules(&text).unwrap().same_rules(&rules), "{text}");
+        let task = rccpack::sample::arbitrary::Task::arbitrary(&mut u).unwrap();
+        task.problem.validate().unwrap();
+        rccpack::rules::check_classes(&task.rules, &task.problem).unwrap();
     }
 }

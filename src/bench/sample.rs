@@ -202,7 +202,10 @@ pub fn uniformity(
 ) -> Option<Uniformity> {
     let contact = Contact::Point;
     let all = enumerate(problem, rules, contact, 2_000_000)?;
-    let best = all.iter().map(|(_, n)| *n).fold(f64::NEG_INFINITY, f64::max);
+    let best = all
+        .iter()
+        .map(|(_, n)| *n)
+        .fold(f64::NEG_INFINITY, f64::max);
     let total = evaluate(&problem_filled(problem, &all)?, rules, contact).total_weight;
     let keep = |n: f64| match quality {
         Quality::Optimum => crate::synth::brute_force::approx_eq(n, best),
@@ -236,10 +239,7 @@ pub fn uniformity(
     }
     let m = target.len();
     let e = draws as f64 / m as f64;
-    let chi_square: f64 = counts
-        .values()
-        .map(|&c| (c as f64 - e).powi(2) / e)
-        .sum();
+    let chi_square: f64 = counts.values().map(|&c| (c as f64 - e).powi(2) / e).sum();
     Some(Uniformity {
         layouts: m,
         draws,
@@ -376,7 +376,10 @@ pub fn tiny_problems() -> Vec<(&'static str, Scene, RuleSet)> {
         (
             "two-touching",
             // Two interchangeable blocks that touch, on a 5×4 table.
-            scene(space(50, 40), vec![block("a1", "A", 10, 10), block("a2", "A", 10, 10)]),
+            scene(
+                space(50, 40),
+                vec![block("a1", "A", 10, 10), block("a2", "A", 10, 10)],
+            ),
             rules("rule touch: EC_N(A, A) | EC_S(A, A) | EC_E(A, A) | EC_W(A, A)\n"),
         ),
         (

@@ -83,7 +83,12 @@ fn quant(u: &mut Unstructured<'_>) -> Result<Quant> {
     })
 }
 
-fn formula(u: &mut Unstructured<'_>, subject: &str, classes: &[&str], depth: u32) -> Result<Formula> {
+fn formula(
+    u: &mut Unstructured<'_>,
+    subject: &str,
+    classes: &[&str],
+    depth: u32,
+) -> Result<Formula> {
     let leaf = depth == 0 || u.ratio(1, 2)?;
     if leaf {
         let rel = *u.choose(&Relation::ALL)?;

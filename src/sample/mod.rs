@@ -289,10 +289,7 @@ impl Sampler {
         let used = self.engine.as_ref().map_or(0, |e| e.nodes());
         Limits {
             deadline,
-            node_limit: self
-                .opts
-                .layout_node_limit
-                .map(|n| used.saturating_add(n)),
+            node_limit: self.opts.layout_node_limit.map(|n| used.saturating_add(n)),
             cancel: self.opts.cancel.clone(),
         }
     }
@@ -318,8 +315,7 @@ impl Sampler {
         let impossible = self.model.soft.iter().any(|t| t.lit == Lit::FALSE);
         let target = match self.opts.quality {
             Quality::Optimum => {
-                let r =
-                    crate::synth::synthesize(&self.problem, &self.rules, &self.synth_opts)?;
+                let r = crate::synth::synthesize(&self.problem, &self.rules, &self.synth_opts)?;
                 match r.status {
                     Status::Infeasible => {
                         self.fail(SampleError::Infeasible(r.conflict.unwrap_or_default()));
@@ -474,10 +470,7 @@ impl Sampler {
                     Some(l) if !l.is_empty() && self.rng.random_bool(0.5) => {
                         l[self.rng.random_range(0..l.len())]
                     }
-                    _ => (
-                        self.rng.random_range(0..=ux),
-                        self.rng.random_range(0..=uy),
-                    ),
+                    _ => (self.rng.random_range(0..=ux), self.rng.random_range(0..=uy)),
                 })
                 .collect();
             pos.sort_by_key(|&(x, y)| (y, x));
