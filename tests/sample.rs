@@ -160,7 +160,7 @@ fn a_node_limit_ends_with_limit_reached() {
 #[test]
 fn first_draws_cover_every_tiny_layout() {
     for (name, problem, rules) in tiny_problems() {
-        let u = uniformity(&problem, &rules, Quality::Optimum, 20 * 12).unwrap();
+        let u = uniformity(&problem, &rules, Quality::Optimum, 5).unwrap();
         assert!(u.exhaustive_ok, "{name}");
         eprintln!("{name}: {u:?}");
     }

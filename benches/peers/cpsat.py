@@ -54,7 +54,7 @@ def main():
         fail(f"{args.model}: not an rccpack-model/1 file (format {m.get('format') if isinstance(m, dict) else None!r})")
 
     try:
-        model, xs, soft_lits, value_of = build(cp_model, m)
+        model, xs, soft_lits, value_of, _ = build(cp_model, m)
     except (KeyError, TypeError, ValueError, IndexError) as e:
         fail(f"{args.model}: malformed model: {e!r}")
 
@@ -157,8 +157,9 @@ def build(cp_model, m):
     soft_lits = [(int(s["coef"]), s["lit"]) for s in m["soft"]]
     constant = sum(c for c, l in soft_lits if l.get("const") is True)
     terms = [c * as_int(l) for c, l in soft_lits if "const" not in l]
+    objective = constant + sum(terms)
     if terms:
-        model.Maximize(constant + sum(terms))
+        model.Maximize(objective)
 
     def value_of(solver, l):
         if "const" in l:
@@ -166,7 +167,7 @@ def build(cp_model, m):
         v = solver.BooleanValue(bs[int(l["var"])])
         return (not v) if l["neg"] else v
 
-    return model, xs, soft_lits, value_of
+    return model, xs, soft_lits, value_of, objective
 
 
 if __name__ == "__main__":

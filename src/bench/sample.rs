@@ -189,8 +189,8 @@ pub struct Uniformity {
     pub exhaustive_ok: bool,
 }
 
-/// Draw the first layout of `draws` seeds (0, 1, …) and compare the
-/// frequencies with uniform over every layout of the optimum score found by
+/// Draw the first layout of `draws_per_layout × layouts` seeds (0, 1, …)
+/// and compare the frequencies with uniform over every layout of the optimum score found by
 /// brute force; also run the sampler to the end once and check that it
 /// returns exactly those layouts. `None` when the problem is too large for
 /// brute force or has no layout.
@@ -198,7 +198,7 @@ pub fn uniformity(
     problem: &Scene,
     rules: &RuleSet,
     quality: Quality,
-    draws: usize,
+    draws_per_layout: usize,
 ) -> Option<Uniformity> {
     let contact = Contact::Point;
     let all = enumerate(problem, rules, contact, 2_000_000)?;
@@ -232,6 +232,7 @@ pub fn uniformity(
         .map(|s| canonical_key(problem, &s))
         .collect();
     let exhaustive_ok = full == target;
+    let draws = draws_per_layout * target.len();
     let mut counts: BTreeMap<&Key, usize> = target.iter().map(|k| (k, 0)).collect();
     for seed in 0..draws as u64 {
         let first = sample(problem, rules, &opts(seed)).ok()?.next()?.ok()?;
@@ -270,37 +271,26 @@ fn problem_filled(problem: &Scene, all: &[(Key, f64)]) -> Option<Scene> {
     Some(s)
 }
 
-/// [`diversity`]'s result.
+/// How spread out a set of layouts of one problem is.
 #[derive(Debug, Clone, serde::Serialize)]
-pub struct Diversity {
-    /// Layouts drawn.
+pub struct Spread {
+    /// Layouts.
     pub layouts: usize,
-    /// Wall time of the whole run (the optimum included), in ms.
-    pub total_ms: f64,
-    /// `total_ms / layouts`.
-    pub ms_per_layout: f64,
+    /// Distinct layouts among them ([`canonical_key`]).
+    pub distinct: usize,
     /// Mean distance between two layouts: the sum over movable objects
     /// (matched by id) of `(|dx| + |dy|) / grid`.
     pub mean_distance: f64,
-    /// The smallest such distance.
+    /// The smallest such distance (0 when a layout repeats).
     pub min_distance: f64,
     /// Per class of movable objects: distinct positions taken, over all
     /// layouts.
     pub positions_per_class: BTreeMap<String, usize>,
 }
 
-/// Draw up to `n` layouts with `opts` and measure how spread out they are.
-pub fn diversity(
-    problem: &Scene,
-    rules: &RuleSet,
-    opts: &SampleOptions,
-    n: usize,
-) -> Result<Diversity, crate::sample::SampleError> {
-    let start = Instant::now();
-    let layouts: Vec<Scene> = sample(problem, rules, opts)?
-        .take(n)
-        .collect::<Result<_, _>>()?;
-    let total_ms = start.elapsed().as_secs_f64() * 1000.0;
+/// Pairwise distances and positions covered among `layouts` (complete
+/// scenes of `problem`).
+pub fn spread(problem: &Scene, layouts: &[Scene]) -> Spread {
     let g = problem.grid.max(1) as f64;
     let movable: Vec<usize> = (0..problem.objects.len())
         .filter(|&i| !problem.objects[i].is_placed())
@@ -326,7 +316,7 @@ pub fn diversity(
         }
     }
     let mut per_class: BTreeMap<String, BTreeSet<(i64, i64)>> = BTreeMap::new();
-    for s in &layouts {
+    for s in layouts {
         for &i in &movable {
             let o = &s.objects[i];
             per_class
@@ -335,13 +325,147 @@ pub fn diversity(
                 .insert((o.x.unwrap_or(0), o.y.unwrap_or(0)));
         }
     }
-    Ok(Diversity {
+    let distinct: BTreeSet<Key> = layouts.iter().map(|s| canonical_key(problem, s)).collect();
+    Spread {
         layouts: layouts.len(),
-        total_ms,
-        ms_per_layout: total_ms / layouts.len().max(1) as f64,
+        distinct: distinct.len(),
         mean_distance: if pairs > 0 { sum / pairs as f64 } else { 0.0 },
         min_distance: if pairs > 0 { min } else { 0.0 },
         positions_per_class: per_class.into_iter().map(|(c, s)| (c, s.len())).collect(),
+    }
+}
+
+/// One sampler run: its layouts' spread and its time.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Diversity {
+    /// Spread of the layouts.
+    #[serde(flatten)]
+    pub spread: Spread,
+    /// Wall time of the whole run (the optimum included), in ms.
+    pub total_ms: f64,
+    /// `total_ms / layouts`.
+    pub ms_per_layout: f64,
+}
+
+/// Draw up to `n` layouts with `opts` and measure how spread out they are;
+/// also returns the layouts.
+pub fn diversity(
+    problem: &Scene,
+    rules: &RuleSet,
+    opts: &SampleOptions,
+    n: usize,
+) -> Result<(Diversity, Vec<Scene>), crate::sample::SampleError> {
+    let start = Instant::now();
+    let layouts: Vec<Scene> = sample(problem, rules, opts)?
+        .take(n)
+        .collect::<Result<_, _>>()?;
+    let total_ms = start.elapsed().as_secs_f64() * 1000.0;
+    let d = Diversity {
+        spread: spread(problem, &layouts),
+        total_ms,
+        ms_per_layout: total_ms / layouts.len().max(1) as f64,
+    };
+    Ok((d, layouts))
+}
+
+/// The baseline's run: CP-SAT with randomised search, one solve per seed
+/// (`benches/peers/cpsat_sample.py`).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Baseline {
+    /// Spread of the layouts (repeats included).
+    #[serde(flatten)]
+    pub spread: Spread,
+    /// CP-SAT's summed solve time, in ms (model building and the Python
+    /// start excluded).
+    pub solve_ms: f64,
+    /// Wall time of the whole process, in ms.
+    pub process_ms: f64,
+    /// Layouts that failed the verifier or the quality (should be 0).
+    pub invalid: usize,
+}
+
+/// Run the CP-SAT baseline for `n` layouts whose integer objective is at
+/// least that of `like_this` (a layout of the quality wanted), seeds
+/// `seed..seed + n`. `Err` says why it could not run (no `python3`, no
+/// `ortools`, a script error).
+pub fn cpsat_baseline(
+    problem: &Scene,
+    rules: &RuleSet,
+    contact: Contact,
+    like_this: &Scene,
+    n: usize,
+    seed: u64,
+) -> Result<Baseline, String> {
+    let opts = crate::synth::SynthOptions {
+        contact,
+        ..crate::synth::SynthOptions::default()
+    };
+    let e = crate::synth::emit::emitted(problem, rules, &opts).map_err(|e| e.to_string())?;
+    let vals_of = |s: &Scene| -> Vec<i64> {
+        let (ox, oy) = e.model.origin;
+        e.model
+            .vars
+            .iter()
+            .map(|v| {
+                let o = &s.objects[v.object];
+                match v.axis {
+                    crate::relations::Axis::X => (o.x.unwrap_or(ox) - ox) / e.model.grid,
+                    crate::relations::Axis::Y => (o.y.unwrap_or(oy) - oy) / e.model.grid,
+                }
+            })
+            .collect()
+    };
+    let target = e
+        .objective_of(&vals_of(like_this))
+        .ok_or("the layout does not fit the model")?;
+    let path = std::env::temp_dir().join(format!(
+        "rccpack-sample-baseline-{}-{seed}.json",
+        std::process::id()
+    ));
+    std::fs::write(&path, crate::synth::emit::to_json(&e)).map_err(|e| e.to_string())?;
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/peers/cpsat_sample.py");
+    let start = Instant::now();
+    let out = std::process::Command::new("python3")
+        .arg(script)
+        .arg(&path)
+        .args(["--min-objective", &target.to_string()])
+        .args(["--n", &n.to_string(), "--seed", &seed.to_string()])
+        .output();
+    let _ = std::fs::remove_file(&path);
+    let out = out.map_err(|e| format!("cannot run python3: {e}"))?;
+    let process_ms = start.elapsed().as_secs_f64() * 1000.0;
+    if !out.status.success() {
+        return Err(String::from_utf8_lossy(&out.stderr).trim().to_string());
+    }
+    #[derive(serde::Deserialize)]
+    struct Line {
+        layouts: Vec<Vec<i64>>,
+        time_s: f64,
+    }
+    let text = String::from_utf8_lossy(&out.stdout);
+    let line: Line = serde_json::from_str(text.lines().last().unwrap_or(""))
+        .map_err(|e| format!("cannot read the script's answer: {e}"))?;
+    let mut invalid = 0;
+    let mut layouts = Vec::new();
+    for v in &line.layouts {
+        if v.len() != e.model.vars.len() {
+            invalid += 1;
+            continue;
+        }
+        let s = e.model.scene(problem, v);
+        let ok = crate::synth::verify::verify_solution(problem, &s, rules, contact).is_ok()
+            && e.objective_of(v).is_some_and(|o| o >= target);
+        if ok {
+            layouts.push(s);
+        } else {
+            invalid += 1;
+        }
+    }
+    Ok(Baseline {
+        spread: spread(problem, &layouts),
+        solve_ms: line.time_s * 1000.0,
+        process_ms,
+        invalid,
     })
 }
 
@@ -416,4 +540,241 @@ pub fn tiny_problems() -> Vec<(&'static str, Scene, RuleSet)> {
             ),
         ),
     ]
+}
+
+/// What `rccpack bench sample` runs.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct BenchConfig {
+    /// Seed of the sampler (and the first seed of the baseline).
+    pub seed: u64,
+    /// Layouts per problem.
+    pub n: usize,
+    /// Uniformity: draws per layout of each tiny problem.
+    pub draws_per_layout: usize,
+    /// Generated realistic tasks (their 1× problem each).
+    pub tasks: usize,
+    /// Run the CP-SAT baseline.
+    pub baseline: bool,
+    /// Per problem, a time limit for the sampler run.
+    pub time_limit_s: f64,
+}
+
+/// One problem of the diversity part.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct ProblemRow {
+    /// `example-3/all-rules`, `task00-1x/optimum`, …
+    pub name: String,
+    /// Movable objects.
+    pub movable: usize,
+    /// The sampler's run (`None`: it failed, see `error`).
+    pub sampler: Option<Diversity>,
+    /// Why the sampler gave no layout.
+    pub error: Option<String>,
+    /// The CP-SAT baseline (`Err`: why it did not run).
+    pub baseline: Option<Result<Baseline, String>>,
+}
+
+/// The whole report (`sample.json`).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct BenchReport {
+    /// The configuration.
+    pub config: BenchConfig,
+    /// Per tiny problem: the uniformity test.
+    pub uniformity: Vec<(String, Option<Uniformity>)>,
+    /// Per problem: diversity.
+    pub problems: Vec<ProblemRow>,
+}
+
+/// Run the bench; `note` hears what is being measured.
+pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
+    let mut uniformity_rows = Vec::new();
+    for (name, problem, rules) in tiny_problems() {
+        note(&format!("uniformity: {name}"));
+        let u = uniformity(&problem, &rules, Quality::Optimum, cfg.draws_per_layout);
+        uniformity_rows.push((name.to_string(), u));
+    }
+    let mut problems: Vec<(String, Scene, RuleSet, Quality)> = Vec::new();
+    if let Ok(t) = super::tasks::example_task(&[3, 5]) {
+        for p in &t.problems {
+            let name = &p.name;
+            problems.push((
+                format!("{name}/all-rules"),
+                p.scene.clone(),
+                t.rules.clone(),
+                Quality::AllRules,
+            ));
+            problems.push((
+                format!("{name}/optimum"),
+                p.scene.clone(),
+                t.rules.clone(),
+                Quality::Optimum,
+            ));
+        }
+    }
+    let tcfg = super::tasks::TasksConfig::quick(cfg.seed, std::time::Duration::from_secs(10));
+    for i in 0..cfg.tasks {
+        if let Ok(t) = super::tasks::generate_task(&tcfg, i) {
+            if let Some(p) = t.problems.first() {
+                problems.push((
+                    format!("{}/optimum", p.name),
+                    p.scene.clone(),
+                    t.rules.clone(),
+                    Quality::Optimum,
+                ));
+            }
+        }
+    }
+    let mut rows = Vec::new();
+    for (name, problem, rules, quality) in problems {
+        note(&format!("diversity: {name}"));
+        let opts = SampleOptions {
+            quality,
+            seed: cfg.seed,
+            time_limit: Some(std::time::Duration::from_secs_f64(cfg.time_limit_s)),
+            ..SampleOptions::default()
+        };
+        let movable = problem.objects.iter().filter(|o| !o.is_placed()).count();
+        let (sampler, error, first) = match diversity(&problem, &rules, &opts, cfg.n) {
+            Ok((d, layouts)) => (Some(d), None, layouts.into_iter().next()),
+            Err(e) => (None, Some(e.to_string()), None),
+        };
+        let baseline = match (&first, cfg.baseline) {
+            (Some(f), true) => {
+                note(&format!("baseline: {name}"));
+                Some(cpsat_baseline(
+                    &problem,
+                    &rules,
+                    Contact::Point,
+                    f,
+                    cfg.n,
+                    cfg.seed,
+                ))
+            }
+            _ => None,
+        };
+        rows.push(ProblemRow {
+            name,
+            movable,
+            sampler,
+            error,
+            baseline,
+        });
+    }
+    BenchReport {
+        config: cfg.clone(),
+        uniformity: uniformity_rows,
+        problems: rows,
+    }
+}
+
+/// The report as two plain-text tables.
+pub fn report_text(r: &BenchReport) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "uniformity (first layout of each seed vs uniform over the brute-force optimum layouts)"
+    );
+    let _ = writeln!(
+        s,
+        "{:<14} {:>7} {:>6} {:>8} {:>9} {:>9} {:>10} {:>9} {:>10}",
+        "problem", "layouts", "draws", "reached", "uniform", "chi2", "p", "min/max", "exhaustive"
+    );
+    for (name, u) in &r.uniformity {
+        match u {
+            Some(u) => {
+                let _ = writeln!(
+                    s,
+                    "{:<14} {:>7} {:>6} {:>8} {:>9.1} {:>9.1} {:>10.2e} {:>9} {:>10}",
+                    name,
+                    u.layouts,
+                    u.draws,
+                    u.reached,
+                    u.uniform_reached,
+                    u.chi_square,
+                    u.p_value,
+                    format!("{}/{}", u.min_count, u.max_count),
+                    if u.exhaustive_ok { "all" } else { "MISSED" }
+                );
+            }
+            None => {
+                let _ = writeln!(s, "{name:<14} (not measured)");
+            }
+        }
+    }
+    let _ = writeln!(s);
+    let _ = writeln!(
+        s,
+        "diversity ({} layouts per problem; distance in grid steps, objects matched by id)",
+        r.config.n
+    );
+    let _ = writeln!(
+        s,
+        "{:<26} {:>4} {:<8} {:>8} {:>7} {:>7} {:>10} {:>9}  positions per class",
+        "problem", "objs", "who", "distinct", "mean d", "min d", "ms/layout", "total ms"
+    );
+    for p in &r.problems {
+        let classes = |sp: &Spread| -> String {
+            sp.positions_per_class
+                .iter()
+                .map(|(c, n)| format!("{c}:{n}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        match &p.sampler {
+            Some(d) => {
+                let _ = writeln!(
+                    s,
+                    "{:<26} {:>4} {:<8} {:>8} {:>7.1} {:>7.1} {:>10.2} {:>9.1}  {}",
+                    p.name,
+                    p.movable,
+                    "sample",
+                    d.spread.distinct,
+                    d.spread.mean_distance,
+                    d.spread.min_distance,
+                    d.ms_per_layout,
+                    d.total_ms,
+                    classes(&d.spread)
+                );
+            }
+            None => {
+                let _ = writeln!(
+                    s,
+                    "{:<26} {:>4} {:<8} {}",
+                    p.name,
+                    p.movable,
+                    "sample",
+                    p.error.as_deref().unwrap_or("-")
+                );
+            }
+        }
+        match &p.baseline {
+            Some(Ok(b)) => {
+                let n = b.spread.layouts.max(1) as f64;
+                let _ = writeln!(
+                    s,
+                    "{:<26} {:>4} {:<8} {:>8} {:>7.1} {:>7.1} {:>10.2} {:>9.1}  {}{}",
+                    "",
+                    "",
+                    "cp-sat",
+                    b.spread.distinct,
+                    b.spread.mean_distance,
+                    b.spread.min_distance,
+                    b.solve_ms / n,
+                    b.process_ms,
+                    classes(&b.spread),
+                    if b.invalid > 0 {
+                        format!(" ({} invalid)", b.invalid)
+                    } else {
+                        String::new()
+                    }
+                );
+            }
+            Some(Err(e)) => {
+                let _ = writeln!(s, "{:<26} {:>4} {:<8} not run: {e}", "", "", "cp-sat");
+            }
+            None => {}
+        }
+    }
+    s
 }
