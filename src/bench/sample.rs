@@ -21,7 +21,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
 /// A canonical layout key (see [`canonical_key`]).
-pub type Key = Vec<(String, i64, i64, Vec<(i64, i64)>)>;
+pub use crate::sample::LayoutKey as Key;
 
 /// Every layout of `problem` that keeps the hard rules, with its §6
 /// numerator, one per canonical layout; `None` when more than `limit`

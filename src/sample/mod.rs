@@ -538,11 +538,15 @@ impl Iterator for Sampler {
 
 impl std::iter::FusedIterator for Sampler {}
 
+/// A layout up to swapping interchangeable objects: per `(class, width,
+/// height)` of unplaced objects, their positions, sorted.
+pub type LayoutKey = Vec<(String, i64, i64, Vec<(i64, i64)>)>;
+
 /// The layout of `scene` (a complete scene of `problem`) up to swapping
 /// interchangeable objects: per group of unplaced objects of `problem` with
 /// the same class and size, their positions, sorted. Two scenes are the
 /// same layout (SPEC §14) iff their keys are equal.
-pub fn canonical_key(problem: &Scene, scene: &Scene) -> Vec<(String, i64, i64, Vec<(i64, i64)>)> {
+pub fn canonical_key(problem: &Scene, scene: &Scene) -> LayoutKey {
     let mut groups: BTreeMap<(String, i64, i64), Vec<(i64, i64)>> = BTreeMap::new();
     for (p, s) in problem.objects.iter().zip(&scene.objects) {
         if p.is_placed() {
