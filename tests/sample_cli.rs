@@ -68,18 +68,25 @@ fn writes_n_distinct_layouts_of_score_one() {
     assert_eq!(a.stdout, b.stdout);
 }
 
-#[test]
-fn fewer_layouts_than_asked_is_a_message_and_exit_zero() {
-    let p = tmp("tiny.json", TINY);
-    let r = tmp("none.rcc", "");
-    let o = rccpack(&[
+/// `rccpack sample TINY --rules (rules) -n N (extra)`.
+fn sample_tiny(name: &str, rules: &str, n: &str, extra: &[&str]) -> Output {
+    let p = tmp(&format!("{name}.json"), TINY);
+    let r = tmp(&format!("{name}.rcc"), rules);
+    let mut args = vec![
         "sample",
         p.to_str().unwrap(),
         "--rules",
         r.to_str().unwrap(),
         "-n",
-        "10",
-    ]);
+        n,
+    ];
+    args.extend_from_slice(extra);
+    rccpack(&args)
+}
+
+#[test]
+fn fewer_layouts_than_asked_is_a_message_and_exit_zero() {
+    let o = sample_tiny("none", "", "10", &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     let layouts = scenes_from_json(&String::from_utf8_lossy(&o.stdout)).unwrap();
     assert_eq!(layouts.len(), 3);
@@ -92,68 +99,30 @@ fn fewer_layouts_than_asked_is_a_message_and_exit_zero() {
 
 #[test]
 fn all_rules_without_a_score_one_layout_exits_2() {
-    let p = tmp("tiny2.json", TINY);
-    let r = tmp("west.rcc", "rule west: DR_W(A, A)\n");
-    let o = rccpack(&[
-        "sample",
-        p.to_str().unwrap(),
-        "--rules",
-        r.to_str().unwrap(),
-        "-n",
-        "3",
-        "--all-rules",
-    ]);
+    let o = sample_tiny("west", "rule west: DR_W(A, A)\n", "3", &["--all-rules"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("no layout keeps every rule (score 1); the best score is 0.5"),
-        "{}",
-        stderr(&o)
-    );
+    let msg = "no layout keeps every rule (score 1); the best score is 0.5";
+    assert!(stderr(&o).contains(msg), "{}", stderr(&o));
     assert!(o.stdout.is_empty());
-    let hard = tmp("west_hard.rcc", "rule west hard: DR_W(A, A)\n");
-    let o = rccpack(&[
-        "sample",
-        p.to_str().unwrap(),
-        "--rules",
-        hard.to_str().unwrap(),
-        "-n",
-        "3",
-    ]);
+    let o = sample_tiny("west_hard", "rule west hard: DR_W(A, A)\n", "3", &[]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).starts_with("infeasible: "), "{}", stderr(&o));
 }
 
 #[test]
 fn bad_input_exits_1_with_a_clear_message() {
-    let o = rccpack(&[
-        "sample",
-        PROBLEM,
-        "--rules",
-        PILOT,
-        "-n",
-        "3",
-        "--min-score",
-        "1.5",
-    ]);
+    let boxed = |extra: &[&str]| {
+        let mut args = vec!["sample", PROBLEM, "--rules", PILOT, "-n", "3"];
+        args.extend_from_slice(extra);
+        rccpack(&args)
+    };
+    let o = boxed(&["--min-score", "1.5"]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(
-        stderr(&o).contains("--min-score 1.5: expected a number from 0 to 1"),
-        "{}",
-        stderr(&o)
-    );
+    let msg = "--min-score 1.5: expected a number from 0 to 1";
+    assert!(stderr(&o).contains(msg), "{}", stderr(&o));
     let o = rccpack(&["sample", "no-such.json", "--rules", PILOT, "-n", "3"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("no-such.json"), "{}", stderr(&o));
-    let o = rccpack(&[
-        "sample",
-        PROBLEM,
-        "--rules",
-        PILOT,
-        "-n",
-        "3",
-        "--all-rules",
-        "--min-score",
-        "0.5",
-    ]);
+    let o = boxed(&["--all-rules", "--min-score", "0.5"]);
     assert_eq!(o.status.code(), Some(1));
 }

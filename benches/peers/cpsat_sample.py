@@ -24,7 +24,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cpsat import build, fail  # noqa: E402
+from cpsat import load  # noqa: E402
 
 
 def main():
@@ -35,16 +35,7 @@ def main():
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--time-limit", type=float, default=10.0, metavar="SECONDS")
     args = ap.parse_args()
-    try:
-        from ortools.sat.python import cp_model
-    except ImportError:
-        fail("the Python package `ortools` is missing; install it with `pip install ortools`")
-    try:
-        with open(args.model, encoding="utf-8") as f:
-            m = json.load(f)
-        model, xs, _, _, objective = build(cp_model, m)
-    except (OSError, ValueError, KeyError, TypeError, IndexError) as e:
-        fail(f"{args.model}: cannot read the model: {e!r}")
+    cp_model, (model, xs, _, _, objective) = load(args.model)
     model.ClearObjective()
     model.Add(objective >= args.min_objective)
     layouts = []

@@ -401,20 +401,7 @@ pub fn cpsat_baseline(
         ..crate::synth::SynthOptions::default()
     };
     let e = crate::synth::emit::emitted(problem, rules, &opts).map_err(|e| e.to_string())?;
-    let vals_of = |s: &Scene| -> Vec<i64> {
-        let (ox, oy) = e.model.origin;
-        e.model
-            .vars
-            .iter()
-            .map(|v| {
-                let o = &s.objects[v.object];
-                match v.axis {
-                    crate::relations::Axis::X => (o.x.unwrap_or(ox) - ox) / e.model.grid,
-                    crate::relations::Axis::Y => (o.y.unwrap_or(oy) - oy) / e.model.grid,
-                }
-            })
-            .collect()
-    };
+    let vals_of = |s: &Scene| crate::sample::grid_values(&e.model, s);
     let target = e
         .objective_of(&vals_of(like_this))
         .ok_or("the layout does not fit the model")?;

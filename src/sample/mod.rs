@@ -407,19 +407,7 @@ impl Sampler {
 
     /// Grid values of a complete scene of this problem.
     fn values_of(&self, scene: &Scene) -> Vec<i64> {
-        let (ox, oy) = self.model.origin;
-        let g = self.model.grid;
-        self.model
-            .vars
-            .iter()
-            .map(|v| {
-                let o = &scene.objects[v.object];
-                match v.axis {
-                    crate::relations::Axis::X => (o.x.unwrap_or(ox) - ox) / g,
-                    crate::relations::Axis::Y => (o.y.unwrap_or(oy) - oy) / g,
-                }
-            })
-            .collect()
+        grid_values(&self.model, scene)
     }
 
     fn fail(&mut self, e: SampleError) {
@@ -537,6 +525,23 @@ impl Iterator for Sampler {
 }
 
 impl std::iter::FusedIterator for Sampler {}
+
+/// The grid value of every variable of `model` in `scene` (a complete
+/// scene of the problem the model was built for).
+pub(crate) fn grid_values(model: &Model, scene: &Scene) -> Vec<i64> {
+    let (ox, oy) = model.origin;
+    model
+        .vars
+        .iter()
+        .map(|v| {
+            let o = &scene.objects[v.object];
+            match v.axis {
+                crate::relations::Axis::X => (o.x.unwrap_or(ox) - ox) / model.grid,
+                crate::relations::Axis::Y => (o.y.unwrap_or(oy) - oy) / model.grid,
+            }
+        })
+        .collect()
+}
 
 /// A layout up to swapping interchangeable objects: per `(class, width,
 /// height)` of unplaced objects, their positions, sorted.
