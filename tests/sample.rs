@@ -254,3 +254,43 @@ fn arbitrary_scenes_rules_and_tasks_are_valid_inputs() {
         rccpack::rules::check_classes(&task.rules, &task.problem).unwrap();
     }
 }
+
+#[test]
+fn a_problem_with_nothing_to_place_has_exactly_one_layout() {
+    let (_, problem, rules) = tiny_problems().remove(1);
+    let mut placed = problem.clone();
+    for (i, o) in placed.objects.iter_mut().enumerate() {
+        if !o.fixed {
+            o.x = Some(10 * i as i64);
+            o.y = Some(0);
+        }
+    }
+    for quality in [Quality::Optimum, Quality::MinScore(0.0)] {
+        let mut s = sample(&placed, &rules, &opts(quality, 0)).unwrap();
+        let got: Vec<Scene> = s.by_ref().collect::<Result<_, _>>().unwrap();
+        assert_eq!(got, vec![placed.clone()]);
+        assert_eq!(s.state(), State::Exhausted);
+    }
+}
+
+#[test]
+fn like_scenes_keep_validity_and_determinism() {
+    let (problem, rules) = box_task();
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing");
+    let demos = scenes_from_json(&std::fs::read_to_string(format!("{dir}/demos.json")).unwrap())
+        .unwrap();
+    let o = SampleOptions {
+        like: demos,
+        ..opts(Quality::AllRules, 2)
+    };
+    let run = || -> Vec<Scene> {
+        sample(&problem, &rules, &o)
+            .unwrap()
+            .take(20)
+            .collect::<Result<_, _>>()
+            .unwrap()
+    };
+    let a = run();
+    check_all(&problem, &rules, &a, 1.0);
+    assert_eq!(a, run());
+}
