@@ -58,6 +58,17 @@ fn box_example_all_rules_layouts_are_valid_distinct_and_score_one() {
         .unwrap();
     assert_eq!(layouts.len(), 60);
     check_all(&problem, &rules, &layouts, 1.0);
+    let random = SampleOptions {
+        random_search: true,
+        ..opts(Quality::AllRules, 7)
+    };
+    let layouts: Vec<Scene> = sample(&problem, &rules, &random)
+        .unwrap()
+        .take(20)
+        .collect::<Result<_, _>>()
+        .unwrap();
+    assert_eq!(layouts.len(), 20);
+    check_all(&problem, &rules, &layouts, 1.0);
 }
 
 #[test]
@@ -99,12 +110,18 @@ fn drawing_to_the_end_returns_exactly_the_brute_force_layouts() {
                 .filter(|(_, n)| keep(*n))
                 .map(|(k, _)| k.clone())
                 .collect();
-            let mut sampler = sample(&problem, &rules, &opts(quality, 1)).unwrap();
-            let got: Vec<Scene> = sampler.by_ref().collect::<Result<_, _>>().unwrap();
-            assert_eq!(sampler.state(), State::Exhausted, "{name}");
-            check_all(&problem, &rules, &got, 0.0);
-            let keys: BTreeSet<_> = got.iter().map(|s| canonical_key(&problem, s)).collect();
-            assert_eq!(keys, want, "{name} {quality:?}");
+            for random_search in [false, true] {
+                let o = SampleOptions {
+                    random_search,
+                    ..opts(quality, 1)
+                };
+                let mut sampler = sample(&problem, &rules, &o).unwrap();
+                let got: Vec<Scene> = sampler.by_ref().collect::<Result<_, _>>().unwrap();
+                assert_eq!(sampler.state(), State::Exhausted, "{name}");
+                check_all(&problem, &rules, &got, 0.0);
+                let keys: BTreeSet<_> = got.iter().map(|s| canonical_key(&problem, s)).collect();
+                assert_eq!(keys, want, "{name} {quality:?} random {random_search}");
+            }
         }
     }
 }
@@ -160,9 +177,11 @@ fn a_node_limit_ends_with_limit_reached() {
 #[test]
 fn first_draws_cover_every_tiny_layout() {
     for (name, problem, rules) in tiny_problems() {
-        let u = uniformity(&problem, &rules, Quality::Optimum, 5).unwrap();
-        assert!(u.exhaustive_ok, "{name}");
-        eprintln!("{name}: {u:?}");
+        for random in [false, true] {
+            let u = uniformity(&problem, &rules, Quality::Optimum, random, 5).unwrap();
+            assert!(u.exhaustive_ok, "{name}");
+            eprintln!("{name} (random {random}): {u:?}");
+        }
     }
 }
 
@@ -277,8 +296,8 @@ fn a_problem_with_nothing_to_place_has_exactly_one_layout() {
 fn like_scenes_keep_validity_and_determinism() {
     let (problem, rules) = box_task();
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing");
-    let demos = scenes_from_json(&std::fs::read_to_string(format!("{dir}/demos.json")).unwrap())
-        .unwrap();
+    let demos =
+        scenes_from_json(&std::fs::read_to_string(format!("{dir}/demos.json")).unwrap()).unwrap();
     let o = SampleOptions {
         like: demos,
         ..opts(Quality::AllRules, 2)

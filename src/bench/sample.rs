@@ -191,13 +191,15 @@ pub struct Uniformity {
 
 /// Draw the first layout of `draws_per_layout × layouts` seeds (0, 1, …)
 /// and compare the frequencies with uniform over every layout of the optimum score found by
-/// brute force; also run the sampler to the end once and check that it
+/// brute force (with `random_search`: [`SampleOptions::random_search`]);
+/// also run the sampler to the end once and check that it
 /// returns exactly those layouts. `None` when the problem is too large for
 /// brute force or has no layout.
 pub fn uniformity(
     problem: &Scene,
     rules: &RuleSet,
     quality: Quality,
+    random_search: bool,
     draws_per_layout: usize,
 ) -> Option<Uniformity> {
     let contact = Contact::Point;
@@ -224,6 +226,7 @@ pub fn uniformity(
         quality,
         seed,
         contact,
+        random_search,
         ..SampleOptions::default()
     };
     let full: BTreeSet<Key> = sample(problem, rules, &opts(0))
@@ -576,26 +579,31 @@ pub struct BenchReport {
 pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
     let mut uniformity_rows = Vec::new();
     for (name, problem, rules) in tiny_problems() {
-        note(&format!("uniformity: {name}"));
-        let u = uniformity(&problem, &rules, Quality::Optimum, cfg.draws_per_layout);
-        uniformity_rows.push((name.to_string(), u));
+        for random in [false, true] {
+            let name = format!("{name}{}", if random { " (random)" } else { "" });
+            note(&format!("uniformity: {name}"));
+            let u = uniformity(
+                &problem,
+                &rules,
+                Quality::Optimum,
+                random,
+                cfg.draws_per_layout,
+            );
+            uniformity_rows.push((name, u));
+        }
     }
-    let mut problems: Vec<(String, Scene, RuleSet, Quality)> = Vec::new();
+    let mut problems: Vec<(String, Scene, RuleSet, Quality, bool)> = Vec::new();
     if let Ok(t) = super::tasks::example_task(&[3, 5]) {
         for p in &t.problems {
-            let name = &p.name;
-            problems.push((
-                format!("{name}/all-rules"),
-                p.scene.clone(),
-                t.rules.clone(),
-                Quality::AllRules,
-            ));
-            problems.push((
-                format!("{name}/optimum"),
-                p.scene.clone(),
-                t.rules.clone(),
-                Quality::Optimum,
-            ));
+            for (q, what) in [
+                (Quality::AllRules, "all-rules"),
+                (Quality::Optimum, "optimum"),
+            ] {
+                for random in [false, true] {
+                    let name = format!("{}/{what}{}", p.name, if random { "+random" } else { "" });
+                    problems.push((name, p.scene.clone(), t.rules.clone(), q, random));
+                }
+            }
         }
     }
     let tcfg = super::tasks::TasksConfig::quick(cfg.seed, std::time::Duration::from_secs(10));
@@ -607,16 +615,18 @@ pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
                     p.scene.clone(),
                     t.rules.clone(),
                     Quality::Optimum,
+                    false,
                 ));
             }
         }
     }
     let mut rows = Vec::new();
-    for (name, problem, rules, quality) in problems {
+    for (name, problem, rules, quality, random_search) in problems {
         note(&format!("diversity: {name}"));
         let opts = SampleOptions {
             quality,
             seed: cfg.seed,
+            random_search,
             time_limit: Some(std::time::Duration::from_secs_f64(cfg.time_limit_s)),
             ..SampleOptions::default()
         };
@@ -625,7 +635,7 @@ pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
             Ok((d, layouts)) => (Some(d), None, layouts.into_iter().next()),
             Err(e) => (None, Some(e.to_string()), None),
         };
-        let baseline = match (&first, cfg.baseline) {
+        let baseline = match (&first, cfg.baseline && !random_search) {
             (Some(f), true) => {
                 note(&format!("baseline: {name}"));
                 Some(cpsat_baseline(
@@ -664,7 +674,7 @@ pub fn report_text(r: &BenchReport) -> String {
     );
     let _ = writeln!(
         s,
-        "{:<14} {:>7} {:>6} {:>8} {:>9} {:>9} {:>10} {:>9} {:>10}",
+        "{:<24} {:>7} {:>6} {:>8} {:>9} {:>9} {:>10} {:>9} {:>10}",
         "problem", "layouts", "draws", "reached", "uniform", "chi2", "p", "min/max", "exhaustive"
     );
     for (name, u) in &r.uniformity {
@@ -672,7 +682,7 @@ pub fn report_text(r: &BenchReport) -> String {
             Some(u) => {
                 let _ = writeln!(
                     s,
-                    "{:<14} {:>7} {:>6} {:>8} {:>9.1} {:>9.1} {:>10.2e} {:>9} {:>10}",
+                    "{:<24} {:>7} {:>6} {:>8} {:>9.1} {:>9.1} {:>10.2e} {:>9} {:>10}",
                     name,
                     u.layouts,
                     u.draws,
@@ -685,7 +695,7 @@ pub fn report_text(r: &BenchReport) -> String {
                 );
             }
             None => {
-                let _ = writeln!(s, "{name:<14} (not measured)");
+                let _ = writeln!(s, "{name:<24} (not measured)");
             }
         }
     }
@@ -697,7 +707,7 @@ pub fn report_text(r: &BenchReport) -> String {
     );
     let _ = writeln!(
         s,
-        "{:<26} {:>4} {:<8} {:>8} {:>7} {:>7} {:>10} {:>9}  positions per class",
+        "{:<30} {:>4} {:<8} {:>8} {:>7} {:>7} {:>10} {:>9}  positions per class",
         "problem", "objs", "who", "distinct", "mean d", "min d", "ms/layout", "total ms"
     );
     for p in &r.problems {
@@ -712,7 +722,7 @@ pub fn report_text(r: &BenchReport) -> String {
             Some(d) => {
                 let _ = writeln!(
                     s,
-                    "{:<26} {:>4} {:<8} {:>8} {:>7.1} {:>7.1} {:>10.2} {:>9.1}  {}",
+                    "{:<30} {:>4} {:<8} {:>8} {:>7.1} {:>7.1} {:>10.2} {:>9.1}  {}",
                     p.name,
                     p.movable,
                     "sample",
@@ -727,7 +737,7 @@ pub fn report_text(r: &BenchReport) -> String {
             None => {
                 let _ = writeln!(
                     s,
-                    "{:<26} {:>4} {:<8} {}",
+                    "{:<30} {:>4} {:<8} {}",
                     p.name,
                     p.movable,
                     "sample",
@@ -740,7 +750,7 @@ pub fn report_text(r: &BenchReport) -> String {
                 let n = b.spread.layouts.max(1) as f64;
                 let _ = writeln!(
                     s,
-                    "{:<26} {:>4} {:<8} {:>8} {:>7.1} {:>7.1} {:>10.2} {:>9.1}  {}{}",
+                    "{:<30} {:>4} {:<8} {:>8} {:>7.1} {:>7.1} {:>10.2} {:>9.1}  {}{}",
                     "",
                     "",
                     "cp-sat",
@@ -758,7 +768,7 @@ pub fn report_text(r: &BenchReport) -> String {
                 );
             }
             Some(Err(e)) => {
-                let _ = writeln!(s, "{:<26} {:>4} {:<8} not run: {e}", "", "", "cp-sat");
+                let _ = writeln!(s, "{:<30} {:>4} {:<8} not run: {e}", "", "", "cp-sat");
             }
             None => {}
         }

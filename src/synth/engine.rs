@@ -44,8 +44,8 @@ use pumpkin_constraints::{boolean_equals, cumulative, equals, less_than_or_equal
 use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
 use pumpkin_core::branching::branchers::warm_start::WarmStart;
 use pumpkin_core::branching::tie_breaking::InOrderTieBreaker;
-use pumpkin_core::branching::value_selection::InDomainMin;
-use pumpkin_core::branching::variable_selection::FirstFail;
+use pumpkin_core::branching::value_selection::{InDomainMin, InDomainRandom};
+use pumpkin_core::branching::variable_selection::{FirstFail, RandomSelector};
 use pumpkin_core::branching::{Brancher, BrancherEvent, SelectionContext};
 use pumpkin_core::options::SolverOptions;
 use pumpkin_core::predicate;
@@ -936,6 +936,18 @@ impl Engine {
             .map(|(&v, &x)| predicate![v != clamp_i32(x)])
             .collect();
         self.solver.add_clause(clause, self.tag);
+    }
+
+    /// After the hint, search at random instead of by activity: a random
+    /// unfixed grid variable, a random value of its domain (the solver's
+    /// seeded generator); conflicts are learned as usual. Every Boolean of
+    /// the model is defined by the grid variables, so branching on them
+    /// alone is complete. Used by `crate::sample`.
+    pub(crate) fn random_search(&mut self) {
+        self.brancher.inner.main = Box::new(IndependentVariableValueBrancher::new(
+            RandomSelector::new(self.vars.iter().copied()),
+            InDomainRandom,
+        ));
     }
 
     /// Try `hints` (pairs of a model variable and a value) first, in this
