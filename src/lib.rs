@@ -86,7 +86,7 @@ pub use infer::{learn, InferError, LearnParams, Learned, Templates};
 pub use relations::Contact;
 pub use render::{render_svg, RenderOptions};
 pub use rules::{parse_rules, Diagnostic, Rule, RuleSet, RulesError};
-pub use sample::{sample, Quality, SampleError, SampleOptions, Sampler};
+pub use sample::{sample, Quality, Repair, SampleError, SampleOptions, Sampler};
 pub use scene::{Object, Scene, SceneError, Space};
 pub use synth::{
     synthesize, Conflict, Resemblance, SolveStats, Status, SynthError, SynthOptions, SynthResult,

@@ -6,7 +6,7 @@ use rccpack::bench::sample::{enumerate, tiny_problems, uniformity};
 use rccpack::eval::evaluate;
 use rccpack::relations::Contact;
 use rccpack::rules::{parse_rules, RuleSet};
-use rccpack::sample::{canonical_key, sample, Quality, SampleError, SampleOptions, State};
+use rccpack::sample::{canonical_key, sample, Quality, Repair, SampleError, SampleOptions, State};
 use rccpack::scene::{scenes_from_json, Scene};
 use rccpack::synth::verify::verify_solution;
 use rccpack::{learn, LearnParams};
@@ -58,11 +58,11 @@ fn box_example_all_rules_layouts_are_valid_distinct_and_score_one() {
         .unwrap();
     assert_eq!(layouts.len(), 60);
     check_all(&problem, &rules, &layouts, 1.0);
-    let random = SampleOptions {
-        random_search: true,
+    let activity = SampleOptions {
+        repair: Repair::Activity,
         ..opts(Quality::AllRules, 7)
     };
-    let layouts: Vec<Scene> = sample(&problem, &rules, &random)
+    let layouts: Vec<Scene> = sample(&problem, &rules, &activity)
         .unwrap()
         .take(20)
         .collect::<Result<_, _>>()
@@ -110,9 +110,9 @@ fn drawing_to_the_end_returns_exactly_the_brute_force_layouts() {
                 .filter(|(_, n)| keep(*n))
                 .map(|(k, _)| k.clone())
                 .collect();
-            for random_search in [false, true] {
+            for repair in [Repair::Random, Repair::Activity] {
                 let o = SampleOptions {
-                    random_search,
+                    repair,
                     ..opts(quality, 1)
                 };
                 let mut sampler = sample(&problem, &rules, &o).unwrap();
@@ -120,7 +120,7 @@ fn drawing_to_the_end_returns_exactly_the_brute_force_layouts() {
                 assert_eq!(sampler.state(), State::Exhausted, "{name}");
                 check_all(&problem, &rules, &got, 0.0);
                 let keys: BTreeSet<_> = got.iter().map(|s| canonical_key(&problem, s)).collect();
-                assert_eq!(keys, want, "{name} {quality:?} random {random_search}");
+                assert_eq!(keys, want, "{name} {quality:?} {repair:?}");
             }
         }
     }

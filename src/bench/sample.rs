@@ -14,7 +14,7 @@
 use crate::eval::evaluate;
 use crate::relations::Contact;
 use crate::rules::{parse_rules, RuleSet};
-use crate::sample::{canonical_key, sample, Quality, SampleOptions};
+use crate::sample::{canonical_key, sample, Quality, Repair, SampleOptions};
 use crate::scene::{Object, Scene, Space};
 use crate::synth::brute_force::grid_positions;
 use std::collections::{BTreeMap, BTreeSet};
@@ -22,6 +22,14 @@ use std::time::Instant;
 
 /// A canonical layout key (see [`canonical_key`]).
 pub use crate::sample::LayoutKey as Key;
+
+fn repair(random: bool) -> Repair {
+    if random {
+        Repair::Random
+    } else {
+        Repair::Activity
+    }
+}
 
 /// Every layout of `problem` that keeps the hard rules, with its §6
 /// numerator, one per canonical layout; `None` when more than `limit`
@@ -191,7 +199,7 @@ pub struct Uniformity {
 
 /// Draw the first layout of `draws_per_layout × layouts` seeds (0, 1, …)
 /// and compare the frequencies with uniform over every layout of the optimum score found by
-/// brute force (with `random_search`: [`SampleOptions::random_search`]);
+/// brute force (`random`: [`Repair::Random`], else [`Repair::Activity`]);
 /// also run the sampler to the end once and check that it
 /// returns exactly those layouts. `None` when the problem is too large for
 /// brute force or has no layout.
@@ -199,7 +207,7 @@ pub fn uniformity(
     problem: &Scene,
     rules: &RuleSet,
     quality: Quality,
-    random_search: bool,
+    random: bool,
     draws_per_layout: usize,
 ) -> Option<Uniformity> {
     let contact = Contact::Point;
@@ -226,7 +234,7 @@ pub fn uniformity(
         quality,
         seed,
         contact,
-        random_search,
+        repair: repair(random),
         ..SampleOptions::default()
     };
     let full: BTreeSet<Key> = sample(problem, rules, &opts(0))
@@ -580,7 +588,7 @@ pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
     let mut uniformity_rows = Vec::new();
     for (name, problem, rules) in tiny_problems() {
         for random in [false, true] {
-            let name = format!("{name}{}", if random { " (random)" } else { "" });
+            let name = format!("{name} ({})", if random { "random" } else { "activity" });
             note(&format!("uniformity: {name}"));
             let u = uniformity(
                 &problem,
@@ -610,13 +618,15 @@ pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
     for i in 0..cfg.tasks {
         if let Ok(t) = super::tasks::generate_task(&tcfg, i) {
             if let Some(p) = t.problems.first() {
-                problems.push((
-                    format!("{}/optimum", p.name),
-                    p.scene.clone(),
-                    t.rules.clone(),
-                    Quality::Optimum,
-                    false,
-                ));
+                for random in [false, true] {
+                    problems.push((
+                        format!("{}/optimum{}", p.name, if random { "+random" } else { "" }),
+                        p.scene.clone(),
+                        t.rules.clone(),
+                        Quality::Optimum,
+                        random,
+                    ));
+                }
             }
         }
     }
@@ -626,7 +636,7 @@ pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
         let opts = SampleOptions {
             quality,
             seed: cfg.seed,
-            random_search,
+            repair: repair(random_search),
             time_limit: Some(std::time::Duration::from_secs_f64(cfg.time_limit_s)),
             ..SampleOptions::default()
         };

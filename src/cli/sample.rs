@@ -4,7 +4,7 @@ use super::{read_rules, read_scene, read_scenes, LimitStruck, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::relations::Contact;
-use rccpack::sample::{sample, Quality, SampleError, SampleOptions, State};
+use rccpack::sample::{sample, Quality, Repair, SampleError, SampleOptions, State};
 use rccpack::scene::scenes_to_json;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -42,10 +42,11 @@ pub struct SampleArgs {
     /// their positions.
     #[arg(long, value_name = "SCENES.json")]
     like: Option<PathBuf>,
-    /// Repair each random hint by random search instead of the solver's
-    /// activity-based search: closer to uniform, several times slower.
-    #[arg(long)]
-    random_search: bool,
+    /// How each random hint is completed into a layout: `random` (a random
+    /// variable and value at each decision; closer to uniform) or
+    /// `activity` (the solver's own search; faster).
+    #[arg(long, default_value = "random", value_parser = ["random", "activity"])]
+    repair: String,
     /// Write the JSON array of layouts here (default: stdout).
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
@@ -98,7 +99,11 @@ pub fn run(a: SampleArgs) -> Result<ExitCode> {
         layout_node_limit: a.layout_node_limit,
         like,
         cancel: Some(cancel),
-        random_search: a.random_search,
+        repair: if a.repair == "activity" {
+            Repair::Activity
+        } else {
+            Repair::Random
+        },
         ..SampleOptions::default()
     };
     let start = Instant::now();

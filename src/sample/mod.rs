@@ -22,9 +22,10 @@
 //! position such an object has in them), interchangeable objects' positions
 //! sorted into the symmetry order, objects tried in a random order. The
 //! engine tries the hinted values first and repairs the rest by its usual
-//! conflict-driven search (activity-based branching, or with
-//! [`SampleOptions::random_search`] a random grid variable and a random
-//! value at each decision); the layout found is then excluded by a clause
+//! conflict-driven search ([`Repair::Random`], the default: a random grid
+//! variable and a random value of its domain at each decision;
+//! [`Repair::Activity`]: the engine's activity-based branching); the layout
+//! found is then excluded by a clause
 //! ("some variable differs"). When the engine proves that no further layout
 //! exists, the iterator ends: every layout of that quality has been
 //! returned. A limit (per layout or overall) ends it with
@@ -36,9 +37,9 @@
 //! conflict-driven search reaches first from a uniformly random hint,
 //! among those not yet returned", so layouts in large open regions of the
 //! solution space (far from the others) are likelier early on, and the
-//! order depends on what the engine learned. Random search after the hint
-//! ([`SampleOptions::random_search`]) is measurably closer to uniform and
-//! several times slower. Because found layouts are
+//! order depends on what the engine learned. Random repair is measurably
+//! closer to uniform than activity-based repair, and 1.5 to 3 times slower.
+//! Because found layouts are
 //! excluded, the first `k` samples are `k` distinct layouts, and drawing
 //! until the end enumerates every layout exactly once. The README reports
 //! a chi-square test against uniform on tiny problems enumerated by brute
@@ -108,10 +109,20 @@ pub struct SampleOptions {
     pub like: Vec<Scene>,
     /// Set to true (e.g. from a Ctrl-C handler) to stop.
     pub cancel: Option<Arc<AtomicBool>>,
-    /// Repair the hint by random search (a random grid variable, a random
-    /// value) instead of the engine's activity-based search: closer to
-    /// uniform, 3 to 8 times slower (README, "Sampling layouts").
-    pub random_search: bool,
+    /// How the engine completes a random hint into a layout.
+    pub repair: Repair,
+}
+
+/// How the engine completes a random hint into a layout (see the module
+/// documentation; measured in the README, "Sampling layouts").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Repair {
+    /// A random grid variable and a random value at each decision: closer
+    /// to uniform.
+    #[default]
+    Random,
+    /// The engine's activity-based branching: faster, further from uniform.
+    Activity,
 }
 
 impl Default for SampleOptions {
@@ -125,7 +136,7 @@ impl Default for SampleOptions {
             time_limit: None,
             like: Vec::new(),
             cancel: None,
-            random_search: false,
+            repair: Repair::Random,
         }
     }
 }
@@ -379,7 +390,7 @@ impl Sampler {
         }
         // The greedy first phase would put every layout bottom-left.
         engine.found_first();
-        if self.opts.random_search {
+        if self.opts.repair == Repair::Random {
             engine.random_search();
         }
         self.engine = Some(engine);
