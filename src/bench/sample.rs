@@ -356,10 +356,13 @@ pub struct Diversity {
     pub total_ms: f64,
     /// `total_ms / layouts`.
     pub ms_per_layout: f64,
+    /// The time limit stopped the run before `n` layouts.
+    pub limit_struck: bool,
 }
 
 /// Draw up to `n` layouts with `opts` and measure how spread out they are;
-/// also returns the layouts.
+/// also returns the layouts. A limit (`opts.time_limit`) ends the run with
+/// what was found ([`Diversity::limit_struck`]).
 pub fn diversity(
     problem: &Scene,
     rules: &RuleSet,
@@ -367,14 +370,24 @@ pub fn diversity(
     n: usize,
 ) -> Result<(Diversity, Vec<Scene>), crate::sample::SampleError> {
     let start = Instant::now();
-    let layouts: Vec<Scene> = sample(problem, rules, opts)?
-        .take(n)
-        .collect::<Result<_, _>>()?;
+    let mut layouts = Vec::with_capacity(n);
+    let mut limit_struck = false;
+    for item in sample(problem, rules, opts)?.take(n) {
+        match item {
+            Ok(s) => layouts.push(s),
+            Err(crate::sample::SampleError::LimitReached { found }) if found > 0 => {
+                limit_struck = true;
+                break;
+            }
+            Err(e) => return Err(e),
+        }
+    }
     let total_ms = start.elapsed().as_secs_f64() * 1000.0;
     let d = Diversity {
         spread: spread(problem, &layouts),
         total_ms,
         ms_per_layout: total_ms / layouts.len().max(1) as f64,
+        limit_struck,
     };
     Ok((d, layouts))
 }
@@ -732,7 +745,7 @@ pub fn report_text(r: &BenchReport) -> String {
             Some(d) => {
                 let _ = writeln!(
                     s,
-                    "{:<30} {:>4} {:<8} {:>8} {:>7.1} {:>7.1} {:>10.2} {:>9.1}  {}",
+                    "{:<30} {:>4} {:<8} {:>8} {:>7.1} {:>7.1} {:>10.2} {:>9.1}  {}{}",
                     p.name,
                     p.movable,
                     "sample",
@@ -741,7 +754,8 @@ pub fn report_text(r: &BenchReport) -> String {
                     d.spread.min_distance,
                     d.ms_per_layout,
                     d.total_ms,
-                    classes(&d.spread)
+                    classes(&d.spread),
+                    if d.limit_struck { " (time limit)" } else { "" }
                 );
             }
             None => {
