@@ -1,4 +1,4 @@
-//! How diverse and how uniform [`crate::sample`]'s layouts are
+//! How diverse and how uniform [`crate::sample::sample()`]'s layouts are
 //! (`rccpack bench sample`, issue 24).
 //!
 //! * [`enumerate`] — every layout of a **tiny** problem by brute force

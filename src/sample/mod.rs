@@ -77,7 +77,7 @@ pub mod strategy;
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Quality {
     /// The optimum score: the §6 numerator that synthesis proves (or the
-    /// best it found, when a limit stopped it; see [`Sampler::target`]).
+    /// best it found, when a limit stopped it; see [`Sampler::target_proven`]).
     #[default]
     Optimum,
     /// Score 1: every soft rule kept by every object.

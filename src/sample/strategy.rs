@@ -5,7 +5,7 @@
 //!   a demonstration at random; optionally only the objects that keep given
 //!   rules stay.
 //! * [`layouts`] — (b) layouts of one problem that keep given rules, drawn
-//!   by [`crate::sample`].
+//!   by [`crate::sample::sample()`].
 //! * [`ruleset_strategy`], [`formula_strategy`] and their parts — (c) rule
 //!   sets and formulas of the `.rcc` language (the strategies the
 //!   project's own parser tests use).
