@@ -313,3 +313,24 @@ fn like_scenes_keep_validity_and_determinism() {
     check_all(&problem, &rules, &a, 1.0);
     assert_eq!(a, run());
 }
+
+/// The CP-SAT baseline of `bench sample` (skipped with a message when
+/// OR-Tools is missing, unless `RCCPACK_PEERS` says the peers must run).
+#[test]
+fn cpsat_baseline_layouts_are_valid() {
+    use rccpack::bench::peers::{check_available, Peer};
+    if let Err(why) = check_available(Peer::CpSat) {
+        assert!(std::env::var_os("RCCPACK_PEERS").is_none(), "{why}");
+        eprintln!("skipped: {why}");
+        return;
+    }
+    let (_, problem, rules) = tiny_problems().remove(0);
+    let first = sample(&problem, &rules, &opts(Quality::Optimum, 0))
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap();
+    let b = rccpack::bench::sample::cpsat_baseline(&problem, &rules, Contact::Point, &first, 5, 0)
+        .unwrap();
+    assert_eq!((b.spread.layouts, b.invalid), (5, 0));
+}

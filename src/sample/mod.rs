@@ -76,8 +76,9 @@ pub mod strategy;
 /// Which layouts count as good enough.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Quality {
-    /// The optimum score: the §6 numerator that synthesis proves (or the
-    /// best it found, when a limit stopped it; see [`Sampler::target_proven`]).
+    /// The optimum score: the §6 numerator that synthesis proves (or at
+    /// least the best it found, when a limit stopped it; see
+    /// [`Sampler::target_proven`]).
     #[default]
     Optimum,
     /// Score 1: every soft rule kept by every object.
@@ -289,8 +290,9 @@ impl Sampler {
     }
 
     /// With [`Quality::Optimum`]: whether the target score is proven
-    /// optimal (`false`: a limit stopped synthesis, and the layouts have
-    /// the best score it found). `None` for the other qualities.
+    /// optimal (`false`: a limit stopped synthesis, and the layouts score
+    /// at least as well as the best layout it found). `None` for the other
+    /// qualities.
     pub fn target_proven(&self) -> Option<bool> {
         self.target.map(|(_, p)| p)
     }
