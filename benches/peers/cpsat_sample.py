@@ -23,6 +23,8 @@ import os
 import sys
 import time
 
+# Import cpsat.py from this folder without leaving a __pycache__ behind.
+sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cpsat import load  # noqa: E402
 
