@@ -132,6 +132,9 @@
 //! - [`resemblance`]: SPEC §12, the second objective.
 //! - [`ask`]: the questions of SPEC §13, without I/O.
 //! - [`task`]: the task folder and the whole pipeline.
+//! - [`mod@sample`]: many distinct layouts that keep the rules (property tests,
+//!   fuzzing); `proptest` strategies and `Arbitrary` impls behind the features
+//!   of those names.
 //! - [`render`]: SVG pictures; PNG with the `png` feature.
 //! - [`limits`]: the documented limits on user-supplied numbers.
 //! - [`fsutil`]: the one atomic file writer, UTF-8 reading, the folder lock.
@@ -164,6 +167,7 @@ pub mod relations;
 pub mod render;
 pub mod resemblance;
 pub mod rules;
+pub mod sample;
 pub mod scene;
 #[cfg(feature = "studio")]
 pub mod studio;
@@ -176,6 +180,7 @@ pub use infer::{learn, InferError, LearnParams, Learned, Templates};
 pub use relations::Contact;
 pub use render::{render_svg, RenderOptions};
 pub use rules::{parse_rules, Diagnostic, Rule, RuleSet, RulesError};
+pub use sample::{sample, Quality, Repair, SampleError, SampleOptions, Sampler};
 pub use scene::{Object, Scene, SceneError, SceneErrorKind, Space};
 pub use synth::{
     synthesize, Conflict, Resemblance, SolveStats, Status, SynthError, SynthOptions, SynthResult,

@@ -24,6 +24,8 @@ mod relations;
 mod render;
 mod resemblance;
 mod robust;
+mod sample;
+mod sample_cli;
 mod scene;
 mod shelf_example;
 mod studio_api;

@@ -40,23 +40,7 @@ def main():
     if args.time_limit is not None and not (args.time_limit >= 0):
         fail(f"--time-limit {args.time_limit}: expected a number of seconds >= 0")
 
-    try:
-        from ortools.sat.python import cp_model
-    except ImportError:
-        fail("the Python package `ortools` is missing; install it with `pip install ortools`")
-
-    try:
-        with open(args.model, encoding="utf-8") as f:
-            m = json.load(f)
-    except (OSError, ValueError) as e:
-        fail(f"{args.model}: cannot read the model: {e}")
-    if not isinstance(m, dict) or m.get("format") != "rccpack-model/1":
-        fail(f"{args.model}: not an rccpack-model/1 file (format {m.get('format') if isinstance(m, dict) else None!r})")
-
-    try:
-        model, xs, soft_lits, value_of = build(cp_model, m)
-    except (KeyError, TypeError, ValueError, IndexError) as e:
-        fail(f"{args.model}: malformed model: {e!r}")
+    cp_model, (model, xs, soft_lits, value_of, _) = load(args.model)
 
     solver = cp_model.CpSolver()
     if args.time_limit is not None:
@@ -84,6 +68,28 @@ def main():
                 objective += coef
     print(json.dumps({"status": status, "values": values,
                       "objective": objective, "time_s": elapsed}))
+
+
+def load(path):
+    """CP-SAT's module and `build`'s result for the model file `path`;
+    every failure ends the script with a message (`fail`)."""
+    try:
+        from ortools.sat.python import cp_model
+    except ImportError:
+        fail("the Python package `ortools` is missing; install it with `pip install ortools`")
+
+    try:
+        with open(path, encoding="utf-8") as f:
+            m = json.load(f)
+    except (OSError, ValueError) as e:
+        fail(f"{path}: cannot read the model: {e}")
+    if not isinstance(m, dict) or m.get("format") != "rccpack-model/1":
+        fail(f"{path}: not an rccpack-model/1 file (format {m.get('format') if isinstance(m, dict) else None!r})")
+
+    try:
+        return cp_model, build(cp_model, m)
+    except (KeyError, TypeError, ValueError, IndexError) as e:
+        fail(f"{path}: malformed model: {e!r}")
 
 
 def build(cp_model, m):
@@ -157,8 +163,9 @@ def build(cp_model, m):
     soft_lits = [(int(s["coef"]), s["lit"]) for s in m["soft"]]
     constant = sum(c for c, l in soft_lits if l.get("const") is True)
     terms = [c * as_int(l) for c, l in soft_lits if "const" not in l]
+    objective = constant + sum(terms)
     if terms:
-        model.Maximize(constant + sum(terms))
+        model.Maximize(objective)
 
     def value_of(solver, l):
         if "const" in l:
@@ -166,7 +173,7 @@ def build(cp_model, m):
         v = solver.BooleanValue(bs[int(l["var"])])
         return (not v) if l["neg"] else v
 
-    return model, xs, soft_lits, value_of
+    return model, xs, soft_lits, value_of, objective
 
 
 if __name__ == "__main__":

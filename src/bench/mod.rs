@@ -15,6 +15,7 @@
 pub mod chart;
 pub mod peers;
 pub mod pool;
+pub mod sample;
 pub mod tasks;
 pub mod thesis;
 

@@ -52,6 +52,10 @@ enum Which {
     /// by the peers on the score-only model. Prints a table per size;
     /// writes `tasks.json` to `--out`.
     Tasks(TasksArgs),
+    /// Sampling (issue 24): uniformity on tiny problems against brute force,
+    /// diversity and speed on the bundled example and generated tasks,
+    /// optionally against CP-SAT with randomised search.
+    Sample(super::sample::BenchSampleArgs),
 }
 
 #[derive(Args, Debug)]
@@ -162,6 +166,7 @@ pub fn run(a: BenchArgs) -> Result<ExitCode> {
     match a.which {
         Which::Thesis(t) => run_thesis(t),
         Which::Tasks(t) => run_tasks(t),
+        Which::Sample(t) => super::sample::run_bench(t),
     }
 }
 

@@ -10,6 +10,7 @@ mod io;
 mod learn;
 mod render;
 mod run;
+mod sample;
 mod score;
 mod studio;
 mod synth;
@@ -52,6 +53,8 @@ enum Command {
     /// Place the unplaced objects of a problem so that the rules hold as well
     /// as possible (SPEC §9).
     Synth(synth::SynthArgs),
+    /// Many distinct layouts that keep the rules, for property tests and data (SPEC §14).
+    Sample(sample::SampleArgs),
     /// The whole pipeline on a task folder: learn, synthesise, render.
     Run(run::RunArgs),
     /// Check the learned rules of a task folder with the person: show probe
@@ -108,6 +111,7 @@ pub fn main() -> ExitCode {
         Command::Learn(a) => learn::run(a),
         Command::Synth(a) => synth::run(a),
         Command::Run(a) => run::run(a),
+        Command::Sample(a) => sample::run(a),
         Command::Studio(a) => studio::run(a),
         Command::Ask(a) => ask::run(a),
         Command::Bench(a) => bench::run(a),

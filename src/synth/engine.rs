@@ -44,8 +44,8 @@ use pumpkin_constraints::{boolean_equals, cumulative, equals, less_than_or_equal
 use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
 use pumpkin_core::branching::branchers::warm_start::WarmStart;
 use pumpkin_core::branching::tie_breaking::InOrderTieBreaker;
-use pumpkin_core::branching::value_selection::InDomainMin;
-use pumpkin_core::branching::variable_selection::FirstFail;
+use pumpkin_core::branching::value_selection::{InDomainMin, InDomainRandom};
+use pumpkin_core::branching::variable_selection::{FirstFail, RandomSelector};
 use pumpkin_core::branching::{Brancher, BrancherEvent, SelectionContext};
 use pumpkin_core::options::SolverOptions;
 use pumpkin_core::predicate;
@@ -912,6 +912,54 @@ impl Engine {
             }
         };
         answer
+    }
+}
+
+impl Engine {
+    /// Exclude the assignment `values` (one per model variable) from every
+    /// later call: the clause "some variable takes another value". Used by
+    /// `crate::sample` to draw distinct layouts. With no variable, the model
+    /// has one assignment, so every later call is infeasible.
+    pub(crate) fn exclude(&mut self, values: &[i64]) {
+        if self.dead {
+            return;
+        }
+        if self.vars.is_empty() {
+            self.dead = true;
+            return;
+        }
+        let clause: Vec<Predicate> = self
+            .vars
+            .iter()
+            .zip(values)
+            .map(|(&v, &x)| predicate![v != clamp_i32(x)])
+            .collect();
+        self.solver.add_clause(clause, self.tag);
+    }
+
+    /// After the hint, search at random instead of by activity: a random
+    /// unfixed grid variable, a random value of its domain (the solver's
+    /// seeded generator); conflicts are learned as usual. Every Boolean of
+    /// the model is defined by the grid variables, so branching on them
+    /// alone is complete. Used by `crate::sample`.
+    pub(crate) fn random_search(&mut self) {
+        self.brancher.inner.main = Box::new(IndependentVariableValueBrancher::new(
+            RandomSelector::new(self.vars.iter().copied()),
+            InDomainRandom,
+        ));
+    }
+
+    /// Try `hints` (pairs of a model variable and a value) first, in this
+    /// order, until the next solution: [`Backend::hint`] with the order
+    /// chosen by the caller (`crate::sample` draws it at random).
+    pub(crate) fn hint_in_order(&mut self, hints: &[(usize, i64)]) {
+        // `WarmStart` tries its list from the back.
+        let (vars, vals): (Vec<DomainId>, Vec<i32>) = hints
+            .iter()
+            .rev()
+            .filter_map(|&(v, x)| Some((*self.vars.get(v)?, i32::try_from(x).ok()?)))
+            .unzip();
+        self.brancher.inner.hint = (!vars.is_empty()).then(|| WarmStart::new(&vars, &vals));
     }
 }
 

@@ -53,9 +53,10 @@ use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 use std::time::Duration;
 
-mod backend;
-// The exhaustive reference solver: a test oracle, not an API.
-#[cfg(any(test, feature = "fuzzing"))]
+pub(crate) mod backend;
+// The exhaustive reference solver: a test oracle (and the uniformity
+// reference of `bench sample`), not an API.
+#[cfg(any(test, feature = "fuzzing", feature = "bench"))]
 #[doc(hidden)]
 pub mod brute_force;
 mod capacity;

@@ -1,0 +1,213 @@
+//! `rccpack sample`: many distinct layouts that keep the rules (SPEC §14).
+
+use super::{read_rules, read_scene, read_scenes, LimitStruck, Reported};
+use anyhow::Result;
+use clap::Args;
+use rccpack::relations::Contact;
+use rccpack::sample::{sample, Quality, Repair, SampleError, SampleOptions, State};
+use rccpack::scene::scenes_to_json;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// `rccpack sample PROBLEM --rules R -n N [--seed S] [--all-rules | --min-score X]
+/// [--like SCENES] [-o OUT]`
+///
+/// Exit codes: 0 layouts written (also when fewer than N exist, or a limit
+/// struck after at least one), 1 bad input, 2 no layout of the quality
+/// asked for, 3 a limit struck before any layout.
+#[derive(Args, Debug)]
+pub struct SampleArgs {
+    /// Problem scene JSON (objects without `x`/`y` are to be placed).
+    problem: PathBuf,
+    /// The `.rcc` rule file.
+    #[arg(long)]
+    rules: PathBuf,
+    /// How many distinct layouts to write.
+    #[arg(short = 'n', value_name = "N")]
+    n: usize,
+    /// Seed of every random choice: the same seed gives the same layouts.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Only layouts of score 1 (every rule kept by every object).
+    #[arg(long, conflicts_with = "min_score")]
+    all_rules: bool,
+    /// Only layouts of score at least X (0 to 1). Default: the optimum score.
+    #[arg(long, value_name = "X")]
+    min_score: Option<f64>,
+    /// Lean towards the positions objects have in these scenes (one scene or
+    /// an array, usually the demonstrations): half of the random hints are
+    /// their positions.
+    #[arg(long, value_name = "SCENES.json")]
+    like: Option<PathBuf>,
+    /// How each random hint is completed into a layout: `random` (a random
+    /// variable and value at each decision; closer to uniform) or
+    /// `activity` (the solver's own search; faster).
+    #[arg(long, default_value = "random", value_parser = ["random", "activity"])]
+    repair: String,
+    /// Write the JSON array of layouts here (default: stdout).
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    /// Stop after this many seconds in all and write what was found.
+    #[arg(long, value_name = "SECONDS", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
+    time_limit: Option<Duration>,
+    /// Give up the search for the next layout after this many decisions
+    /// (deterministic).
+    #[arg(long, value_name = "N")]
+    layout_node_limit: Option<u64>,
+    /// How EC decides that two sides touch: `point` (corners count) or `edge`.
+    #[arg(long, default_value = "point")]
+    contact: Contact,
+    /// No summary on stderr.
+    #[arg(long)]
+    quiet: bool,
+}
+
+pub fn run(a: SampleArgs) -> Result<ExitCode> {
+    let problem = read_scene(&a.problem)?;
+    let rules = read_rules(&a.rules, std::slice::from_ref(&problem))?;
+    let quality = match (a.all_rules, a.min_score) {
+        (true, _) => Quality::AllRules,
+        (false, Some(x)) => {
+            if !(0.0..=1.0).contains(&x) {
+                return Err(Reported(format!(
+                    "error: --min-score {x}: expected a number from 0 to 1"
+                ))
+                .into());
+            }
+            Quality::MinScore(x)
+        }
+        (false, None) => Quality::Optimum,
+    };
+    let like = match &a.like {
+        Some(p) => read_scenes(p)?.0,
+        None => Vec::new(),
+    };
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        let c = cancel.clone();
+        // Ctrl-C stops the search; what was found is still written.
+        let _ = ctrlc::set_handler(move || c.store(true, Ordering::Relaxed));
+    }
+    let opts = SampleOptions {
+        quality,
+        seed: a.seed,
+        contact: a.contact,
+        time_limit: a.time_limit,
+        layout_node_limit: a.layout_node_limit,
+        like,
+        cancel: Some(cancel),
+        repair: if a.repair == "activity" {
+            Repair::Activity
+        } else {
+            Repair::Random
+        },
+        ..SampleOptions::default()
+    };
+    let start = Instant::now();
+    let bad = |e: SampleError| Reported(format!("error: {}: {e}", a.problem.display()));
+    let mut sampler = sample(&problem, &rules, &opts).map_err(bad)?;
+    let mut layouts = Vec::with_capacity(a.n.min(1 << 16));
+    let mut limit = false;
+    while layouts.len() < a.n {
+        match sampler.next() {
+            None => break,
+            Some(Ok(s)) => layouts.push(s),
+            Some(Err(SampleError::LimitReached { .. })) => {
+                limit = true;
+                break;
+            }
+            Some(Err(SampleError::Infeasible(c))) => {
+                eprintln!("infeasible: {}", super::synth::conflict_text(&c));
+                return Ok(ExitCode::from(2));
+            }
+            Some(Err(e @ SampleError::NoLayout { .. })) => {
+                eprintln!("{e}");
+                return Ok(ExitCode::from(2));
+            }
+            Some(Err(e)) => return Err(bad(e).into()),
+        }
+    }
+    let ms = start.elapsed().as_secs_f64() * 1000.0;
+    if layouts.is_empty() && limit {
+        return Err(LimitStruck(format!(
+            "unknown: a limit stopped the search before any layout ({ms:.1} ms)"
+        ))
+        .into());
+    }
+    let text = scenes_to_json(&layouts);
+    match &a.output {
+        Some(p) => super::write_file(p, text, "layouts")?,
+        None => super::out(text)?,
+    }
+    let k = layouts.len();
+    if limit {
+        eprintln!("a limit stopped the search: {k} of {} layouts written", a.n);
+    } else if k < a.n && sampler.state() == State::Exhausted {
+        eprintln!(
+            "only {k} distinct layouts of this quality exist (the solver proved there is no other); all {k} written"
+        );
+    }
+    if !a.quiet {
+        let what = match (quality, sampler.target_proven()) {
+            (Quality::AllRules, _) => "score 1".to_string(),
+            (Quality::MinScore(x), _) => format!("score at least {x}"),
+            (_, Some(false)) => "the best score found (a limit stopped synthesis)".to_string(),
+            _ => "the optimum score".to_string(),
+        };
+        eprintln!("{k} distinct layouts of {what} in {ms:.1} ms");
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `rccpack bench sample [--seed S] [-n N] [--draws-per-layout K] [--tasks T]
+/// [--peers] [--out DIR]`
+#[derive(Args, Debug)]
+pub struct BenchSampleArgs {
+    /// Seed of the sampler (and the first seed of the CP-SAT baseline).
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Layouts per problem.
+    #[arg(short = 'n', default_value_t = 100)]
+    n: usize,
+    /// Uniformity: draws per layout of each tiny problem.
+    #[arg(long, default_value_t = 20)]
+    draws_per_layout: usize,
+    /// Generated realistic tasks (the 1x problem of each).
+    #[arg(long, default_value_t = 3)]
+    tasks: usize,
+    /// Also run the baseline: CP-SAT with randomised search, one seed per
+    /// layout, on the emitted model (needs python3 and ortools).
+    #[arg(long)]
+    peers: bool,
+    /// Per problem, stop the sampler after this many seconds.
+    #[arg(long, default_value_t = 60.0)]
+    time_limit: f64,
+    /// Write `sample.json` into this directory.
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// Run `rccpack bench sample`: the tables on stdout, `sample.json` with
+/// `--out`.
+pub fn run_bench(a: BenchSampleArgs) -> Result<ExitCode> {
+    use rccpack::bench::sample::{report_text, run_bench, BenchConfig};
+    let cfg = BenchConfig {
+        seed: a.seed,
+        n: a.n,
+        draws_per_layout: a.draws_per_layout,
+        tasks: a.tasks,
+        baseline: a.peers,
+        time_limit_s: a.time_limit,
+    };
+    let report = run_bench(&cfg, &mut |what| eprintln!("  {what}"));
+    super::out(report_text(&report))?;
+    if let Some(dir) = &a.out {
+        std::fs::create_dir_all(dir)?;
+        let text = serde_json::to_string_pretty(&report)? + "\n";
+        super::write_file(&dir.join("sample.json"), text, "report")?;
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,336 @@
+//! `rccpack::sample` (issue 24): every layout valid (evaluator and the
+//! independent verifier), distinct, of the quality asked for; determinism;
+//! exhaustion agrees with brute force; "no layout" is reported.
+
+use rccpack::bench::sample::{enumerate, tiny_problems, uniformity};
+use rccpack::eval::evaluate;
+use rccpack::relations::Contact;
+use rccpack::rules::{parse_rules, RuleSet};
+use rccpack::sample::{canonical_key, sample, Quality, Repair, SampleError, SampleOptions, State};
+use rccpack::scene::{scenes_from_json, Scene};
+use rccpack::synth::verify_solution;
+use rccpack::{learn, LearnParams};
+use std::collections::BTreeSet;
+
+fn box_task() -> (Scene, RuleSet) {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing");
+    let demos =
+        scenes_from_json(&std::fs::read_to_string(format!("{dir}/demos.json")).unwrap()).unwrap();
+    let problem =
+        Scene::from_json(&std::fs::read_to_string(format!("{dir}/problem.json")).unwrap()).unwrap();
+    let rules = learn(&demos, None, &LearnParams::default())
+        .unwrap()
+        .rules();
+    (problem, rules)
+}
+
+fn opts(quality: Quality, seed: u64) -> SampleOptions {
+    SampleOptions {
+        quality,
+        seed,
+        ..SampleOptions::default()
+    }
+}
+
+/// Every layout passes the verifier, has the score asked for, and no two
+/// are the same layout.
+fn check_all(problem: &Scene, rules: &RuleSet, layouts: &[Scene], min: f64) {
+    let mut keys = BTreeSet::new();
+    for s in layouts {
+        verify_solution(problem, s, rules, Contact::Point).unwrap();
+        let e = evaluate(s, rules, Contact::Point);
+        assert!(e.hard_ok());
+        assert!(e.score >= min - 1e-9, "score {} < {min}", e.score);
+        assert!(
+            keys.insert(canonical_key(problem, s)),
+            "a layout came twice"
+        );
+    }
+}
+
+#[test]
+fn box_example_all_rules_layouts_are_valid_distinct_and_score_one() {
+    let (problem, rules) = box_task();
+    let layouts: Vec<Scene> = sample(&problem, &rules, &opts(Quality::AllRules, 7))
+        .unwrap()
+        .take(60)
+        .collect::<Result<_, _>>()
+        .unwrap();
+    assert_eq!(layouts.len(), 60);
+    check_all(&problem, &rules, &layouts, 1.0);
+    let activity = SampleOptions {
+        repair: Repair::Activity,
+        ..opts(Quality::AllRules, 7)
+    };
+    let layouts: Vec<Scene> = sample(&problem, &rules, &activity)
+        .unwrap()
+        .take(20)
+        .collect::<Result<_, _>>()
+        .unwrap();
+    assert_eq!(layouts.len(), 20);
+    check_all(&problem, &rules, &layouts, 1.0);
+}
+
+#[test]
+fn same_seed_same_layouts_other_seed_other_order() {
+    let (problem, rules) = box_task();
+    let run = |seed| -> Vec<Scene> {
+        sample(&problem, &rules, &opts(Quality::Optimum, seed))
+            .unwrap()
+            .take(15)
+            .collect::<Result<_, _>>()
+            .unwrap()
+    };
+    let a = run(3);
+    // On another thread: no dependence on the thread or the pool.
+    let b = std::thread::scope(|s| s.spawn(|| run(3)).join().unwrap());
+    assert_eq!(a, b);
+    assert_ne!(a, run(4));
+}
+
+#[test]
+fn drawing_to_the_end_returns_exactly_the_brute_force_layouts() {
+    for (name, problem, rules) in tiny_problems() {
+        let all = enumerate(&problem, &rules, Contact::Point, 1 << 22).unwrap();
+        let best = all
+            .iter()
+            .map(|(_, n)| *n)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let total = rules.rules.len();
+        assert!(total > 0);
+        for (quality, keep) in [
+            (
+                Quality::Optimum,
+                Box::new(|n: f64| (n - best).abs() < 1e-9) as Box<dyn Fn(f64) -> bool>,
+            ),
+            (Quality::MinScore(0.0), Box::new(|_| true)),
+        ] {
+            let want: BTreeSet<_> = all
+                .iter()
+                .filter(|(_, n)| keep(*n))
+                .map(|(k, _)| k.clone())
+                .collect();
+            for repair in [Repair::Random, Repair::Activity] {
+                let o = SampleOptions {
+                    repair,
+                    ..opts(quality, 1)
+                };
+                let mut sampler = sample(&problem, &rules, &o).unwrap();
+                let got: Vec<Scene> = sampler.by_ref().collect::<Result<_, _>>().unwrap();
+                assert_eq!(sampler.state(), State::Exhausted, "{name}");
+                check_all(&problem, &rules, &got, 0.0);
+                let keys: BTreeSet<_> = got.iter().map(|s| canonical_key(&problem, s)).collect();
+                assert_eq!(keys, want, "{name} {quality:?} {repair:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn min_score_layouts_reach_it_and_all_are_found() {
+    let (name, problem, rules) = tiny_problems().remove(1);
+    let all = enumerate(&problem, &rules, Contact::Point, 1 << 22).unwrap();
+    let total = 3.0; // b_north (1) + b_wall (2), one blue
+    let want = all.iter().filter(|(_, n)| n / total >= 0.3).count();
+    let got: Vec<Scene> = sample(&problem, &rules, &opts(Quality::MinScore(0.3), 0))
+        .unwrap()
+        .collect::<Result<_, _>>()
+        .unwrap();
+    check_all(&problem, &rules, &got, 0.3);
+    assert_eq!(got.len(), want, "{name}");
+}
+
+#[test]
+fn no_score_one_layout_and_infeasible_are_reported() {
+    let (_, problem, _) = tiny_problems().remove(0);
+    // Two As cannot both be west of each other.
+    let rules = parse_rules("rule west: DR_W(A, A)\n").unwrap();
+    let mut s = sample(&problem, &rules, &opts(Quality::AllRules, 0)).unwrap();
+    match s.next() {
+        Some(Err(SampleError::NoLayout { best, .. })) => assert!((best - 0.5).abs() < 1e-9),
+        other => panic!("{other:?}"),
+    }
+    assert!(s.next().is_none());
+    let hard = parse_rules("rule west hard: DR_W(A, A)\n").unwrap();
+    let mut s = sample(&problem, &hard, &opts(Quality::Optimum, 0)).unwrap();
+    assert!(matches!(s.next(), Some(Err(SampleError::Infeasible(_)))));
+    assert!(matches!(
+        sample(&problem, &rules, &opts(Quality::MinScore(1.5), 0)),
+        Err(SampleError::BadMinScore(_))
+    ));
+}
+
+#[test]
+fn a_node_limit_ends_with_limit_reached() {
+    let (problem, rules) = box_task();
+    let o = SampleOptions {
+        layout_node_limit: Some(0),
+        ..opts(Quality::AllRules, 0)
+    };
+    let items: Vec<_> = sample(&problem, &rules, &o).unwrap().collect();
+    assert!(matches!(
+        items.last(),
+        Some(Err(SampleError::LimitReached { .. }))
+    ));
+}
+
+#[test]
+fn first_draws_cover_every_tiny_layout() {
+    for (name, problem, rules) in tiny_problems() {
+        for random in [false, true] {
+            let u = uniformity(&problem, &rules, Quality::Optimum, random, 5).unwrap();
+            assert!(u.exhaustive_ok, "{name}");
+            eprintln!("{name} (random {random}): {u:?}");
+        }
+    }
+}
+
+// ---- strategies: every shrunk value stays valid ---------------------------
+
+use proptest::strategy::{Strategy, ValueTree};
+use proptest::test_runner::{Config, TestRunner};
+use rccpack::sample::strategy::{demo_scenes, layouts, ruleset_strategy};
+
+/// Generate `cases` values of `strategy` and shrink each all the way
+/// (always simplifying, as if every value failed), checking `valid` on the
+/// first value and on every shrunk one.
+fn shrink_all<S: Strategy>(strategy: &S, cases: usize, valid: impl Fn(&S::Value)) {
+    let mut runner = TestRunner::new(Config::default());
+    for _ in 0..cases {
+        let mut tree = strategy.new_tree(&mut runner).unwrap();
+        valid(&tree.current());
+        let mut steps = 0;
+        while tree.simplify() && steps < 200 {
+            valid(&tree.current());
+            steps += 1;
+        }
+    }
+}
+
+#[test]
+fn shrunk_layouts_still_keep_every_rule() {
+    let (problem, rules) = box_task();
+    let s = layouts(&problem, &rules, &opts(Quality::AllRules, 1), 40).unwrap();
+    shrink_all(&s, 10, |scene| {
+        verify_solution(&problem, scene, &rules, Contact::Point).unwrap();
+        assert_eq!(evaluate(scene, &rules, Contact::Point).score, 1.0);
+    });
+}
+
+#[test]
+fn shrunk_demo_scenes_stay_valid_and_keep_the_rules() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing");
+    let demos =
+        scenes_from_json(&std::fs::read_to_string(format!("{dir}/demos.json")).unwrap()).unwrap();
+    // Without rules: valid complete scenes, never more objects than a demo.
+    shrink_all(&demo_scenes(demos.clone(), None), 10, |s| {
+        s.validate().unwrap();
+        assert!(s.is_complete());
+    });
+    // Keeping rules: every object that remains keeps them.
+    let rules =
+        parse_rules("rule r_low: DR_S(R, B)\nrule b_apart hard: EC_N(B, no B) & EC_S(B, no B)\n")
+            .unwrap();
+    shrink_all(
+        &demo_scenes(demos, Some((rules.clone(), Contact::Point))),
+        10,
+        |s| {
+            s.validate().unwrap();
+            let e = evaluate(s, &rules, Contact::Point);
+            assert!(e.hard_ok() && e.score == 1.0, "{e:?}");
+        },
+    );
+}
+
+#[test]
+fn shrunk_rule_sets_print_and_parse_back() {
+    shrink_all(&ruleset_strategy(), 20, |rs| {
+        let text = rccpack::rules::print_rules(rs);
+        assert!(parse_rules(&text).unwrap().same_rules(rs), "{text}");
+    });
+}
+
+// ---- Arbitrary ------------------------------------------------------------
+
+#[test]
+fn arbitrary_scenes_rules_and_tasks_are_valid_inputs() {
+    use arbitrary::{Arbitrary, Unstructured};
+    use rand::{RngExt, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(24);
+    for _ in 0..300 {
+        let bytes: Vec<u8> = (0..rng.random_range(0..400))
+            .map(|_| rng.random())
+            .collect();
+        let mut u = Unstructured::new(&bytes);
+        let scene = Scene::arbitrary(&mut u).unwrap();
+        scene.validate().unwrap();
+        Scene::from_json(&scene.to_json()).unwrap();
+        let rules = RuleSet::arbitrary(&mut u).unwrap();
+        let text = rccpack::rules::print_rules(&rules);
+        assert!(parse_rules(&text).unwrap().same_rules(&rules), "{text}");
+        let task = rccpack::sample::arbitrary::Task::arbitrary(&mut u).unwrap();
+        task.problem.validate().unwrap();
+        rccpack::rules::check_classes(&task.rules, &task.problem).unwrap();
+    }
+}
+
+#[test]
+fn a_problem_with_nothing_to_place_has_exactly_one_layout() {
+    let (_, problem, rules) = tiny_problems().remove(1);
+    let mut placed = problem.clone();
+    for (i, o) in placed.objects.iter_mut().enumerate() {
+        if !o.fixed {
+            o.x = Some(10 * i as i64);
+            o.y = Some(0);
+        }
+    }
+    for quality in [Quality::Optimum, Quality::MinScore(0.0)] {
+        let mut s = sample(&placed, &rules, &opts(quality, 0)).unwrap();
+        let got: Vec<Scene> = s.by_ref().collect::<Result<_, _>>().unwrap();
+        assert_eq!(got, vec![placed.clone()]);
+        assert_eq!(s.state(), State::Exhausted);
+    }
+}
+
+#[test]
+fn like_scenes_keep_validity_and_determinism() {
+    let (problem, rules) = box_task();
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing");
+    let demos =
+        scenes_from_json(&std::fs::read_to_string(format!("{dir}/demos.json")).unwrap()).unwrap();
+    let o = SampleOptions {
+        like: demos,
+        ..opts(Quality::AllRules, 2)
+    };
+    let run = || -> Vec<Scene> {
+        sample(&problem, &rules, &o)
+            .unwrap()
+            .take(20)
+            .collect::<Result<_, _>>()
+            .unwrap()
+    };
+    let a = run();
+    check_all(&problem, &rules, &a, 1.0);
+    assert_eq!(a, run());
+}
+
+/// The CP-SAT baseline of `bench sample` (skipped with a message when
+/// OR-Tools is missing, unless `RCCPACK_PEERS` says the peers must run).
+#[test]
+fn cpsat_baseline_layouts_are_valid() {
+    use rccpack::bench::peers::{check_available, Peer};
+    if let Err(why) = check_available(Peer::CpSat) {
+        assert!(std::env::var_os("RCCPACK_PEERS").is_none(), "{why}");
+        eprintln!("skipped: {why}");
+        return;
+    }
+    let (_, problem, rules) = tiny_problems().remove(0);
+    let first = sample(&problem, &rules, &opts(Quality::Optimum, 0))
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap();
+    let b = rccpack::bench::sample::cpsat_baseline(&problem, &rules, Contact::Point, &first, 5, 0)
+        .unwrap();
+    assert_eq!((b.spread.layouts, b.invalid), (5, 0));
+}
