@@ -63,6 +63,7 @@
 #![warn(missing_docs)]
 
 pub mod ask;
+#[cfg(feature = "bench")]
 pub mod bench;
 pub mod eval;
 pub mod fsutil;
@@ -76,8 +77,10 @@ pub mod render;
 pub mod resemblance;
 pub mod rules;
 pub mod scene;
+#[cfg(feature = "studio")]
 pub mod studio;
 pub mod synth;
+pub mod task;
 
 // The curated surface: what an embedder calls, one name per concept.
 pub use eval::{evaluate, Evaluation, RuleReport};
@@ -89,3 +92,4 @@ pub use scene::{Object, Scene, SceneError, Space};
 pub use synth::{
     synthesize, Conflict, Resemblance, SolveStats, Status, SynthError, SynthOptions, SynthResult,
 };
+pub use task::{Task, TaskError};

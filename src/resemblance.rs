@@ -39,7 +39,7 @@ pub enum LikenessError {
     /// The object's grid domain has more cells than [`MAX_MAP_CELLS`].
     #[error(
         "object `{id}` has {cells} grid positions, more than the {max} a resemblance map may have; \
-         use a coarser grid or leave out --like"
+         use a coarser grid or no resemblance target"
     )]
     TooManyPositions {
         /// The object.

@@ -22,7 +22,7 @@
 
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rccpack::ask::probe::probe_rules;
+use rccpack::ask::probe_rules;
 use rccpack::ask::{find_probe, negation, ProbeOptions, ProbeOutcome};
 use rccpack::bench::pool::{among, atom, corner, formula_text, touches};
 use rccpack::eval::{evaluate, Evaluator};
@@ -31,7 +31,7 @@ use rccpack::resemblance::Likeness;
 use rccpack::rules::{Atom, Formula, Rule, RuleSet, Scope, Target};
 use rccpack::scene::{Object, Rect, Scene, Space};
 use rccpack::synth::brute_force::grid_positions;
-use rccpack::synth::verify::verify_solution;
+use rccpack::synth::verify_solution;
 
 const BASE_SEED: u64 = 0xA5C0_9B0E;
 /// Cases whose product of domain sizes exceeds this are made smaller.

@@ -1,10 +1,11 @@
 //! The thesis study generator in a tiny quick configuration: every solved
 //! problem's solution passes `verify_solution`, and the summary adds up.
 
-use rccpack::bench::thesis::{run_study, Engine, Series, StudyConfig};
+use rccpack::bench::thesis::{run_study, Series, StudyConfig};
+use rccpack::bench::Solver;
 use rccpack::eval::evaluate;
 use rccpack::synth::synthesize;
-use rccpack::synth::verify::verify_solution;
+use rccpack::synth::verify_solution;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
@@ -23,7 +24,7 @@ fn tiny_quick_study_solutions_verify() {
                   r: &rccpack::rules::RuleSet,
                   c: rccpack::relations::Contact| {
         checked.fetch_add(1, Ordering::Relaxed);
-        verify_solution(p, s, r, c)?;
+        verify_solution(p, s, r, c).map_err(|e| e.to_string())?;
         // The engine's layout must also keep the evaluator's view: every
         // object placed, no hard rule (there are none here) broken.
         let ev = evaluate(s, r, c);
@@ -32,7 +33,7 @@ fn tiny_quick_study_solutions_verify() {
         }
         Ok(())
     };
-    let engine = Engine {
+    let engine = Solver {
         solve: &synthesize,
         verify: &verify,
     };

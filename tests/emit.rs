@@ -27,7 +27,7 @@ use rccpack::rules::{Atom, Formula, Rule, RuleSet, Scope, Strength, Target};
 use rccpack::scene::{Object, Scene, Space};
 use rccpack::synth::emit::{emitted, to_json, to_minizinc, Emitted, FORMAT};
 use rccpack::synth::model::{BoolDef, LinLe, Lit, SoftTerm};
-use rccpack::synth::verify::verify_solution;
+use rccpack::synth::verify_solution;
 use rccpack::synth::{synthesize, Status, SynthOptions};
 use serde_json::Value;
 use std::time::Duration;

@@ -3,8 +3,8 @@
 //! and typed errors for bad input.
 
 use rccpack::eval::Evaluator;
-use rccpack::infer::posterior::Posterior;
 use rccpack::infer::templates::generate_set;
+use rccpack::infer::Posterior;
 use rccpack::infer::{learn, InferError, LearnParams, NullModel, Templates};
 use rccpack::relations::{Contact, Dir, Kind, Relation};
 use rccpack::rules::{parse_rules, Atom, Formula, Rule, RuleSet, Scope, Target};
@@ -831,47 +831,52 @@ fn unplaceable_objects_are_an_error() {
 }
 
 #[test]
-fn bad_parameters_name_the_flag() {
+fn bad_parameters_name_the_parameter() {
     let demos = synthetic_demos();
-    let cases: [(LearnParams, &str); 5] = [
+    let cases: [(LearnParams, (&str, &str)); 5] = [
         (
             LearnParams {
                 cutoff: 1.5,
                 ..Default::default()
             },
-            "invalid --cutoff 1.5: expected a number strictly between 0 and 1",
+            ("cutoff", "1.5"),
         ),
         (
             LearnParams {
                 cutoff: 0.0,
                 ..Default::default()
             },
-            "invalid --cutoff 0: expected a number strictly between 0 and 1",
+            ("cutoff", "0"),
         ),
         (
             LearnParams {
                 samples: 0,
                 ..Default::default()
             },
-            "invalid --samples 0: expected a whole number of at least 1",
+            ("samples", "0"),
         ),
         (
             LearnParams {
                 prior: 1.0,
                 ..Default::default()
             },
-            "invalid --prior 1: expected a number strictly between 0 and 1",
+            ("prior", "1"),
         ),
         (
             LearnParams {
                 epsilon: Some(f64::NAN),
                 ..Default::default()
             },
-            "invalid --epsilon NaN: expected a number strictly between 0 and 1",
+            ("epsilon", "NaN"),
         ),
     ];
-    for (p, msg) in cases {
-        assert_eq!(learn(&demos, None, &p).unwrap_err().to_string(), msg);
+    for (p, (name, bad)) in cases {
+        match learn(&demos, None, &p).unwrap_err() {
+            InferError::BadParameter { param, value, .. } => {
+                assert_eq!((param, value.as_str()), (name, bad));
+            }
+            e => panic!("expected BadParameter for {name}, got {e:?}"),
+        }
     }
 }
 

@@ -3,7 +3,7 @@
 
 use proptest::prelude::*;
 use rccpack::eval::evaluate;
-use rccpack::infer::posterior::{chance_p, log10_posterior, Posterior, P_FLOOR};
+use rccpack::infer::{chance_p, log10_posterior, Posterior, P_FLOOR};
 use rccpack::infer::{learn, LearnParams};
 use rccpack::relations::Contact;
 use rccpack::rules::{Rule, RuleSet};

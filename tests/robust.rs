@@ -5,7 +5,7 @@
 use rccpack::relations::Contact;
 use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::scene::Scene;
-use rccpack::synth::verify::verify_solution;
+use rccpack::synth::verify_solution;
 use rccpack::synth::{synthesize, Status, SynthError, SynthOptions, MAX_COORD, MAX_POSITIONS};
 use std::time::Duration;
 
@@ -365,11 +365,15 @@ fn non_finite_weights_are_refused() {
         let r: Rule = rules.rules[0].clone().with_strength(Strength::Weight(w));
         rules.rules[0] = r;
         match solve(&p, &rules) {
-            Err(SynthError::BadProblem(m)) => {
-                assert!(m.contains("rule `touch` has weight"), "{m}");
+            Err(e @ SynthError::BadWeight { .. }) => {
+                let SynthError::BadWeight { rule, weight } = &e else {
+                    unreachable!()
+                };
+                assert_eq!((rule.as_str(), weight.as_str()), ("touch", &*w.to_string()));
+                let m = e.to_string();
                 assert!(m.contains("expected a finite number greater than 0"), "{m}");
             }
-            other => panic!("weight {w}: expected BadProblem, got {other:?}"),
+            other => panic!("weight {w}: expected BadWeight, got {other:?}"),
         }
     }
 }

@@ -47,9 +47,9 @@ use rccpack::resemblance::Likeness;
 use rccpack::rules::{Atom, Formula, Rule, RuleSet, Scope, Strength, Target};
 use rccpack::scene::{Object, Scene, Space};
 use rccpack::synth::brute_force::{self, approx_eq, BruteResult};
-use rccpack::synth::lns::LnsOptions;
 use rccpack::synth::model::{BoolDef, BuildOptions, Model};
-use rccpack::synth::verify::verify_solution;
+use rccpack::synth::verify_solution;
+use rccpack::synth::LnsOptions;
 use rccpack::synth::{synthesize, Status, SynthOptions};
 use std::time::Duration;
 

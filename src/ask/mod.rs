@@ -8,13 +8,11 @@
 //!   answer does ([`Asker`]); the command line (`rccpack ask`) and the
 //!   studio save what it returns.
 
-pub mod probe;
-pub mod session;
+mod probe;
+mod session;
 
 pub use probe::{
-    find_probe, negation, Probe, ProbeOptions, ProbeOutcome, DEFAULT_CHECK_NODES,
+    find_probe, negation, probe_rules, Probe, ProbeOptions, ProbeOutcome, DEFAULT_CHECK_NODES,
     DEFAULT_PROBE_NODES,
 };
-pub use session::{
-    Answer, AnswersFile, AskError, AskOptions, Asker, Progress, Question, CONFIRMED,
-};
+pub use session::{Answer, AnswersFile, AskError, AskOptions, Asker, Question, Tally, CONFIRMED};

@@ -131,9 +131,9 @@ pub struct Question {
     pub also_broken: Vec<String>,
 }
 
-/// How far the questions have come.
+/// How far the questions have come (counts of a session).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-pub struct Progress {
+pub struct Tally {
     /// Questions answered (over all runs).
     pub asked: usize,
     /// Rules dropped by accepted probes.
@@ -334,7 +334,7 @@ impl Asker {
     }
 
     /// The progress so far.
-    pub fn progress(&self) -> Progress {
+    pub fn progress(&self) -> Tally {
         let count = |f: fn(&Known) -> bool| {
             self.held
                 .rules
@@ -343,7 +343,7 @@ impl Asker {
                 .filter(|r| self.known.get(&r.name).is_some_and(f))
                 .count()
         };
-        Progress {
+        Tally {
             asked: self.answers.len(),
             dropped: self.answers.iter().filter(|a| a.accepted).count(),
             confirmed: self.confirmed.len(),

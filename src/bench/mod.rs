@@ -17,3 +17,25 @@ pub mod peers;
 pub mod pool;
 pub mod tasks;
 pub mod thesis;
+
+use crate::relations::Contact;
+use crate::rules::RuleSet;
+use crate::scene::Scene;
+use crate::synth::{SynthError, SynthOptions, SynthResult};
+
+/// A solver: the engine's `synthesize` or a stand-in.
+pub type SolveFn<'a> =
+    &'a (dyn Fn(&Scene, &RuleSet, &SynthOptions) -> Result<SynthResult, SynthError> + Sync);
+/// A solution checker `(problem, solution, rules, contact)`.
+pub type VerifyFn<'a> =
+    &'a (dyn Fn(&Scene, &Scene, &RuleSet, Contact) -> Result<(), String> + Sync);
+
+/// The solver and checker a benchmark runs with (injectable: tests add
+/// checks of their own).
+#[derive(Clone, Copy)]
+pub struct Solver<'a> {
+    /// Solves one problem.
+    pub solve: SolveFn<'a>,
+    /// Checks one solution.
+    pub verify: VerifyFn<'a>,
+}

@@ -53,7 +53,7 @@ use crate::relations::Contact;
 use crate::resemblance::Likeness;
 use crate::rules::RuleSet;
 use crate::scene::{scenes_from_json, Object, Rect, Scene, Space};
-use crate::synth::{Status, SynthError, SynthOptions, SynthResult};
+use crate::synth::{Status, SynthOptions};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
@@ -900,21 +900,7 @@ pub fn all_tasks(cfg: &TasksConfig) -> Result<Vec<Task>, TaskError> {
     Ok(out)
 }
 
-/// A solver: the engine's `synthesize` or a stand-in.
-pub type SolveFn<'a> =
-    &'a (dyn Fn(&Scene, &RuleSet, &SynthOptions) -> Result<SynthResult, SynthError> + Sync);
-/// A solution checker `(problem, solution, rules, contact)`.
-pub type VerifyFn<'a> =
-    &'a (dyn Fn(&Scene, &Scene, &RuleSet, Contact) -> Result<(), String> + Sync);
-
-/// The solver and checker the benchmark runs with.
-#[derive(Clone, Copy)]
-pub struct Engine<'a> {
-    /// Solves one problem.
-    pub solve: SolveFn<'a>,
-    /// Checks one solution.
-    pub verify: VerifyFn<'a>,
-}
+pub use super::{SolveFn, Solver, VerifyFn};
 
 /// The options of a solve: score only (`like = None`) or with the
 /// demonstrations as like-scenes.
@@ -958,7 +944,7 @@ pub struct SolveRow {
 
 /// Solve `scene` once with `opts` and check the layout.
 pub fn solve_once(
-    engine: Engine<'_>,
+    engine: Solver<'_>,
     scene: &Scene,
     rules: &RuleSet,
     opts: &SynthOptions,
@@ -1003,7 +989,7 @@ pub fn solve_once(
 /// Run `peer` on the emitted (score-only) model of a problem; its layout
 /// is scored by the evaluator and checked.
 pub fn solve_peer(
-    engine: Engine<'_>,
+    engine: Solver<'_>,
     cfg: &TasksConfig,
     scene: &Scene,
     rules: &RuleSet,
@@ -1075,7 +1061,7 @@ pub struct TaskRow {
 
 /// What the benchmark is doing, for a progress bar.
 #[derive(Debug, Clone)]
-pub enum Progress {
+pub enum TasksEvent {
     /// A problem was solved: one line about it.
     Solved {
         /// Problems solved.
@@ -1129,10 +1115,10 @@ pub struct TasksReport {
 /// Solve every problem of `tasks` (score only, with `like`, peers), one
 /// solver at a time.
 pub fn run_tasks(
-    engine: Engine<'_>,
+    engine: Solver<'_>,
     cfg: &TasksConfig,
     tasks: &[Task],
-    progress: &mut dyn FnMut(&Progress),
+    progress: &mut dyn FnMut(&TasksEvent),
 ) -> TasksReport {
     let total: usize = tasks.iter().map(|t| t.problems.len()).sum();
     let mut rows = Vec::with_capacity(total);
@@ -1141,7 +1127,7 @@ pub fn run_tasks(
         let like_opts = solve_options(cfg, &t.demos, true);
         for p in &t.problems {
             let done = rows.len();
-            let label = |what: &str| Progress::Solving {
+            let label = |what: &str| TasksEvent::Solving {
                 done,
                 total,
                 label: format!("{} {what}", p.name),
@@ -1172,7 +1158,7 @@ pub fn run_tasks(
                 like,
                 peers,
             };
-            progress(&Progress::Solved {
+            progress(&TasksEvent::Solved {
                 done: done + 1,
                 total,
                 line: row_line(&row),
@@ -1180,7 +1166,7 @@ pub fn run_tasks(
             rows.push(row);
         }
     }
-    progress(&Progress::Solving {
+    progress(&TasksEvent::Solving {
         done: total,
         total,
         label: "done".into(),
@@ -1302,7 +1288,7 @@ pub struct TasksSummary {
     pub like_median_ms: Option<f64>,
     /// `like` median over score-only median.
     pub like_ratio: Option<f64>,
-    /// Engine errors (both modes).
+    /// Solver errors (both modes).
     pub errors: usize,
     /// Layouts the checker rejected (both modes).
     pub check_failures: usize,

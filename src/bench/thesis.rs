@@ -26,7 +26,7 @@ use crate::relations::Contact;
 use crate::relations::Kind;
 use crate::rules::{Formula, Rule, RuleSet, Strength, Target};
 use crate::scene::{Object, Scene, Space};
-use crate::synth::{Status, SynthError, SynthOptions, SynthResult};
+use crate::synth::{Status, SynthOptions};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
@@ -41,21 +41,7 @@ pub const WALL: i64 = 10;
 /// Free table between the walls and the edge of the space.
 pub const MARGIN: i64 = 190;
 
-/// A solver: the engine's `synthesize` or a stand-in.
-pub type SolveFn<'a> =
-    &'a (dyn Fn(&Scene, &RuleSet, &SynthOptions) -> Result<SynthResult, SynthError> + Sync);
-/// A solution checker `(problem, solution, rules, contact)`.
-pub type VerifyFn<'a> =
-    &'a (dyn Fn(&Scene, &Scene, &RuleSet, Contact) -> Result<(), String> + Sync);
-
-/// The solver and checker a study runs with.
-#[derive(Clone, Copy)]
-pub struct Engine<'a> {
-    /// Solves one problem.
-    pub solve: SolveFn<'a>,
-    /// Checks one solution.
-    pub verify: VerifyFn<'a>,
-}
+pub use super::{SolveFn, Solver, VerifyFn};
 
 /// Which part of the study a problem belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, PartialOrd, Ord, Hash)]
@@ -377,7 +363,7 @@ pub struct PeerRow {
 
 /// Run `peer` on problem `p` (the model rccpack solves, emitted) and score
 /// its layout with the evaluator and the checker.
-pub fn solve_peer(engine: Engine<'_>, cfg: &StudyConfig, p: &Problem, peer: Peer) -> PeerRow {
+pub fn solve_peer(engine: Solver<'_>, cfg: &StudyConfig, p: &Problem, peer: Peer) -> PeerRow {
     let mut row = PeerRow {
         peer: peer.name().into(),
         status: None,
@@ -440,7 +426,7 @@ pub fn study_options(cfg: &StudyConfig) -> SynthOptions {
 }
 
 /// Solve one problem and check its solution.
-pub fn solve_problem(engine: Engine<'_>, cfg: &StudyConfig, p: &Problem) -> Row {
+pub fn solve_problem(engine: Solver<'_>, cfg: &StudyConfig, p: &Problem) -> Row {
     let opts = study_options(cfg);
     let t0 = Instant::now();
     let res = (engine.solve)(&p.scene, &p.rules, &opts);
@@ -489,7 +475,7 @@ pub fn solve_problem(engine: Engine<'_>, cfg: &StudyConfig, p: &Problem) -> Row 
 
 /// What the study is doing, for a progress bar.
 #[derive(Debug, Clone)]
-pub enum Progress {
+pub enum StudyEvent {
     /// Drawing rule sets: draws tried so far, viable sets found, wanted.
     Drawing {
         /// Draws tried.
@@ -561,9 +547,9 @@ pub fn unsatisfiable_with_two(f: &Formula) -> bool {
 /// Draw rule sets until `cfg.sets` are viable (or `cfg.max_draws` were
 /// tried). Returns the sets and the number of draws.
 pub fn find_viable_sets(
-    engine: Engine<'_>,
+    engine: Solver<'_>,
     cfg: &StudyConfig,
-    progress: &mut dyn FnMut(&Progress),
+    progress: &mut dyn FnMut(&StudyEvent),
 ) -> (Vec<DrawnSet>, usize) {
     let mut rng = ChaCha8Rng::seed_from_u64(cfg.seed);
     let classes: Vec<&str> = CLASSES
@@ -594,7 +580,7 @@ pub fn find_viable_sets(
         if viable {
             sets.push(set);
         }
-        progress(&Progress::Drawing {
+        progress(&StudyEvent::Drawing {
             draws,
             viable: sets.len(),
             wanted: cfg.sets,
@@ -621,9 +607,9 @@ pub fn study_problems(cfg: &StudyConfig, sets: &[DrawnSet]) -> Vec<Problem> {
 
 /// Run the whole study.
 pub fn run_study(
-    engine: Engine<'_>,
+    engine: Solver<'_>,
     cfg: &StudyConfig,
-    progress: &mut dyn FnMut(&Progress),
+    progress: &mut dyn FnMut(&StudyEvent),
 ) -> StudyReport {
     let (sets, draws) = find_viable_sets(engine, cfg, progress);
     let all = study_problems(cfg, &sets);
@@ -635,7 +621,7 @@ pub fn run_study(
             row.peers.push(solve_peer(engine, cfg, p, peer));
         }
         rows.push(row);
-        progress(&Progress::Solving {
+        progress(&StudyEvent::Solving {
             done: i + 1,
             total,
             label: format!("{:?} set {} n={} k={}", p.series, p.set, p.n, p.k).to_lowercase(),
@@ -693,7 +679,7 @@ pub struct Summary {
     pub infeasible: usize,
     /// Stopped by the limit without a solution.
     pub unknown: usize,
-    /// Engine errors.
+    /// Solver errors.
     pub errors: usize,
     /// Solutions that failed the checker.
     pub check_failures: usize,

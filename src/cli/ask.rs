@@ -17,7 +17,7 @@ use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
 use rccpack::render::{render_to_path, RenderOptions};
 use rccpack::rules::RuleSet;
-use rccpack::studio::storage;
+use rccpack::task::files as storage;
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
@@ -217,7 +217,7 @@ fn on_interrupt(dir: PathBuf, answers: PathBuf) {
     let _ = ctrlc::set_handler(move || {
         kill_group(ORACLE_GROUP.load(Ordering::SeqCst));
         rccpack::fsutil::remove_own_temp_files(&dir);
-        rccpack::fsutil::remove_own_temp_files(&dir.join("probes"));
+        rccpack::fsutil::remove_own_temp_files(&dir.join(storage::PROBES));
         eprintln!(
             "error: interrupted (Ctrl-C); every answer given is saved in {}, run again to resume",
             answers.display()
@@ -228,10 +228,10 @@ fn on_interrupt(dir: PathBuf, answers: PathBuf) {
 
 pub fn run(a: AskArgs) -> Result<ExitCode> {
     let dir = &a.dir;
-    let problem_path = dir.join("problem.json");
-    let demos_path = dir.join("demos.json");
-    let answers_path = dir.join("answers.json");
-    let learned_path = dir.join("learned.rcc");
+    let problem_path = dir.join(storage::PROBLEM);
+    let demos_path = dir.join(storage::DEMOS);
+    let answers_path = dir.join(storage::ANSWERS);
+    let learned_path = dir.join(storage::LEARNED);
     // One session per task folder (the studio takes the same lock to write).
     let _lock = match rccpack::fsutil::DirLock::try_lock(dir) {
         Ok(Some(l)) => l,
@@ -254,7 +254,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
     on_interrupt(dir.clone(), answers_path.clone());
     let problem = read_scene(&problem_path)?;
     let (demos, _) = read_scenes(&demos_path)?;
-    let statements_path = dir.join("statements.rcc");
+    let statements_path = dir.join(storage::STATEMENTS);
     let statements: Option<RuleSet> = if statements_path.exists() {
         Some(read_rules(&statements_path, &demos)?)
     } else {
@@ -295,7 +295,11 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             rccpack::ask::AskError::Synth(_) => &problem_path,
             _ => &demos_path,
         };
-        Reported(format!("error: {}: {e}", file.display()))
+        let text = match &e {
+            rccpack::ask::AskError::Learn(e) => super::learn_error_text(e),
+            _ => e.to_string(),
+        };
+        Reported(format!("error: {}: {text}", file.display()))
     })?;
     let io_error = |(file, e): (&str, std::io::Error)| {
         Reported(format!(
@@ -322,7 +326,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
     if let Some(note) = rccpack::rules::missing_classes_note(&missing) {
         outln(note)?;
     }
-    let probes = dir.join("probes");
+    let probes = dir.join(storage::PROBES);
     let mut asked_now = 0usize;
     let mut times: Vec<f64> = Vec::new();
     let mut aborted: Option<String> = None;

@@ -5,10 +5,22 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rccpack::bench::chart;
 use rccpack::bench::peers::{self, Peer};
 use rccpack::bench::tasks::{self, TasksConfig};
-use rccpack::bench::thesis::{self, Engine, Progress, Series, StudyConfig};
+use rccpack::bench::thesis::{self, Series, StudyConfig, StudyEvent};
+use rccpack::bench::Solver;
 use rccpack::relations::Contact;
 use rccpack::synth::synthesize;
-use rccpack::synth::verify::verify_solution;
+use rccpack::synth::verify_solution;
+
+/// The independent check, its error as text (the benchmarks' checker is
+/// injectable: tests add checks of their own).
+fn verify_text(
+    problem: &rccpack::Scene,
+    layout: &rccpack::Scene,
+    rules: &rccpack::RuleSet,
+    contact: rccpack::Contact,
+) -> Result<(), String> {
+    verify_solution(problem, layout, rules, contact).map_err(|e| e.to_string())
+}
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
@@ -271,12 +283,12 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
     // indicatif draws nothing when stderr is not a terminal: then one line
     // per solved problem instead.
     let tty = std::io::IsTerminal::is_terminal(&std::io::stderr());
-    let mut progress = |p: &tasks::Progress| match p {
-        tasks::Progress::Solving { done, label, .. } => {
+    let mut progress = |p: &tasks::TasksEvent| match p {
+        tasks::TasksEvent::Solving { done, label, .. } => {
             bar.set_position(*done as u64);
             bar.set_message(label.clone());
         }
-        tasks::Progress::Solved { done, total, line } => {
+        tasks::TasksEvent::Solved { done, total, line } => {
             if tty {
                 bar.println(line);
             } else {
@@ -284,9 +296,9 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
             }
         }
     };
-    let engine = tasks::Engine {
+    let engine = Solver {
         solve: &synthesize,
-        verify: &verify_solution,
+        verify: &verify_text,
     };
     let started = std::time::Instant::now();
     let report = tasks::run_tasks(engine, &cfg, &all, &mut progress);
@@ -380,8 +392,8 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
     );
     bar.set_prefix("drawing");
     let mut solving = false;
-    let mut progress = |p: &Progress| match p {
-        Progress::Drawing {
+    let mut progress = |p: &StudyEvent| match p {
+        StudyEvent::Drawing {
             draws,
             viable,
             wanted,
@@ -390,7 +402,7 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
             bar.set_position(*viable as u64);
             bar.set_message(format!("viable sets, {draws} draws"));
         }
-        Progress::Solving { done, total, label } => {
+        StudyEvent::Solving { done, total, label } => {
             if !solving {
                 solving = true;
                 bar.set_prefix("solving");
@@ -400,9 +412,9 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
             bar.set_message(label.clone());
         }
     };
-    let engine = Engine {
+    let engine = Solver {
         solve: &synthesize,
-        verify: &verify_solution,
+        verify: &verify_text,
     };
     let report = thesis::run_study(engine, &cfg, &mut progress);
     if let Some(dir) = &a.problems_out {

@@ -32,6 +32,46 @@ impl std::fmt::Display for LimitStruck {
 
 impl std::error::Error for LimitStruck {}
 
+/// A learning error in the command line's words: the library names
+/// parameters, the command line their flags.
+pub fn learn_error_text(e: &rccpack::InferError) -> String {
+    use rccpack::InferError;
+    match e {
+        InferError::BadParameter {
+            param,
+            value,
+            expected,
+        } => format!("invalid --{param} {value}: expected {expected}"),
+        InferError::TooManyStatements { .. } => format!("{e} (`--statements`)"),
+        _ => e.to_string(),
+    }
+}
+
+/// A synthesis error in the command line's words (see [`learn_error_text`]).
+pub fn synth_error_text(e: &rccpack::SynthError) -> String {
+    use rccpack::resemblance::LikenessError;
+    match e {
+        rccpack::SynthError::Likeness(LikenessError::TooManyPositions {
+            id, cells, max, ..
+        }) => {
+            format!(
+                "object `{id}` has {cells} grid positions, more than the {max} a resemblance map may have; \
+                 use a coarser grid or leave out --like"
+            )
+        }
+        _ => e.to_string(),
+    }
+}
+
+/// A pipeline error in the command line's words.
+pub fn task_error_text(e: &rccpack::TaskError) -> String {
+    match e {
+        rccpack::TaskError::Synth(e) => synth_error_text(e),
+        rccpack::TaskError::Learn(e) => learn_error_text(e),
+        _ => e.to_string(),
+    }
+}
+
 /// Read a whole text file, naming it in the error: UTF-8 (a leading
 /// byte-order mark is dropped); invalid UTF-8 is reported with its byte
 /// offset.

@@ -95,7 +95,7 @@ pub fn learn_files(
 ) -> Result<Learned> {
     params
         .validate()
-        .map_err(|e| Reported(format!("error: {e}")))?;
+        .map_err(|e| Reported(format!("error: {}", super::learn_error_text(&e))))?;
     let (demos, _) = read_scenes(demos_path)?;
     let (statements, text) = match statements_path {
         Some(p) => {
@@ -151,7 +151,11 @@ pub fn learn_files(
             (InferError::UnknownClass { .. } | InferError::UnknownLandmark { .. }, Some(path)) => {
                 Reported(format!("error: {}: {e}", path.display()))
             }
-            _ => Reported(format!("error: {}: {e}", demos_path.display())),
+            _ => Reported(format!(
+                "error: {}: {}",
+                demos_path.display(),
+                super::learn_error_text(&e)
+            )),
         }
         .into()
     })?;

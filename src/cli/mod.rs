@@ -18,7 +18,8 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 pub use io::{
-    out, outln, read_rules, read_scene, read_scenes, read_text, write_file, LimitStruck, Reported,
+    learn_error_text, out, outln, read_rules, read_scene, read_scenes, read_text, synth_error_text,
+    task_error_text, write_file, LimitStruck, Reported,
 };
 
 /// Clap value parser for `--time-limit SECONDS` (the library's shared,
@@ -61,8 +62,32 @@ enum Command {
 }
 
 /// Parse arguments, run the command, map errors to exit codes.
+/// `RCCPACK_DEBUG=1`: the library's `log::debug!` lines (model size, LNS
+/// rounds) on standard error. The library itself never prints.
+struct DebugLog;
+
+impl log::Log for DebugLog {
+    fn enabled(&self, m: &log::Metadata) -> bool {
+        m.target().starts_with("rccpack")
+    }
+    fn log(&self, r: &log::Record) {
+        if self.enabled(r.metadata()) {
+            eprintln!("{}", r.args());
+        }
+    }
+    fn flush(&self) {}
+}
+
+fn init_debug_log() {
+    static LOGGER: DebugLog = DebugLog;
+    if std::env::var_os("RCCPACK_DEBUG").is_some() && log::set_logger(&LOGGER).is_ok() {
+        log::set_max_level(log::LevelFilter::Debug);
+    }
+}
+
 pub fn main() -> ExitCode {
     restore_sigpipe();
+    init_debug_log();
     // Usage errors are bad input: exit 1 (SPEC §10 keeps 2 for
     // "infeasible"); `--help` and `--version` print to stdout and exit 0.
     let cli = match Cli::try_parse() {

@@ -12,9 +12,9 @@ use clap::Args;
 use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
 use rccpack::render::{render_to_path, RenderOptions};
-use rccpack::resemblance::Likeness;
-use rccpack::rules::{check_landmarks, missing_classes, missing_classes_note};
-use rccpack::synth::{synthesize, Status, SynthError, SynthOptions};
+use rccpack::rules::missing_classes_note;
+use rccpack::synth::{Status, SynthOptions};
+use rccpack::task::{self, files, Like};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
@@ -64,7 +64,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
             out.display()
         ))
     })?;
-    let statements = a.dir.join("statements.rcc");
+    let statements = a.dir.join(files::STATEMENTS);
     let statements = statements.exists().then_some(statements);
     let params = LearnParams {
         samples: a.samples,
@@ -79,43 +79,42 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     let start = std::time::Instant::now();
     let deadline = start.checked_add(a.time_limit);
     let learned = learn_files(
-        &a.dir.join("demos.json"),
+        &a.dir.join(files::DEMOS),
         statements.as_deref(),
         &params,
         false,
         deadline,
     )?;
     let rules = learned.rules();
-    write(&out.join("learned.rcc"), learned.to_rcc())?;
-    write(&out.join("learn-report.json"), learned.report_json())?;
+    write(&out.join(files::LEARNED), learned.to_rcc())?;
+    write(&out.join(files::LEARN_REPORT), learned.report_json())?;
 
-    let problem_path = a.dir.join("problem.json");
+    let problem_path = a.dir.join(files::PROBLEM);
     let problem = read_scene(&problem_path)?;
-    // Learned rules about a class today's problem lacks hold as SPEC §4
-    // says (SPEC §15): a note, then a layout.
-    let absent = missing_classes_note(&missing_classes(&rules, &problem));
     let like = match a.like.as_deref() {
-        Some(p) if p == Path::new("none") => None,
-        Some(p) => Some(Likeness::new(&read_scenes(p)?.0)),
-        None => Some(Likeness::new(&read_scenes(&a.dir.join("demos.json"))?.0)),
+        Some(p) if p == Path::new("none") => Like::Off,
+        Some(p) => Like::Scenes(read_scenes(p)?.0),
+        None => Like::Demos,
     };
-    check_landmarks(&rules, &problem).map_err(|e| {
-        Reported(format!(
-            "error: {}: the learned rules name a landmark the problem lacks: {e}",
-            problem_path.display()
-        ))
-    })?;
+    let demos = read_scenes(&a.dir.join(files::DEMOS))?.0;
     let opts = SynthOptions {
         contact: a.contact,
         time_limit: Some(a.time_limit.saturating_sub(start.elapsed())),
         seed: a.seed,
-        like: like.clone(),
-        warm_start: read_scenes(&a.dir.join("demos.json"))?.0,
         ..SynthOptions::default()
     };
-    let result = synthesize(&problem, &rules, &opts)
-        .map_err(|e: SynthError| Reported(format!("error: {}: {e}", problem_path.display())))?;
-
+    let placement = task::place(&problem, &rules, &demos, &like, &opts).map_err(|e| {
+        Reported(format!(
+            "error: {}: {}",
+            problem_path.display(),
+            super::task_error_text(&e)
+        ))
+    })?;
+    let result = placement.result;
+    let like = placement.like;
+    // Learned rules about a class today's problem lacks hold as SPEC §4
+    // says (SPEC §15): a note, then a layout.
+    let absent = missing_classes_note(&placement.missing_classes);
     if let Some(note) = &absent {
         outln(note)?;
     }
@@ -126,12 +125,12 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         candidates,
         learned.statements.len(),
         learned.demos,
-        out.join("learned.rcc").display()
+        out.join(files::LEARNED).display()
     ))?;
     let code = match (&result.scene, &result.evaluation) {
         (Some(scene), Some(ev)) => {
-            write(&out.join("solution.json"), scene.to_json())?;
-            let png = out.join("solution.png");
+            write(&out.join(files::SOLUTION), scene.to_json())?;
+            let png = out.join(files::SOLUTION_PNG);
             let ropts = RenderOptions {
                 contact: a.contact,
                 scale: 1.0,
@@ -159,7 +158,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
                 super::synth::bound_text(&result),
                 super::synth::resemblance_text(result.resemblance),
                 result.stats.time_ms,
-                out.join("solution.json").display(),
+                out.join(files::SOLUTION).display(),
                 png.display()
             ))?;
             if broken.is_empty() {

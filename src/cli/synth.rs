@@ -192,8 +192,13 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             );
         }
     }
-    let result = synthesize(&problem, &rules, &opts)
-        .map_err(|e: SynthError| Reported(format!("error: {}: {e}", a.problem.display())))?;
+    let result = synthesize(&problem, &rules, &opts).map_err(|e: SynthError| {
+        Reported(format!(
+            "error: {}: {}",
+            a.problem.display(),
+            super::synth_error_text(&e)
+        ))
+    })?;
     let ev = result.evaluation.as_ref();
     if let Some(path) = &a.report {
         let report = Report {

@@ -29,15 +29,16 @@
 //! assert!(learned.statements.iter().any(|s| s.name == "B_dr_n_R" && s.candidate));
 //! ```
 
-pub mod candidates;
-pub mod english;
-pub mod null_model;
-pub mod posterior;
+mod candidates;
+pub(crate) mod english;
+mod null_model;
+mod posterior;
 pub mod templates;
 
 pub use candidates::{find_candidates, Provenance};
+pub use english::{reading, statement_reading};
 pub use null_model::NullModel;
-pub use posterior::{Posterior, P_FLOOR};
+pub use posterior::{chance_p, log10_posterior, Posterior, P_FLOOR};
 pub use templates::Templates;
 
 use crate::eval::CompiledRule;
@@ -53,10 +54,11 @@ use std::fmt::Write as _;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum InferError {
     /// A parameter is out of its range.
-    #[error("invalid --{flag} {value}: expected {expected}")]
+    #[error("learning parameter `{param}` is {value}; expected {expected}")]
     BadParameter {
-        /// The command-line flag (without `--`), e.g. `cutoff`.
-        flag: &'static str,
+        /// The parameter's name, as in [`LearnParams`] (`samples`,
+        /// `cutoff`, `prior`, `epsilon`).
+        param: &'static str,
         /// The value given.
         value: String,
         /// The expected range, in words.
@@ -143,7 +145,7 @@ pub enum InferError {
         reason: String,
     },
     /// Learning would weigh more statements than [`crate::limits::MAX_STATEMENTS`].
-    #[error("learning would weigh {statements} statements ({classes} classes); expected at most {max} — use fewer classes or give the statements to weigh (`--statements`)", max = crate::limits::MAX_STATEMENTS)]
+    #[error("learning would weigh {statements} statements ({classes} classes); expected at most {max} — use fewer classes or give the statements to weigh", max = crate::limits::MAX_STATEMENTS)]
     TooManyStatements {
         /// How many.
         statements: usize,
@@ -194,14 +196,14 @@ impl Default for LearnParams {
 }
 
 impl LearnParams {
-    /// Check every range; the error names the flag.
+    /// Check every range; the error names the parameter.
     pub fn validate(&self) -> Result<(), InferError> {
-        let open_unit = |flag: &'static str, v: f64| {
+        let open_unit = |param: &'static str, v: f64| {
             if v > 0.0 && v < 1.0 {
                 Ok(())
             } else {
                 Err(InferError::BadParameter {
-                    flag,
+                    param,
                     value: v.to_string(),
                     expected: "a number strictly between 0 and 1",
                 })
@@ -209,14 +211,14 @@ impl LearnParams {
         };
         if self.samples == 0 {
             return Err(InferError::BadParameter {
-                flag: "samples",
+                param: "samples",
                 value: "0".into(),
                 expected: "a whole number of at least 1",
             });
         }
         if self.samples > crate::limits::MAX_SAMPLES {
             return Err(InferError::BadParameter {
-                flag: "samples",
+                param: "samples",
                 value: self.samples.to_string(),
                 // `crate::limits::MAX_SAMPLES`, written out.
                 expected: "a whole number of at most 1000000",
@@ -343,7 +345,7 @@ pub fn learn_until(
     let (set, source) = match statements {
         Some(s) => {
             check_statements(s, &classes)?;
-            check_landmarks(s, demos)?;
+            check_demo_landmarks(s, demos)?;
             (s, StatementSource::Given)
         }
         None => {
@@ -562,7 +564,7 @@ pub fn check_statements(set: &RuleSet, classes: &ClassIndex) -> Result<(), Infer
 /// Landmarks of given statements: every `@ID` must be a fixed, placed
 /// object of every demonstration (SPEC §11.3: evaluating a rule whose
 /// landmark the scene lacks is bad input).
-pub fn check_landmarks(set: &RuleSet, demos: &[Scene]) -> Result<(), InferError> {
+pub(crate) fn check_demo_landmarks(set: &RuleSet, demos: &[Scene]) -> Result<(), InferError> {
     for rule in &set.rules {
         for (i, a) in rule.formula.atoms().into_iter().enumerate() {
             let Target::Landmark(id) = &a.target else {

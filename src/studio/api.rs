@@ -8,12 +8,12 @@ use crate::ask::{
 };
 use crate::infer::{learn as run_learn, statement_text, LearnParams, StatementSource};
 use crate::limits::cut;
-use crate::resemblance::Likeness;
 use crate::rules::{
     check_classes, check_landmarks, missing_classes, missing_classes_note, parse_rules, RuleSet,
 };
 use crate::scene::{scenes_from_json, scenes_to_json, Scene};
-use crate::synth::{synthesize, Progress, ProgressFn, SynthOptions, SynthResult};
+use crate::synth::{Progress, ProgressFn, SynthOptions, SynthResult};
+use crate::task::Like;
 use axum::body::Bytes;
 use axum::extract::{Path, Query, State};
 use axum::http::{header, StatusCode};
@@ -572,15 +572,15 @@ fn learn_params(b: &LearnBody) -> Result<LearnParams, ApiError> {
     }
     // Name the field of the body, not the command line's flag.
     if let Err(crate::infer::InferError::BadParameter {
-        flag,
+        param,
         value,
         expected,
     }) = params.validate()
     {
         return Err(ApiError::bad(format!(
-            "request body: {flag}: {value} is invalid; expected {expected}"
+            "request body: {param}: {value} is invalid; expected {expected}"
         ))
-        .at(flag));
+        .at(param));
     }
     Ok(params)
 }
@@ -1160,7 +1160,11 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
             .at("time_limit")
         })?;
     let demos = read_demos(&st)?;
-    let like = b.like.unwrap_or(true).then(|| Likeness::new(&demos));
+    let like = if b.like.unwrap_or(true) {
+        Like::Demos
+    } else {
+        Like::Off
+    };
     let cancel = Arc::new(AtomicBool::new(false));
     let best = Arc::new(Mutex::new(None));
     let id = st.next_job.fetch_add(1, Ordering::Relaxed);
@@ -1190,18 +1194,16 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
         progress: Some(ProgressFn(Arc::new(move |p: &Progress| {
             *progress_best.lock().expect("best lock") = Some(p.score);
         }))),
-        like,
-        warm_start: demos,
         ..SynthOptions::default()
     };
     let st2 = st.clone();
     tokio::task::spawn_blocking(move || {
         // The solver is not `Send`: it is created and run on this thread.
         let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            synthesize(&st2.problem, &set, &opts)
+            crate::task::place(&st2.problem, &set, &demos, &like, &opts)
         }));
         let outcome = match outcome {
-            Ok(Ok(r)) => Ok(synth_value(&r)),
+            Ok(Ok(placed)) => Ok(synth_value(&placed.result)),
             Ok(Err(e)) => Err(format!("{}: {e}", storage::PROBLEM)),
             Err(_) => Err("synthesis failed unexpectedly (internal error)".to_string()),
         };

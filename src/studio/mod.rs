@@ -10,7 +10,7 @@
 //! The API is described in `docs/studio-api.md`.
 
 mod api;
-pub mod storage;
+pub use crate::task::files as storage;
 
 use crate::scene::Scene;
 use axum::extract::DefaultBodyLimit;

@@ -15,7 +15,7 @@
 //! # Practical
 //!
 //! - [`Backend::solve`] answers one call. A limit that stops it gives
-//!   [`Answer::Unknown`]; a backend may refuse further calls afterwards (it
+//!   [`Verdict::Unknown`]; a backend may refuse further calls afterwards (it
 //!   answers `Unknown` again — Pumpkin 0.5 cannot resume after a stop), so
 //!   the limits are over the backend's life.
 //! - An infeasible call carries a [`Core`]: [`Core::Unknown`] when the
@@ -96,7 +96,7 @@ pub enum Core {
 
 /// The answer to one call.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub enum Answer {
+pub enum Verdict {
     /// A solution: grid values per model variable.
     Solution(Vec<i64>),
     /// Proved impossible under the assumptions.
@@ -108,7 +108,7 @@ pub enum Answer {
 /// An engine holding one model.
 pub trait Backend {
     /// Solve under `assumptions` within `limits`.
-    fn solve(&mut self, assumptions: &[Assumption], limits: &Limits) -> Answer;
+    fn solve(&mut self, assumptions: &[Assumption], limits: &Limits) -> Verdict;
     /// Add a fact for every later call.
     fn add(&mut self, fact: Fact);
     /// The largest objective value not yet excluded at the root (`None`:
@@ -127,6 +127,4 @@ pub trait Backend {
     fn hint(&mut self, _values: &[Option<i64>]) {}
     /// Decisions so far.
     fn nodes(&self) -> u64;
-    /// Conflicts so far.
-    fn conflicts(&self) -> u64;
 }

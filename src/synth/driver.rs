@@ -37,7 +37,7 @@
 //! tests go in the `tests` module below, against its `MockBackend`, which states
 //! the answers a backend may give.
 
-use super::backend::{Answer, Assumption, Backend, Core, Fact, Limits};
+use super::backend::{Assumption, Backend, Core, Fact, Limits, Verdict};
 use super::weights::SubsetSums;
 
 /// How many times [`Strategy::UpperBoundFirst`] asks for the proven upper
@@ -88,7 +88,9 @@ pub struct Objective<'a> {
 }
 
 /// Maximise the objective (none: any solution is optimal). `on_incumbent`
-/// is called with every improving solution.
+/// is called with every improving solution. (The solve runs its two halves
+/// separately; this is their composition, for the driver's tests.)
+#[cfg(test)]
 pub fn optimise(
     backend: &mut dyn Backend,
     objective: Option<&Objective<'_>>,
@@ -108,12 +110,12 @@ pub fn optimise(
 /// or the outcome when there is none.
 pub fn first_solution(backend: &mut dyn Backend, limits: &Limits) -> Result<Vec<i64>, OptOutcome> {
     match backend.solve(&[], limits) {
-        Answer::Solution(v) => {
+        Verdict::Solution(v) => {
             backend.found_first();
             Ok(v)
         }
-        Answer::Infeasible(_) => Err(OptOutcome::Infeasible),
-        Answer::Unknown => Err(OptOutcome::Unknown),
+        Verdict::Infeasible(_) => Err(OptOutcome::Infeasible),
+        Verdict::Unknown => Err(OptOutcome::Unknown),
     }
 }
 
@@ -143,13 +145,13 @@ pub fn optimise_from(
                 return OptOutcome::Optimal(best);
             }
             match backend.solve(&[Assumption::ObjectiveAtLeast(best_val + 1)], limits) {
-                Answer::Solution(v) => {
+                Verdict::Solution(v) => {
                     best_val = value(&v);
                     best = v;
                     on_incumbent(&best);
                 }
-                Answer::Infeasible(_) => return OptOutcome::Optimal(best),
-                Answer::Unknown => return OptOutcome::Feasible(best),
+                Verdict::Infeasible(_) => return OptOutcome::Optimal(best),
+                Verdict::Unknown => return OptOutcome::Feasible(best),
             }
             root_bound = backend.objective_bound().unwrap_or(root_bound);
         }
@@ -182,16 +184,16 @@ pub fn optimise_from(
         };
         step += 1;
         match backend.solve(&[Assumption::ObjectiveAtLeast(target)], limits) {
-            Answer::Solution(v) => {
+            Verdict::Solution(v) => {
                 best_val = value(&v);
                 best = v;
                 on_incumbent(&best);
             }
-            Answer::Infeasible(_) => {
+            Verdict::Infeasible(_) => {
                 backend.add(Fact::ObjectiveAtMost(target - 1));
                 hi = snap(target - 1);
             }
-            Answer::Unknown => return OptOutcome::Feasible(best),
+            Verdict::Unknown => return OptOutcome::Feasible(best),
         }
     }
 }
@@ -230,7 +232,7 @@ pub fn minimise_cost(
     while lo < best_cost {
         let mid = lo + (best_cost - lo - 1) / 2;
         match backend.solve(&[Assumption::CostAtMost(mid)], limits) {
-            Answer::Solution(v) => {
+            Verdict::Solution(v) => {
                 let n = num(&v);
                 best_cost = cost(&v);
                 best = v;
@@ -242,11 +244,11 @@ pub fn minimise_cost(
                     backend.add(Fact::ObjectiveAtLeast(best_num));
                 }
             }
-            Answer::Infeasible(_) => {
+            Verdict::Infeasible(_) => {
                 backend.add(Fact::CostAtLeast(mid + 1));
                 lo = mid + 1;
             }
-            Answer::Unknown => {
+            Verdict::Unknown => {
                 return CostOutcome {
                     values: best,
                     cost: best_cost,
@@ -286,10 +288,10 @@ pub fn shrink_conflict(
         match backend.solve(&trial, limits) {
             // The rules before `i` were each needed in a superset, so they
             // are needed here too: `i` stays put.
-            Answer::Infeasible(Core::Unknown) => {
+            Verdict::Infeasible(Core::Unknown) => {
                 core.remove(i);
             }
-            Answer::Infeasible(Core::Rules(c)) => {
+            Verdict::Infeasible(Core::Rules(c)) => {
                 if c.is_empty() {
                     // Infeasible whatever is assumed: no rule is needed.
                     return (Vec::new(), true);
@@ -304,8 +306,8 @@ pub fn shrink_conflict(
                     .collect();
                 core = keep;
             }
-            Answer::Solution(_) => i += 1,
-            Answer::Unknown => {
+            Verdict::Solution(_) => i += 1,
+            Verdict::Unknown => {
                 minimal = false;
                 i += 1;
             }
@@ -373,16 +375,16 @@ mod tests {
     }
 
     impl Backend for MockBackend {
-        fn solve(&mut self, a: &[Assumption], _: &Limits) -> Answer {
+        fn solve(&mut self, a: &[Assumption], _: &Limits) -> Verdict {
             self.calls += 1;
             self.asked.push(a.to_vec());
             if self.budget.is_some_and(|b| self.calls > b) {
-                return Answer::Unknown;
+                return Verdict::Unknown;
             }
             // The first allowed candidate in list order: like a real
             // backend, not necessarily the best one.
             match self.cands.iter().find(|c| self.allowed(c, a)) {
-                Some(c) => Answer::Solution(vec![c.obj, c.cost as i64]),
+                Some(c) => Verdict::Solution(vec![c.obj, c.cost as i64]),
                 None if self.give_cores => {
                     // A core: the rule assumptions that, with the facts,
                     // no candidate satisfies together (greedy, not minimal).
@@ -404,9 +406,9 @@ mod tests {
                             core.retain(|x| x != r);
                         }
                     }
-                    Answer::Infeasible(Core::Rules(core))
+                    Verdict::Infeasible(Core::Rules(core))
                 }
-                None => Answer::Infeasible(Core::Unknown),
+                None => Verdict::Infeasible(Core::Unknown),
             }
         }
         fn add(&mut self, f: Fact) {
@@ -425,9 +427,6 @@ mod tests {
         }
         fn nodes(&self) -> u64 {
             u64::from(self.calls)
-        }
-        fn conflicts(&self) -> u64 {
-            0
         }
     }
 

@@ -35,7 +35,7 @@
 //! final callback reports the first solution, and it steps the bound by one
 //! unit, which is hopeless for scaled real weights.
 
-use super::backend::{Answer, Assumption, Backend, Core, Fact};
+use super::backend::{Assumption, Backend, Core, Fact, Verdict};
 use super::like::LikeTerm;
 use super::model::{BoolDef, Coord, Lit, Model};
 use super::SynthError;
@@ -81,7 +81,6 @@ fn clamp_i32(v: i64) -> i32 {
 }
 
 pub use super::backend::Limits;
-pub use super::driver::{CostOutcome, OptOutcome, Strategy};
 
 #[derive(Debug, Clone, Default)]
 struct Counters {
@@ -269,7 +268,7 @@ impl Brancher for Phased {
 }
 
 /// The result of one satisfiability call (the two-valued view of an
-/// [`Answer`] for callers that need no core).
+/// [`Verdict`] for callers that need no core).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Sat {
     /// A solution: grid values per model variable.
@@ -280,12 +279,12 @@ pub enum Sat {
     Unknown,
 }
 
-impl From<Answer> for Sat {
-    fn from(a: Answer) -> Sat {
+impl From<Verdict> for Sat {
+    fn from(a: Verdict) -> Sat {
         match a {
-            Answer::Solution(v) => Sat::Solution(v),
-            Answer::Infeasible(_) => Sat::Unsat,
-            Answer::Unknown => Sat::Unknown,
+            Verdict::Solution(v) => Sat::Solution(v),
+            Verdict::Infeasible(_) => Sat::Unsat,
+            Verdict::Unknown => Sat::Unknown,
         }
     }
 }
@@ -872,9 +871,9 @@ impl Engine {
     /// probe problems of the bundled example
     /// (`tests/fixtures/regressions/core-hang.rcc`), so the driver shrinks
     /// conflicts by deletion, where every solve obeys the limits.
-    fn call(&mut self, assumptions: &[Predicate], limits: &Limits) -> Answer {
+    fn call(&mut self, assumptions: &[Predicate], limits: &Limits) -> Verdict {
         if self.dead {
-            return Answer::Infeasible(Core::Rules(Vec::new()));
+            return Verdict::Infeasible(Core::Rules(Vec::new()));
         }
         let mut stop = self.stop(limits);
         let vars = self.vars.clone();
@@ -884,13 +883,13 @@ impl Engine {
                 .satisfy(&mut self.brancher, &mut stop, &mut self.resolver)
             {
                 SatisfactionResult::Satisfiable(s) => {
-                    Answer::Solution(Self::values(&vars, &s.solution()))
+                    Verdict::Solution(Self::values(&vars, &s.solution()))
                 }
                 SatisfactionResult::Unsatisfiable(..) => {
                     self.dead = true;
-                    Answer::Infeasible(Core::Rules(Vec::new()))
+                    Verdict::Infeasible(Core::Rules(Vec::new()))
                 }
-                SatisfactionResult::Unknown(..) => Answer::Unknown,
+                SatisfactionResult::Unknown(..) => Verdict::Unknown,
             }
         } else {
             match self.solver.satisfy_under_assumptions(
@@ -900,16 +899,16 @@ impl Engine {
                 assumptions,
             ) {
                 SatisfactionResultUnderAssumptions::Satisfiable(s) => {
-                    Answer::Solution(Self::values(&vars, &s.solution()))
+                    Verdict::Solution(Self::values(&vars, &s.solution()))
                 }
                 SatisfactionResultUnderAssumptions::UnsatisfiableUnderAssumptions(_) => {
-                    Answer::Infeasible(Core::Unknown)
+                    Verdict::Infeasible(Core::Unknown)
                 }
                 SatisfactionResultUnderAssumptions::Unsatisfiable(_) => {
                     self.dead = true;
-                    Answer::Infeasible(Core::Rules(Vec::new()))
+                    Verdict::Infeasible(Core::Rules(Vec::new()))
                 }
-                SatisfactionResultUnderAssumptions::Unknown(_) => Answer::Unknown,
+                SatisfactionResultUnderAssumptions::Unknown(_) => Verdict::Unknown,
             }
         };
         answer
@@ -920,7 +919,7 @@ impl Backend for Engine {
     /// `Rule(r)` on an engine built without guards is a no-op (its rule is
     /// posted as units); `ObjectiveAtLeast(k)` without an objective holds
     /// iff `k ≤ 0`, `CostAtMost` without a second objective always holds.
-    fn solve(&mut self, assumptions: &[Assumption], limits: &Limits) -> Answer {
+    fn solve(&mut self, assumptions: &[Assumption], limits: &Limits) -> Verdict {
         let mut preds: Vec<Predicate> = Vec::with_capacity(assumptions.len());
         for a in assumptions {
             match *a {
@@ -930,7 +929,7 @@ impl Backend for Engine {
                         preds.push(predicate![obj >= clamp_i32(k)]);
                     }
                     None if k <= 0 => {}
-                    None => return Answer::Infeasible(Core::Unknown),
+                    None => return Verdict::Infeasible(Core::Unknown),
                 },
                 Assumption::CostAtMost(k) => {
                     if let Some(total) = self.like_total {
@@ -997,10 +996,6 @@ impl Backend for Engine {
 
     fn nodes(&self) -> u64 {
         self.counters.nodes.get()
-    }
-
-    fn conflicts(&self) -> u64 {
-        self.counters.conflicts.get()
     }
 }
 

@@ -149,7 +149,9 @@ pub struct Lns<'a> {
 impl Lns<'_> {
     /// Improve `start` (a solution of the full model) until the objective
     /// reaches `bound`, the phase stops paying off, or a limit fires.
-    /// `on_incumbent` sees every improving layout.
+    /// `on_incumbent` sees every improving layout. (The solve alternates
+    /// phases with [`Lns::alternate`]; this one phase is for the tests.)
+    #[cfg(test)]
     pub fn improve(
         &self,
         start: Vec<i64>,
@@ -515,7 +517,7 @@ mod tests {
     use crate::relations::Contact;
     use crate::rules::parse_rules;
     use crate::scene::{Object, Space};
-    use crate::synth::verify::verify_solution;
+    use crate::synth::verify_solution;
     use crate::synth::weights::integer_weights;
 
     /// Six blocks that should lie north of a fixed bar: the engine's first

@@ -1,27 +1,30 @@
 //! Synthesis (SPEC §9): place every unplaced object on the grid so that hard
 //! rules hold and the §6 numerator is as large as possible.
 //!
-//! This file fixes the public API; the rest lives in submodules:
+//! This file fixes the public API ([`synthesize`], its options and result,
+//! [`verify_solution`], the [`emit`]ted model); the rest lives in private
+//! submodules:
 //!
-//! - [`model`] — the solver-free model (variables, exact Boolean
+//! - `model` — the solver-free model (variables, exact Boolean
 //!   definitions, clauses, hard literals, objective terms);
-//! - [`backend`] — the seam: what an engine must answer (solve under
+//! - `backend` — the seam: what an engine must answer (solve under
 //!   assumptions with limits, facts, root bounds);
-//! - [`driver`] — every procedure as calls to a backend: maximise the
+//! - `driver` — every procedure as calls to a backend: maximise the
 //!   score, minimise the resemblance cost, shrink a conflict;
-//! - [`engine`] — the Pumpkin backend (the only module naming solver types);
-//! - [`lns`] — large-neighbourhood search for the anytime phase on large
+//! - `engine` — the Pumpkin backend (the only module naming solver types);
+//! - `lns` — large-neighbourhood search for the anytime phase on large
 //!   problems;
 //! - [`emit`] — the model written out for other solvers (MiniZinc, JSON);
-//! - [`verify`], [`brute_force`] — the independent checker and the
-//!   exhaustive reference of the tests;
-//! - [`weights`], [`like`] — integer objective weights, the second
-//!   objective's terms.
+//! - `verify` ([`verify_solution`]), `brute_force` — the independent
+//!   checker (run on every output) and the exhaustive reference of the
+//!   tests;
+//! - `weights`, `like`, `warm`, `capacity` — integer objective weights, the second
+//!   objective's terms, the warm start, the area test before any engine.
 //!
 //! # Second-edition rules (SPEC §11)
 //!
 //! Quantified atoms, landmarks and scene-level rules are compiled by
-//! [`model`] into the same kind of literals as first-edition rules, so
+//! `model` into the same kind of literals as first-edition rules, so
 //! everything downstream treats them alike:
 //!
 //! - a soft scene-level rule (`some A: φ`, `no A: φ`, `at least K A: φ`,
@@ -50,20 +53,31 @@ use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 use std::time::Duration;
 
-pub mod backend;
+mod backend;
+// The exhaustive reference solver: a test oracle, not an API.
+#[cfg(any(test, feature = "fuzzing"))]
+#[doc(hidden)]
 pub mod brute_force;
-pub mod capacity;
-pub mod driver;
+mod capacity;
+mod driver;
 pub mod emit;
-pub mod engine;
-pub mod like;
-pub mod lns;
+pub(crate) mod engine;
+mod like;
+mod lns;
+// The solver-free model: internal, visible to the crate's own differential
+// and emit tests (feature `fuzzing`).
+#[cfg(feature = "fuzzing")]
+#[doc(hidden)]
 pub mod model;
-pub mod verify;
-pub mod warm;
-pub mod weights;
+#[cfg(not(feature = "fuzzing"))]
+pub(crate) mod model;
+mod verify;
+mod warm;
+mod weights;
 
 pub use driver::Strategy;
+pub use lns::LnsOptions;
+pub use verify::{verify_solution, VerifyError};
 
 /// Limits and switches for one solve.
 #[derive(Debug, Clone)]
@@ -242,16 +256,34 @@ pub struct Resemblance {
     pub proven: bool,
 }
 
-/// Errors that are the input's fault (not infeasibility).
+/// Why synthesis refused to start (infeasibility is a [`Status`], not an
+/// error).
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SynthError {
-    /// The problem scene is not usable for synthesis.
-    #[error("{0}")]
-    BadProblem(String),
+    /// The problem is not a valid scene (SPEC §1); the error names the field.
+    #[error(transparent)]
+    Scene(#[from] crate::scene::SceneError),
+    /// A rule built in code has a weight that is not a finite positive
+    /// number (the parser never makes one).
+    #[error("rule `{rule}` has weight {weight}; expected a finite number greater than 0")]
+    BadWeight {
+        /// The rule's name.
+        rule: String,
+        /// Its weight, as written by `{}` on `f64`.
+        weight: String,
+    },
+    /// The resemblance target cannot be built for this problem.
+    #[error(transparent)]
+    Likeness(#[from] crate::resemblance::LikenessError),
     /// A number of the problem (or derived from it) is too large for the
     /// solver's 32-bit arithmetic; the message names it.
     #[error("{0}")]
     TooLarge(String),
+    /// The layout the engine found fails the independent check
+    /// ([`verify_solution`]): a bug in rccpack, never the input's fault.
+    #[error("internal error: the layout found fails the independent check: {0}")]
+    Unverified(VerifyError),
 }
 
 /// Largest absolute coordinate or size accepted for synthesis (2^28); the
@@ -297,9 +329,7 @@ pub const MAX_POSITIONS: i64 = 1 << 18;
 /// [`MAX_POSITIONS`]). [`synthesize`] checks this first; callers that build
 /// [`model::Model`]s themselves must too.
 pub fn check_problem(problem: &Scene) -> Result<(), SynthError> {
-    problem
-        .validate()
-        .map_err(|e| SynthError::BadProblem(e.to_string()))?;
+    problem.validate()?;
     check_ranges(problem)
 }
 
@@ -391,10 +421,10 @@ pub(crate) fn objective_model(
         .find(|s| !(s.weight.is_finite() && s.weight > 0.0))
     {
         let name = rules.rules.get(s.rule).map_or("?", |r| r.name.as_str());
-        return Err(SynthError::BadProblem(format!(
-            "rule `{name}` has weight {}; expected a finite number greater than 0",
-            s.weight
-        )));
+        return Err(SynthError::BadWeight {
+            rule: name.to_string(),
+            weight: s.weight.to_string(),
+        });
     }
     let weights: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();
     let coefs = weights::integer_weights(&weights).ok_or_else(|| {
@@ -449,8 +479,7 @@ pub fn synthesize(
     let like_terms = match &opts.like {
         Some(like) => {
             // The engine refuses costs past its 32-bit arithmetic.
-            let terms = like::like_terms(&model, problem, like)
-                .map_err(|e| SynthError::BadProblem(e.to_string()))?;
+            let terms = like::like_terms(&model, problem, like)?;
             Some(terms)
         }
         None => None,
@@ -469,16 +498,14 @@ pub fn synthesize(
         stats.time_ms = ms(start.elapsed());
         return Ok(SynthResult::without_layout(Status::Unknown, None, stats));
     };
-    if std::env::var_os("RCCPACK_DEBUG").is_some() {
-        eprintln!(
-            "model {:.1} ms ({} vars, {} bools, {} clauses), engine {:.1} ms",
-            ms(t_model),
-            model.vars.len(),
-            model.bools.len(),
-            model.clauses.len(),
-            ms(start.elapsed() - t_model)
-        );
-    }
+    log::debug!(
+        "model {:.1} ms ({} vars, {} bools, {} clauses), engine {:.1} ms",
+        ms(t_model),
+        model.vars.len(),
+        model.bools.len(),
+        model.clauses.len(),
+        ms(start.elapsed() - t_model)
+    );
     let mut first: Option<Duration> = None;
     let mut best: Option<Duration> = None;
     let mut on_incumbent = |vals: &[i64]| {
@@ -532,16 +559,14 @@ pub fn synthesize(
                     // Sub-engines' work counts toward the solve's statistics.
                     stats.nodes += r.nodes;
                     stats.conflicts += r.conflicts;
-                    if std::env::var_os("RCCPACK_DEBUG").is_some() {
-                        eprintln!(
-                            "lns: {} rounds, {} improving, {} nodes; engine {} nodes; {:.1} ms",
-                            r.rounds,
-                            r.improved,
-                            r.nodes,
-                            engine.nodes(),
-                            ms(start.elapsed())
-                        );
-                    }
+                    log::debug!(
+                        "lns: {} rounds, {} improving, {} nodes; engine {} nodes; {:.1} ms",
+                        r.rounds,
+                        r.improved,
+                        r.nodes,
+                        engine.nodes(),
+                        ms(start.elapsed())
+                    );
                     outcome
                 }
                 None => driver::optimise_from(
@@ -616,11 +641,10 @@ pub fn synthesize(
     };
     let scene = model.scene(problem, &vals);
     let evaluation = crate::eval::evaluate(&scene, rules, opts.contact);
-    debug_assert!(
-        verify::verify_solution(problem, &scene, rules, opts.contact).is_ok(),
-        "{:?}",
-        verify::verify_solution(problem, &scene, rules, opts.contact)
-    );
+    // Every layout is re-checked, in release builds too: a fault here is a
+    // bug, reported as one instead of handed to the robot.
+    verify::verify_solution(problem, &scene, rules, opts.contact)
+        .map_err(SynthError::Unverified)?;
     stats.time_ms = ms(start.elapsed());
     let score_bound = match status {
         Status::Optimal => Some(evaluation.score),

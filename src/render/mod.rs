@@ -10,7 +10,7 @@
 //! rule get a thick orange/black dashed outline and a legend beside the table
 //! lists the score and each rule's `satisfied/subjects`.
 //!
-//! [`render_png`] rasterises that SVG with resvg, using a DejaVu Sans font
+//! [`render_png`] (feature `png`) rasterises that SVG with resvg, using a DejaVu Sans font
 //! embedded in the binary (no system fonts are consulted, so output is the
 //! same on every machine). [`render_to_path`] picks the format from the
 //! file extension.
@@ -23,7 +23,11 @@ use crate::scene::{Object, Scene};
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::path::Path;
-use std::sync::{Arc, OnceLock};
+
+#[cfg(feature = "png")]
+mod png;
+#[cfg(feature = "png")]
+pub use png::render_png;
 
 /// How to draw a scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -81,15 +85,13 @@ pub enum RenderError {
     /// PNG encoding failed.
     #[error("PNG encoding failed: {0}")]
     Png(String),
+    /// PNG was asked for in a build without the `png` feature.
+    #[error("PNG output needs rccpack built with the `png` feature; use `.svg`")]
+    PngUnavailable,
     /// Writing the file failed.
     #[error("cannot write picture: {0}")]
     Io(#[from] std::io::Error),
 }
-
-/// Largest PNG accepted, in pixels (≈ 256 MiB of RGBA).
-const MAX_PIXELS: u64 = 64 * 1024 * 1024;
-/// Largest side of a PNG, in pixels.
-const MAX_SIDE: u64 = 32_000;
 
 const MARGIN: f64 = 24.0;
 const HEADER: f64 = 34.0;
@@ -733,71 +735,6 @@ impl SpaceExt for crate::scene::Space {
     }
 }
 
-/// The font database shared by every PNG: DejaVu Sans (regular and bold),
-/// embedded in the binary, mapped to every generic family.
-fn fontdb() -> Arc<resvg::usvg::fontdb::Database> {
-    static DB: OnceLock<Arc<resvg::usvg::fontdb::Database>> = OnceLock::new();
-    DB.get_or_init(|| {
-        use resvg::usvg::fontdb::{Database, Source};
-        let mut db = Database::new();
-        db.load_font_source(Source::Binary(Arc::new(dejavu::sans::regular())));
-        db.load_font_source(Source::Binary(Arc::new(dejavu::sans::bold())));
-        db.set_sans_serif_family("DejaVu Sans");
-        db.set_serif_family("DejaVu Sans");
-        db.set_monospace_family("DejaVu Sans");
-        db.set_cursive_family("DejaVu Sans");
-        db.set_fantasy_family("DejaVu Sans");
-        Arc::new(db)
-    })
-    .clone()
-}
-
-/// Render `scene` as PNG bytes: [`render_svg`] rasterised by resvg, one
-/// pixel per SVG unit, with the embedded DejaVu Sans font.
-pub fn render_png(
-    scene: &Scene,
-    rules: Option<&RuleSet>,
-    opts: &RenderOptions,
-) -> Result<Vec<u8>, RenderError> {
-    if !(opts.scale.is_finite() && opts.scale > 0.0) {
-        return Err(RenderError::Scale(opts.scale));
-    }
-    let svg = render_svg(scene, rules, opts);
-    svg_to_png(&svg)
-}
-
-fn svg_to_png(svg: &str) -> Result<Vec<u8>, RenderError> {
-    use resvg::{tiny_skia, usvg};
-    let mut opt = usvg::Options {
-        font_family: "DejaVu Sans".into(),
-        ..usvg::Options::default()
-    };
-    opt.fontdb = fontdb();
-    let tree = usvg::Tree::from_str(svg, &opt).map_err(|e| RenderError::Svg(e.to_string()))?;
-    let size = tree.size();
-    let (w, h) = (size.width().ceil() as u64, size.height().ceil() as u64);
-    if w > MAX_SIDE || h > MAX_SIDE || w * h > MAX_PIXELS {
-        return Err(RenderError::TooLarge {
-            width: w,
-            height: h,
-            max: MAX_PIXELS,
-        });
-    }
-    let mut pixmap = tiny_skia::Pixmap::new(w as u32, h as u32).ok_or(RenderError::TooLarge {
-        width: w,
-        height: h,
-        max: MAX_PIXELS,
-    })?;
-    resvg::render(
-        &tree,
-        tiny_skia::Transform::identity(),
-        &mut pixmap.as_mut(),
-    );
-    pixmap
-        .encode_png()
-        .map_err(|e| RenderError::Png(e.to_string()))
-}
-
 /// Render to `path`, choosing the format by its extension (`.svg` or `.png`,
 /// case-insensitive). Any other extension is an error naming it.
 pub fn render_to_path(
@@ -816,7 +753,10 @@ pub fn render_to_path(
             }
             crate::fsutil::atomic_write(path, render_svg(scene, rules, opts))?;
         }
+        #[cfg(feature = "png")]
         Some("png") => crate::fsutil::atomic_write(path, render_png(scene, rules, opts)?)?,
+        #[cfg(not(feature = "png"))]
+        Some("png") => return Err(RenderError::PngUnavailable),
         Some(other) => {
             return Err(RenderError::UnknownExtension {
                 found: format!("`.{other}`"),

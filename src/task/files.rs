@@ -1,4 +1,6 @@
-//! Files of a task folder: fixed names only, atomic writes, content versions.
+//! The files of a task folder (SPEC §10): fixed names only, atomic writes,
+//! content versions. Shared by `rccpack run`/`ask` and the studio, so a name
+//! is written once.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -11,6 +13,15 @@ pub const DEMOS: &str = "demos.json";
 pub const STATEMENTS: &str = "statements.rcc";
 /// The chosen learned rules (written by the page).
 pub const LEARNED: &str = "learned.rcc";
+
+/// The learning report `rccpack run` writes beside `learned.rcc`.
+pub const LEARN_REPORT: &str = "learn-report.json";
+/// The layout `rccpack run` writes.
+pub const SOLUTION: &str = "solution.json";
+/// The picture of the layout `rccpack run` writes.
+pub const SOLUTION_PNG: &str = "solution.png";
+/// The probe pictures of a question session.
+pub const PROBES: &str = "probes";
 
 /// The answered questions of "Check rules" (SPEC §13), as `rccpack ask`
 /// keeps them.

@@ -1,0 +1,278 @@
+//! A task folder and the whole pipeline on it (SPEC §10 `run`): learn rules
+//! from the demonstrations, check them against the problem, and place the
+//! problem's objects with the demonstrations as the like-scenes and the warm
+//! start.
+//!
+//! `rccpack run`, `rccpack ask` and the studio call this module instead of
+//! re-implementing the steps; an embedder calls it the same way:
+//!
+//! ```
+//! use rccpack::task::{self, RunOptions, Task};
+//!
+//! let task = Task::load("examples/box-packing")?;
+//! let mut opts = RunOptions::default();
+//! opts.learn.samples = 200; // a quick run; the default is 1000
+//! opts.synth.node_limit = Some(20_000);
+//! let outcome = task::run(&task, &opts)?;
+//! println!("{} rules learned", outcome.rules.rules.len());
+//! let layout = outcome.placement.result.scene.as_ref().expect("a layout");
+//! assert!(layout.is_complete());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! The folder's file names are the constants of [`files`].
+
+pub mod files;
+
+use crate::infer::{learn_until, InferError, LearnParams, Learned};
+use crate::resemblance::Likeness;
+use crate::rules::{check_landmarks, missing_classes, parse_rules, RuleSet, RulesError};
+use crate::scene::{scenes_from_json, Scene, SceneError};
+use crate::synth::{synthesize, SynthError, SynthOptions, SynthResult};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Why the pipeline stopped. Every variant that comes from a file names it.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum TaskError {
+    /// A file could not be read (or is not UTF-8).
+    #[error("{}: cannot read file: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A scene file is not a valid scene (or array of scenes).
+    #[error("{}: {source}", path.display())]
+    Scene {
+        /// The file.
+        path: PathBuf,
+        /// The error, with its JSON field path.
+        source: SceneError,
+    },
+    /// The statement file is not valid `.rcc`, or names a landmark a
+    /// demonstration lacks. [`RulesError::render`] with `text` draws the
+    /// carets.
+    #[error("{}: {source}", path.display())]
+    Rules {
+        /// The file.
+        path: PathBuf,
+        /// Its text, for rendering the diagnostics.
+        text: String,
+        /// The diagnostics.
+        source: RulesError,
+    },
+    /// Learning refused the demonstrations or statements, or its time ran
+    /// out ([`InferError::TimeLimit`]).
+    #[error(transparent)]
+    Learn(#[from] InferError),
+    /// The rules name a landmark (`@ID`) the problem has no fixed object
+    /// for.
+    #[error("the learned rules name a landmark the problem lacks: {0}")]
+    Landmark(RulesError),
+    /// Synthesis refused the problem.
+    #[error(transparent)]
+    Synth(#[from] SynthError),
+}
+
+/// A task: the demonstrations, the optional statement set to learn with, and
+/// the problem to place.
+#[derive(Debug, Clone)]
+pub struct Task {
+    /// The demonstrations (`demos.json`).
+    pub demos: Vec<Scene>,
+    /// The statements to learn (`statements.rcc`); `None`: the templates.
+    pub statements: Option<RuleSet>,
+    /// The problem (`problem.json`).
+    pub problem: Scene,
+}
+
+/// Read a whole UTF-8 text file (a leading byte-order mark is dropped).
+fn read_text(path: &Path) -> Result<String, TaskError> {
+    let read = |source| TaskError::Read {
+        path: path.to_path_buf(),
+        source,
+    };
+    let bytes = std::fs::read(path).map_err(read)?;
+    crate::fsutil::utf8_text(bytes)
+        .map_err(|e| read(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))
+}
+
+/// Read a scene file or an array of scenes.
+pub fn read_scenes(path: &Path) -> Result<Vec<Scene>, TaskError> {
+    scenes_from_json(&read_text(path)?).map_err(|source| TaskError::Scene {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Read one scene.
+pub fn read_scene(path: &Path) -> Result<Scene, TaskError> {
+    Scene::from_json(&read_text(path)?).map_err(|source| TaskError::Scene {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Read a statement file and check that every landmark it names is a fixed
+/// object of every demonstration.
+pub fn read_statements(path: &Path, demos: &[Scene]) -> Result<RuleSet, TaskError> {
+    let text = read_text(path)?;
+    let checked = parse_rules(&text).and_then(|set| {
+        demos
+            .iter()
+            .try_for_each(|d| check_landmarks(&set, d))
+            .map(|()| set)
+    });
+    checked.map_err(|source| TaskError::Rules {
+        path: path.to_path_buf(),
+        text,
+        source,
+    })
+}
+
+impl Task {
+    /// Read a task folder: `demos.json`, `problem.json` and, when present,
+    /// `statements.rcc` ([`files`]).
+    pub fn load(dir: impl AsRef<Path>) -> Result<Task, TaskError> {
+        let dir = dir.as_ref();
+        let demos = read_scenes(&dir.join(files::DEMOS))?;
+        let statements_path = dir.join(files::STATEMENTS);
+        let statements = if statements_path.exists() {
+            Some(read_statements(&statements_path, &demos)?)
+        } else {
+            None
+        };
+        let problem = read_scene(&dir.join(files::PROBLEM))?;
+        Ok(Task {
+            demos,
+            statements,
+            problem,
+        })
+    }
+}
+
+/// Which scenes the layout should resemble (SPEC §12).
+#[derive(Debug, Clone, Default)]
+#[non_exhaustive]
+pub enum Like {
+    /// The task's demonstrations (the default of `rccpack run`).
+    #[default]
+    Demos,
+    /// These scenes.
+    Scenes(Vec<Scene>),
+    /// Score only.
+    Off,
+}
+
+/// Options of [`run`] and [`place`].
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Learning parameters.
+    pub learn: LearnParams,
+    /// Synthesis options. `time_limit` covers the whole of [`run`]
+    /// (learning included); `contact` is the learning's
+    /// ([`LearnParams::contact`]); `like` and `warm_start` are set from
+    /// [`RunOptions::like`] and the demonstrations.
+    pub synth: SynthOptions,
+    /// What the layout should resemble.
+    pub like: Like,
+}
+
+/// A placed problem.
+#[derive(Debug, Clone)]
+pub struct Placement {
+    /// The synthesis result (status, layout, evaluation, conflict, stats).
+    pub result: SynthResult,
+    /// Classes the rules name that the problem lacks (SPEC §15: noted, and
+    /// the rules about them hold as SPEC §4 says).
+    pub missing_classes: Vec<String>,
+    /// The resemblance target used, if any (e.g. for
+    /// [`crate::render::RenderOptions::like`]).
+    pub like: Option<Likeness>,
+}
+
+/// What [`run`] produced.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// Everything learning found (write it with [`Learned::to_rcc`] and
+    /// [`Learned::report_json`]).
+    pub learned: Learned,
+    /// The learned rules.
+    pub rules: RuleSet,
+    /// The placed problem.
+    pub placement: Placement,
+}
+
+/// Place `problem` under `rules`: the landmarks are checked, the
+/// demonstrations are the warm start and (with [`Like::Demos`]) the
+/// resemblance target.
+pub fn place(
+    problem: &Scene,
+    rules: &RuleSet,
+    demos: &[Scene],
+    like: &Like,
+    opts: &SynthOptions,
+) -> Result<Placement, TaskError> {
+    let missing = missing_classes(rules, problem);
+    check_landmarks(rules, problem).map_err(TaskError::Landmark)?;
+    let like = match like {
+        Like::Demos => Some(Likeness::new(demos)),
+        Like::Scenes(s) => Some(Likeness::new(s)),
+        Like::Off => None,
+    };
+    let opts = SynthOptions {
+        like: like.clone(),
+        warm_start: demos.to_vec(),
+        ..opts.clone()
+    };
+    let result = synthesize(problem, rules, &opts)?;
+    Ok(Placement {
+        result,
+        missing_classes: missing,
+        like,
+    })
+}
+
+/// Learn with `opts.learn` until `deadline` ([`InferError::TimeLimit`]
+/// after it).
+pub fn learn(
+    task: &Task,
+    params: &LearnParams,
+    deadline: Option<Instant>,
+) -> Result<Learned, TaskError> {
+    Ok(learn_until(
+        &task.demos,
+        task.statements.as_ref(),
+        params,
+        deadline,
+    )?)
+}
+
+/// The whole pipeline: [`learn`], then [`place`] with what is left of the
+/// time limit.
+pub fn run(task: &Task, opts: &RunOptions) -> Result<Outcome, TaskError> {
+    let start = Instant::now();
+    let deadline = opts
+        .synth
+        .time_limit
+        .and_then(|limit| start.checked_add(limit));
+    let learned = learn(task, &opts.learn, deadline)?;
+    let rules = learned.rules();
+    let synth = SynthOptions {
+        contact: opts.learn.contact,
+        time_limit: opts
+            .synth
+            .time_limit
+            .map(|limit| limit.saturating_sub(start.elapsed())),
+        ..opts.synth.clone()
+    };
+    let placement = place(&task.problem, &rules, &task.demos, &opts.like, &synth)?;
+    Ok(Outcome {
+        learned,
+        rules,
+        placement,
+    })
+}
