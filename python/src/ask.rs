@@ -58,7 +58,7 @@ pub struct PyAskResult {
     learned_rcc: String,
     demos: Vec<CoreScene>,
     answers_json: String,
-    progress: rccpack_core::ask::Progress,
+    progress: rccpack_core::ask::Tally,
     out_of_budget: bool,
 }
 

@@ -4,7 +4,7 @@ use crate::errors::{guard, rules_error};
 use pyo3::exceptions::{PyIndexError, PyKeyError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyInt, PyString, PyTuple};
-use rccpack_core::infer::{english::statement_reading, statement_text};
+use rccpack_core::infer::{statement_reading, statement_text};
 use rccpack_core::rules::{print_rule, print_rules, Strength};
 use rccpack_core::{parse_rules, Rule as CoreRule, RuleSet as CoreRuleSet};
 
