@@ -8,7 +8,7 @@
 # PyPI, builds the CLI the parity tests compare with, builds and installs
 # the extension (`maturin develop`, dev profile; the core and every
 # dependency are optimised, see Cargo.toml), then runs pytest and
-# `mypy --strict` on the tests, the example and the bench.
+# `mypy --strict` on the tests, the example and the bench, and stubtest.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(dirname "$here")"
@@ -40,6 +40,7 @@ echo "== python: pytest"
 cd "$here"
 "$venv/bin/python" -m pytest -q tests
 
-echo "== python: mypy --strict"
+echo "== python: mypy --strict, stubtest (the stubs against the built module)"
 "$venv/bin/python" -m mypy --strict tests examples bench.py
+"$venv/bin/python" -m mypy.stubtest rccpack
 echo "== python ok"

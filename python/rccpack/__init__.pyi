@@ -49,7 +49,7 @@ class InternalError(Error):
 
 @final
 class Space:
-    def __init__(self, width: int, height: int, x: int = 0, y: int = 0) -> None: ...
+    def __new__(cls, width: int, height: int, x: int = 0, y: int = 0) -> Space: ...
     @property
     def x(self) -> int: ...
     @property
@@ -61,8 +61,8 @@ class Space:
 
 @final
 class Object:
-    def __init__(
-        self,
+    def __new__(
+        klass,
         id: str,
         cls: str,
         width: int,
@@ -70,7 +70,7 @@ class Object:
         x: Optional[int] = None,
         y: Optional[int] = None,
         fixed: bool = False,
-    ) -> None: ...
+    ) -> Object: ...
     @property
     def id(self) -> str: ...
     @property
@@ -92,7 +92,7 @@ class Object:
 
 @final
 class Scene:
-    def __init__(self, space: Space, objects: Sequence[Object], grid: int = 10) -> None: ...
+    def __new__(cls, space: Space, objects: Sequence[Object], grid: int = 10) -> Scene: ...
     @staticmethod
     def from_json(text: str) -> Scene: ...
     @staticmethod
@@ -153,8 +153,8 @@ class RuleSet:
     @property
     def classes(self) -> list[str]: ...
     def __len__(self) -> int: ...
-    def __getitem__(self, key: Union[int, str]) -> Rule: ...
-    def __contains__(self, name: str) -> bool: ...
+    def __getitem__(self, key: Union[int, str], /) -> Rule: ...
+    def __contains__(self, name: object, /) -> bool: ...
     def __iter__(self) -> Iterator[Rule]: ...
 
 def load_rules(path: _Path) -> RuleSet: ...
@@ -396,3 +396,40 @@ def ask(
     contact: str = "point",
     templates: str = "second",
 ) -> AskResult: ...
+
+__all__ = [
+    "AskError",
+    "AskResult",
+    "Conflict",
+    "Error",
+    "Evaluation",
+    "InternalError",
+    "Learned",
+    "LearnError",
+    "Object",
+    "Question",
+    "Resemblance",
+    "Rule",
+    "RuleReport",
+    "RulesError",
+    "RuleSet",
+    "Scene",
+    "SceneError",
+    "SolveStats",
+    "Space",
+    "Statement",
+    "Status",
+    "SynthError",
+    "SynthResult",
+    "__version__",
+    "ask",
+    "evaluate",
+    "learn",
+    "load_rules",
+    "load_scene",
+    "load_scenes",
+    "render",
+    "render_png",
+    "scenes_to_json",
+    "synthesize",
+]
