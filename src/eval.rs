@@ -7,7 +7,7 @@
 //!
 //! Practical: [`Evaluator::new`] builds a [`ClassAtoms`] table once
 //! (`O(n²)` pairs), after which every (object, rule) value is a walk over a
-//! compiled formula with one byte lookup per atom.
+//! compiled formula with one table lookup per atom.
 
 use crate::relations::{ClassAtoms, ClassIndex, Contact, Quant, Relation};
 use crate::rules::{Formula, Rule, RuleSet, Scope, Target};

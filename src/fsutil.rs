@@ -133,10 +133,22 @@ impl DirLock {
     }
 }
 
+/// Bytes that are not UTF-8 text: where the first bad byte is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("not UTF-8 text: invalid byte 0x{byte:02x} at byte offset {offset} (line {line}); expected a UTF-8 text file")]
+pub struct NotUtf8 {
+    /// The first byte that is not UTF-8.
+    pub byte: u8,
+    /// Its offset from the start.
+    pub offset: usize,
+    /// Its 1-based line.
+    pub line: usize,
+}
+
 /// Text from the bytes of a file: UTF-8, a leading byte-order mark
 /// dropped; invalid UTF-8 is an error naming the byte offset of the first
 /// bad byte (and its line).
-pub fn utf8_text(bytes: Vec<u8>) -> Result<String, String> {
+pub fn utf8_text(bytes: Vec<u8>) -> Result<String, NotUtf8> {
     match String::from_utf8(bytes) {
         Ok(mut s) => {
             if s.starts_with('\u{feff}') {
@@ -148,10 +160,11 @@ pub fn utf8_text(bytes: Vec<u8>) -> Result<String, String> {
             let at = e.utf8_error().valid_up_to();
             let b = e.as_bytes();
             let line = b[..at].iter().filter(|&&c| c == b'\n').count() + 1;
-            Err(format!(
-                "not UTF-8 text: invalid byte 0x{:02x} at byte offset {at} (line {line}); expected a UTF-8 text file",
-                b[at]
-            ))
+            Err(NotUtf8 {
+                byte: b[at],
+                offset: at,
+                line,
+            })
         }
     }
 }
@@ -221,7 +234,16 @@ mod tests {
     fn utf8_with_bom_and_bad_bytes() {
         assert_eq!(utf8_text(b"\xef\xbb\xbfrule".to_vec()).unwrap(), "rule");
         let e = utf8_text(b"ab\ncd\xffe".to_vec()).unwrap_err();
-        assert!(e.contains("0xff at byte offset 5 (line 2)"), "{e}");
+        let want = NotUtf8 {
+            byte: 0xff,
+            offset: 5,
+            line: 2,
+        };
+        assert_eq!(e, want);
+        assert!(
+            e.to_string().contains("0xff at byte offset 5 (line 2)"),
+            "{e}"
+        );
     }
 
     #[cfg(unix)]

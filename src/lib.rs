@@ -17,14 +17,14 @@
 //!
 //! ## A scene, some rules, a score
 //!
-//! A [`scene::Scene`] is a table (the *space*), a grid step and axis-aligned
+//! A [`Scene`] is a table (the *space*), a grid step and axis-aligned
 //! rectangles of named classes; north is +y. Rules are Boolean formulas over
 //! directional Region Connection Calculus relations lifted to classes:
 //! `DR_N(B, R)` reads "every B is north of every R", `EC_W(G, *)` "every G
 //! touches something on that thing's west side".
 //!
 //! ```
-//! use rccpack::{eval::evaluate, relations::Contact, rules::parse_rules, scene::Scene};
+//! use rccpack::{evaluate, parse_rules, Contact, Scene};
 //!
 //! let scene = Scene::from_json(r#"{
 //!   "space": {"width": 100, "height": 100},
@@ -45,18 +45,106 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! ## Learning rules from demonstrations
+//!
+//! [`learn`] weighs every statement of the templates (or of a statement
+//! set you give) against a null model of random layouts and keeps the ones
+//! the demonstrations keep far more often than chance (SPEC §7–§8):
+//!
+//! ```
+//! use rccpack::{learn, LearnParams, Scene};
+//!
+//! let demos = rccpack::scene::scenes_from_json(
+//!     &std::fs::read_to_string("examples/box-packing/demos.json")?,
+//! )?;
+//! let params = LearnParams { samples: 200, ..LearnParams::default() };
+//! let learned = learn(&demos, None, &params)?;
+//! let rules = learned.rules();
+//! assert!(rules.rules.iter().any(|r| r.name == "B_dr_n_R")); // blue north of red
+//! print!("{}", learned.to_rcc()); // the `.rcc` file `rccpack learn` writes
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! ## Placing new objects
+//!
+//! [`synthesize`] places every unplaced object of a problem on the grid so
+//! that the hard rules hold and the score is as high as it can be (SPEC §9);
+//! every layout it returns has passed the independent check
+//! [`synth::verify_solution`].
+//!
+//! ```
+//! use rccpack::{parse_rules, synthesize, Object, Scene, Space, Status, SynthOptions};
+//!
+//! let problem = Scene::new(
+//!     Space { x: 0, y: 0, width: 60, height: 60 },
+//!     10,
+//!     vec![
+//!         Object::fixed_at("wall", "W", 0, 0, 60, 10),
+//!         Object::movable("r1", "R", 20, 20),
+//!         Object::movable("b1", "B", 20, 20),
+//!     ],
+//! )?;
+//! let rules = parse_rules(
+//!     "rule red_on_wall: EC_N(R, W)\n\
+//!      rule blue_on_red: EC_N(B, R)\n",
+//! )?;
+//! let result = synthesize(&problem, &rules, &SynthOptions::default())?;
+//! assert_eq!(result.status, Status::Optimal);
+//! let layout = result.scene.expect("a layout");
+//! let red = &layout.objects[1];
+//! assert_eq!(red.y, Some(10)); // on the wall
+//! assert_eq!(result.evaluation.expect("scored").score, 1.0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! ## The whole task
+//!
+//! A task folder holds `demos.json`, `problem.json` and optionally
+//! `statements.rcc`; [`task::run`] learns, checks the rules against the
+//! problem and places it with the demonstrations as the warm start and the
+//! resemblance target (SPEC §12) — what `rccpack run` does:
+//!
+//! ```
+//! use rccpack::task::{self, RunOptions, Task};
+//!
+//! let task = Task::load("examples/box-packing")?;
+//! let mut opts = RunOptions::default();
+//! opts.learn.samples = 200;
+//! opts.synth.node_limit = Some(20_000);
+//! let outcome = task::run(&task, &opts)?;
+//! let layout = outcome.placement.result.scene.expect("a layout");
+//! assert!(layout.is_complete());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! ## Where things live
 //!
 //! - [`scene`]: geometry, the JSON format, validation with field paths.
-//! - [`relations`]: the eight relations, contact modes, one byte of relation
-//!   bits per ordered pair, class atoms.
+//! - [`relations`]: the sixteen relations (`DR`, `EC`, `FL`, `AL` × `N S E
+//!   W`) defined once in a table, contact modes, a `u16` of relation bits
+//!   per ordered pair, class atoms.
 //! - [`rules`]: the `.rcc` language — AST, parser (grammar in
 //!   `grammar/rcc.pest`), checks, printer, diagnostics.
 //! - [`eval`]: the one evaluator and the §6 score.
-//! - [`render`]: SVG and PNG pictures.
-//! - [`synth`]: synthesis of layouts.
+//! - [`infer`]: learning (SPEC §7–§8, §11.5).
+//! - [`synth`]: synthesis of layouts; [`synth::emit`] writes the same model
+//!   for other solvers.
+//! - [`resemblance`]: SPEC §12, the second objective.
+//! - [`ask`]: the questions of SPEC §13, without I/O.
+//! - [`task`]: the task folder and the whole pipeline.
+//! - [`render`]: SVG pictures; PNG with the `png` feature.
 //! - [`limits`]: the documented limits on user-supplied numbers.
-//! - [`fsutil`]: the one atomic file writer every writer uses.
+//! - [`fsutil`]: the one atomic file writer, UTF-8 reading, the folder lock.
+//! - `studio` (feature `studio`): the local web app; `bench` (feature
+//!   `bench`): the benchmark suites.
+//!
+//! ## Features
+//!
+//! The default features build the whole command-line tool. An embedder
+//! writes `rccpack = { version = "0.1", default-features = false }` and gets
+//! the core above (learning, evaluation, synthesis, SVG, the task pipeline)
+//! with no web server, image or CLI crates; `png`, `studio`, `bench` and
+//! `cli` add the rest (see README "Use as a library").
 //!
 //! The command-line tool `rccpack` wraps these (`check`, `score`, `render`,
 //! …); see the README.
@@ -88,7 +176,7 @@ pub use infer::{learn, InferError, LearnParams, Learned, Templates};
 pub use relations::Contact;
 pub use render::{render_svg, RenderOptions};
 pub use rules::{parse_rules, Diagnostic, Rule, RuleSet, RulesError};
-pub use scene::{Object, Scene, SceneError, Space};
+pub use scene::{Object, Scene, SceneError, SceneErrorKind, Space};
 pub use synth::{
     synthesize, Conflict, Resemblance, SolveStats, Status, SynthError, SynthOptions, SynthResult,
 };

@@ -95,6 +95,28 @@ pub struct Object {
 }
 
 impl Object {
+    /// An unplaced movable object (what a problem asks to place).
+    pub fn movable(id: &str, class: &str, width: i64, height: i64) -> Self {
+        Object {
+            id: id.into(),
+            class: class.into(),
+            x: None,
+            y: None,
+            width,
+            height,
+            fixed: false,
+        }
+    }
+
+    /// A placed movable object (as in a demonstration).
+    pub fn placed(id: &str, class: &str, x: i64, y: i64, width: i64, height: i64) -> Self {
+        Object {
+            x: Some(x),
+            y: Some(y),
+            ..Object::movable(id, class, width, height)
+        }
+    }
+
     /// A fixed, placed object (a wall).
     pub fn fixed_at(id: &str, class: &str, x: i64, y: i64, width: i64, height: i64) -> Self {
         Object {
@@ -135,8 +157,40 @@ pub struct Scene {
     pub objects: Vec<Object>,
 }
 
+/// What rule of SPEC §1–§2 a scene breaks ([`SceneError::kind`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum SceneErrorKind {
+    /// The JSON text does not match the scene format (syntax, a missing
+    /// or unknown field, a wrong type, a float where an integer belongs).
+    Json,
+    /// More objects than [`crate::limits::MAX_OBJECTS`].
+    TooManyObjects,
+    /// A coordinate or size beyond [`crate::limits::MAX_COORD`].
+    OutOfRange,
+    /// A width or height below 1 (the space's or an object's).
+    BadSize,
+    /// A grid step below 1.
+    BadGrid,
+    /// A class name that is not an identifier.
+    BadClass,
+    /// An empty object id.
+    EmptyId,
+    /// Two objects with one id.
+    DuplicateId,
+    /// An object with `x` or `y` but not both.
+    HalfPlaced,
+    /// A fixed object without a position.
+    FixedUnplaced,
+    /// A placed object outside the space.
+    Outside,
+    /// Two placed objects whose interiors overlap.
+    Overlap,
+}
+
 /// Why a scene (or a demonstrations file) is invalid.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SceneError {
     /// The JSON text does not match the scene format.
     #[error("{path}: {message}")]
@@ -149,6 +203,8 @@ pub enum SceneError {
     /// The scene parsed but breaks a rule of SPEC §1.
     #[error("{path}: {message}")]
     Invalid {
+        /// Which rule.
+        kind: SceneErrorKind,
         /// Field path of the first object involved, e.g. `objects[2]`.
         path: String,
         /// What is wrong, naming the objects.
@@ -163,8 +219,16 @@ impl SceneError {
             SceneError::Json { path, .. } | SceneError::Invalid { path, .. } => path,
         }
     }
-    fn invalid(path: impl Into<String>, message: impl Into<String>) -> Self {
+    /// What kind of problem.
+    pub fn kind(&self) -> SceneErrorKind {
+        match self {
+            SceneError::Json { .. } => SceneErrorKind::Json,
+            SceneError::Invalid { kind, .. } => *kind,
+        }
+    }
+    fn invalid(kind: SceneErrorKind, path: impl Into<String>, message: impl Into<String>) -> Self {
         SceneError::Invalid {
+            kind,
             path: path.into(),
             message: message.into(),
         }
@@ -184,7 +248,12 @@ impl SceneError {
                 path: join(path),
                 message,
             },
-            SceneError::Invalid { path, message } => SceneError::Invalid {
+            SceneError::Invalid {
+                kind,
+                path,
+                message,
+            } => SceneError::Invalid {
+                kind,
                 path: join(path),
                 message,
             },
@@ -387,6 +456,17 @@ impl Scene {
         Ok(scene)
     }
 
+    /// A scene from its parts, validated ([`Scene::validate`]).
+    pub fn new(space: Space, grid: i64, objects: Vec<Object>) -> Result<Scene, SceneError> {
+        let scene = Scene {
+            space,
+            grid,
+            objects,
+        };
+        scene.validate()?;
+        Ok(scene)
+    }
+
     /// Serialise as pretty JSON (ids always written; `fixed` only when true).
     pub fn to_json(&self) -> String {
         let mut s = serde_json::to_string_pretty(&SceneJson::from_scene(self))
@@ -404,6 +484,7 @@ impl Scene {
         use crate::limits::{MAX_COORD, MAX_OBJECTS};
         if self.objects.len() > MAX_OBJECTS {
             return Err(SceneError::invalid(
+                SceneErrorKind::TooManyObjects,
                 "objects",
                 format!(
                     "{} objects is too many; expected at most {MAX_OBJECTS}",
@@ -418,6 +499,7 @@ impl Scene {
                 Ok(())
             } else {
                 Err(SceneError::invalid(
+ SceneErrorKind::OutOfRange,
                     path,
                     format!("{what} {v} is out of range; expected an integer from -{MAX_COORD} to {MAX_COORD}"),
                 ))
@@ -426,6 +508,7 @@ impl Scene {
         let size = |path: &str, what: &str, v: i64| -> Result<(), SceneError> {
             if v > MAX_COORD {
                 Err(SceneError::invalid(
+                    SceneErrorKind::OutOfRange,
                     path,
                     format!("{what} {v} is too large; expected an integer from 1 to {MAX_COORD}"),
                 ))
@@ -450,6 +533,7 @@ impl Scene {
         }
         if self.space.width < 1 || self.space.height < 1 {
             return Err(SceneError::invalid(
+                SceneErrorKind::BadSize,
                 "space",
                 format!(
                     "space size {}x{} is invalid; width and height must be at least 1",
@@ -459,6 +543,7 @@ impl Scene {
         }
         if self.grid < 1 {
             return Err(SceneError::invalid(
+                SceneErrorKind::BadGrid,
                 "grid",
                 format!(
                     "grid step {} is invalid; expected an integer of at least 1",
@@ -472,6 +557,7 @@ impl Scene {
             let path = format!("objects[{i}]");
             if !is_identifier(&o.class) {
                 return Err(SceneError::invalid(
+ SceneErrorKind::BadClass,
                     format!("{path}.class"),
                     format!(
                         "class `{}` is not an identifier; expected letters, digits and `_`, not starting with a digit",
@@ -481,6 +567,7 @@ impl Scene {
             }
             if o.id.is_empty() {
                 return Err(SceneError::invalid(
+                    SceneErrorKind::EmptyId,
                     format!("{path}.id"),
                     "object id is empty",
                 ));
@@ -488,6 +575,7 @@ impl Scene {
             if !ids.insert(o.id.as_str()) {
                 let first = self.objects.iter().position(|p| p.id == o.id).unwrap_or(0);
                 return Err(SceneError::invalid(
+                    SceneErrorKind::DuplicateId,
                     format!("{path}.id"),
                     format!(
                         "duplicate object id `{}` (also objects[{first}])",
@@ -497,6 +585,7 @@ impl Scene {
             }
             if o.width < 1 || o.height < 1 {
                 return Err(SceneError::invalid(
+                    SceneErrorKind::BadSize,
                     path,
                     format!(
                         "object `{}` has size {}x{}; width and height must be at least 1",
@@ -509,6 +598,7 @@ impl Scene {
             if o.x.is_some() != o.y.is_some() {
                 let missing = if o.x.is_none() { "x" } else { "y" };
                 return Err(SceneError::invalid(
+                    SceneErrorKind::HalfPlaced,
                     format!("{path}.{missing}"),
                     format!(
                         "object `{}` has only one coordinate; give both x and y or neither",
@@ -518,6 +608,7 @@ impl Scene {
             }
             if o.fixed && !o.is_placed() {
                 return Err(SceneError::invalid(
+                    SceneErrorKind::FixedUnplaced,
                     path,
                     format!(
                         "fixed object `{}` has no position; fixed objects must be placed",
@@ -528,6 +619,7 @@ impl Scene {
             if let Some(r) = o.rect() {
                 if !r.inside(&space) {
                     return Err(SceneError::invalid(
+ SceneErrorKind::Outside,
                         path,
                         format!(
                             "object `{}` at [{}, {}]x[{}, {}] lies outside the space [{}, {}]x[{}, {}]",
@@ -562,6 +654,7 @@ impl Scene {
                 if ra.interiors_overlap(&rb) {
                     let (i, j) = (i.min(j), i.max(j));
                     return Err(SceneError::invalid(
+                        SceneErrorKind::Overlap,
                         format!("objects[{j}]"),
                         format!(
                             "objects `{}` (objects[{i}]) and `{}` (objects[{j}]) overlap",

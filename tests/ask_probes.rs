@@ -705,7 +705,7 @@ fn probes_agree_with_enumeration() {
 }
 
 #[test]
-#[ignore = "slow: cargo test --release --test ask_probes -- --ignored"]
+#[ignore = "slow: cargo test --release --test integration ask_probes:: -- --ignored"]
 fn probes_agree_with_enumeration_large() {
     let t = run(10_000..14_000);
     assert_clean(&t);

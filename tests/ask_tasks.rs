@@ -21,7 +21,7 @@
 //! - (c) synthesis with the held rules (soft, as learned) and the
 //!   demonstrations as like-scenes gives a layout keeping the ground truth.
 //!
-//! `cargo test --test ask_tasks -- --nocapture` prints one table row per
+//! `cargo test --test integration ask_tasks:: -- --nocapture` prints one table row per
 //! task.
 
 use rand::{RngExt, SeedableRng};
@@ -587,7 +587,7 @@ fn task_three() {
 /// timed out (the other properties fail now and then for the reasons the
 /// known failures above document).
 #[test]
-#[ignore = "slower: cargo test --release --test ask_tasks -- --ignored --nocapture"]
+#[ignore = "slower: cargo test --release --test integration ask_tasks:: -- --ignored --nocapture"]
 fn tasks_on_many_seeds() {
     let mut total = [0usize; 4];
     let mut runs = 0;

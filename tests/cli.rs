@@ -1,19 +1,7 @@
 //! The command line as a user meets it: exit codes, messages, JSON output.
 
+use crate::support::{rccpack, stderr};
 use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn rccpack(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rccpack"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("run rccpack")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 fn tmp(name: &str, text: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("rccpack-cli-{}", std::process::id()));

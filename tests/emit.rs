@@ -550,7 +550,7 @@ fn skip(why: String) {
 /// Runs `peer` on the cases and compares with rccpack.
 fn against_peer(peer: Peer, cases: &[Case], time_limit: Duration) {
     if let Err(m) = peers::check_available(peer) {
-        skip(m);
+        skip(m.to_string());
         return;
     }
     let (mut optimal, mut infeasible) = (0, 0);
@@ -645,7 +645,7 @@ fn definitions_only(e: &Emitted, vals: &[i64]) -> Emitted {
 /// one) and at a random assignment, preferring models with `at_least`.
 fn definitions_agree(peer: Peer, from: u64, n: usize) {
     if let Err(m) = peers::check_available(peer) {
-        skip(m);
+        skip(m.to_string());
         return;
     }
     let mut with_at_least = 0;

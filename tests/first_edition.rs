@@ -11,7 +11,6 @@
 //! solution; both contact modes.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 const RULES: [&str; 4] = ["templates", "learned", "pilot", "syntax"];
 const SCENES: [&str; 3] = ["demos", "problem", "solution"];
@@ -23,11 +22,7 @@ fn dir() -> PathBuf {
 /// Run the binary in the fixture folder; stdout+stderr and the exit code as
 /// the golden files hold them.
 fn run(args: &[&str]) -> (String, i32) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rccpack"))
-        .args(args)
-        .current_dir(dir())
-        .output()
-        .expect("run rccpack");
+    let out = crate::support::rccpack_in(&dir(), args);
     let mut s = String::from_utf8(out.stdout).expect("utf-8 stdout");
     s.push_str(&String::from_utf8(out.stderr).expect("utf-8 stderr"));
     (s, out.status.code().unwrap_or(-1))

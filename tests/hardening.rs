@@ -1,25 +1,10 @@
 //! Issue 21 (hardening), through the built binary: what a hostile but fair
 //! user tried, and what the tool must answer.
 
+use crate::support::{rccpack, stderr, stdout};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-fn rccpack(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rccpack"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("run rccpack")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
 
 /// A fresh folder for one test.
 fn dir(tag: &str) -> PathBuf {

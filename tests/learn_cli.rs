@@ -1,15 +1,8 @@
 //! `rccpack learn` on the command line: output, report, exit codes and
 //! messages.
 
+use crate::support::{rccpack, stderr};
 use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn rccpack(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rccpack"))
-        .args(args)
-        .output()
-        .expect("run rccpack")
-}
 
 fn demos() -> String {
     concat!(
@@ -23,10 +16,6 @@ fn tmp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("rccpack-learn-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 #[test]

@@ -1128,10 +1128,27 @@ fn render_unknown_landmark() {
     let text = check_landmarks(&ok(src), &scene_walls())
         .unwrap_err()
         .render("x.rcc", src, false);
-    assert_eq!(text, UNKNOWN_LANDMARK);
+    golden("unknown_landmark", &text);
 }
 
 // ---- rendered diagnostics (exact text) ---------------------------------
+
+/// Compare a rendered diagnostic with `tests/fixtures/diagnostics/NAME.txt`;
+/// `RCCPACK_BLESS=1` rewrites the file instead (only on purpose: the text is
+/// what users see).
+fn golden(name: &str, actual: &str) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures/diagnostics")
+        .join(format!("{name}.txt"));
+    if std::env::var_os("RCCPACK_BLESS").is_some() {
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(&path, actual).unwrap();
+        return;
+    }
+    let expected = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("{}: {e} (RCCPACK_BLESS=1 writes it)", path.display()));
+    assert_eq!(actual, expected, "{} differs", path.display());
+}
 
 fn render(src: &str) -> String {
     parse_rules(src).unwrap_err().render("x.rcc", src, false)
@@ -1139,29 +1156,32 @@ fn render(src: &str) -> String {
 
 #[test]
 fn render_unknown_relation() {
-    assert_eq!(render("rule a: DR_X(B, R)\n"), UNKNOWN_RELATION);
+    golden("unknown_relation", &render("rule a: DR_X(B, R)\n"));
 }
 
 #[test]
 fn render_mixed_subjects() {
-    assert_eq!(render("rule a: DR_N(B, R) & DR_S(G, R)\n"), MIXED_SUBJECTS);
+    golden(
+        "mixed_subjects",
+        &render("rule a: DR_N(B, R) & DR_S(G, R)\n"),
+    );
 }
 
 #[test]
 fn render_missing_colon() {
-    assert_eq!(render("rule a DR_N(B, R)\n"), MISSING_COLON);
+    golden("missing_colon", &render("rule a DR_N(B, R)\n"));
 }
 
 #[test]
 fn render_bad_p() {
-    assert_eq!(render("rule a p 1.5: DR_N(B, R)\n"), BAD_P);
+    golden("bad_p", &render("rule a p 1.5: DR_N(B, R)\n"));
 }
 
 #[test]
 fn render_duplicate_name() {
-    assert_eq!(
-        render("rule a: DR_N(B, R)\nrule a: DR_S(B, R)\n"),
-        DUPLICATE_NAME
+    golden(
+        "duplicate_name",
+        &render("rule a: DR_N(B, R)\nrule a: DR_S(B, R)\n"),
     );
 }
 
@@ -1176,7 +1196,7 @@ fn render_unknown_class() {
     let text = check_classes(&rs, &scene)
         .unwrap_err()
         .render("x.rcc", src, false);
-    assert_eq!(text, UNKNOWN_CLASS);
+    golden("unknown_class", &text);
 }
 
 #[test]
@@ -1209,74 +1229,69 @@ fn render_long_line_falls_back_to_plain() {
     );
 }
 
-const UNKNOWN_LANDMARK: &str = "error: x.rcc:1:17: unknown landmark `@w_east` in rule `a`: expected the id of a fixed object; the scene's fixed objects are w_west, W1\n   ╭─[ x.rcc:1:17 ]\n   │\n 1 │ rule a: some R: EC_E(R, @w_east)\n   │                 ────────┬───────  \n   │                         ╰───────── unknown landmark `@w_east` in rule `a`: expected the id of a fixed object; the scene's fixed objects are w_west, W1\n───╯\n";
-const UNKNOWN_RELATION: &str = "error: x.rcc:1:9: unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W, FL_N, FL_S, FL_E, FL_W, AL_N, AL_S, AL_E, AL_W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_X(B, R)\n   │         ──┬─  \n   │           ╰─── unknown relation `DR_X`: expected one of DR_N, DR_S, DR_E, DR_W, EC_N, EC_S, EC_E, EC_W, FL_N, FL_S, FL_E, FL_W, AL_N, AL_S, AL_E, AL_W\n───╯\n";
-const MIXED_SUBJECTS: &str = "error: x.rcc:1:22: rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n   ╭─[ x.rcc:1:22 ]\n   │\n 1 │ rule a: DR_N(B, R) & DR_S(G, R)\n   │                      ─────┬────  \n   │                           ╰────── rule `a` mixes subject classes: this atom is about `G`, but the rule's first atom is about `B`\n───╯\n";
-const MISSING_COLON: &str = "error: x.rcc:1:8: expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n   ╭─[ x.rcc:1:8 ]\n   │\n 1 │ rule a DR_N(B, R)\n   │        ──┬─  \n   │          ╰─── expected `:` or a modifier (`weight W`, `p P` or `hard`), found `DR_N`\n───╯\n";
-const BAD_P: &str = "error: x.rcc:1:10: bad p `1.5`: expected a number with 0 < p < 1\n   ╭─[ x.rcc:1:10 ]\n   │\n 1 │ rule a p 1.5: DR_N(B, R)\n   │          ─┬─  \n   │           ╰─── bad p `1.5`: expected a number with 0 < p < 1\n───╯\n";
-const DUPLICATE_NAME: &str = "error: x.rcc:2:6: duplicate rule name `a`: it is already defined on line 1\n   ╭─[ x.rcc:2:6 ]\n   │\n 2 │ rule a: DR_S(B, R)\n   │      ┬  \n   │      ╰── duplicate rule name `a`: it is already defined on line 1\n───╯\n";
-const UNKNOWN_CLASS: &str = "error: x.rcc:1:9: unknown class `B` in rule `a`: the scene has classes R, W\n   ╭─[ x.rcc:1:9 ]\n   │\n 1 │ rule a: DR_N(B, R)\n   │         ─────┬────  \n   │              ╰────── unknown class `B` in rule `a`: the scene has classes R, W\n───╯\nerror: x.rcc:2:9: unknown class `Q` in rule `b`: the scene has classes R, W\n   ╭─[ x.rcc:2:9 ]\n   │\n 2 │ rule b: DR_N(R, Q)\n   │         ─────┬────  \n   │              ╰────── unknown class `Q` in rule `b`: the scene has classes R, W\n───╯\n";
-
 #[test]
 fn render_quantified_landmark() {
-    assert_eq!(
-        render("rule a: EC_E(B, some @w_west)\n"),
-        QUANTIFIED_LANDMARK
+    golden(
+        "quantified_landmark",
+        &render("rule a: EC_E(B, some @w_west)\n"),
     );
 }
 
 #[test]
 fn render_bad_count() {
-    assert_eq!(render("rule a: DR_N(B, at least 2.0 G)\n"), BAD_COUNT);
+    golden("bad_count", &render("rule a: DR_N(B, at least 2.0 G)\n"));
 }
 
 #[test]
 fn render_count_too_large() {
-    assert_eq!(
-        render("rule a: DR_N(B, at most 65536 G)\n"),
-        COUNT_TOO_LARGE
+    golden(
+        "count_too_large",
+        &render("rule a: DR_N(B, at most 65536 G)\n"),
     );
 }
 
 #[test]
 fn render_missing_count() {
-    assert_eq!(render("rule a: DR_N(B, at least G)\n"), MISSING_COUNT);
+    golden("missing_count", &render("rule a: DR_N(B, at least G)\n"));
 }
 
 #[test]
 fn render_scope_subject_mismatch() {
-    assert_eq!(
-        render("rule a: some G: FL_N(G, G) & FL_N(B, G)\n"),
-        SCOPE_SUBJECT_MISMATCH
+    golden(
+        "scope_subject_mismatch",
+        &render("rule a: some G: FL_N(G, G) & FL_N(B, G)\n"),
     );
 }
 
 #[test]
 fn render_star_subject() {
-    assert_eq!(render("rule a: DR_N(*, R)\n"), STAR_SUBJECT);
+    golden("star_subject", &render("rule a: DR_N(*, R)\n"));
 }
 
 #[test]
 fn render_landmark_subject() {
-    assert_eq!(render("rule a: DR_N(@w, R)\n"), LANDMARK_SUBJECT);
+    golden("landmark_subject", &render("rule a: DR_N(@w, R)\n"));
 }
 
 #[test]
 fn render_star_scope_subject() {
-    assert_eq!(render("rule a: some *: DR_N(B, R)\n"), STAR_SCOPE_SUBJECT);
+    golden(
+        "star_scope_subject",
+        &render("rule a: some *: DR_N(B, R)\n"),
+    );
 }
 
 #[test]
 fn render_landmark_scope_subject() {
-    assert_eq!(
-        render("rule a: no @w: DR_N(B, R)\n"),
-        LANDMARK_SCOPE_SUBJECT
+    golden(
+        "landmark_scope_subject",
+        &render("rule a: no @w: DR_N(B, R)\n"),
     );
 }
 
 #[test]
 fn render_landmark_space() {
-    assert_eq!(render("rule a: DR_N(B, @ w)\n"), LANDMARK_SPACE);
+    golden("landmark_space", &render("rule a: DR_N(B, @ w)\n"));
 }
 
 #[test]
@@ -1287,17 +1302,6 @@ fn render_ten_thousand_digit_count_falls_back_to_plain() {
         "error: x.rcc:1:26: count `99999999999999999999…` (10000 digits) after `at least` is too large: expected a whole number from 0 to 65535\n"
     );
 }
-
-const QUANTIFIED_LANDMARK: &str = "error: x.rcc:1:17: quantifier `some` before landmark `@w_west`: a landmark takes no quantifier; expected `@w_west` alone\n   ╭─[ x.rcc:1:17 ]\n   │\n 1 │ rule a: EC_E(B, some @w_west)\n   │                 ──┬─  \n   │                   ╰─── quantifier `some` before landmark `@w_west`: a landmark takes no quantifier; expected `@w_west` alone\n───╯\n";
-const BAD_COUNT: &str = "error: x.rcc:1:26: bad count `2.0` after `at least`: expected a whole number in decimal digits, such as `at least 2`\n   ╭─[ x.rcc:1:26 ]\n   │\n 1 │ rule a: DR_N(B, at least 2.0 G)\n   │                          ─┬─  \n   │                           ╰─── bad count `2.0` after `at least`: expected a whole number in decimal digits, such as `at least 2`\n───╯\n";
-const COUNT_TOO_LARGE: &str = "error: x.rcc:1:25: count `65536` after `at most` is too large: expected a whole number from 0 to 65535\n   ╭─[ x.rcc:1:25 ]\n   │\n 1 │ rule a: DR_N(B, at most 65536 G)\n   │                         ──┬──  \n   │                           ╰──── count `65536` after `at most` is too large: expected a whole number from 0 to 65535\n───╯\n";
-const MISSING_COUNT: &str = "error: x.rcc:1:26: expected a count (a whole number such as 2), found `G`\n   ╭─[ x.rcc:1:26 ]\n   │\n 1 │ rule a: DR_N(B, at least G)\n   │                          ┬  \n   │                          ╰── expected a count (a whole number such as 2), found `G`\n───╯\n";
-const SCOPE_SUBJECT_MISMATCH: &str = "error: x.rcc:1:30: rule `a` is about `G` (`some G:`), but this atom is about `B`: expected every atom's subject to be `G`\n   ╭─[ x.rcc:1:30 ]\n   │\n 1 │ rule a: some G: FL_N(G, G) & FL_N(B, G)\n   │                              ─────┬────  \n   │                                   ╰────── rule `a` is about `G` (`some G:`), but this atom is about `B`: expected every atom's subject to be `G`\n───╯\n";
-const STAR_SUBJECT: &str = "error: x.rcc:1:14: expected a class name, found `*`\n   ╭─[ x.rcc:1:14 ]\n   │\n 1 │ rule a: DR_N(*, R)\n   │              ┬  \n   │              ╰── expected a class name, found `*`\n───╯\n";
-const LANDMARK_SUBJECT: &str = "error: x.rcc:1:14: expected a class name, found `@w`: the subject of an atom is a class, not a landmark\n   ╭─[ x.rcc:1:14 ]\n   │\n 1 │ rule a: DR_N(@w, R)\n   │              ─┬  \n   │               ╰── expected a class name, found `@w`: the subject of an atom is a class, not a landmark\n───╯\n";
-const STAR_SCOPE_SUBJECT: &str = "error: x.rcc:1:14: expected a class name after `some`, found `*`: a scene scope counts the objects of one class\n   ╭─[ x.rcc:1:14 ]\n   │\n 1 │ rule a: some *: DR_N(B, R)\n   │              ┬  \n   │              ╰── expected a class name after `some`, found `*`: a scene scope counts the objects of one class\n───╯\n";
-const LANDMARK_SCOPE_SUBJECT: &str = "error: x.rcc:1:12: expected a class name after `no`, found `@w`: a scene scope counts the objects of one class, not a landmark\n   ╭─[ x.rcc:1:12 ]\n   │\n 1 │ rule a: no @w: DR_N(B, R)\n   │            ─┬  \n   │             ╰── expected a class name after `no`, found `@w`: a scene scope counts the objects of one class, not a landmark\n───╯\n";
-const LANDMARK_SPACE: &str = "error: x.rcc:1:18: expected an object id right after `@`, found ` `\n   ╭─[ x.rcc:1:18 ]\n   │\n 1 │ rule a: DR_N(B, @ w)\n   │                  ┬  \n   │                  ╰── expected an object id right after `@`, found ` `\n───╯\n";
 
 // ---- depth and size limits -----------------------------------------------
 
@@ -1634,4 +1638,50 @@ proptest! {
         no_panic(&format!("rule x: {s} {c}: EC_N({c}, {q} {k} {t})"));
         no_panic(&format!("rule x: {q} {k} {c}: EC_N({c}, {t})"));
     }
+}
+
+/// Every diagnostic carries a kind code can match; a duplicate name points
+/// at the first definition too.
+#[test]
+fn diagnostics_have_kinds() {
+    let kind = |src: &str| parse_rules(src).unwrap_err().diagnostics[0].kind;
+    assert_eq!(
+        kind("rule a: DR_X(B, R)\n"),
+        DiagnosticKind::UnknownRelation
+    );
+    assert_eq!(kind("rule a DR_N(B, R)\n"), DiagnosticKind::Syntax);
+    assert_eq!(
+        kind("rule a p 1.5: DR_N(B, R)\n"),
+        DiagnosticKind::BadProbability
+    );
+    assert_eq!(
+        kind("rule a weight 0: DR_N(B, R)\n"),
+        DiagnosticKind::BadWeight
+    );
+    assert_eq!(
+        kind("rule a: DR_N(B, at least 2.0 G)\n"),
+        DiagnosticKind::BadCount
+    );
+    assert_eq!(
+        kind("rule a: DR_N(B, R) & DR_S(G, R)\n"),
+        DiagnosticKind::MixedSubjects
+    );
+    assert_eq!(
+        kind("rule a: EC_E(B, some @w)\n"),
+        DiagnosticKind::LandmarkQuantifier
+    );
+    let nested = format!("rule a: {}DR_N(B, R)\n", "!".repeat(10_000));
+    assert_eq!(kind(&nested), DiagnosticKind::TooDeep);
+    let src = "rule a: DR_N(B, R)\nrule a: DR_S(B, R)\n";
+    let d = &parse_rules(src).unwrap_err().diagnostics[0];
+    assert_eq!(d.kind, DiagnosticKind::DuplicateName);
+    let (first, what) = d.related.clone().expect("the first definition");
+    assert_eq!((first.start, what.as_str()), (5, "first defined here"));
+    let e = check_classes(&ok("rule a: DR_N(B, R)\n"), &scene_rw()).unwrap_err();
+    assert!(e
+        .diagnostics
+        .iter()
+        .all(|d| d.kind == DiagnosticKind::UnknownClass));
+    let e = check_landmarks(&ok("rule a: some R: EC_E(R, @nope)\n"), &scene_walls()).unwrap_err();
+    assert_eq!(e.diagnostics[0].kind, DiagnosticKind::UnknownLandmark);
 }

@@ -9,7 +9,6 @@ use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::scene::{scenes_from_json, Scene};
 use rccpack::synth::{synthesize, Status, SynthOptions};
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn example(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -135,15 +134,9 @@ fn limits_in_the_second_phase_keep_the_score_and_are_deterministic() {
 }
 
 fn rccpack(args: &[&str]) -> (String, String, i32) {
-    let out = Command::new(env!("CARGO_BIN_EXE_rccpack"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-        out.status.code().unwrap_or(-1),
-    )
+    let out = crate::support::rccpack(args);
+    let (stdout, stderr) = (crate::support::stdout(&out), crate::support::stderr(&out));
+    (stdout, stderr, out.status.code().unwrap_or(-1))
 }
 
 #[test]

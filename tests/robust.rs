@@ -2,6 +2,7 @@
 //! at and just past its bound (accepted and solved correctly at the limit,
 //! refused with a clear message just past it).
 
+use crate::support::{rccpack, stderr};
 use rccpack::relations::Contact;
 use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::scene::Scene;
@@ -143,18 +144,6 @@ fn huge_library_time_limit_is_no_deadline() {
 }
 
 // ---- command line ----------------------------------------------------------
-
-fn rccpack(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_rccpack"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("run rccpack")
-}
-
-fn stderr(o: &std::process::Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 /// `run … --time-limit 1e20` panicked in `Duration::from_secs_f64`; every
 /// command's time limit now goes through one validated parser: exit 1 with

@@ -1,6 +1,6 @@
 //! Scene JSON: parsing, defaults, validation messages, round trip.
 
-use rccpack::scene::{scenes_from_json, Scene, SceneError};
+use rccpack::scene::{scenes_from_json, Scene, SceneError, SceneErrorKind};
 
 fn err(text: &str) -> SceneError {
     Scene::from_json(text).expect_err("scene should be rejected")
@@ -63,6 +63,7 @@ fn rejects_overlap_naming_both_objects() {
     let e = err(r#"{"space":{"width":100,"height":100},"objects":[
         {"id":"a","class":"R","x":0,"y":0,"width":20,"height":20},
         {"id":"b","class":"R","x":10,"y":10,"width":20,"height":20}]}"#);
+    assert_eq!(e.kind(), SceneErrorKind::Overlap);
     assert_eq!(
         e.to_string(),
         "objects[1]: objects `a` (objects[0]) and `b` (objects[1]) overlap"
@@ -85,16 +86,15 @@ fn rejects_out_of_space() {
     let e = err(
         r#"{"space":{"width":100,"height":100},"objects":[{"id":"far","class":"R","x":90,"y":0,"width":20,"height":20}]}"#,
     );
-    assert!(
-        e.to_string().contains("object `far`") && e.to_string().contains("outside the space"),
-        "{e}"
-    );
+    assert_eq!(e.kind(), SceneErrorKind::Outside);
+    assert!(e.to_string().contains("object `far`"), "{e}");
 }
 
 #[test]
 fn rejects_duplicate_id() {
     let e = err(r#"{"space":{"width":100,"height":100},"objects":[
         {"id":"x","class":"R","width":20,"height":20},{"id":"x","class":"G","width":20,"height":20}]}"#);
+    assert_eq!(e.kind(), SceneErrorKind::DuplicateId);
     assert_eq!(
         e.to_string(),
         "objects[1].id: duplicate object id `x` (also objects[0])"
@@ -106,20 +106,24 @@ fn rejects_fixed_without_position_and_bad_sizes() {
     let e = err(
         r#"{"space":{"width":100,"height":100},"objects":[{"id":"w","class":"W","width":20,"height":20,"fixed":true}]}"#,
     );
-    assert!(
-        e.to_string().contains("fixed object `w` has no position"),
-        "{e}"
+    assert_eq!(
+        (e.kind(), e.path()),
+        (SceneErrorKind::FixedUnplaced, "objects[0]")
     );
     let e = err(
         r#"{"space":{"width":100,"height":100},"objects":[{"id":"z","class":"R","width":0,"height":20}]}"#,
     );
+    assert_eq!(e.kind(), SceneErrorKind::BadSize);
     assert!(e.to_string().contains("`z` has size 0x20"), "{e}");
     let e = err(r#"{"space":{"width":100,"height":100},"grid":0,"objects":[]}"#);
-    assert_eq!(e.path(), "grid");
+    assert_eq!((e.kind(), e.path()), (SceneErrorKind::BadGrid, "grid"));
     let e = err(
         r#"{"space":{"width":100,"height":100},"objects":[{"id":"h","class":"R","x":3,"width":2,"height":2}]}"#,
     );
-    assert_eq!(e.path(), "objects[0].y");
+    assert_eq!(
+        (e.kind(), e.path()),
+        (SceneErrorKind::HalfPlaced, "objects[0].y")
+    );
 }
 
 #[test]

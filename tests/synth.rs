@@ -508,7 +508,7 @@ fn directions_are_exact_with_off_grid_sizes() {
     assert_eq!(r.evaluation.unwrap().satisfied_weight, 1.0);
 }
 
-// ---- measurements (run with `cargo test --release --test synth -- --ignored --nocapture`)
+// ---- measurements (run with `cargo test --release --test integration synth:: -- --ignored --nocapture`)
 
 fn templates(a: &str, classes: &[&str]) -> Vec<Formula> {
     let mut out = Vec::new();

@@ -34,7 +34,7 @@
 //!
 //! Default run: 600 + 300 first-edition cases (symmetry breaking and
 //! redundant constraints on, then both off) and 4000 + 1500 second-edition
-//! cases. `cargo test --release --test synth_differential -- --ignored` runs
+//! cases. `cargo test --release --test integration synth_differential:: -- --ignored` runs
 //! 5000 + 2000 first-edition and 10000 + 4000 second-edition cases in
 //! spaces up to 60×60.
 
@@ -1124,13 +1124,13 @@ fn engine_matches_brute_force_without_symmetry_breaking_or_redundancy() {
 }
 
 #[test]
-#[ignore = "slow: run with `cargo test --release --test synth_differential -- --ignored`"]
+#[ignore = "slow: run with `cargo test --release --test integration synth_differential:: -- --ignored`"]
 fn engine_matches_brute_force_large() {
     assert_clean(run(100_000..105_000, LARGE, true, true));
 }
 
 #[test]
-#[ignore = "slow: run with `cargo test --release --test synth_differential -- --ignored`"]
+#[ignore = "slow: run with `cargo test --release --test integration synth_differential:: -- --ignored`"]
 fn engine_matches_brute_force_large_plain() {
     assert_clean(run(200_000..202_000, LARGE, false, false));
 }
@@ -1171,7 +1171,7 @@ fn engine_matches_brute_force_with_like_scenes_first_edition_rules() {
 }
 
 #[test]
-#[ignore = "slow: run with `cargo test --release --test synth_differential -- --ignored`"]
+#[ignore = "slow: run with `cargo test --release --test integration synth_differential:: -- --ignored`"]
 fn engine_matches_brute_force_with_like_scenes_large() {
     assert_clean(run_with(500_000..503_000, LARGE2, true, true, check_like));
 }
@@ -1195,13 +1195,13 @@ fn engine_matches_brute_force_second_edition_without_symmetry_breaking_or_redund
 }
 
 #[test]
-#[ignore = "slow: run with `cargo test --release --test synth_differential -- --ignored`"]
+#[ignore = "slow: run with `cargo test --release --test integration synth_differential:: -- --ignored`"]
 fn engine_matches_brute_force_second_edition_large() {
     assert_clean(run(300_000..310_000, LARGE2, true, true));
 }
 
 #[test]
-#[ignore = "slow: run with `cargo test --release --test synth_differential -- --ignored`"]
+#[ignore = "slow: run with `cargo test --release --test integration synth_differential:: -- --ignored`"]
 fn engine_matches_brute_force_second_edition_large_plain() {
     assert_clean(run(400_000..404_000, LARGE2, false, false));
 }

@@ -21,6 +21,8 @@ class SceneError(Error):
 
     path: str
     message: str
+    kind: str
+    """`json`, `overlap`, `outside`, `duplicate_id`, `out_of_range`, …"""
     file: Optional[str]
 
 class RulesError(Error):
@@ -29,6 +31,8 @@ class RulesError(Error):
     line: int
     column: int
     message: str
+    kind: str
+    """`syntax`, `unknown_relation`, `duplicate_name`, `unknown_class`, …"""
     report: str
     file: str
     diagnostics: list[tuple[int, int, str]]

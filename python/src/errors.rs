@@ -68,11 +68,14 @@ pub(crate) fn panic_error(p: Box<dyn std::any::Any + Send>) -> PyErr {
 
 /// `SceneError` with `path`, `message` and `file` attributes.
 pub(crate) fn scene_error(e: CoreSceneError, file: Option<&str>) -> PyErr {
-    let (path, message) = match &e {
-        CoreSceneError::Json { path, message } | CoreSceneError::Invalid { path, message } => {
-            (path.clone(), message.clone())
+    let path = e.path().to_string();
+    let message = match &e {
+        CoreSceneError::Json { message, .. } | CoreSceneError::Invalid { message, .. } => {
+            message.clone()
         }
+        other => other.to_string(),
     };
+    let kind = snake(&format!("{:?}", e.kind()));
     let text = match file {
         Some(f) => format!("{f}: {e}"),
         None => e.to_string(),
@@ -82,9 +85,26 @@ pub(crate) fn scene_error(e: CoreSceneError, file: Option<&str>) -> PyErr {
         let v = err.value(py);
         let _ = v.setattr("path", path);
         let _ = v.setattr("message", message);
+        let _ = v.setattr("kind", kind);
         let _ = v.setattr("file", file);
     });
     err
+}
+
+/// `UnknownRelation` → `unknown_relation` (the `kind` attributes).
+fn snake(name: &str) -> String {
+    let mut out = String::new();
+    for (i, c) in name.chars().enumerate() {
+        if c.is_ascii_uppercase() {
+            if i > 0 {
+                out.push('_');
+            }
+            out.push(c.to_ascii_lowercase());
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 /// `RulesError` with `line`, `column` (1-based, of the first problem),
@@ -109,6 +129,11 @@ pub(crate) fn rules_error(e: &CoreRulesError, src: &str, file: &str) -> PyErr {
                 (l, c, d.message.clone())
             })
             .collect();
+        let kind = e
+            .diagnostics
+            .first()
+            .map_or_else(|| "syntax".to_string(), |d| snake(&format!("{:?}", d.kind)));
+        let _ = v.setattr("kind", kind);
         let _ = v.setattr("line", line);
         let _ = v.setattr("column", column);
         let _ = v.setattr("message", message);

@@ -124,6 +124,7 @@ impl PyRuleSet {
                         .iter()
                         .map(|d| {
                             rccpack_core::Diagnostic::new(
+                                d.kind,
                                 rccpack_core::rules::Span::new(0, 0),
                                 d.message.clone(),
                             )

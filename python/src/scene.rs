@@ -388,15 +388,19 @@ pub(crate) fn scene_from_dict(v: &Bound<'_, PyAny>) -> Result<CoreScene, SceneEr
             "space" => space = Some(space_from(&v, "space")?),
             "grid" => grid = int(&v, "grid")?,
             "objects" => {
-                let list = v.cast::<PyList>().map_err(|_| {
-                    json_err(
+                let items: Vec<Bound<'_, PyAny>> = if let Ok(list) = v.cast::<PyList>() {
+                    list.iter().collect()
+                } else if let Ok(tuple) = v.cast::<PyTuple>() {
+                    tuple.iter().collect()
+                } else {
+                    return Err(json_err(
                         "objects",
                         format!("invalid type: {}, expected a list", unexpected(&v)),
-                    )
-                })?;
-                let mut out = Vec::with_capacity(list.len());
-                for (i, o) in list.iter().enumerate() {
-                    out.push(object_from(&o, &format!("objects[{i}]"), i)?);
+                    ));
+                };
+                let mut out = Vec::with_capacity(items.len());
+                for (i, o) in items.iter().enumerate() {
+                    out.push(object_from(o, &format!("objects[{i}]"), i)?);
                 }
                 objects = Some(out);
             }

@@ -117,7 +117,7 @@ def test_progress_callback_sees_improvements_and_can_stop() -> None:
         seen.append((score, elapsed))
         return len(seen) < 2  # False: stop after the second improvement
 
-    r = rccpack.synthesize(hard_problem(), HARD_RULES, time_limit=60.0, seed=1, progress=progress)
+    r = rccpack.synthesize(hard_problem(), HARD_RULES, time_limit=5.0, seed=1, progress=progress)
     assert 1 <= len(seen) <= 2
     assert all(0.0 <= s <= 1.0 and e >= 0.0 for s, e in seen)
     assert [s for s, _ in seen] == sorted(s for s, _ in seen)
@@ -133,7 +133,7 @@ def test_progress_callback_exception_propagates() -> None:
         raise Stop("from the callback")
 
     with pytest.raises(Stop):
-        rccpack.synthesize(hard_problem(), HARD_RULES, time_limit=60.0, progress=progress)
+        rccpack.synthesize(hard_problem(), HARD_RULES, time_limit=10.0, progress=progress)
 
 
 def test_synth_errors_and_statuses(problem: rccpack.Scene) -> None:
@@ -154,6 +154,8 @@ def test_synth_errors_and_statuses(problem: rccpack.Scene) -> None:
         rccpack.synthesize(problem, hard, time_limit=-1.0)
     with pytest.raises(TypeError):
         rccpack.synthesize(problem, hard, like="demos.json")  # type: ignore[arg-type]
+    with pytest.raises(rccpack.RulesError, match="nowhere"):
+        rccpack.synthesize(problem, rccpack.RuleSet.parse("rule a: EC_E(R, @nowhere)\n"))
 
 
 def test_learn_errors(demos: list[rccpack.Scene], problem: rccpack.Scene) -> None:

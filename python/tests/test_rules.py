@@ -66,6 +66,7 @@ def test_rules_error_is_located(text: str, line: int, column: int | None, words:
     if column is not None:
         assert err.column == column
     assert words in err.message
+    assert err.kind.islower() and err.kind
     assert str(err).startswith(f"t.rcc:{err.line}:{err.column}: ")
     # the caret text: the offending source line with a marker under it
     assert f"t.rcc:{err.line}:{err.column}" in err.report
@@ -96,6 +97,7 @@ def test_check_against_a_scene(problem: rccpack.Scene) -> None:
     with pytest.raises(rccpack.RulesError) as e:
         rules.check(problem)
     assert e.value.line == 2 and "Q" in e.value.message
+    assert e.value.kind == "unknown_class"
     lm = rccpack.RuleSet.parse("rule a: EC_E(B, @nowhere)\n")
     with pytest.raises(rccpack.RulesError, match="nowhere"):
         lm.check(problem)

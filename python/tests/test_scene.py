@@ -56,6 +56,7 @@ def test_constructor_validates() -> None:
         rccpack.Scene(space, [a, b])
     assert e.value.path.startswith("objects[")
     assert "overlap" in str(e.value)
+    assert e.value.kind == "overlap"
     with pytest.raises(TypeError):
         rccpack.Scene(space, [a, "b"])  # type: ignore[list-item]
 
@@ -82,6 +83,12 @@ def test_dict_errors_name_the_field(patch: dict[str, Any], path: str, words: str
     assert words in str(e.value)
     assert isinstance(e.value, rccpack.Error)
     assert isinstance(e.value, ValueError)
+
+
+def test_dict_accepts_a_tuple_of_objects() -> None:
+    d = dict(SMALL)
+    d["objects"] = tuple(SMALL["objects"])
+    assert rccpack.Scene.from_dict(d) == rccpack.Scene.from_dict(SMALL)
 
 
 def test_dict_missing_fields() -> None:

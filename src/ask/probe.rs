@@ -107,7 +107,7 @@ pub struct ProbeOptions {
     /// Stop a probe search after this many search nodes (deterministic:
     /// the best probe found so far is shown).
     pub node_limit: Option<u64>,
-    /// Stop a check of [`ProbeChecker`] (does a probe exist? does one rule
+    /// Stop a check of `ProbeChecker` (does a probe exist? does one rule
     /// imply another?) after this many search nodes (deterministic: the
     /// check then counts as undecided).
     pub check_nodes: Option<u64>,

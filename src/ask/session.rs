@@ -47,8 +47,19 @@ use std::collections::{BTreeSet, HashMap};
 /// The comment line that marks a confirmed rule in `learned.rcc`.
 pub const CONFIRMED: &str = "confirmed";
 
+/// `answers.json` is not an answers file: the field path and what is wrong.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("at `{path}`: {message}")]
+pub struct AnswersFileError {
+    /// Field path such as `answers[2].rule`.
+    pub path: String,
+    /// What is wrong, with line and column.
+    pub message: String,
+}
+
 /// Why the question loop cannot go on.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum AskError {
     /// Learning failed (bad demonstrations or statements).
     #[error(transparent)]
@@ -101,10 +112,12 @@ pub struct AnswersFile {
 
 impl AnswersFile {
     /// Parse `answers.json`; the error names the JSON field (e.g. `answers[0].rule`).
-    pub fn from_json(text: &str) -> Result<AnswersFile, String> {
+    pub fn from_json(text: &str) -> Result<AnswersFile, AnswersFileError> {
         let de = &mut serde_json::Deserializer::from_str(text);
-        serde_path_to_error::deserialize(de)
-            .map_err(|e| format!("at `{}`: {}", e.path(), e.inner()))
+        serde_path_to_error::deserialize(de).map_err(|e| AnswersFileError {
+            path: e.path().to_string(),
+            message: e.inner().to_string(),
+        })
     }
 
     /// Pretty JSON, ending in a newline.

@@ -82,7 +82,11 @@ fn log_range(values: impl Iterator<Item = f64>, floor: f64) -> std::ops::Range<f
 }
 
 /// Draw a two-panel PNG (nodes | time) of `lines` to `path`.
-pub fn draw(path: &Path, title: &str, lines: &[Line]) -> Result<(), String> {
+pub fn draw(path: &Path, title: &str, lines: &[Line]) -> Result<(), super::BenchError> {
+    draw_png(path, title, lines).map_err(super::BenchError::Chart)
+}
+
+fn draw_png(path: &Path, title: &str, lines: &[Line]) -> Result<(), String> {
     ensure_font();
     let e = |e: &dyn std::fmt::Display| format!("{}: cannot draw chart: {e}", path.display());
     let root = BitMapBackend::new(path, (1300, 560)).into_drawing_area();

@@ -39,3 +39,20 @@ pub struct Solver<'a> {
     /// Checks one solution.
     pub verify: VerifyFn<'a>,
 }
+
+/// Why a peer solver or a chart failed; the message says what to install
+/// or what went wrong.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum BenchError {
+    /// A peer solver cannot run here (missing script, interpreter or
+    /// package).
+    #[error("{0}")]
+    PeerUnavailable(String),
+    /// A peer solver ran and failed, timed out or answered nonsense.
+    #[error("{0}")]
+    PeerFailed(String),
+    /// A chart could not be drawn or written.
+    #[error("{0}")]
+    Chart(String),
+}

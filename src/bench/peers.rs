@@ -20,9 +20,10 @@
 //! [`solve`] writes the model to a temporary file, runs the script, checks
 //! the answer's shape (values in the variables' domains) and returns it;
 //! every failure is an `Err` naming the peer, with the tail of its stderr.
-//! The caller re-checks a layout with [`crate::synth::verify`] and
+//! The caller re-checks a layout with `crate::synth::verify_solution` and
 //! re-scores it with the evaluator like any other.
 
+use super::BenchError;
 use crate::synth::emit::{to_json, to_minizinc, Emitted};
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
@@ -132,7 +133,11 @@ fn output_of(cmd: &mut Command) -> Option<std::process::Output> {
 
 /// Whether `peer` can run here; the error says what is missing and how to
 /// install it.
-pub fn check_available(peer: Peer) -> Result<(), String> {
+pub fn check_available(peer: Peer) -> Result<(), BenchError> {
+    availability(peer).map_err(BenchError::PeerUnavailable)
+}
+
+fn availability(peer: Peer) -> Result<(), String> {
     let script = peer.script();
     if !script.is_file() {
         return Err(format!(
@@ -183,7 +188,7 @@ impl TempModel {
         let n = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
         let path =
             std::env::temp_dir().join(format!("rccpack-peer-{}-{n}.{ext}", std::process::id()));
-        std::fs::write(&path, text)
+        crate::fsutil::atomic_write(&path, text)
             .map_err(|e| format!("cannot write the model to {}: {e}", path.display()))?;
         Ok(TempModel(path))
     }
@@ -206,13 +211,22 @@ fn tail(text: &str, n: usize) -> String {
 const GRACE: Duration = Duration::from_secs(60);
 
 /// Solve `e` with `peer` on one worker under `time_limit`.
-pub fn solve(peer: Peer, e: &Emitted, time_limit: Duration) -> Result<PeerResult, String> {
+pub fn solve(peer: Peer, e: &Emitted, time_limit: Duration) -> Result<PeerResult, BenchError> {
     solve_with(peer, e, time_limit, 1)
 }
 
 /// [`solve`] with `workers` search threads (CP-SAT's `num_workers`,
 /// Gecode's `-p`).
 pub fn solve_with(
+    peer: Peer,
+    e: &Emitted,
+    time_limit: Duration,
+    workers: u32,
+) -> Result<PeerResult, BenchError> {
+    run_peer(peer, e, time_limit, workers).map_err(BenchError::PeerFailed)
+}
+
+fn run_peer(
     peer: Peer,
     e: &Emitted,
     time_limit: Duration,

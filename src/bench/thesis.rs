@@ -381,7 +381,7 @@ pub fn solve_peer(engine: Solver<'_>, cfg: &StudyConfig, p: &Problem, peer: Peer
         }
     };
     match peers::solve(peer, &e, cfg.time_limit) {
-        Err(msg) => row.error = Some(msg),
+        Err(e) => row.error = Some(e.to_string()),
         Ok(r) => {
             row.status = Some(r.status);
             row.time_ms = r.time_ms;

@@ -461,6 +461,7 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
             ),
             &chart::lines(&report.summary, &[Series::Pilot]),
         )
+        .map_err(|e| e.to_string())
     })?;
     let mut written = vec![json, png];
     if report.summary.iter().any(|s| s.series == Series::Scale) {
@@ -481,6 +482,7 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
                 ),
                 &chart::lines(&cells, &[Series::Pilot, Series::Scale]),
             )
+            .map_err(|e| e.to_string())
         })?;
         written.push(png);
     }

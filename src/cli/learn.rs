@@ -6,7 +6,7 @@ use anyhow::Result;
 use clap::Args;
 use rccpack::infer::{learn_until, InferError, LearnParams, Learned, Templates};
 use rccpack::relations::Contact;
-use rccpack::rules::{Diagnostic, RulesError};
+use rccpack::rules::{Diagnostic, DiagnosticKind, RulesError};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -136,12 +136,11 @@ pub fn learn_files(
                 },
                 Some(path),
             ) => {
-                let diag = RulesError {
-                    diagnostics: vec![Diagnostic {
-                        span: *span,
-                        message: e.to_string(),
-                    }],
+                let kind = match e {
+                    InferError::UnknownClass { .. } => DiagnosticKind::UnknownClass,
+                    _ => DiagnosticKind::UnknownLandmark,
                 };
+                let diag = RulesError::new(vec![Diagnostic::new(kind, *span, e.to_string())]);
                 Reported(diag.render(
                     &path.display().to_string(),
                     &text,

@@ -289,133 +289,119 @@ enum Part {
     },
 }
 
-/// Render `scene` as an SVG document (see the module docs for what is drawn).
-///
-/// With `rules`, the scene is evaluated under `opts.contact`; objects that
-/// break any rule get an outline marked `class="violator"` and the legend
-/// lists every rule with `satisfied/subjects`.
-pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) -> String {
-    let s = effective_scale(opts.scale);
-    let sp = scene.space;
-    let tw = sp.width as f64 * s;
-    let th = sp.height as f64 * s;
-    let tx = MARGIN;
-    let ty = HEADER;
-    let colours = colours(scene);
-    let fill_of = |o: &Object| -> &'static str {
-        if o.fixed {
-            FIXED_FILL
-        } else {
-            colours.get(&o.class).copied().unwrap_or(PALETTE[0])
-        }
-    };
-    let eval: Option<Evaluation> = rules.map(|r| evaluate(scene, r, opts.contact));
+/// One legend text part.
+fn text(dx: f64, size: f64, bold: bool, fill: &'static str, end: bool, t: String) -> Part {
+    Part::Text {
+        dx,
+        size,
+        bold,
+        fill,
+        end,
+        text: t,
+    }
+}
 
-    // ---- legend lines (measured first) -------------------------------------
-    let mut lines: Vec<Line> = Vec::new();
-    let text =
-        |dx: f64, size: f64, bold: bool, fill: &'static str, end: bool, t: String| Part::Text {
-            dx,
-            size,
-            bold,
-            fill,
-            end,
-            text: t,
-        };
+/// The legend's score lines and one line per rule (with its violators);
+/// per violating object, whether it breaks a hard rule.
+fn rule_lines(ev: &Evaluation) -> (Vec<Line>, HashMap<&str, bool>) {
+    let mut lines = Vec::new();
     let mut hard_of: HashMap<&str, bool> = HashMap::new();
-    if let Some(ev) = &eval {
-        let any_soft = ev.rules.iter().any(|r| !r.hard);
+    let any_soft = ev.rules.iter().any(|r| !r.hard);
+    lines.push(Line {
+        dy: 18.0,
+        parts: vec![text(
+            0.0,
+            16.0,
+            true,
+            "#222222",
+            false,
+            if any_soft {
+                format!("score {:.3}", ev.score)
+            } else {
+                "score 1 (no soft rules)".into()
+            },
+        )],
+    });
+    let mut sub = format!(
+        "weight {} of {}",
+        n(ev.satisfied_weight),
+        n(ev.total_weight)
+    );
+    if ev.rules.iter().any(|r| r.hard) {
+        let _ = write!(sub, " · hard violations {}", ev.hard_violations);
+    }
+    lines.push(Line {
+        dy: 17.0,
+        parts: vec![text(0.0, 11.0, false, "#666666", false, sub)],
+    });
+    lines.push(Line {
+        dy: 26.0,
+        parts: vec![text(0.0, 13.0, true, "#333333", false, "rules".into())],
+    });
+    for r in &ev.rules {
+        for v in &r.violators {
+            let hard = hard_of.entry(v.as_str()).or_insert(false);
+            *hard |= r.hard;
+        }
+        let ok = r.violators.is_empty();
+        let mut name = truncate(&r.name, 34);
+        if r.hard {
+            name.push_str("  [hard]");
+        }
         lines.push(Line {
             dy: 18.0,
-            parts: vec![text(
-                0.0,
-                16.0,
-                true,
-                "#222222",
-                false,
-                if any_soft {
-                    format!("score {:.3}", ev.score)
-                } else {
-                    "score 1 (no soft rules)".into()
-                },
-            )],
+            parts: vec![
+                text(
+                    0.0,
+                    12.0,
+                    true,
+                    if ok { "#3c8d40" } else { "#d35400" },
+                    false,
+                    if ok { "✓" } else { "✗" }.into(),
+                ),
+                text(
+                    16.0,
+                    12.0,
+                    false,
+                    if r.hard { "#7a4f00" } else { "#222222" },
+                    false,
+                    name,
+                ),
+                text(
+                    0.0,
+                    12.0,
+                    false,
+                    "#222222",
+                    true,
+                    format!("{}/{}", r.satisfied, r.subjects),
+                ),
+            ],
         });
-        let mut sub = format!(
-            "weight {} of {}",
-            n(ev.satisfied_weight),
-            n(ev.total_weight)
-        );
-        if ev.rules.iter().any(|r| r.hard) {
-            let _ = write!(sub, " · hard violations {}", ev.hard_violations);
-        }
-        lines.push(Line {
-            dy: 17.0,
-            parts: vec![text(0.0, 11.0, false, "#666666", false, sub)],
-        });
-        lines.push(Line {
-            dy: 26.0,
-            parts: vec![text(0.0, 13.0, true, "#333333", false, "rules".into())],
-        });
-        for r in &ev.rules {
-            for v in &r.violators {
-                let hard = hard_of.entry(v.as_str()).or_insert(false);
-                *hard |= r.hard;
-            }
-            let ok = r.violators.is_empty();
-            let mut name = truncate(&r.name, 34);
-            if r.hard {
-                name.push_str("  [hard]");
-            }
+        if !ok {
+            let ids = truncate(&r.violators.join(", "), 40);
             lines.push(Line {
-                dy: 18.0,
-                parts: vec![
-                    text(
-                        0.0,
-                        12.0,
-                        true,
-                        if ok { "#3c8d40" } else { "#d35400" },
-                        false,
-                        if ok { "✓" } else { "✗" }.into(),
-                    ),
-                    text(
-                        16.0,
-                        12.0,
-                        false,
-                        if r.hard { "#7a4f00" } else { "#222222" },
-                        false,
-                        name,
-                    ),
-                    text(
-                        0.0,
-                        12.0,
-                        false,
-                        "#222222",
-                        true,
-                        format!("{}/{}", r.satisfied, r.subjects),
-                    ),
-                ],
+                dy: 14.0,
+                parts: vec![text(
+                    16.0,
+                    10.5,
+                    false,
+                    "#8a8a8a",
+                    false,
+                    format!("broken by {ids}"),
+                )],
             });
-            if !ok {
-                let ids = truncate(&r.violators.join(", "), 40);
-                lines.push(Line {
-                    dy: 14.0,
-                    parts: vec![text(
-                        16.0,
-                        10.5,
-                        false,
-                        "#8a8a8a",
-                        false,
-                        format!("broken by {ids}"),
-                    )],
-                });
-            }
         }
-        lines.push(Line {
-            dy: 10.0,
-            parts: vec![],
-        });
     }
-    // Class key.
+    lines.push(Line {
+        dy: 10.0,
+        parts: vec![],
+    });
+    (lines, hard_of)
+}
+
+/// The legend's class key: one line per class (and colour), with counts.
+fn class_lines(scene: &Scene, fill_of: &dyn Fn(&Object) -> &'static str) -> Vec<Line> {
+    let mut lines = Vec::new();
     let mut class_rows: Vec<(String, &'static str, usize, usize)> = Vec::new();
     for o in &scene.objects {
         let fill = fill_of(o);
@@ -459,21 +445,13 @@ pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) 
             });
         }
     }
-    if opts.like.is_some() {
-        lines.push(Line {
-            dy: 20.0,
-            parts: vec![text(
-                0.0,
-                11.0,
-                false,
-                "#666666",
-                false,
-                "shaded: where the demonstrations put each class".into(),
-            )],
-        });
-    }
+    lines
+}
+
+/// The legend's width: its widest line (at least 120).
+fn legend_width(lines: &[Line]) -> f64 {
     let mut lw: f64 = 120.0;
-    for l in &lines {
+    for l in lines {
         let mut w = 0.0;
         for p in &l.parts {
             if let Part::Text {
@@ -490,6 +468,52 @@ pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) 
         }
         lw = lw.max(w);
     }
+    lw
+}
+
+/// Render `scene` as an SVG document (see the module docs for what is drawn).
+///
+/// With `rules`, the scene is evaluated under `opts.contact`; objects that
+/// break any rule get an outline marked `class="violator"` and the legend
+/// lists every rule with `satisfied/subjects`.
+pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) -> String {
+    let s = effective_scale(opts.scale);
+    let sp = scene.space;
+    let tw = sp.width as f64 * s;
+    let th = sp.height as f64 * s;
+    let tx = MARGIN;
+    let ty = HEADER;
+    let colours = colours(scene);
+    let fill_of = |o: &Object| -> &'static str {
+        if o.fixed {
+            FIXED_FILL
+        } else {
+            colours.get(&o.class).copied().unwrap_or(PALETTE[0])
+        }
+    };
+    let eval: Option<Evaluation> = rules.map(|r| evaluate(scene, r, opts.contact));
+
+    // ---- legend lines (measured first) -------------------------------------
+    let mut lines: Vec<Line> = Vec::new();
+    let mut hard_of: HashMap<&str, bool> = HashMap::new();
+    if let Some(ev) = &eval {
+        (lines, hard_of) = rule_lines(ev);
+    }
+    lines.extend(class_lines(scene, &fill_of));
+    if opts.like.is_some() {
+        lines.push(Line {
+            dy: 20.0,
+            parts: vec![text(
+                0.0,
+                11.0,
+                false,
+                "#666666",
+                false,
+                "shaded: where the demonstrations put each class".into(),
+            )],
+        });
+    }
+    let lw = legend_width(&lines);
     let lx = tx + tw + GAP;
     let legend_h: f64 = lines.iter().map(|l| l.dy).sum();
 

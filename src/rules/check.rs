@@ -1,7 +1,7 @@
 //! Semantic checks that need a scene (classes named by rules exist in it;
 //! landmarks name fixed objects of it).
 
-use super::{Diagnostic, RuleSet, RulesError, Span, Target};
+use super::{Diagnostic, DiagnosticKind, RuleSet, RulesError, Span, Target};
 use crate::scene::Scene;
 
 /// Check that every class named by `rules` exists in `scene`.
@@ -32,6 +32,7 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
             for class in named {
                 if !classes.contains(&class) {
                     diags.push(Diagnostic::new(
+                        DiagnosticKind::UnknownClass,
                         span,
                         format!("unknown class `{class}` in rule `{}`: {listing}", rule.name),
                     ));
@@ -129,7 +130,11 @@ pub fn check_landmarks(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError>
                     rule.name
                 )
             };
-            diags.push(Diagnostic::new(span, message));
+            diags.push(Diagnostic::new(
+                DiagnosticKind::UnknownLandmark,
+                span,
+                message,
+            ));
         }
     }
     if diags.is_empty() {

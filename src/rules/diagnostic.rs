@@ -6,22 +6,72 @@ use ariadne::{Config, IndexType, Label, Report, ReportKind, Source};
 /// Lines longer than this (in bytes) are reported without a source snippet.
 const MAX_SNIPPET_LINE: usize = 10_000;
 
+/// What kind of problem a [`Diagnostic`] reports, for code that reacts to
+/// it (tests, editors, the studio) instead of reading the message.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum DiagnosticKind {
+    /// The text does not follow the grammar (`grammar/rcc.pest`).
+    Syntax,
+    /// The text is larger than [`crate::limits::MAX_RULES_BYTES`].
+    TooLarge,
+    /// A formula nests deeper than the parser allows.
+    TooDeep,
+    /// A rule name is defined twice ([`Diagnostic::related`]: the first
+    /// definition).
+    DuplicateName,
+    /// A rule's atoms are about different subject classes, or a scene
+    /// scope's class differs from an atom's subject.
+    MixedSubjects,
+    /// A scene scope (`some A:`, `at least K A:`) is malformed.
+    BadScope,
+    /// A count (`at least K`) is missing or out of range.
+    BadCount,
+    /// A number does not parse.
+    BadNumber,
+    /// A weight is not a finite number greater than 0.
+    BadWeight,
+    /// A `p` is not strictly between 0 and 1.
+    BadProbability,
+    /// A relation name that is not in the table.
+    UnknownRelation,
+    /// A quantifier before a landmark (`every @w`).
+    LandmarkQuantifier,
+    /// A class the scene (or demonstrations) does not have.
+    UnknownClass,
+    /// A landmark `@ID` that names no fixed object of the scene.
+    UnknownLandmark,
+}
+
 /// One located problem.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Diagnostic {
+    /// What kind of problem.
+    pub kind: DiagnosticKind,
     /// Where.
     pub span: Span,
     /// What is wrong and what was expected (lowercase).
     pub message: String,
+    /// A second place that matters, with what it is (the first definition
+    /// of a duplicate rule name).
+    pub related: Option<(Span, String)>,
 }
 
 impl Diagnostic {
-    /// A diagnostic at `span`.
-    pub fn new(span: Span, message: impl Into<String>) -> Self {
+    /// A diagnostic of `kind` at `span`.
+    pub fn new(kind: DiagnosticKind, span: Span, message: impl Into<String>) -> Self {
         Diagnostic {
+            kind,
             span,
             message: message.into(),
+            related: None,
         }
+    }
+
+    /// The same diagnostic with a second place.
+    pub fn with_related(mut self, span: Span, what: impl Into<String>) -> Self {
+        self.related = Some((span, what.into()));
+        self
     }
 
     /// 1-based line and 1-based character column of the span's start in `src`.

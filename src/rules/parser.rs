@@ -13,7 +13,7 @@
 //!    subject class per rule, or the scene scope's class; quantifier counts;
 //!    no quantifier before a landmark; unique names, modifier ranges).
 
-use super::diagnostic::{Diagnostic, LineIndex};
+use super::diagnostic::{Diagnostic, DiagnosticKind, LineIndex};
 use super::{
     Atom, Formula, Quant, Rule, RuleOrigin, RuleSet, RulesError, Scope, Span, Strength, Target,
 };
@@ -41,6 +41,7 @@ use grammar::{RccParser, Rule as R};
 pub fn parse_rules(src: &str) -> Result<RuleSet, RulesError> {
     if src.len() > crate::limits::MAX_RULES_BYTES {
         return Err(RulesError::new(vec![Diagnostic::new(
+            DiagnosticKind::TooLarge,
             Span::new(0, 0),
             format!(
                 "the rule text is {} bytes; expected at most {} bytes (16 MiB)",
@@ -58,6 +59,7 @@ pub fn parse_rules(src: &str) -> Result<RuleSet, RulesError> {
     };
     let Some(file) = pairs.next() else {
         return Err(RulesError::new(vec![Diagnostic::new(
+            DiagnosticKind::Syntax,
             Span::new(0, 0),
             "empty parse",
         )]));
@@ -81,13 +83,17 @@ pub fn parse_rules(src: &str) -> Result<RuleSet, RulesError> {
             if let Some(first) = seen.get(&rule.name) {
                 let index = lines.get_or_insert_with(|| LineIndex::new(src));
                 let (line, _) = index.line_col(src, first.start);
-                diags.push(Diagnostic::new(
-                    origin,
-                    format!(
-                        "duplicate rule name `{}`: it is already defined on line {line}",
-                        rule.name
-                    ),
-                ));
+                diags.push(
+                    Diagnostic::new(
+                        DiagnosticKind::DuplicateName,
+                        origin,
+                        format!(
+                            "duplicate rule name `{}`: it is already defined on line {line}",
+                            rule.name
+                        ),
+                    )
+                    .with_related(*first, "first defined here"),
+                );
             } else {
                 seen.insert(rule.name.clone(), origin);
             }
@@ -130,6 +136,7 @@ fn paren_depth_check(src: &str) -> Option<Diagnostic> {
 
 fn too_deep(span: Span) -> Diagnostic {
     Diagnostic::new(
+        DiagnosticKind::TooDeep,
         span,
         format!(
             "formula nested too deeply: more than {MAX_DEPTH} levels of parentheses and negations"
@@ -231,7 +238,7 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
     if let Some((written, class)) = &scope_written {
         // A scene scope fixes the subject class of every atom.
         if let Some((other, span)) = subjects.iter().find(|(s, _)| s != class) {
-            diags.push(Diagnostic::new(
+            diags.push(Diagnostic::new(DiagnosticKind::MixedSubjects,
                 *span,
                 format!(
                     "rule `{name}` is about `{class}` (`{written} {class}:`), but this atom is about `{other}`: expected every atom's subject to be `{class}`"
@@ -241,7 +248,7 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
     } else if let Some((first, _)) = subjects.first() {
         // One subject class per rule.
         if let Some((other, span)) = subjects.iter().find(|(s, _)| s != first) {
-            diags.push(Diagnostic::new(
+            diags.push(Diagnostic::new(DiagnosticKind::MixedSubjects,
                 *span,
                 format!(
                     "rule `{name}` mixes subject classes: this atom is about `{other}`, but the rule's first atom is about `{first}`"
@@ -295,6 +302,7 @@ fn scene_scope(
                         "a scene scope counts the objects of one class"
                     };
                     diags.push(Diagnostic::new(
+                        DiagnosticKind::BadScope,
                         span,
                         format!("expected a class name after `{written}`, found `{text}`: {why}"),
                     ));
@@ -376,11 +384,13 @@ fn quant(p: Pair<'_, R>) -> Result<Quant, Diagnostic> {
     let Some(c) = count else {
         // The grammar requires a count; kept as an error, not a panic.
         return Err(Diagnostic::new(
+            DiagnosticKind::BadCount,
             whole,
             format!("missing count after `{words}`: expected a whole number from 0 to {MAX_COUNT}"),
         ));
     };
-    let k = parse_count(c.as_str(), words).map_err(|m| Diagnostic::new(span_of(&c), m))?;
+    let k = parse_count(c.as_str(), words)
+        .map_err(|m| Diagnostic::new(DiagnosticKind::BadCount, span_of(&c), m))?;
     Ok(if least {
         Quant::AtLeast(k)
     } else {
@@ -433,17 +443,23 @@ fn modifier(p: Pair<'_, R>) -> Result<Strength, Diagnostic> {
     let v: f64 = match text.parse() {
         Ok(v) => v,
         Err(_) => {
-            return Err(Diagnostic::new(span, format!("bad number `{text}`")));
+            return Err(Diagnostic::new(
+                DiagnosticKind::BadNumber,
+                span,
+                format!("bad number `{text}`"),
+            ));
         }
     };
     if kind == R::weight_mod {
         if !v.is_finite() {
             Err(Diagnostic::new(
+                DiagnosticKind::BadWeight,
                 span,
                 format!("bad weight `{text}`: it is not finite; expected a finite number > 0"),
             ))
         } else if v <= 0.0 {
             Err(Diagnostic::new(
+                DiagnosticKind::BadWeight,
                 span,
                 format!("bad weight `{text}`: expected a finite number > 0"),
             ))
@@ -452,11 +468,13 @@ fn modifier(p: Pair<'_, R>) -> Result<Strength, Diagnostic> {
         }
     } else if !v.is_finite() {
         Err(Diagnostic::new(
+            DiagnosticKind::BadProbability,
             span,
             format!("bad p `{text}`: it is not finite; expected a number with 0 < p < 1"),
         ))
     } else if v <= 0.0 || v >= 1.0 {
         Err(Diagnostic::new(
+            DiagnosticKind::BadProbability,
             span,
             format!("bad p `{text}`: expected a number with 0 < p < 1"),
         ))
@@ -538,6 +556,7 @@ impl Builder<'_> {
                     Some(r) => rel = r,
                     None => {
                         self.diags.push(Diagnostic::new(
+                            DiagnosticKind::UnknownRelation,
                             span_of(&c),
                             format!(
                                 "unknown relation `{}`: expected one of {}",
@@ -559,7 +578,8 @@ impl Builder<'_> {
                             // The first edition's (syntax) message, kept.
                             format!("expected a class name, found `{text}`")
                         };
-                        self.diags.push(Diagnostic::new(at, message));
+                        self.diags
+                            .push(Diagnostic::new(DiagnosticKind::Syntax, at, message));
                     }
                 },
                 R::target => {
@@ -609,7 +629,7 @@ impl Builder<'_> {
             }
         };
         if let Target::Landmark(id) = &target {
-            self.diags.push(Diagnostic::new(
+            self.diags.push(Diagnostic::new(DiagnosticKind::LandmarkQuantifier,
                 qspan,
                 format!(
                     "quantifier `{written}` before landmark `@{id}`: a landmark takes no quantifier; expected `@{id}` alone"
@@ -702,7 +722,7 @@ fn pest_diagnostic(src: &str, e: &pest::error::Error<R>) -> Diagnostic {
         ErrorVariant::ParsingError { .. } => format!("unexpected {found}"),
         ErrorVariant::CustomError { message } => message.to_lowercase(),
     };
-    Diagnostic::new(span, message)
+    Diagnostic::new(DiagnosticKind::Syntax, span, message)
 }
 
 fn join_or(names: &[&str]) -> String {

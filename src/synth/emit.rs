@@ -1,4 +1,4 @@
-//! The solver-free [`Model`] written out for other solvers: plain JSON
+//! The solver-free `Model` written out for other solvers: plain JSON
 //! (`rccpack-model/1`) and a MiniZinc model, so OR-Tools CP-SAT, Gecode or
 //! any other engine can solve exactly the problem the Pumpkin engine solves
 //! (`rccpack synth --emit FILE`, `benches/peers/`, [`crate::bench::peers`]).
@@ -6,10 +6,10 @@
 //! # What is written
 //!
 //! [`emitted`] runs the checks of [`super::synthesize`] ([`super::check_problem`],
-//! the weight check) and builds the same [`Model`] (same [`BuildOptions`](super::model::BuildOptions):
+//! the weight check) and builds the same `Model` (same `BuildOptions`:
 //! contact mode, rules, symmetry breaking and redundant cumulatives as in
 //! the [`SynthOptions`]) and the same integer objective coefficients
-//! ([`super::weights::integer_weights`]). It must stay in step with
+//! (`super::weights::integer_weights`). It must stay in step with
 //! `synthesize`.
 //!
 //! - **Only the first objective** (the §6 score numerator, scaled to
@@ -22,7 +22,7 @@
 //!   them out of its objective variable, so its objective value is the
 //!   peers' minus `constant`), constant-`false` terms add nothing.
 //! - **Objects that cannot lie inside the space at all**
-//!   ([`Model::too_large`]): `Model::build` then stops before posting any
+//!   (`Model::too_large`): `Model::build` then stops before posting any
 //!   constraint and `synthesize` answers `infeasible` at once. The emitted
 //!   model is made *trivially infeasible* instead: the JSON form gets one
 //!   empty clause (`[]`, false), the MiniZinc form `constraint false;` (with
@@ -47,11 +47,11 @@
 //! | `soft` | per objective term: `{rule, name, object (index or null for a scene-level rule), object_id, lit, coef (integer), weight (the real weight)}` |
 //! | `objective` | `{"sense": "maximize", "constant": c}`: maximise `Σ coef·[lit]` over `soft` (constant literals included: the constant-`true` ones sum to `c`) |
 //! | `symmetry` | linear `{terms: [[coef, var], …], rhs}`: `Σ coef·vars[var] ≤ rhs` must hold |
-//! | `cumulative` | redundant, implied by non-overlap: `{axis, shift, capacity, tasks}`; per task `{object, start, duration, demand}` with `start` either `{"var": v, "scale": s, "offset": o}` (`s·vars[v] + o`, with `s = grid`, `o = origin + shift` on the axis) or `{"const": c}` (the fixed coordinate plus `shift`) exactly as the engine posts it ([`Model::cumulative_shift`] makes every start ≥ 0); at every point `t`, the demands of the tasks with `start ≤ t < start + duration` sum to at most `capacity` |
+//! | `cumulative` | redundant, implied by non-overlap: `{axis, shift, capacity, tasks}`; per task `{object, start, duration, demand}` with `start` either `{"var": v, "scale": s, "offset": o}` (`s·vars[v] + o`, with `s = grid`, `o = origin + shift` on the axis) or `{"const": c}` (the fixed coordinate plus `shift`) exactly as the engine posts it (`Model::cumulative_shift` makes every start ≥ 0); at every point `t`, the demands of the tasks with `start ≤ t < start + duration` sum to at most `capacity` |
 //! | `too_large` | ids of objects that cannot lie inside the space (the model is then infeasible) |
 //!
 //! A solution is one value per grid variable (`vars` order); the layout is
-//! `model.scene(problem, &values)` ([`Model::scene`]).
+//! `model.scene(problem, &values)` (`Model::scene`).
 //!
 //! # The MiniZinc form ([`to_minizinc`])
 //!

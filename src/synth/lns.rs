@@ -62,7 +62,7 @@ pub struct LnsOptions {
     /// below it one search proves the optimum in milliseconds (the
     /// thesis-sized study, the bundled examples) and LNS would only add
     /// work. (Above it, a problem the first proof attempt settles never
-    /// sees LNS either: see [`Lns::alternate`].)
+    /// sees LNS either: see `Lns::alternate`.)
     pub min_objects: usize,
     /// Objects freed per round at first.
     pub window: usize,
@@ -75,10 +75,10 @@ pub struct LnsOptions {
     pub patience: u32,
     /// Search nodes per round.
     pub round_nodes: u64,
-    /// Search nodes without an improvement that end [`Lns::improve`].
+    /// Search nodes without an improvement that end `Lns::improve`.
     pub budget_nodes: u64,
     /// Search nodes of the main engine's first proof attempt in
-    /// [`Lns::alternate`]; each later attempt gets twice as many (default
+    /// `Lns::alternate`; each later attempt gets twice as many (default
     /// 300: on the bundled example with 12 blocks per class, 200–500
     /// reached the proven optimum in 0.8–1.5 s, 2 000 in 2.3–4.7 s, 8 000
     /// in 3.4–5.9 s, seeds 0–2).

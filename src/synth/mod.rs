@@ -108,7 +108,7 @@ pub struct SynthOptions {
     /// `infeasible` (a probe needs no more, and the shrinking costs one solve
     /// per hard rule).
     pub explain: bool,
-    /// Large-neighbourhood search before the proof (see [`lns`]), on
+    /// Large-neighbourhood search before the proof (see `lns`), on
     /// problems with at least [`lns::LnsOptions::min_objects`] movable
     /// objects; `None`: the engine's own search only.
     pub lns: Option<lns::LnsOptions>,
@@ -327,7 +327,7 @@ pub const MAX_POSITIONS: i64 = 1 << 18;
 /// Whether `problem` is usable for synthesis: a valid scene (SPEC §1) whose
 /// numbers are within the solver's bounds ([`MAX_COORD`],
 /// [`MAX_POSITIONS`]). [`synthesize`] checks this first; callers that build
-/// [`model::Model`]s themselves must too.
+/// `model::Model`s themselves must too.
 pub fn check_problem(problem: &Scene) -> Result<(), SynthError> {
     problem.validate()?;
     check_ranges(problem)

@@ -1,0 +1,33 @@
+//! The integration tests, linked as one binary (one link instead of one per
+//! file); `tests/support/` holds what they share. Run one area with
+//! `cargo test --test integration parser::`.
+
+mod support;
+
+mod architecture;
+mod ask_cli;
+mod ask_probes;
+mod ask_tasks;
+mod bench_tasks;
+mod bench_thesis;
+mod cli;
+mod emit;
+mod example;
+mod first_edition;
+mod fuzz_replay;
+mod hardening;
+mod learn;
+mod learn_cli;
+mod learn_props;
+mod parser;
+mod relations;
+mod render;
+mod resemblance;
+mod robust;
+mod scene;
+mod shelf_example;
+mod studio_api;
+mod studio_browser;
+mod synth;
+mod synth_differential;
+mod worked_example;
