@@ -33,6 +33,14 @@ use rccpack::scene::{Object, Rect, Scene, Space};
 use rccpack::synth::brute_force::grid_positions;
 use rccpack::synth::verify_solution;
 
+use crate::support::formulas::{pick, q_atom, random_target, random_tree, Vocabulary};
+
+/// Classes A, B, C (twice as likely), F, W; `@a0` is never a fixed object.
+const VOC: Vocabulary = Vocabulary {
+    classes: ["A", "B", "C", "F", "W", "C"],
+    absent: "a0",
+};
+
 const BASE_SEED: u64 = 0xA5C0_9B0E;
 /// Cases whose product of domain sizes exceeds this are made smaller.
 const MAX_LAYOUTS: u64 = 2500;
@@ -68,87 +76,21 @@ fn rule_text(r: &Rule) -> String {
     format!("{scope}{}", formula_text(&r.formula))
 }
 
-fn pick<T: Copy>(rng: &mut ChaCha8Rng, v: &[T]) -> T {
-    v[rng.random_range(0..v.len())]
-}
-
 // ---- the generator (after tests/synth_differential.rs, with a class C) ----
 
 fn class_target(rng: &mut ChaCha8Rng) -> Target {
     Target::Class(pick(rng, &["A", "B", "C", "F", "W"]).into())
 }
 
-fn random_target(rng: &mut ChaCha8Rng) -> Target {
-    match rng.random_range(0..12) {
-        0..=5 => class_target(rng),
-        6..=7 => Target::Any,
-        8..=9 => Target::Landmark("f".into()),
-        10 => Target::Landmark("g".into()),
-        _ => Target::Landmark("a0".into()),
-    }
-}
-
-fn random_quant(rng: &mut ChaCha8Rng, rel: Relation) -> Quant {
-    let k = rng.random_range(0..=4u32);
-    match rng.random_range(0..10) {
-        0..=4 => rel.default_quant(),
-        5 => Quant::Every,
-        6 => Quant::Some,
-        7 => Quant::No,
-        8 => Quant::AtLeast(k),
-        _ => Quant::AtMost(k),
-    }
-}
-
-fn random_atom(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
-    let rel = pick(rng, &Relation::ALL);
-    let target = random_target(rng);
-    let quant = match target {
-        Target::Landmark(_) => rel.default_quant(),
-        _ => random_quant(rng, rel),
-    };
-    Formula::Atom(Atom::quantified(rel, subject, quant, target))
-}
-
-fn random_tree(rng: &mut ChaCha8Rng, subject: &str, depth: u32) -> Formula {
-    if depth <= 1 {
-        return random_atom(rng, subject);
-    }
-    match rng.random_range(0..6) {
-        0 | 1 => random_atom(rng, subject),
-        2 => Formula::not(random_tree(rng, subject, depth - 1)),
-        k => {
-            let n = rng.random_range(2..=3);
-            let v = (0..n)
-                .map(|_| random_tree(rng, subject, depth - 1))
-                .collect();
-            if k == 3 {
-                Formula::And(v)
-            } else {
-                Formula::Or(v)
-            }
-        }
-    }
-}
-
-fn q_atom(kind: Kind, dir: Dir, subject: &str, quant: Quant, target: &Target) -> Formula {
-    Formula::Atom(Atom::quantified(
-        Relation::new(kind, dir),
-        subject,
-        quant,
-        target.clone(),
-    ))
-}
-
 fn random_formula(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
     let own = Target::Class(subject.into());
-    let target = random_target(rng);
+    let target = random_target(rng, &VOC);
     let dir = pick(rng, &Dir::ALL);
     let some = |kind, d, t: &Target| q_atom(kind, d, subject, Quant::Some, t);
     match rng.random_range(0..16) {
         0..=3 => {
             let depth = rng.random_range(1..=3);
-            random_tree(rng, subject, depth)
+            random_tree(rng, &VOC, subject, depth)
         }
         4 => {
             let (a, b) = pick(rng, &[(Dir::S, Dir::N), (Dir::W, Dir::E)]);
@@ -256,28 +198,24 @@ fn random_case(index: u64) -> Case {
             1 => (10, 20),
             _ => (10, 10),
         };
-        objects.push(Object {
-            id: format!("{}{}", class.to_lowercase(), i),
-            class: class.into(),
-            x: None,
-            y: None,
-            width: bw,
-            height: bh,
-            fixed: false,
-        });
+        objects.push(Object::movable(
+            &format!("{}{}", class.to_lowercase(), i),
+            class,
+            bw,
+            bh,
+        ));
     }
     // Now and then an already-placed movable object.
     if rng.random_range(0..5) == 0 {
         let class = pick(&mut rng, classes);
-        let o = Object {
-            id: "p0".into(),
-            class: class.into(),
-            x: Some(10 * rng.random_range(0..w / 10)),
-            y: Some(10 * rng.random_range(0..h / 10)),
-            width: 10,
-            height: 10,
-            fixed: false,
-        };
+        let o = Object::placed(
+            "p0",
+            class,
+            10 * rng.random_range(0..w / 10),
+            10 * rng.random_range(0..h / 10),
+            10,
+            10,
+        );
         if !overlaps_any(&objects, &o) {
             objects.push(o);
         }

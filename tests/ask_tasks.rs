@@ -131,15 +131,12 @@ fn mix(classes: &[(&str, u32, u32)], counts: &[u32]) -> Scene {
     let mut objects = walls();
     for (&(class, _, _), &n) in classes.iter().zip(counts) {
         for i in 0..n {
-            objects.push(Object {
-                id: format!("{}{}", class.to_lowercase(), i + 1),
-                class: class.into(),
-                x: None,
-                y: None,
-                width: 10,
-                height: 10,
-                fixed: false,
-            });
+            objects.push(Object::movable(
+                &format!("{}{}", class.to_lowercase(), i + 1),
+                class,
+                10,
+                10,
+            ));
         }
     }
     Scene {

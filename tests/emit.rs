@@ -145,15 +145,14 @@ fn random_case(index: u64) -> Case {
         ));
     }
     if rng.random_range(0..4) == 0 {
-        let o = Object {
-            id: "p0".into(),
-            class: pick(&mut rng, &["A", "B"]).into(),
-            x: Some(ox + 10 * rng.random_range(0..w / 10 - 1)),
-            y: Some(oy + 10 * rng.random_range(0..h / 10 - 1)),
-            width: 10,
-            height: 10,
-            fixed: false,
-        };
+        let o = Object::placed(
+            "p0",
+            pick(&mut rng, &["A", "B"]),
+            ox + 10 * rng.random_range(0..w / 10 - 1),
+            oy + 10 * rng.random_range(0..h / 10 - 1),
+            10,
+            10,
+        );
         if !overlaps(&objects, &o) {
             objects.push(o);
         }
@@ -172,15 +171,12 @@ fn random_case(index: u64) -> Case {
         } else {
             (10, 10)
         };
-        objects.push(Object {
-            id: format!("{}{i}", class.to_lowercase()),
-            class: class.into(),
-            x: None,
-            y: None,
-            width: bw,
-            height: bh,
-            fixed: false,
-        });
+        objects.push(Object::movable(
+            &format!("{}{i}", class.to_lowercase()),
+            class,
+            bw,
+            bh,
+        ));
     }
     let scene = Scene {
         space: Space {
@@ -255,15 +251,7 @@ fn infeasible_cases() -> Vec<Case> {
         width: 30,
         height: 30,
     };
-    let block = |id: &str, class: &str, w, h| Object {
-        id: id.into(),
-        class: class.into(),
-        x: None,
-        y: None,
-        width: w,
-        height: h,
-        fixed: false,
-    };
+    let block = |id: &str, class: &str, w, h| Object::movable(id, class, w, h);
     let dr = |d, s: &str, t: &str| {
         Formula::Atom(Atom::new(
             Relation::new(Kind::DR, d),

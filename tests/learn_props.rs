@@ -85,15 +85,7 @@ fn build(cells: &[((i64, i64), usize)]) -> Scene {
         })
         .collect();
     // One landmark shared by every demonstration (scene-level templates).
-    objects.push(Object {
-        id: "w_land".into(),
-        class: "W".into(),
-        x: Some(90),
-        y: Some(50),
-        width: 10,
-        height: 10,
-        fixed: true,
-    });
+    objects.push(Object::fixed_at("w_land", "W", 90, 50, 10, 10));
     // Every demonstration has every class (a movable A and B somewhere).
     for (k, c) in ["A", "B", "W"].iter().enumerate() {
         if !objects.iter().any(|o| o.class == *c) {

@@ -53,6 +53,14 @@ use rccpack::synth::LnsOptions;
 use rccpack::synth::{synthesize, Status, SynthOptions};
 use std::time::Duration;
 
+use crate::support::formulas::{pick, q_atom, random_target, random_tree, Vocabulary};
+
+/// Classes A (weight 3), B (2), F (1); `@a1` is never a fixed object.
+const VOC: Vocabulary = Vocabulary {
+    classes: ["A", "A", "A", "B", "B", "F"],
+    absent: "a1",
+};
+
 const BASE_SEED: u64 = 0x5EED_D1FF;
 
 /// One random problem.
@@ -128,10 +136,6 @@ const LARGE2: Sizes = Sizes {
     ..LARGE
 };
 
-fn pick<T: Copy>(rng: &mut ChaCha8Rng, v: &[T]) -> T {
-    v[rng.random_range(0..v.len())]
-}
-
 fn random_formula(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
     let target = match rng.random_range(0..4) {
         0 => Target::Class("A".into()),
@@ -150,89 +154,17 @@ fn random_formula(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
     }
 }
 
-/// Second edition: a random quantifier for an atom (the default about
-/// half the time; `K` in 0..=4, around the number of target objects).
-fn random_quant(rng: &mut ChaCha8Rng, rel: Relation) -> Quant {
-    let k = rng.random_range(0..=4u32);
-    match rng.random_range(0..10) {
-        0..=4 => rel.default_quant(),
-        5 => Quant::Every,
-        6 => Quant::Some,
-        7 => Quant::No,
-        8 => Quant::AtLeast(k),
-        _ => Quant::AtMost(k),
-    }
-}
-
-/// Second edition: a random target. Landmarks: `@f`, `@g` (fixed objects
-/// when the case has them, else missing) and `@a1` (never fixed): the
-/// latter two are empty targets.
-fn random_target(rng: &mut ChaCha8Rng) -> Target {
-    match rng.random_range(0..12) {
-        0..=2 => Target::Class("A".into()),
-        3..=4 => Target::Class("B".into()),
-        5 => Target::Class("F".into()),
-        6..=7 => Target::Any,
-        8..=9 => Target::Landmark("f".into()),
-        10 => Target::Landmark("g".into()),
-        _ => Target::Landmark("a1".into()),
-    }
-}
-
-/// Second edition: one random atom of `subject` (a landmark keeps the
-/// default quantifier, SPEC §11.3).
-fn random_atom(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
-    let rel = pick(rng, &Relation::ALL);
-    let target = random_target(rng);
-    let quant = match target {
-        Target::Landmark(_) => rel.default_quant(),
-        _ => random_quant(rng, rel),
-    };
-    Formula::Atom(Atom::quantified(rel, subject, quant, target))
-}
-
-/// Second edition: a random formula of depth at most `depth`.
-fn random_tree(rng: &mut ChaCha8Rng, subject: &str, depth: u32) -> Formula {
-    if depth <= 1 {
-        return random_atom(rng, subject);
-    }
-    match rng.random_range(0..6) {
-        0 | 1 => random_atom(rng, subject),
-        2 => Formula::not(random_tree(rng, subject, depth - 1)),
-        k => {
-            let n = rng.random_range(2..=3);
-            let v = (0..n)
-                .map(|_| random_tree(rng, subject, depth - 1))
-                .collect();
-            if k == 3 {
-                Formula::And(v)
-            } else {
-                Formula::Or(v)
-            }
-        }
-    }
-}
-
-fn q_atom(kind: Kind, dir: Dir, subject: &str, quant: Quant, target: &Target) -> Formula {
-    Formula::Atom(Atom::quantified(
-        Relation::new(kind, dir),
-        subject,
-        quant,
-        target.clone(),
-    ))
-}
-
 /// Second edition: a random formula: a random tree, a SPEC §11.4/§11.5
 /// shape, or a first-edition shape.
 fn random_formula2(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
     let own = Target::Class(subject.into());
-    let target = random_target(rng);
+    let target = random_target(rng, &VOC);
     let dir = pick(rng, &Dir::ALL);
     let some = |kind, d, t: &Target| q_atom(kind, d, subject, Quant::Some, t);
     match rng.random_range(0..16) {
         0..=4 => {
             let depth = rng.random_range(1..=3);
-            random_tree(rng, subject, depth)
+            random_tree(rng, &VOC, subject, depth)
         }
         // "in one row with the other As" / "in one column"
         5 => {
@@ -364,15 +296,12 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
             let side = if rng.random_range(0..4) == 0 { 20 } else { 10 };
             (side, side)
         };
-        objects.push(Object {
-            id: format!("{}{}", class.to_lowercase(), i),
-            class: class.into(),
-            x: None,
-            y: None,
-            width: bw,
-            height: bh,
-            fixed: false,
-        });
+        objects.push(Object::movable(
+            &format!("{}{}", class.to_lowercase(), i),
+            class,
+            bw,
+            bh,
+        ));
     }
     // Already-placed movable objects (subjects and targets that do not
     // move, but no landmarks), where they fit: they make the counts of
@@ -387,15 +316,7 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
         let class = pick(&mut rng, &["A", "B"]);
         let x = 10 * rng.random_range(0..w / 10);
         let y = 10 * rng.random_range(0..h / 10);
-        let o = Object {
-            id: format!("p{i}"),
-            class: class.into(),
-            x: Some(x),
-            y: Some(y),
-            width: 10,
-            height: 10,
-            fixed: false,
-        };
+        let o = Object::placed(&format!("p{i}"), class, x, y, 10, 10);
         let clash = objects.iter().any(|p| match (p.rect(), o.rect()) {
             (Some(a), Some(b)) => a.interiors_overlap(&b),
             _ => false,
@@ -692,15 +613,7 @@ fn random_like(case: &Case) -> Vec<Scene> {
             Scene {
                 space: sp,
                 grid: case.scene.grid,
-                objects: vec![Object {
-                    id: "l".into(),
-                    class: o.class.clone(),
-                    x: Some(x),
-                    y: Some(y),
-                    width: w,
-                    height: h,
-                    fixed: false,
-                }],
+                objects: vec![Object::placed("l", &o.class, x, y, w, h)],
             }
         })
         .collect()
@@ -960,15 +873,7 @@ fn brute_force_best_is_consistent() {
 /// state") instead of answering `infeasible`.
 #[test]
 fn infeasible_at_root_minimal_reproducers() {
-    let block = |id: &str, class: &str, side: i64| Object {
-        id: id.into(),
-        class: class.into(),
-        x: None,
-        y: None,
-        width: side,
-        height: side,
-        fixed: false,
-    };
+    let block = |id: &str, class: &str, side: i64| Object::movable(id, class, side, side);
     let space = Space {
         x: 0,
         y: 0,

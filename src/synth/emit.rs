@@ -530,7 +530,7 @@ pub fn to_minizinc(e: &Emitted) -> String {
     );
     let _ = writeln!(
         s,
-        "% Contact mode `{}`. Only the score objective is written (not --like's resemblance).",
+        "% Contact mode `{}`. Only the score objective is written (not the resemblance objective of SPEC §12).",
         e.contact
     );
     if !m.cumulative.is_empty() {

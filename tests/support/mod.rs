@@ -47,3 +47,4 @@ pub fn scratch(tag: &str) -> PathBuf {
     std::fs::create_dir_all(&d).expect("create a scratch folder");
     d
 }
+pub mod formulas;
