@@ -1,0 +1,439 @@
+"""Type stubs of rccpack (the native module `rccpack._rccpack` and the
+pure-Python `Status`)."""
+
+import enum
+import os
+from collections.abc import Callable, Iterator, Sequence
+from typing import Any, Optional, Union, final
+
+__version__: str
+
+_Path = Union[str, "os.PathLike[str]"]
+_Scenes = Union["Scene", Sequence["Scene"]]
+
+# ---- errors ------------------------------------------------------------------
+
+class Error(ValueError):
+    """Base class of every rccpack error (the input is at fault)."""
+
+class SceneError(Error):
+    """A scene breaks SPEC §1–§2; `path` names the field (`objects[3].x`)."""
+
+    path: str
+    message: str
+    kind: str
+    """`json`, `overlap`, `outside`, `duplicate_id`, `out_of_range`, …"""
+    file: Optional[str]
+
+class RulesError(Error):
+    """Invalid `.rcc` text, located: `line`, `column`, `report` (caret)."""
+
+    line: int
+    column: int
+    message: str
+    kind: str
+    """`syntax`, `unknown_relation`, `duplicate_name`, `unknown_class`, …"""
+    report: str
+    file: str
+    diagnostics: list[tuple[int, int, str]]
+
+class SynthError(Error):
+    """A problem that cannot be used for synthesis."""
+
+class LearnError(Error):
+    """Learning cannot run (parameters, demonstrations, statements)."""
+
+class AskError(Error):
+    """The question loop cannot go on."""
+
+class InternalError(Error):
+    """A bug in rccpack (a Rust panic caught at the boundary)."""
+
+# ---- scenes ------------------------------------------------------------------
+
+@final
+class Space:
+    def __new__(cls, width: int, height: int, x: int = 0, y: int = 0) -> Space: ...
+    @property
+    def x(self) -> int: ...
+    @property
+    def y(self) -> int: ...
+    @property
+    def width(self) -> int: ...
+    @property
+    def height(self) -> int: ...
+
+@final
+class Object:
+    def __new__(
+        klass,
+        id: str,
+        cls: str,
+        width: int,
+        height: int,
+        x: Optional[int] = None,
+        y: Optional[int] = None,
+        fixed: bool = False,
+    ) -> Object: ...
+    @property
+    def id(self) -> str: ...
+    @property
+    def cls(self) -> str: ...
+    @property
+    def x(self) -> Optional[int]: ...
+    @property
+    def y(self) -> Optional[int]: ...
+    @property
+    def width(self) -> int: ...
+    @property
+    def height(self) -> int: ...
+    @property
+    def fixed(self) -> bool: ...
+    @property
+    def placed(self) -> bool: ...
+    def at(self, x: Optional[int], y: Optional[int]) -> Object:
+        """The same object at another position."""
+
+@final
+class Scene:
+    def __new__(cls, space: Space, objects: Sequence[Object], grid: int = 10) -> Scene: ...
+    @staticmethod
+    def from_json(text: str) -> Scene: ...
+    @staticmethod
+    def from_dict(d: Any) -> Scene: ...
+    def to_dict(self) -> dict[str, Any]: ...
+    def to_json(self) -> str: ...
+    @property
+    def space(self) -> Space: ...
+    @property
+    def grid(self) -> int: ...
+    @property
+    def objects(self) -> tuple[Object, ...]: ...
+    @property
+    def classes(self) -> list[str]: ...
+    @property
+    def complete(self) -> bool: ...
+    def get(self, id: str) -> Optional[Object]: ...
+    def __len__(self) -> int: ...
+
+def load_scene(path: _Path) -> Scene: ...
+def load_scenes(path: _Path) -> list[Scene]: ...
+def scenes_to_json(scenes: _Scenes) -> str: ...
+
+# ---- rules -------------------------------------------------------------------
+
+@final
+class Rule:
+    @property
+    def name(self) -> str: ...
+    @property
+    def weight(self) -> float: ...
+    @property
+    def hard(self) -> bool: ...
+    @property
+    def posterior(self) -> Optional[float]: ...
+    @property
+    def reading(self) -> str: ...
+    @property
+    def subject(self) -> str: ...
+    @property
+    def scene_level(self) -> bool: ...
+    @property
+    def formula(self) -> str: ...
+    @property
+    def comments(self) -> list[str]: ...
+    @property
+    def text(self) -> str: ...
+
+@final
+class RuleSet:
+    @staticmethod
+    def parse(text: str, file: str = "<rules>") -> RuleSet: ...
+    def check(self, scene: Scene) -> None: ...
+    @property
+    def rules(self) -> tuple[Rule, ...]: ...
+    @property
+    def names(self) -> list[str]: ...
+    @property
+    def classes(self) -> list[str]: ...
+    def __len__(self) -> int: ...
+    def __getitem__(self, key: Union[int, str], /) -> Rule: ...
+    def __contains__(self, name: object, /) -> bool: ...
+    def __iter__(self) -> Iterator[Rule]: ...
+
+def load_rules(path: _Path) -> RuleSet: ...
+
+# ---- evaluate ----------------------------------------------------------------
+
+@final
+class RuleReport:
+    @property
+    def name(self) -> str: ...
+    @property
+    def weight(self) -> float: ...
+    @property
+    def hard(self) -> bool: ...
+    @property
+    def subjects(self) -> int: ...
+    @property
+    def satisfied(self) -> int: ...
+    @property
+    def violators(self) -> list[str]: ...
+    @property
+    def quantifier(self) -> Optional[str]: ...
+
+@final
+class Evaluation:
+    @property
+    def score(self) -> float: ...
+    @property
+    def satisfied_weight(self) -> float: ...
+    @property
+    def total_weight(self) -> float: ...
+    @property
+    def hard_violations(self) -> int: ...
+    @property
+    def off_grid(self) -> list[str]: ...
+    @property
+    def rules(self) -> tuple[RuleReport, ...]: ...
+    def to_json(self) -> str: ...
+
+def evaluate(scene: Scene, rules: RuleSet, contact: str = "point") -> Evaluation: ...
+
+# ---- learn -------------------------------------------------------------------
+
+@final
+class Statement:
+    @property
+    def name(self) -> str: ...
+    @property
+    def formula(self) -> str: ...
+    @property
+    def subject(self) -> str: ...
+    @property
+    def english(self) -> str: ...
+    @property
+    def candidate(self) -> bool: ...
+    @property
+    def n(self) -> int: ...
+    @property
+    def satisfied(self) -> Optional[int]: ...
+    @property
+    def q(self) -> Optional[float]: ...
+    @property
+    def p(self) -> Optional[float]: ...
+    @property
+    def log10_likelihood(self) -> Optional[float]: ...
+    @property
+    def log10_posterior(self) -> Optional[float]: ...
+    @property
+    def posterior(self) -> Optional[float]: ...
+    @property
+    def learned(self) -> bool: ...
+    @property
+    def rank(self) -> Optional[int]: ...
+    @property
+    def implied_by(self) -> Optional[str]: ...
+
+@final
+class Learned:
+    @property
+    def rules(self) -> RuleSet: ...
+    def to_rcc(self) -> str: ...
+    def report_json(self) -> str: ...
+    def report(self) -> dict[str, Any]: ...
+    @property
+    def statements(self) -> tuple[Statement, ...]: ...
+    @property
+    def demonstrations(self) -> int: ...
+    @property
+    def candidates(self) -> int: ...
+    def __len__(self) -> int: ...
+
+def learn(
+    demos: _Scenes,
+    samples: int = 1000,
+    cutoff: float = 0.01,
+    seed: int = 0,
+    templates: str = "second",
+    statements: Optional[RuleSet] = None,
+    prior: float = 0.5,
+    epsilon: Optional[float] = None,
+    contact: str = "point",
+) -> Learned: ...
+
+# ---- synthesize --------------------------------------------------------------
+
+class Status(enum.Enum):
+    OPTIMAL = "optimal"
+    FEASIBLE = "feasible"
+    INFEASIBLE = "infeasible"
+    UNKNOWN = "unknown"
+
+@final
+class Resemblance:
+    @property
+    def cost(self) -> int: ...
+    @property
+    def proven(self) -> bool: ...
+
+@final
+class Conflict:
+    @property
+    def objects_cannot_fit(self) -> bool: ...
+    @property
+    def hard_rules(self) -> list[str]: ...
+    @property
+    def limit_struck(self) -> bool: ...
+
+@final
+class SolveStats:
+    @property
+    def nodes(self) -> int: ...
+    @property
+    def conflicts(self) -> int: ...
+    @property
+    def time_ms(self) -> float: ...
+    @property
+    def time_to_first_ms(self) -> Optional[float]: ...
+    @property
+    def time_to_best_ms(self) -> Optional[float]: ...
+
+@final
+class SynthResult:
+    @property
+    def status(self) -> Status: ...
+    @property
+    def scene(self) -> Optional[Scene]: ...
+    @property
+    def evaluation(self) -> Optional[Evaluation]: ...
+    @property
+    def score(self) -> Optional[float]: ...
+    @property
+    def score_bound(self) -> Optional[float]: ...
+    @property
+    def resemblance(self) -> Optional[Resemblance]: ...
+    @property
+    def conflict(self) -> Optional[Conflict]: ...
+    @property
+    def stats(self) -> SolveStats: ...
+    @property
+    def interrupted(self) -> bool: ...
+
+def synthesize(
+    problem: Scene,
+    rules: RuleSet,
+    like: Optional[_Scenes] = None,
+    time_limit: Optional[float] = None,
+    node_limit: Optional[int] = None,
+    seed: int = 0,
+    contact: str = "point",
+    warm_start: Optional[_Scenes] = None,
+    progress: Optional[Callable[[float, float], object]] = None,
+) -> SynthResult: ...
+
+# ---- render ------------------------------------------------------------------
+
+def render(
+    scene: Scene,
+    rules: Optional[RuleSet] = None,
+    like: Optional[_Scenes] = None,
+    contact: str = "point",
+    scale: float = 1.0,
+    title: Optional[str] = None,
+) -> str: ...
+def render_png(
+    scene: Scene,
+    rules: Optional[RuleSet] = None,
+    like: Optional[_Scenes] = None,
+    contact: str = "point",
+    scale: float = 1.0,
+    title: Optional[str] = None,
+) -> bytes: ...
+
+# ---- ask ---------------------------------------------------------------------
+
+@final
+class Question:
+    @property
+    def rule(self) -> str: ...
+    @property
+    def statement(self) -> str: ...
+    @property
+    def english(self) -> str: ...
+    @property
+    def probe(self) -> Scene: ...
+    @property
+    def broken(self) -> list[str]: ...
+    @property
+    def also_broken(self) -> list[str]: ...
+    @property
+    def accepted(self) -> bool: ...
+
+@final
+class AskResult:
+    @property
+    def questions(self) -> tuple[Question, ...]: ...
+    @property
+    def rules(self) -> RuleSet: ...
+    @property
+    def learned_rcc(self) -> str: ...
+    @property
+    def demos(self) -> list[Scene]: ...
+    @property
+    def answers_json(self) -> str: ...
+    @property
+    def progress(self) -> dict[str, int]: ...
+    @property
+    def stopped_at_budget(self) -> bool: ...
+
+def ask(
+    task_dir: _Path,
+    oracle: Callable[[Scene], object],
+    max_questions: Optional[int] = None,
+    samples: int = 1000,
+    cutoff: float = 0.01,
+    seed: int = 0,
+    time_limit: Optional[float] = 10.0,
+    node_limit: int = ...,
+    check_nodes: int = ...,
+    contact: str = "point",
+    templates: str = "second",
+) -> AskResult: ...
+
+__all__ = [
+    "AskError",
+    "AskResult",
+    "Conflict",
+    "Error",
+    "Evaluation",
+    "InternalError",
+    "Learned",
+    "LearnError",
+    "Object",
+    "Question",
+    "Resemblance",
+    "Rule",
+    "RuleReport",
+    "RulesError",
+    "RuleSet",
+    "Scene",
+    "SceneError",
+    "SolveStats",
+    "Space",
+    "Statement",
+    "Status",
+    "SynthError",
+    "SynthResult",
+    "__version__",
+    "ask",
+    "evaluate",
+    "learn",
+    "load_rules",
+    "load_scene",
+    "load_scenes",
+    "render",
+    "render_png",
+    "scenes_to_json",
+    "synthesize",
+]
