@@ -11,6 +11,7 @@ use rccpack_core::ask::{
     DEFAULT_PROBE_NODES,
 };
 use rccpack_core::infer::{LearnParams, Templates};
+use rccpack_core::task::files;
 use rccpack_core::Scene as CoreScene;
 use std::path::PathBuf;
 use std::time::Duration;
@@ -168,11 +169,11 @@ pub fn ask(
         let text = read_text(&p)?;
         CoreScene::from_json(&text).map_err(|e| scene_error(e, Some(&p.display().to_string())))
     };
-    let problem = read_scene("problem.json")?;
-    let demos_path = task_dir.join("demos.json");
+    let problem = read_scene(files::PROBLEM)?;
+    let demos_path = task_dir.join(files::DEMOS);
     let demos = rccpack_core::scene::scenes_from_json(&read_text(&demos_path)?)
         .map_err(|e| scene_error(e, Some(&demos_path.display().to_string())))?;
-    let statements_path = task_dir.join("statements.rcc");
+    let statements_path = task_dir.join(files::STATEMENTS);
     let statements = if statements_path.exists() {
         let text = read_text(&statements_path)?;
         Some(PyRuleSet::parse_named(&text, &statements_path.display().to_string())?.inner)
