@@ -1192,3 +1192,50 @@ async fn absent_classes_are_noted_and_fields_named() {
     assert!(e.contains("cutoff") && !e.contains("--cutoff"), "{e}");
     assert_eq!(v["path"], "cutoff");
 }
+
+/// "Another layout like this" (issue 24): `POST /api/sample` draws a layout
+/// of at least the given score; each seed another one; every one verified.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn another_layout_like_this() {
+    let dir = task_dir("sample", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let pilot = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing/pilot.rcc"),
+    )
+    .unwrap();
+    let problem = rccpack::scene::Scene::from_json(
+        &std::fs::read_to_string(dir.join("problem.json")).unwrap(),
+    )
+    .unwrap();
+    let rules = rccpack::rules::parse_rules(&pilot).unwrap();
+    let mut layouts = Vec::new();
+    for seed in 1..=3 {
+        let (s, v) = call(
+            &app,
+            Method::POST,
+            "/api/sample",
+            json!({"rules": pilot, "min_score": 1.0, "seed": seed}).to_string(),
+        )
+        .await;
+        assert_eq!(s, StatusCode::OK, "{v}");
+        assert_eq!(v["sampled"], true);
+        let scene = rccpack::scene::Scene::from_json(&v["scene"].to_string()).unwrap();
+        rccpack::synth::verify_solution(&problem, &scene, &rules, rccpack::Contact::Point).unwrap();
+        let ev = rccpack::evaluate(&scene, &rules, rccpack::Contact::Point);
+        assert_eq!((ev.score, v["score"].as_f64()), (1.0, Some(1.0)));
+        layouts.push(scene);
+    }
+    assert!(
+        layouts.windows(2).any(|w| w[0] != w[1]),
+        "three draws, one layout"
+    );
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/sample",
+        json!({"rules": pilot, "min_score": 1.5}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
+    assert!(v["error"].as_str().unwrap().contains("min_score"), "{v}");
+}

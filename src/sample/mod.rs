@@ -199,7 +199,15 @@ pub fn sample(
     let mut sampler = Sampler {
         problem: problem.clone(),
         rules: rules.clone(),
-        opts: opts.clone(),
+        opts: SampleOptions {
+            // Score at least 1 is score 1: the exact integer bound of
+            // `AllRules` instead of the conservative one of `MinScore`.
+            quality: match opts.quality {
+                Quality::MinScore(x) if x >= 1.0 => Quality::AllRules,
+                q => q,
+            },
+            ..opts.clone()
+        },
         synth_opts,
         model,
         coefs,

@@ -110,6 +110,7 @@ pub fn router(dir: &Path) -> Result<Router, StudioError> {
         .route("/api/ask/next", post(api::ask_next))
         .route("/api/ask/answer", post(api::ask_answer))
         .route("/api/synth", post(api::start_synth))
+        .route("/api/sample", post(api::sample_layout))
         .route("/api/synth/{job}", get(api::synth_status))
         .route("/api/synth/{job}/cancel", post(api::cancel_synth))
         .fallback(api::not_found)

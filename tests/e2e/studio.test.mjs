@@ -236,6 +236,12 @@ try {
     await page.waitForTimeout(300);
     await page.screenshot({ path: path.join(out, 'studio-synth.png') });
 
+    // "Another layout like this" (issue 24): the next sample, at least as good.
+    await page.click('#btn-another');
+    await page.waitForFunction(() => /another layout of score/.test(document.getElementById('synth-result').textContent), null, { timeout: 60000 });
+    assert.equal(await page.locator('#board .obj:not(.fixed)').count(), 9);
+    log('another layout:', await page.locator('#synth-result .result-head').textContent());
+
     // After a reload the page solves with learned.rcc from disk. Rules that
     // cannot both hold: every red block breaks one, and is outlined.
     fs.writeFileSync(path.join(task, 'learned.rcc'),

@@ -467,11 +467,16 @@ function showResult(r, cancelled) {
       ${c.hard_rules.length ? `These hard rules cannot hold together: ${c.hard_rules.map(esc).join(', ')}` : ''}
       ${c.limit_struck ? 'A limit struck before the conflict was explained.' : ''}</div>`;
   }
+  if (!r.sampled && ev) state.likeScore = ev.score;
+  const head = r.sampled
+    ? `another layout of score ≥ ${state.likeScore.toFixed(3)} (draw ${state.sampleSeed})`
+    : `${(r.time_ms / 1000).toFixed(2)} s · ${r.stats.nodes} nodes${cancelled ? ' · cancelled' : ''}`;
   box.innerHTML = `<div class="result-head"><span class="status ${r.status}">${r.status}</span>
-      <span class="muted small">${(r.time_ms / 1000).toFixed(2)} s · ${r.stats.nodes} nodes${cancelled ? ' · cancelled' : ''}</span></div>
+      <span class="muted small">${head}</span></div>
     ${score}${conflict}
     ${rows ? `<div class="rule-table-wrap"><table class="rule-table"><thead><tr><th></th><th>rule</th><th class="num">objects keeping it</th></tr></thead><tbody>${rows}</tbody></table></div>` : ''}
-    ${r.scene ? '<button class="btn small" id="btn-back">Back to the table</button>' : ''}`;
+    ${r.scene ? '<button class="btn small" id="btn-back">Back to the table</button>' : ''}
+    ${r.scene && ev ? '<button class="btn small" id="btn-another">Another layout like this</button>' : ''}`;
   if (r.scene) {
     const violators = new Map();
     for (const rule of ev.rules) for (const id of rule.violators) {
@@ -486,7 +491,19 @@ function showResult(r, cancelled) {
     renderLegend();
     redraw();
     $('btn-back').onclick = showEditor;
+    if (ev) $('btn-another').onclick = anotherLayout;
   }
+}
+
+// "Another layout like this": the next draw of `rccpack sample` with at least
+// the score of the synthesized layout (issue 24).
+async function anotherLayout() {
+  const r = synthRules();
+  if (!r || state.likeScore === undefined) return;
+  state.sampleSeed = (state.sampleSeed || 0) + 1;
+  const res = await api('POST', '/api/sample', { rules: r.text, min_score: state.likeScore, seed: state.sampleSeed });
+  if (!res.ok) { toast(res.data.error, 'error'); return; }
+  showResult(res.data, false);
 }
 
 function fmtW(w) { return Number.isInteger(w) ? String(w) : w.toFixed(2); }
