@@ -179,7 +179,7 @@ pub use eval::{evaluate, Evaluation, RuleReport};
 pub use infer::{learn, InferError, LearnParams, Learned, Templates};
 pub use relations::Contact;
 pub use render::{render_svg, RenderOptions};
-pub use rules::{parse_rules, Diagnostic, Rule, RuleSet, RulesError};
+pub use rules::{parse_rules, Diagnostic, DiagnosticKind, Rule, RuleSet, RulesError};
 pub use sample::{sample, Quality, Repair, SampleError, SampleOptions, Sampler};
 pub use scene::{Object, Scene, SceneError, SceneErrorKind, Space};
 pub use synth::{

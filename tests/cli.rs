@@ -189,3 +189,20 @@ fn render_writes_svg_and_png() {
     let o = rccpack(&["render", PROBLEM, "-o", dir.join("x.gif").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
 }
+
+/// `RCCPACK_DEBUG=1`: the library's debug lines reach stderr through the
+/// CLI's logger (the library itself never prints); without it, none.
+#[test]
+fn debug_log_only_when_asked() {
+    let args = ["synth", PROBLEM, "--rules", PILOT, "--node-limit", "2000"];
+    let with = std::process::Command::new(env!("CARGO_BIN_EXE_rccpack"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("RCCPACK_DEBUG", "1")
+        .output()
+        .unwrap();
+    assert!(with.status.success(), "{}", stderr(&with));
+    assert!(stderr(&with).contains("model "), "{}", stderr(&with));
+    let without = rccpack(&args);
+    assert!(!stderr(&without).contains("model "), "{}", stderr(&without));
+}

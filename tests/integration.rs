@@ -32,4 +32,5 @@ mod studio_api;
 mod studio_browser;
 mod synth;
 mod synth_differential;
+mod task;
 mod worked_example;

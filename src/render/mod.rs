@@ -794,3 +794,19 @@ pub fn render_to_path(
     }
     Ok(())
 }
+
+#[cfg(all(test, not(feature = "png")))]
+mod core_tests {
+    use super::*;
+
+    /// Without the `png` feature a `.png` path is a clear error, not a panic.
+    #[test]
+    fn png_needs_the_feature() {
+        let scene = Scene::from_json(r#"{"space": {"width": 10, "height": 10}, "objects": []}"#)
+            .expect("scene");
+        let path = std::env::temp_dir().join("rccpack-core-no-png.png");
+        let e = render_to_path(&scene, None, &RenderOptions::default(), &path).unwrap_err();
+        assert!(matches!(e, RenderError::PngUnavailable), "{e}");
+        assert!(!path.exists());
+    }
+}
