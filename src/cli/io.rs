@@ -74,23 +74,18 @@ pub fn task_error_text(e: &rccpack::TaskError) -> String {
 
 /// Read a whole text file, naming it in the error: UTF-8 (a leading
 /// byte-order mark is dropped); invalid UTF-8 is reported with its byte
-/// offset.
+/// offset ([`rccpack::task::read_text`]).
 pub fn read_text(path: &Path) -> Result<String> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| Reported(format!("error: {}: cannot read file: {e}", path.display())))?;
-    let text = rccpack::fsutil::utf8_text(bytes)
-        .map_err(|e| Reported(format!("error: {}: {e}", path.display())))?;
-    Ok(text)
+    rccpack::task::read_text(path).map_err(|e| Reported(format!("error: {e}")).into())
 }
 
 fn scene_error(path: &Path, e: scene::SceneError) -> anyhow::Error {
     Reported(format!("error: {}: {e}", path.display())).into()
 }
 
-/// Read one scene (a JSON object).
+/// Read one scene (a JSON object; [`rccpack::task::read_scene`]).
 pub fn read_scene(path: &Path) -> Result<Scene> {
-    let text = read_text(path)?;
-    Scene::from_json(&text).map_err(|e| scene_error(path, e))
+    rccpack::task::read_scene(path).map_err(|e| Reported(format!("error: {e}")).into())
 }
 
 /// Read a scene file or a demonstrations array; `true` when it was an array.

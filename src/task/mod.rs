@@ -44,6 +44,14 @@ pub enum TaskError {
         /// Why.
         source: std::io::Error,
     },
+    /// A file is not UTF-8 text.
+    #[error("{}: {source}", path.display())]
+    NotUtf8 {
+        /// The file.
+        path: PathBuf,
+        /// Where the first bad byte is.
+        source: crate::fsutil::NotUtf8,
+    },
     /// A scene file is not a valid scene (or array of scenes).
     #[error("{}: {source}", path.display())]
     Scene {
@@ -90,14 +98,15 @@ pub struct Task {
 }
 
 /// Read a whole UTF-8 text file (a leading byte-order mark is dropped).
-fn read_text(path: &Path) -> Result<String, TaskError> {
-    let read = |source| TaskError::Read {
+pub fn read_text(path: &Path) -> Result<String, TaskError> {
+    let bytes = std::fs::read(path).map_err(|source| TaskError::Read {
         path: path.to_path_buf(),
         source,
-    };
-    let bytes = std::fs::read(path).map_err(read)?;
-    crate::fsutil::utf8_text(bytes)
-        .map_err(|e| read(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))
+    })?;
+    crate::fsutil::utf8_text(bytes).map_err(|source| TaskError::NotUtf8 {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Read a scene file or an array of scenes.
