@@ -231,7 +231,18 @@ pub fn minimise_cost(
     let mut best = best;
     while lo < best_cost {
         let mid = lo + (best_cost - lo - 1) / 2;
-        match backend.solve(&[Assumption::CostAtMost(mid)], limits) {
+        let t0 = std::time::Instant::now();
+        let verdict = backend.solve(&[Assumption::CostAtMost(mid)], limits);
+        log::debug!(
+            "cost ≤ {mid} (floor {lo}, best {best_cost}): {} in {:.1} ms",
+            match &verdict {
+                Verdict::Solution(v) => format!("cost {}", cost(v)),
+                Verdict::Infeasible(_) => "none".to_string(),
+                Verdict::Unknown => "unknown".to_string(),
+            },
+            t0.elapsed().as_secs_f64() * 1e3
+        );
+        match verdict {
             Verdict::Solution(v) => {
                 let n = num(&v);
                 best_cost = cost(&v);

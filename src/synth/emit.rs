@@ -283,7 +283,7 @@ enum Start {
     Const(i64),
 }
 
-/// The starts of cumulative `c`, exactly as `engine.rs` posts them: a
+/// The starts of cumulative `c`, exactly as `engine/mod.rs` posts them: a
 /// variable object `grid·v + (origin + shift)`, a constant one `c + shift`
 /// (saturating like the engine; the engine then refuses what does not fit
 /// `i32`, which [`Model::cumulative_fits_i32`] already rules out).
