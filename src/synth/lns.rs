@@ -75,7 +75,16 @@ pub struct LnsOptions {
     pub patience: u32,
     /// Search nodes per round.
     pub round_nodes: u64,
-    /// Search nodes without an improvement that end `Lns::improve`.
+    /// Search nodes without an improvement that end `Lns::improve` and
+    /// the first LNS phase of `Lns::alternate` without a warm start
+    /// (default 10 000; it was 1 000 000, which on realistic tasks without
+    /// a warm start kept LNS's slow, fruitless rounds going for the whole
+    /// time limit while the main engine alone proves them in 3 500–11 000
+    /// nodes: `bench tasks --tasks 6 --sizes 1,1.5,2 --no-like
+    /// --no-warm-start --time-limit 10` proved 12 of 18 with 1 000 000,
+    /// 14 with 30 000, 15 with 10 000; the thesis-style scale series,
+    /// `bench thesis --no-pilot --sets 3 --scale-ns 16,24,32,48 --scale-ks
+    /// 3,5 --time-limit 10`, 17, 18 and 18 of 24, medians as fast or faster).
     pub budget_nodes: u64,
     /// Search nodes of the main engine's first proof attempt in
     /// `Lns::alternate`; each later attempt gets twice as many (default
@@ -93,7 +102,7 @@ impl Default for LnsOptions {
             max_window: 24,
             patience: 12,
             round_nodes: 3_000,
-            budget_nodes: 1_000_000,
+            budget_nodes: 10_000,
             proof_nodes: 300,
         }
     }
@@ -133,7 +142,7 @@ pub struct Lns<'a> {
     /// Seed of the window choice and the sub-engines.
     pub seed: u64,
     /// Whether [`Lns::alternate`]'s first LNS phase runs until it stops
-    /// paying off at the largest window (`budget_nodes`), as LNS did before
+    /// paying off (`budget_nodes` without an improvement), as LNS did before
     /// the alternation, instead of being as short as the proof attempt
     /// before it. `synthesize` sets it for problems of 16 or more objects
     /// without a warm start: their incumbent is a greedy packing far from
