@@ -276,22 +276,21 @@ struct Outcome {
     problem: Option<Scene>,
 }
 
-fn run_task(task: &Task, truth_text: &str, mixes: usize) -> Outcome {
-    let start = Instant::now();
-    let truth = parse_rules(truth_text).expect("ground truth parses");
-    let mut rng = ChaCha8Rng::seed_from_u64(task.seed);
+/// The task's demonstrations (synthesised with the truth hard), its
+/// problem and the loop's options.
+fn setup(task: &Task, truth: &RuleSet, rng: &mut ChaCha8Rng) -> (Scene, Vec<Scene>, AskOptions) {
     let truth_hard = RuleSet::new(hard(&truth.rules));
     // Demonstrations.
     let mut demos = Vec::new();
     for d in 0..8 {
-        let m = random_mix(task, &mut rng);
-        let like = Likeness::new(&[random_positions(&m, &mut rng)]);
+        let m = random_mix(task, rng);
+        let like = Likeness::new(&[random_positions(&m, rng)]);
         let r = solve(&m, &truth_hard, Some(like), d);
         let s = r
             .scene
             .unwrap_or_else(|| panic!("task {}: demonstration {d}: {:?}", task.name, r.status));
         assert!(
-            all_hold(&s, &truth),
+            all_hold(&s, truth),
             "task {}: demo {d} breaks the truth",
             task.name
         );
@@ -310,7 +309,16 @@ fn run_task(task: &Task, truth_text: &str, mixes: usize) -> Outcome {
             ..ProbeOptions::default()
         },
         resemble: true,
+        ..AskOptions::default()
     };
+    (problem, demos, opts)
+}
+
+fn run_task(task: &Task, truth_text: &str, mixes: usize) -> Outcome {
+    let start = Instant::now();
+    let truth = parse_rules(truth_text).expect("ground truth parses");
+    let mut rng = ChaCha8Rng::seed_from_u64(task.seed);
+    let (problem, demos, opts) = setup(task, &truth, &mut rng);
     let mut asker = Asker::new(problem.clone(), demos, None, Vec::new(), opts).expect("asker");
     let mut out = Outcome {
         held_before: asker.held().rules.len(),
@@ -626,4 +634,49 @@ fn mutually_implied_habits_are_asked_as_one() {
         assert!(!o.held.rules.iter().any(|r| r.name == name), "{o:#?}");
     }
     assert!(o.c_fail.is_empty(), "{o:#?}");
+}
+
+/// Reusing what earlier checks found (`AskOptions::reuse`: the pool of
+/// layouts, the proofs for fewer premises, the implications kept across
+/// relearning) changes how fast the questions come, not which: on every
+/// task the same questions, probes and answers, and the same rules held
+/// at the end, as with every check a solve.
+#[test]
+fn reuse_asks_the_same_questions() {
+    for (task, truth_text) in tasks() {
+        let truth = parse_rules(&truth_text).expect("ground truth parses");
+        let mut rng = ChaCha8Rng::seed_from_u64(task.seed);
+        let (problem, demos, opts) = setup(&task, &truth, &mut rng);
+        let transcript = |reuse: bool| {
+            let opts = AskOptions {
+                reuse,
+                ..opts.clone()
+            };
+            let mut asker =
+                Asker::new(problem.clone(), demos.clone(), None, Vec::new(), opts).expect("asker");
+            let mut out = Vec::new();
+            while let Some(q) = asker.next_question().expect("next question") {
+                if asker.progress().asked >= MAX_QUESTIONS {
+                    break;
+                }
+                let ok = all_hold(&q.probe.scene, &truth);
+                asker.answer(&q, ok).expect("answer");
+                out.push((q, ok));
+            }
+            (out, asker.learned_rcc(), asker.progress())
+        };
+        let (off, on) = (transcript(false), transcript(true));
+        assert!(!off.0.is_empty(), "task {}: no question", task.name);
+        assert_eq!(off.0.len(), on.0.len(), "task {}", task.name);
+        for ((a, x), (b, y)) in off.0.iter().zip(&on.0) {
+            assert_eq!(
+                (&a.rule, &a.also_broken, &a.probe.scene, x),
+                (&b.rule, &b.also_broken, &b.probe.scene, y),
+                "task {}",
+                task.name
+            );
+        }
+        assert_eq!(off.1, on.1, "task {}", task.name);
+        assert_eq!(off.2, on.2, "task {}", task.name);
+    }
 }

@@ -198,6 +198,7 @@ pub fn ask(
             ..ProbeOptions::default()
         },
         resemble: true,
+        ..AskOptions::default()
     };
     let run = |f: &mut dyn FnMut() -> Result<(), AskError>| -> PyResult<()> {
         match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {

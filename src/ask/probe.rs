@@ -208,6 +208,8 @@ pub fn probe_rules(held: &RuleSet, target: usize) -> Option<RuleSet> {
 /// Holds a Pumpkin engine, so it is not `Send`: make one per scan.
 pub struct ProbeChecker {
     engine: Option<crate::synth::engine::Engine>,
+    model: crate::synth::model::Model,
+    problem: Scene,
     held: usize,
     negation_of: Vec<Option<usize>>,
     opts: ProbeOptions,
@@ -264,56 +266,92 @@ impl ProbeChecker {
         };
         Ok(ProbeChecker {
             engine,
+            model,
+            problem: problem.clone(),
             held: n,
             negation_of,
             opts: opts.clone(),
         })
     }
 
-    /// `Some(true)`: rule `k` has a probe; `Some(false)`: proven none (the
-    /// others imply it on this problem); `None`: a limit stopped the solve
-    /// (the session then makes a new checker, so that later checks do not
-    /// depend on how far the stopped search got).
+    /// [`Checked::Witness`]: rule `k` has a probe (the layout found, which
+    /// breaks `k` and keeps the others); [`Checked::Proven`]: proven none
+    /// (the others imply it on this problem); [`Checked::Stopped`]: a limit
+    /// stopped the solve (the session then makes a new checker, so that
+    /// later checks do not depend on how far the stopped search got).
     /// Rules with `removed[j]` (allowed to break with `k`) are left out of
     /// the assumptions.
-    pub fn has_probe(&mut self, k: usize, removed: &[bool]) -> Option<bool> {
-        use crate::synth::engine::Sat;
+    pub fn has_probe(&mut self, k: usize, removed: &[bool]) -> Checked {
+        self.has_probe_within(k, removed, None)
+    }
+
+    /// [`ProbeChecker::has_probe`] with at most `nodes` search nodes when
+    /// that is below the options' check budget.
+    pub fn has_probe_within(&mut self, k: usize, removed: &[bool], nodes: Option<u64>) -> Checked {
         let Some(neg) = self.negation_of[k] else {
-            return Some(false);
-        };
-        // An object that cannot lie in the space: no layout at all.
-        let Some(engine) = self.engine.as_mut() else {
-            return Some(false);
+            return Checked::Proven;
         };
         let mut assume: Vec<usize> = (0..self.held)
             .filter(|&j| j != k && !removed.get(j).copied().unwrap_or(false))
             .collect();
         assume.push(neg);
-        let limits = check_limits(&self.opts, engine);
-        match engine.satisfy_rules(&assume, &limits) {
-            Sat::Solution(_) => Some(true),
-            Sat::Unsat => Some(false),
-            Sat::Unknown => None,
+        self.solve(&assume, nodes)
+    }
+
+    /// Whether held rule `a` alone implies held rule `b` on this problem
+    /// (no other rule assumed): [`Checked::Proven`] when it does,
+    /// [`Checked::Witness`] with a layout keeping `a` and breaking `b`
+    /// when it does not, [`Checked::Stopped`] when a limit stopped the
+    /// solve.
+    pub fn implies(&mut self, a: usize, b: usize) -> Checked {
+        let Some(neg) = self.negation_of[b] else {
+            return Checked::Proven;
+        };
+        self.solve(&[a, neg], None)
+    }
+
+    /// One solve under the assumptions "these rules hold".
+    fn solve(&mut self, assume: &[usize], nodes: Option<u64>) -> Checked {
+        use crate::synth::engine::Sat;
+        // An object that cannot lie in the space: no layout at all.
+        let Some(engine) = self.engine.as_mut() else {
+            return Checked::Proven;
+        };
+        let mut limits = check_limits(&self.opts, engine);
+        if let Some(n) = nodes {
+            let cap = engine.nodes().saturating_add(n);
+            limits.node_limit = Some(limits.node_limit.map_or(cap, |l| l.min(cap)));
+        }
+        let before = engine.nodes();
+        let sat = engine.satisfy_rules(assume, &limits);
+        log::debug!("ask: checker solve, {} nodes", engine.nodes() - before);
+        match sat {
+            Sat::Solution(v) => Checked::Witness(self.model.scene(&self.problem, &v)),
+            Sat::Unsat => Checked::Proven,
+            Sat::Unknown => Checked::Stopped,
         }
     }
 }
 
-impl ProbeChecker {
-    /// Whether held rule `a` alone implies held rule `b` on this problem
-    /// (no other rule assumed); `None` when a limit stopped the solve.
-    pub fn implies(&mut self, a: usize, b: usize) -> Option<bool> {
-        use crate::synth::engine::Sat;
-        let Some(neg) = self.negation_of[b] else {
-            return Some(true);
-        };
-        let Some(engine) = self.engine.as_mut() else {
-            return Some(true);
-        };
-        let limits = check_limits(&self.opts, engine);
-        match engine.satisfy_rules(&[a, neg], &limits) {
-            Sat::Solution(_) => Some(false),
-            Sat::Unsat => Some(true),
-            Sat::Unknown => None,
+/// What one check of a [`ProbeChecker`] found.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Checked {
+    /// A layout of the problem that answers the check with "no": it keeps
+    /// the assumed rules and breaks the rule checked.
+    Witness(Scene),
+    /// Proven: no such layout exists.
+    Proven,
+    /// A limit stopped the solve.
+    Stopped,
+}
+
+impl Checked {
+    /// A word for logs: `witness`, `proven` or `stopped`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Checked::Witness(_) => "witness",
+            Checked::Proven => "proven",
+            Checked::Stopped => "stopped",
         }
     }
 }

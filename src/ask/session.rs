@@ -33,8 +33,35 @@
 //! engine learned from earlier solves. When no rule has a probe that keeps
 //! all the others, groups of rules that follow from one another are asked
 //! about as one ([`Asker::next_question`]).
+//!
+//! # Reuse (issue 20: questions at the speed of a conversation)
+//!
+//! With [`AskOptions::reuse`] (the default) most checks need no solve:
+//!
+//! - **a pool of layouts**: every layout a check or a probe search finds is
+//!   a layout of the problem, kept for the whole session (the problem
+//!   never changes). A check "does `k` have a probe when these rules may
+//!   break" is answered yes by any pool layout that breaks `k` and keeps
+//!   every premise, and "does `a` alone imply `b`" no by any that keeps
+//!   `a` and breaks `b` — the evaluator decides, so the answer is sound;
+//! - **proofs for fewer premises**: a proof that premises `P` imply `k`
+//!   (statement texts) answers every later check of `k` whose premises
+//!   include `P`, also after learning is redone; so does a premise that
+//!   alone implies `k` (syntactically or proven);
+//! - **implications between two rules** (decided ones) outlive a
+//!   relearning: they depend only on the two statements and the problem;
+//! - **a short first try**: a check gets `FIRST_TRY_NODES` nodes on the
+//!   scan's checker, and the full budget on a fresh checker of the
+//!   premises and the rule only when they do not decide it (a long-lived
+//!   engine can slow down by orders of magnitude).
+//!
+//! A rule is still called implied only when the engine proved it. The
+//! decided answers are the same as without reuse; only a check that
+//! reaches its budget can come out differently (decided where it was not).
+//! The bench (`cargo bench --bench ask -- --compare`) and
+//! `tests/ask_tasks.rs` check that the questions stay the same.
 
-use super::probe::{find_probe, Probe, ProbeChecker, ProbeOptions, ProbeOutcome};
+use super::probe::{find_probe, Checked, Probe, ProbeChecker, ProbeOptions, ProbeOutcome};
 use crate::infer::english::rule_implies;
 use crate::infer::{learn, InferError, LearnParams, Learned};
 use crate::resemblance::Likeness;
@@ -171,6 +198,14 @@ pub struct AskOptions {
     pub probe: ProbeOptions,
     /// Probes resemble the demonstrations (SPEC §12).
     pub resemble: bool,
+    /// Reuse what earlier checks found (on by default): a layout a solve
+    /// found answers later checks it decides (evaluated, no solve), a
+    /// proof that some rules imply a rule answers later checks with more
+    /// premises, and decided answers outlive a relearning. Off, every
+    /// check is a solve, as before (for comparisons and tests); the
+    /// questions are the same either way unless a check reaches its
+    /// budget.
+    pub reuse: bool,
 }
 
 impl Default for AskOptions {
@@ -179,6 +214,7 @@ impl Default for AskOptions {
             learn: LearnParams::default(),
             probe: ProbeOptions::default(),
             resemble: true,
+            reuse: true,
         }
     }
 }
@@ -188,6 +224,30 @@ enum Known {
     Probe(Probe),
     Implied,
     Unknown,
+}
+
+/// With `reuse`, a check first gets this many search nodes on the
+/// checker of the scan, which has learned from every earlier solve; when
+/// they do not decide it, a fresh checker holding only the premises and
+/// the rule (a smaller model) gets the full budget
+/// ([`ProbeOptions::check_nodes`]). The long-lived engine can slow down a
+/// lot: on the shelf one proof ran 10 s (7 524 nodes, stopped by the time
+/// limit) on it and took 296 nodes (49 ms) on a fresh engine, while
+/// building one costs 10–30 ms; at cutoff 0.3 the smaller model halved the
+/// session (86 → 47 s). Node counts, so still deterministic.
+const FIRST_TRY_NODES: u64 = 1_000;
+
+/// At most this many layouts are kept in the pool (a pool check costs a
+/// look at every layout's row).
+const MAX_POOL: usize = 4096;
+
+/// Layouts of the problem (see [`Asker::settled`]).
+#[derive(Debug, Clone, Default)]
+struct Pool {
+    scenes: Vec<Scene>,
+    /// Per layout, per held rule: whether it holds (evaluated for the
+    /// current held rules; cleared when they change).
+    holds: Vec<Vec<bool>>,
 }
 
 /// The classes a rule is about (subject and target classes), `None` when it
@@ -229,9 +289,18 @@ pub struct Asker {
     /// Resemblance to the demonstrations (accepted probes included).
     like: Option<Likeness>,
     known: HashMap<String, Known>,
-    /// Which held rule alone implies which (by name), while the held rules
-    /// stay the same: cleared when learning is redone.
-    alone: HashMap<(String, String), bool>,
+    /// Which held rule alone implies which (by statement text; `None`: a
+    /// limit stopped the check, which counts as "no"), while the held
+    /// rules stay the same; with `reuse` the decided ones are kept when
+    /// learning is redone.
+    alone: std::cell::RefCell<HashMap<(String, String), Option<bool>>>,
+    /// With `reuse`: layouts of the problem found by checks and probe
+    /// searches, for the whole session (the problem never changes).
+    pool: std::cell::RefCell<Pool>,
+    /// With `reuse`: every proof "these premises imply this rule"
+    /// (statement texts), for the whole session: it stays a proof for any
+    /// larger set of premises.
+    proofs: std::cell::RefCell<Vec<(String, BTreeSet<String>)>>,
     /// Decided [`ProbeChecker::has_probe`] checks (rule, rules allowed to
     /// break with it), while the held rules stay the same.
     checks: std::cell::RefCell<HashMap<(String, Vec<String>), bool>>,
@@ -293,7 +362,9 @@ impl Asker {
                 .collect(),
             answers,
             known: HashMap::new(),
-            alone: HashMap::new(),
+            alone: Default::default(),
+            pool: Default::default(),
+            proofs: Default::default(),
             checks: Default::default(),
             open: None,
         };
@@ -393,11 +464,15 @@ impl Asker {
     ) -> Result<&'c mut ProbeChecker, AskError> {
         Ok(match checker {
             Some(c) => c,
-            None => checker.insert(ProbeChecker::new(
-                &self.problem,
-                &self.held,
-                &self.opts.probe,
-            )?),
+            None => {
+                let t = std::time::Instant::now();
+                let c = ProbeChecker::new(&self.problem, &self.held, &self.opts.probe)?;
+                log::debug!(
+                    "ask: checker built in {:.1} ms",
+                    t.elapsed().as_secs_f64() * 1e3
+                );
+                checker.insert(c)
+            }
         })
     }
 
@@ -413,11 +488,109 @@ impl Asker {
             .collect();
         let set = RuleSet::new(keep.iter().map(|&j| self.held.rules[j].clone()).collect());
         let at = keep.iter().position(|&j| j == k).expect("kept");
-        Ok(match find_probe(&self.problem, &set, at, &opts)? {
-            ProbeOutcome::Probe(p) => Known::Probe(p),
+        let t = std::time::Instant::now();
+        let found = find_probe(&self.problem, &set, at, &opts)?;
+        log::debug!(
+            "ask: probe search {} ({} may break): {} in {:.1} ms",
+            self.held.rules[k].name,
+            self.held.rules.len() - keep.len(),
+            match &found {
+                ProbeOutcome::Probe(_) => "probe",
+                ProbeOutcome::Implied { .. } => "implied",
+                ProbeOutcome::Unknown => "unknown",
+            },
+            t.elapsed().as_secs_f64() * 1e3
+        );
+        Ok(match found {
+            ProbeOutcome::Probe(p) => {
+                self.remember(p.scene.clone());
+                Known::Probe(p)
+            }
             ProbeOutcome::Implied { .. } => Known::Implied,
             ProbeOutcome::Unknown => Known::Unknown,
         })
+    }
+
+    /// The key of held rule `k` that stays the same when learning is
+    /// redone: its statement text.
+    fn text(&self, k: usize) -> String {
+        let r = &self.held.rules[k];
+        crate::infer::statement_text(r.scope, &r.formula)
+    }
+
+    /// Whether each held rule holds in each pool layout (rows in pool
+    /// order), brought up to date with the pool.
+    fn pool_holds(&self) -> std::cell::Ref<'_, Pool> {
+        {
+            let mut pool = self.pool.borrow_mut();
+            let pool = &mut *pool;
+            while pool.holds.len() < pool.scenes.len() {
+                let scene = &pool.scenes[pool.holds.len()];
+                let ev = crate::eval::evaluate(scene, &self.held, self.opts.probe.contact);
+                pool.holds
+                    .push(ev.rules.iter().map(|r| r.satisfied == r.subjects).collect());
+            }
+        }
+        self.pool.borrow()
+    }
+
+    /// Keep a layout of the problem that a solve found (with `reuse`).
+    fn remember(&self, scene: Scene) {
+        if self.opts.reuse {
+            let mut pool = self.pool.borrow_mut();
+            if pool.scenes.len() < MAX_POOL && !pool.scenes.contains(&scene) {
+                pool.scenes.push(scene);
+            }
+        }
+    }
+
+    /// What is already known about "does rule `k` have a probe when the
+    /// rules in `removed` may break with it" without a solve (with
+    /// `reuse`): `Some(true)` when a pool layout breaks `k` and keeps every
+    /// premise (the other rules not removed) — the evaluator decides, so
+    /// the layout is a probe; `Some(false)` when a proof of the session
+    /// showed that fewer premises imply `k`, or one premise alone implies
+    /// it (syntactically or proven).
+    fn settled(&self, k: usize, removed: &[bool]) -> Option<bool> {
+        if !self.opts.reuse {
+            return None;
+        }
+        let n = self.held.rules.len();
+        let premise = |j: usize| j != k && !removed.get(j).copied().unwrap_or(false);
+        let pool = self.pool_holds();
+        if pool
+            .holds
+            .iter()
+            .any(|h| !h[k] && (0..n).filter(|&j| premise(j)).all(|j| h[j]))
+        {
+            return Some(true);
+        }
+        drop(pool);
+        let text = self.text(k);
+        let premises: BTreeSet<String> = (0..n)
+            .filter(|&j| premise(j))
+            .map(|j| self.text(j))
+            .collect();
+        if self
+            .proofs
+            .borrow()
+            .iter()
+            .any(|(r, by)| *r == text && by.is_subset(&premises))
+        {
+            return Some(false);
+        }
+        let rk = &self.held.rules[k];
+        let alone = self.alone.borrow();
+        let implied = (0..n).filter(|&j| premise(j)).any(|j| {
+            let rj = &self.held.rules[j];
+            alone.get(&(self.text(j), text.clone())) == Some(&Some(true))
+                || rule_implies(
+                    (rj.scope, &rj.formula),
+                    (rk.scope, &rk.formula),
+                    self.opts.learn.contact,
+                )
+        });
+        implied.then_some(false)
     }
 
     /// [`ProbeChecker::has_probe`], making a new checker after a limit.
@@ -437,57 +610,127 @@ impl Asker {
         if let Some(&v) = self.checks.borrow().get(&key) {
             return Ok(Some(v));
         }
-        let verdict = self.checker(checker)?.has_probe(k, removed);
-        match verdict {
-            Some(v) => {
-                self.checks.borrow_mut().insert(key, v);
+        if let Some(v) = self.settled(k, removed) {
+            log::debug!(
+                "ask: check {} ({} may break): {v} without a solve",
+                key.0,
+                key.1.len()
+            );
+            self.checks.borrow_mut().insert(key, v);
+            return Ok(Some(v));
+        }
+        let t = std::time::Instant::now();
+        // With `reuse`: a short first try on the checker of the scan, then
+        // the full budget on a fresh one of the premises and the rule only
+        // (see `FIRST_TRY_NODES`).
+        let first = self.opts.reuse.then_some(FIRST_TRY_NODES);
+        let mut checked = self.checker(checker)?.has_probe_within(k, removed, first);
+        if first.is_some() && checked == Checked::Stopped {
+            log::debug!(
+                "ask: check {} stopped at the first try after {:.1} ms: a fresh checker",
+                key.0,
+                t.elapsed().as_secs_f64() * 1e3
+            );
+            // Later checks must not depend on how far this one got.
+            *checker = None;
+            // The premises and the rule only: a smaller model.
+            let keep: Vec<usize> = (0..self.held.rules.len())
+                .filter(|&j| j == k || !removed.get(j).copied().unwrap_or(false))
+                .collect();
+            let set = RuleSet::new(keep.iter().map(|&j| self.held.rules[j].clone()).collect());
+            let at = keep.iter().position(|&j| j == k).expect("kept");
+            checked = ProbeChecker::new(&self.problem, &set, &self.opts.probe)?.has_probe(at, &[]);
+        }
+        log::debug!(
+            "ask: check {} ({} may break): {} in {:.1} ms",
+            key.0,
+            key.1.len(),
+            checked.name(),
+            t.elapsed().as_secs_f64() * 1e3
+        );
+        let verdict = match checked {
+            Checked::Witness(scene) => {
+                self.remember(scene);
+                Some(true)
+            }
+            Checked::Proven => {
+                if self.opts.reuse {
+                    let premises = (0..self.held.rules.len())
+                        .filter(|&j| j != k && !removed.get(j).copied().unwrap_or(false))
+                        .map(|j| self.text(j))
+                        .collect();
+                    self.proofs.borrow_mut().push((self.text(k), premises));
+                }
+                Some(false)
             }
             // A stopped search: a fresh engine for the next checks, so
             // that they do not depend on how far this one got.
-            None => *checker = None,
+            Checked::Stopped => {
+                *checker = None;
+                None
+            }
+        };
+        if let Some(v) = verdict {
+            self.checks.borrow_mut().insert(key, v);
         }
         Ok(verdict)
     }
 
     /// Whether held rule `a` alone implies held rule `b` on this problem
     /// (syntactically, or proven by the checker; a limit counts as no).
-    /// Memoised in `memo` for one scan.
+    /// Memoised while the held rules stay the same (with `reuse`: decided
+    /// answers for the whole session, keyed by statement text).
     fn alone_implies(
         &self,
         checker: &mut Option<ProbeChecker>,
-        memo: &mut HashMap<(String, String), bool>,
         a: usize,
         b: usize,
     ) -> Result<bool, AskError> {
-        let key = (
-            self.held.rules[a].name.clone(),
-            self.held.rules[b].name.clone(),
-        );
-        if let Some(&v) = memo.get(&key) {
-            return Ok(v);
+        let key = (self.text(a), self.text(b));
+        if let Some(&v) = self.alone.borrow().get(&key) {
+            return Ok(v == Some(true));
         }
         let (ra, rb) = (&self.held.rules[a], &self.held.rules[b]);
         let v = if !related(ra, rb) {
             // No class in common: neither says anything about the other's
             // objects (a rule impossible or certain on its own would be the
             // exception; missing it only costs a question).
-            false
+            Some(false)
         } else if rule_implies(
             (ra.scope, &ra.formula),
             (rb.scope, &rb.formula),
             self.opts.learn.contact,
         ) {
-            true
+            Some(true)
+        } else if self.opts.reuse && self.pool_holds().holds.iter().any(|h| h[a] && !h[b]) {
+            // A layout keeping `a` and breaking `b`.
+            Some(false)
         } else {
-            let verdict = self.checker(checker)?.implies(a, b);
-            if verdict.is_none() {
-                // A stopped search: a fresh engine for the next checks.
-                *checker = None;
+            let c = self.checker(checker)?;
+            let t = std::time::Instant::now();
+            let checked = c.implies(a, b);
+            log::debug!(
+                "ask: implies {} -> {}: {} in {:.1} ms",
+                ra.name,
+                rb.name,
+                checked.name(),
+                t.elapsed().as_secs_f64() * 1e3
+            );
+            match checked {
+                Checked::Witness(scene) => {
+                    self.remember(scene);
+                    Some(false)
+                }
+                Checked::Proven => Some(true),
+                Checked::Stopped => {
+                    // A stopped search: a fresh engine for the next checks.
+                    *checker = None;
+                    None
+                }
             }
-            verdict == Some(true)
         };
-        memo.insert(key, v);
-        Ok(v)
+        self.alone.borrow_mut().insert(key, v);
+        Ok(v == Some(true))
     }
 
     /// The next question, or `None` when every held rule is confirmed or
@@ -524,8 +767,6 @@ impl Asker {
         let none = vec![false; n];
         let mut checker: Option<ProbeChecker> = None;
         let mut group: Option<Probe> = None;
-        // Kept across questions while the held rules stay the same.
-        let mut alone = std::mem::take(&mut self.alone);
         for pass in 0..3 {
             for &k in &order {
                 let name = self.held.rules[k].name.clone();
@@ -561,8 +802,8 @@ impl Asker {
                     let mut parts = vec![false; n];
                     let mut weaker = false;
                     for &j in &open {
-                        let j_k = self.alone_implies(&mut checker, &mut alone, j, k)?;
-                        let k_j = self.alone_implies(&mut checker, &mut alone, k, j)?;
+                        let j_k = self.alone_implies(&mut checker, j, k)?;
+                        let k_j = self.alone_implies(&mut checker, k, j)?;
                         if j_k && !k_j {
                             weaker = true;
                             break;
@@ -645,13 +886,11 @@ impl Asker {
                         probe: p.clone(),
                     };
                     self.open = Some(name);
-                    self.alone = alone;
                     return Ok(Some(q));
                 }
             }
         }
         self.open = None;
-        self.alone = alone;
         Ok(None)
     }
 
@@ -681,7 +920,15 @@ impl Asker {
             self.demos = demos;
             self.learned = learned;
             self.known.clear();
-            self.alone.clear();
+            if self.opts.reuse {
+                // Decided answers depend only on the two statements and
+                // the problem; the pool's layouts and the proofs stay
+                // layouts and proofs of the problem.
+                self.alone.get_mut().retain(|_, v| v.is_some());
+                self.pool.get_mut().holds.clear();
+            } else {
+                self.alone.get_mut().clear();
+            }
             self.checks.get_mut().clear();
         } else {
             self.confirmed.insert(q.rule.clone());
@@ -692,5 +939,136 @@ impl Asker {
         self.held = self.held_rules();
         self.answers.push(a);
         Ok(self.answers.last().expect("just pushed"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::scenes_from_json;
+
+    /// The bundled example's problem and demonstrations.
+    fn example() -> (Scene, Vec<Scene>) {
+        let demos = scenes_from_json(include_str!("../../examples/box-packing/demos.json"))
+            .expect("demonstrations");
+        let problem = Scene::from_json(include_str!("../../examples/box-packing/problem.json"))
+            .expect("problem");
+        (problem, demos)
+    }
+
+    /// A solve on a fresh checker: `Some(true)` witness, `Some(false)`
+    /// proven, `None` stopped.
+    fn solved(c: Checked) -> Option<bool> {
+        match c {
+            Checked::Witness(_) => Some(true),
+            Checked::Proven => Some(false),
+            Checked::Stopped => None,
+        }
+    }
+
+    /// What the pool, the proofs and the implications settle without a
+    /// solve is what a solve on a fresh checker decides — for every held
+    /// rule of the bundled example after three questions (the first
+    /// accepted: learning redone, the pool and proofs kept), with no rule
+    /// and with random sets of rules allowed to break; and for every pair
+    /// the pool says "does not alone imply". Every pool layout is a layout
+    /// of the problem (the verifier, no rule).
+    #[test]
+    fn settled_checks_agree_with_solves() {
+        let (problem, demos) = example();
+        let mut asker = Asker::new(
+            problem.clone(),
+            demos,
+            None,
+            Vec::new(),
+            AskOptions::default(),
+        )
+        .unwrap();
+        for i in 0..3 {
+            let q = asker.next_question().unwrap().expect("a question");
+            asker.answer(&q, i == 0).unwrap();
+        }
+        asker.next_question().unwrap().expect("a question");
+        for s in &asker.pool.borrow().scenes {
+            crate::synth::verify_solution(
+                &problem,
+                s,
+                &RuleSet::default(),
+                asker.opts.probe.contact,
+            )
+            .expect("a layout of the problem");
+        }
+        let n = asker.held.rules.len();
+        let mut fresh = ProbeChecker::new(&problem, &asker.held, &asker.opts.probe).unwrap();
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut settled = [0, 0];
+        for k in 0..n {
+            for round in 0..4 {
+                let removed: Vec<bool> = (0..n)
+                    .map(|_| {
+                        state ^= state << 13;
+                        state ^= state >> 7;
+                        state ^= state << 17;
+                        round > 0 && state % 4 == 0
+                    })
+                    .collect();
+                let Some(v) = asker.settled(k, &removed) else {
+                    continue;
+                };
+                settled[usize::from(v)] += 1;
+                let s = solved(fresh.has_probe(k, &removed));
+                assert!(
+                    s.is_none() || s == Some(v),
+                    "rule {}: settled {v}, solved {s:?}",
+                    asker.held.rules[k].name
+                );
+            }
+        }
+        assert!(settled[0] > 0 && settled[1] > 0, "{settled:?}");
+        let mut refuted = 0;
+        for a in 0..n {
+            for b in 0..n {
+                let by_pool = a != b && asker.pool_holds().holds.iter().any(|h| h[a] && !h[b]);
+                if by_pool && refuted < 200 {
+                    refuted += 1;
+                    assert_ne!(
+                        fresh.implies(a, b),
+                        Checked::Proven,
+                        "{} -> {}",
+                        asker.held.rules[a].name,
+                        asker.held.rules[b].name
+                    );
+                }
+            }
+        }
+        assert!(refuted > 0);
+    }
+
+    /// A proof for some premises settles the check for more premises,
+    /// never for fewer.
+    #[test]
+    fn a_proof_settles_only_larger_premises() {
+        let (problem, demos) = example();
+        let asker = Asker::new(problem, demos, None, Vec::new(), AskOptions::default()).unwrap();
+        let n = asker.held.rules.len();
+        let mut removed = vec![false; n];
+        let mut fewer = vec![false; n];
+        // A rule that nothing settles when three others may break.
+        let k = (3..n)
+            .find(|&k| {
+                fewer = (0..n).map(|j| j < 3).collect();
+                asker.settled(k, &fewer).is_none()
+            })
+            .expect("an unsettled check");
+        removed[0] = true;
+        removed[1] = true;
+        let premises: BTreeSet<String> = (0..n)
+            .filter(|&j| j != k && !removed[j])
+            .map(|j| asker.text(j))
+            .collect();
+        asker.proofs.borrow_mut().push((asker.text(k), premises));
+        assert_eq!(asker.settled(k, &removed), Some(false));
+        assert_eq!(asker.settled(k, &vec![false; n]), Some(false));
+        assert_eq!(asker.settled(k, &fewer), None, "fewer premises");
     }
 }

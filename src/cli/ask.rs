@@ -286,6 +286,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             ..ProbeOptions::default()
         },
         resemble: true,
+        ..AskOptions::default()
     };
     let n_demos = demos.len();
     let problem_classes = problem.clone();

@@ -884,6 +884,7 @@ async fn start_session(
             ..ProbeOptions::default()
         },
         resemble: true,
+        ..AskOptions::default()
     };
     let problem = st.problem.clone();
     let asker =
