@@ -82,7 +82,7 @@ pub struct LnsOptions {
     /// time limit while the main engine alone proves them in 3 500–11 000
     /// nodes: `bench tasks --tasks 6 --sizes 1,1.5,2 --no-like
     /// --no-warm-start --time-limit 10` proved 12 of 18 with 1 000 000,
-    /// 14 with 30 000, 15 with 10 000; the thesis-style scale series,
+    /// 15 with 30 000, 16 with 10 000; the thesis-style scale series,
     /// `bench thesis --no-pilot --sets 3 --scale-ns 16,24,32,48 --scale-ks
     /// 3,5 --time-limit 10`, 17, 18 and 18 of 24, medians as fast or faster).
     pub budget_nodes: u64,
