@@ -519,12 +519,21 @@ fn run(name: &str, mixes: usize) -> Outcome {
     run_task(&task, &truth, mixes)
 }
 
-/// What must hold on every task, known failures or not: (c); no time-out;
-/// a held rule not implied by the truth (a) is one a rejected probe
-/// confirmed; a truth rule not implied by the held rules (b) is one the
-/// learner did not learn in the first place; the budget was not exhausted.
+/// What must hold on every task, known failures or not: (c) for every
+/// truth rule the held rules imply (a rule that is neither learned nor
+/// implied — a known failure of (b) — has no claim on synthesis: whether
+/// the layout keeps it depends on which of the equally good layouts comes
+/// back); no time-out; a held rule not implied by the truth (a) is one a
+/// rejected probe confirmed; a truth rule not implied by the held rules
+/// (b) is one the learner did not learn in the first place; the budget was
+/// not exhausted.
 fn check_generic(o: &Outcome) {
-    assert!(o.c_fail.is_empty(), "(c) {o:#?}");
+    for c in &o.c_fail {
+        assert!(
+            o.b_fail.contains(c) && o.gt_not_learned_names.contains(c),
+            "(c) `{c}` {o:#?}"
+        );
+    }
     assert!(o.timeouts.is_empty(), "{o:#?}");
     assert!(o.a_fail_unconfirmed.is_empty(), "(a) {o:#?}");
     for b in &o.b_fail {
@@ -571,13 +580,22 @@ fn task_row() {
 /// the null model's random scenes a red seldom touches a blue anyway (q ≈
 /// 0.90), so eight demonstrations are no evidence (log10 P ≈ −1, cutoff
 /// 0.01). Questions only drop or confirm learned rules, so the loop cannot
-/// bring it back. (c) holds all the same on this problem.
+/// bring it back. (c) for it is luck: with the resemblance clauses alone
+/// the final layout kept it; with the bounds propagator beside them
+/// (issue 20) another layout of the same score and resemblance cost 0
+/// comes back — each object at a position some demonstration showed (the
+/// resemblance cost does not match objects one to one) — and a blue
+/// touches a red. Every other truth rule is kept.
 #[test]
 fn task_apart() {
     let o = run("apart", 2);
     check_generic(&o);
     assert!(o.a_fail.is_empty(), "{o:#?}");
     assert_eq!(o.b_fail, names(&["red_apart_from_blue"]), "{o:#?}");
+    assert!(
+        o.c_fail.iter().all(|c| c == "red_apart_from_blue"),
+        "(c) {o:#?}"
+    );
 }
 
 #[test]
