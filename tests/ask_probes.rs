@@ -434,6 +434,8 @@ fn check_case(case: &Case, t: &mut Tally) {
             check_nodes: None,
             like: like.clone(),
             explain,
+            warm_start: Vec::new(),
+            cancel: None,
         };
         let fail = |t: &mut Tally, why: String| {
             t.failures

@@ -5,6 +5,7 @@
 mod support;
 
 mod architecture;
+mod ask_budget;
 mod ask_cli;
 mod ask_probes;
 mod ask_tasks;

@@ -647,6 +647,7 @@ fn render_options(
         scale,
         title,
         like,
+        ..RenderOptions::default()
     })
 }
 

@@ -72,6 +72,7 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
             Some(p) => Some(Likeness::new(&read_scenes(p)?.0)),
             None => None,
         },
+        ..RenderOptions::default()
     };
     render_to_path(&scene, rules.as_ref(), &opts, &a.output)
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.output.display()))?;

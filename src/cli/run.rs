@@ -136,6 +136,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
                 scale: 1.0,
                 title: Some(format!("{} — synthesised", a.dir.display())),
                 like,
+                ..RenderOptions::default()
             };
             render_to_path(scene, Some(&rules), &ropts, &png)
                 .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;

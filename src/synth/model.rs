@@ -397,6 +397,32 @@ impl Model {
     }
 
     /// `vars[v] ≥ k`.
+    /// A hard "rule" pinning unplaced object `object` at `(x, y)` (its
+    /// index in [`Model::hard`]; `HardRule::rule` is that index too, past
+    /// any rule set's). `None` when the position is not on the object's
+    /// grid domain (or the object is a constant).
+    pub(crate) fn pin(&mut self, object: usize, x: i64, y: i64) -> Option<usize> {
+        let (Coord::Var(vx), Coord::Var(vy)) = self.coords[object] else {
+            return None;
+        };
+        let mut lits = Vec::with_capacity(4);
+        for (v, at, origin) in [(vx, x, self.origin.0), (vy, y, self.origin.1)] {
+            let d = at - origin;
+            if d % self.grid != 0 {
+                return None;
+            }
+            let k = d / self.grid;
+            if k < 0 || k > self.vars[v].ub {
+                return None;
+            }
+            lits.push(self.ge(v, k));
+            lits.push(!self.ge(v, k + 1));
+        }
+        let at = self.hard.len();
+        self.hard.push(HardRule { rule: at, lits });
+        Some(at)
+    }
+
     fn ge(&mut self, v: usize, k: i64) -> Lit {
         if k <= 0 {
             Lit::TRUE
