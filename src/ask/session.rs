@@ -1046,6 +1046,11 @@ impl Asker {
     ) -> Result<Scan, AskError> {
         *self.meter.get_mut() = Meter::start(&self.opts.budget);
         let mut decided = 0usize;
+        // Decided checks so far: a group pass that runs out of budget after
+        // deciding new ones goes on in the next scan (the decided ones are
+        // kept), so every scan makes progress and the loop ends.
+        let settled = |a: &Asker| a.checks.borrow().len() + a.alone.borrow().len();
+        let settled_before = settled(self);
         let order = self.asking_order();
         let n = self.held.rules.len();
         let none = vec![false; n];
@@ -1109,6 +1114,12 @@ impl Asker {
                     };
                     decided += 1;
                     self.known.insert(name.clone(), known);
+                }
+                if (pass == 1 || pass == 2)
+                    && self.meter.borrow().exhausted()
+                    && settled(self) > settled_before
+                {
+                    return Ok(Scan::OutOfBudget);
                 }
                 if (pass == 1 || pass == 2) && matches!(self.known.get(&name), Some(Known::Implied)) {
                     // The unconfirmed implied rules; skip `k` when one of

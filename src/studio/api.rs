@@ -788,6 +788,11 @@ pub(crate) struct AskSession {
     /// them: a file changed outside the studio since (a hand edit) is
     /// never overwritten by an answer.
     versions: (String, String),
+    /// The next question for both answers to the open one, being computed
+    /// while the person looks.
+    ahead: Option<crate::ask::Lookahead>,
+    /// The next question, computed ahead (`Some(None)`: there is none).
+    prepared: Option<Option<Question>>,
 }
 
 /// Versions ([`storage::version`]) of demos.json and learned.rcc on disk.
@@ -902,6 +907,8 @@ async fn start_session(
             generation,
             params,
             versions: disk_versions(st)?,
+            ahead: None,
+            prepared: None,
         },
         backup,
     ))
@@ -917,6 +924,7 @@ fn question_value(q: &Question, number: usize) -> Value {
         "scene": scene_value(&q.probe.scene),
         "cost": q.probe.cost,
         "time_ms": q.probe.time_ms,
+        "edit": q.probe.edit,
     })
 }
 
@@ -958,9 +966,14 @@ pub(crate) async fn ask_next(State(st): St, body: Bytes) -> ApiResult {
             let joined = tokio::task::spawn_blocking(move || {
                 let mut guard = guard;
                 let s = guard.as_mut().expect("a session was just started");
-                let next = s.asker.next_question();
+                let next = match s.prepared.take() {
+                    Some(q) => Ok(q),
+                    None => s.asker.next_question(),
+                };
                 if let Ok(q) = &next {
                     s.question = q.clone();
+                    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+                    s.ahead = q.as_ref().map(|q| s.asker.look_ahead(q, threads));
                 }
                 (guard, next)
             })
@@ -1038,7 +1051,15 @@ pub(crate) async fn ask_answer(State(st): St, body: Bytes) -> ApiResult {
         let mut guard = guard;
         let s = guard.as_mut().expect("checked above");
         let q = s.question.take().expect("checked above");
-        let r = s.asker.answer(&q, accepted).map(|_| ());
+        let r = match s.ahead.take() {
+            // The branch computed ahead for this answer: the session after
+            // it and its next question.
+            Some(ahead) => ahead.answer(accepted).map(|(asker, next)| {
+                s.asker = asker;
+                s.prepared = Some(next);
+            }),
+            None => s.asker.answer(&q, accepted).map(|_| ()),
+        };
         (guard, r)
     })
     .await;
