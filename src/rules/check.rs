@@ -13,7 +13,7 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
     let listing = if classes.is_empty() {
         "the scene has no objects".to_string()
     } else {
-        format!("the scene has classes {}", classes.join(", "))
+        format!("the scene has classes {}", cut_list(&classes))
     };
     let mut diags = Vec::new();
     for rule in &rules.rules {
@@ -34,7 +34,11 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
                     diags.push(Diagnostic::new(
                         DiagnosticKind::UnknownClass,
                         span,
-                        format!("unknown class `{class}` in rule `{}`: {listing}", rule.name),
+                        format!(
+                            "unknown class `{}` in rule `{}`: {listing}",
+                            crate::limits::cut(class),
+                            crate::limits::cut(&rule.name)
+                        ),
                     ));
                 }
             }
@@ -45,6 +49,116 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
     } else {
         Err(RulesError::new(diags))
     }
+}
+
+/// Check that every class named by `rules` exists in at least one of
+/// `scenes` (SPEC §16: a class some scene the command reads has is
+/// ordinary, its rules hold vacuously where it is absent; a class no scene
+/// has is the likely misspelling). Each error names the closest class the
+/// scenes have.
+pub fn check_classes_across(rules: &RuleSet, scenes: &[&Scene]) -> Result<(), RulesError> {
+    let mut classes: Vec<&str> = Vec::new();
+    for s in scenes {
+        for c in s.classes() {
+            if !classes.contains(&c) {
+                classes.push(c);
+            }
+        }
+    }
+    let listing = if classes.is_empty() {
+        "the scenes have no objects".to_string()
+    } else if scenes.len() == 1 {
+        format!("the scene has classes {}", cut_list(&classes))
+    } else {
+        format!("the scenes have classes {}", cut_list(&classes))
+    };
+    let mut diags = Vec::new();
+    for rule in &rules.rules {
+        for (i, atom) in rule.formula.atoms().into_iter().enumerate() {
+            let span = rule
+                .origin
+                .as_ref()
+                .and_then(|o| o.atoms.get(i).copied())
+                .unwrap_or(Span::new(0, 0));
+            let mut named = vec![atom.subject.as_str()];
+            if let Target::Class(c) = &atom.target {
+                if c != &atom.subject {
+                    named.push(c);
+                }
+            }
+            for class in named {
+                if !classes.contains(&class) {
+                    let hint = closest(class, &classes)
+                        .map(|c| format!(" (did you mean `{c}`?)"))
+                        .unwrap_or_default();
+                    diags.push(Diagnostic::new(
+                        DiagnosticKind::UnknownClass,
+                        span,
+                        format!(
+                            "unknown class `{}` in rule `{}`{hint}: expected a class of the scenes read; {listing}",
+                            crate::limits::cut(class),
+                            crate::limits::cut(&rule.name)
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    if diags.is_empty() {
+        Ok(())
+    } else {
+        Err(RulesError::new(diags))
+    }
+}
+
+/// A list of classes for a message, cut after a few.
+fn cut_list(classes: &[&str]) -> String {
+    const SHOWN: usize = 12;
+    let mut s: Vec<String> = classes
+        .iter()
+        .take(SHOWN)
+        .map(|c| crate::limits::cut(c))
+        .collect();
+    if classes.len() > SHOWN {
+        s.push(format!("and {} more", classes.len() - SHOWN));
+    }
+    s.join(", ")
+}
+
+/// The class of `classes` closest to `name` (case-insensitive equality
+/// first, then the smallest edit distance, at most half the name's
+/// length), if any.
+fn closest<'a>(name: &str, classes: &[&'a str]) -> Option<&'a str> {
+    if name.chars().count() > crate::limits::MAX_ECHO {
+        return None;
+    }
+    if let Some(c) = classes.iter().find(|c| c.eq_ignore_ascii_case(name)) {
+        return Some(c);
+    }
+    let limit = name.chars().count().div_ceil(2).max(1);
+    classes
+        .iter()
+        .filter(|c| c.chars().count() <= crate::limits::MAX_ECHO)
+        .map(|c| (edit_distance(name, c), *c))
+        .filter(|(d, _)| *d <= limit)
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, c)| c)
+}
+
+/// Levenshtein distance over characters.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let cur = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != *cb)).min(row[j] + 1).min(cur + 1);
+            prev = cur;
+        }
+    }
+    row[b.len()]
 }
 
 /// The classes named by `rules` (as subject or target) that `scene` has no
@@ -102,7 +216,7 @@ pub fn check_landmarks(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError>
     let listing = if fixed.is_empty() {
         "the scene has no fixed objects that can be landmarks".to_string()
     } else {
-        format!("the scene's fixed objects are {}", fixed.join(", "))
+        format!("the scene's fixed objects are {}", cut_list(&fixed))
     };
     let mut diags = Vec::new();
     for rule in &rules.rules {
@@ -121,13 +235,15 @@ pub fn check_landmarks(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError>
             let movable = scene.objects.iter().any(|o| &o.id == id && !o.fixed);
             let message = if movable {
                 format!(
-                    "landmark `@{id}` in rule `{}` is not a fixed object: expected the id of a fixed object; {listing}",
-                    rule.name
+                    "landmark `@{}` in rule `{}` is not a fixed object: expected the id of a fixed object; {listing}",
+                    crate::limits::cut(id),
+                    crate::limits::cut(&rule.name)
                 )
             } else {
                 format!(
-                    "unknown landmark `@{id}` in rule `{}`: expected the id of a fixed object; {listing}",
-                    rule.name
+                    "unknown landmark `@{}` in rule `{}`: expected the id of a fixed object; {listing}",
+                    crate::limits::cut(id),
+                    crate::limits::cut(&rule.name)
                 )
             };
             diags.push(Diagnostic::new(

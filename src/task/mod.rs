@@ -109,6 +109,33 @@ pub fn read_text(path: &Path) -> Result<String, TaskError> {
     })
 }
 
+/// [`read_text`] that reads at most `max` bytes: a longer file (or an
+/// endless device, `/dev/zero`) is refused once `max` is passed, before
+/// it fills the memory.
+pub fn read_text_at_most(path: &Path, max: usize) -> Result<String, TaskError> {
+    use std::io::Read as _;
+    let read = |path: &Path| -> std::io::Result<Vec<u8>> {
+        let f = std::fs::File::open(path)?;
+        let mut bytes = Vec::new();
+        f.take(max as u64 + 1).read_to_end(&mut bytes)?;
+        if bytes.len() > max {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("the file is larger than {max} bytes, the most it may be"),
+            ));
+        }
+        Ok(bytes)
+    };
+    let bytes = read(path).map_err(|source| TaskError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    crate::fsutil::utf8_text(bytes).map_err(|source| TaskError::NotUtf8 {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
 /// Read a scene file or an array of scenes.
 pub fn read_scenes(path: &Path) -> Result<Vec<Scene>, TaskError> {
     scenes_from_json(&read_text(path)?).map_err(|source| TaskError::Scene {

@@ -41,6 +41,7 @@ use super::model::{BoolDef, Coord, Lit, Model};
 use super::SynthError;
 
 mod like_map;
+mod no_overlap;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
 use pumpkin_constraints::{boolean_equals, cumulative, equals, less_than_or_equals};
 use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
@@ -367,7 +368,8 @@ struct Builder<'m> {
     lits: Vec<Literal>,
     truth: Literal,
     /// Building stops (and the engine is not made) past this instant.
-    deadline: Option<std::time::Instant>,
+    /// The deadline and the cancel flag (the node limit is not used here).
+    stop: Limits,
 }
 
 impl<'m> Builder<'m> {
@@ -375,8 +377,7 @@ impl<'m> Builder<'m> {
     /// every few thousand definitions: posting a large model can take
     /// longer than the whole time limit).
     fn late(&self) -> bool {
-        self.deadline
-            .is_some_and(|d| std::time::Instant::now() >= d)
+        self.stop.expired()
     }
 
     /// The solver with one integer variable per grid variable.
@@ -400,7 +401,7 @@ impl<'m> Builder<'m> {
             vars,
             lits: Vec::new(),
             truth,
-            deadline: None,
+            stop: Limits::default(),
         })
     }
 
@@ -577,7 +578,32 @@ impl<'m> Builder<'m> {
         Ok(())
     }
 
-    /// The model's clauses (non-overlap).
+    /// Non-overlap of every pair with a variable object: one propagator
+    /// (see `no_overlap`).
+    fn post_no_overlap(&mut self) -> Result<(), SynthError> {
+        let model = self.model;
+        if model.vars.is_empty() || model.coords.len() < 2 {
+            return Ok(());
+        }
+        let pos = |c: Coord| match c {
+            Coord::Var(v) => no_overlap::Pos::Var(self.vars[v]),
+            Coord::Const(x) => no_overlap::Pos::Const(x),
+        };
+        let args = no_overlap::NoOverlapArgs {
+            pos: model.coords.iter().map(|&(x, y)| [pos(x), pos(y)]).collect(),
+            size: model.sizes.iter().map(|&(w, h)| [w, h]).collect(),
+            origin: [model.origin.0, model.origin.1],
+            grid: model.grid,
+            tag: self.tag,
+        };
+        // The root propagation may already fail (the objects cannot all
+        // fit): the engine then reports "infeasible" at its first solve.
+        let _ = self.solver.add_propagator(args);
+        Ok(())
+    }
+
+    /// The model's clauses (the symmetry fallback; non-overlap when the
+    /// model states it pairwise).
     fn post_clauses(&mut self) {
         for c in &self.model.clauses {
             let c: Vec<Predicate> = c
@@ -805,9 +831,30 @@ impl Engine {
         like: &[LikeTerm],
         deadline: Option<std::time::Instant>,
     ) -> Result<Option<Engine>, SynthError> {
+        let stop = Limits {
+            deadline,
+            ..Limits::default()
+        };
+        Self::with_like_stop(model, seed, guarded, coefs, like, &stop)
+    }
+
+    /// [`Engine::with_like_until`] that also gives up when `stop`'s cancel
+    /// flag is set (Ctrl-C while a large model is posted).
+    pub fn with_like_stop(
+        model: &Model,
+        seed: u64,
+        guarded: bool,
+        coefs: Option<&[i64]>,
+        like: &[LikeTerm],
+        stop: &Limits,
+    ) -> Result<Option<Engine>, SynthError> {
         check_ranges(model, like)?;
         let mut b = Builder::new(model, seed)?;
-        b.deadline = deadline;
+        b.stop = Limits {
+            deadline: stop.deadline,
+            node_limit: None,
+            cancel: stop.cancel.clone(),
+        };
         // Every variable and literal first ...
         b.create_literals()?;
         let guards = b.create_guards(guarded);
@@ -823,6 +870,7 @@ impl Engine {
             return Ok(None);
         }
         b.post_clauses();
+        b.post_no_overlap()?;
         b.post_hard(&guards);
         b.post_symmetry()?;
         b.post_cumulative(starts)?;
