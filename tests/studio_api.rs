@@ -1323,7 +1323,7 @@ async fn method_not_allowed_and_non_utf8_files() {
     let (s, v) = call(&app, Method::PUT, "/api/task", Body::empty()).await;
     assert_eq!(s, StatusCode::METHOD_NOT_ALLOWED, "{v}");
     assert_eq!(v["kind"], "method_not_allowed", "{v}");
-    assert!(v["error"].as_str().unwrap().contains("GET"), "{v}");
+    assert!(v["error"].as_str().unwrap().contains("method"), "{v}");
     std::fs::write(dir.join("demos.json"), b"[\n\xff]").unwrap();
     let (s, v) = call(&app, Method::GET, "/api/demos", Body::empty()).await;
     assert_eq!(s, StatusCode::CONFLICT, "{v}");

@@ -253,7 +253,7 @@ pub(crate) async fn json_413(
                 allow
                     .as_ref()
                     .and_then(|a| a.to_str().ok())
-                    .unwrap_or("another method")
+                    .unwrap_or("another method (see docs/studio-api.md)")
             ),
         )
         .with("kind", json!("method_not_allowed"))

@@ -246,7 +246,28 @@ pub struct Model {
     pub cumulative: Vec<Cumulative>,
     /// Objects that cannot lie inside the space at all (too large), by index.
     pub too_large: Vec<usize>,
+    /// Whether `clauses` state non-overlap pairwise; otherwise the engine
+    /// posts it as one propagator ([`PAIRWISE_NO_OVERLAP_PAIRS`]).
+    pub pairwise_no_overlap: bool,
     interned: HashMap<BoolDef, u32>,
+}
+
+/// Most pairs of objects (at least one movable) whose non-overlap the model
+/// states as one clause each (four reified pair literals, about 16 KB in
+/// the engine per pair); past it the engine's non-overlap propagator holds
+/// them all in linear memory. 2 000 pairs is about 64 objects.
+pub const PAIRWISE_NO_OVERLAP_PAIRS: usize = 2_000;
+
+/// `RCCPACK_NO_OVERLAP=clauses|propagator` forces one non-overlap encoding
+/// for every model (to run the differential tests and fuzz corpora through
+/// the propagator); unset, the number of pairs decides.
+fn forced_encoding() -> Option<bool> {
+    static FORCED: std::sync::OnceLock<Option<bool>> = std::sync::OnceLock::new();
+    *FORCED.get_or_init(|| match std::env::var("RCCPACK_NO_OVERLAP").as_deref() {
+        Ok("clauses") => Some(true),
+        Ok("propagator") => Some(false),
+        _ => None,
+    })
 }
 
 /// Most pairwise relation literals the rules may ask for in one model
@@ -298,6 +319,28 @@ impl Model {
         Self::build_until(problem, rules, opts, &|| false).expect("never stopped")
     }
 
+    /// [`Model::build_until`] with the non-overlap encoding chosen by the
+    /// caller: `Some(true)` pairwise clauses, `Some(false)` the engine's
+    /// propagator, `None` by the number of pairs (see
+    /// [`PAIRWISE_NO_OVERLAP_PAIRS`]).
+    pub(crate) fn build_encoded(
+        problem: &Scene,
+        rules: &RuleSet,
+        opts: BuildOptions,
+        stop: &dyn Fn() -> bool,
+        pairwise: Option<bool>,
+    ) -> Option<Model> {
+        let movable = problem.objects.iter().filter(|o| !o.is_placed()).count();
+        let n = problem.objects.len();
+        // Pairs with at least one movable object.
+        let pairs = n * (n.saturating_sub(1)) / 2
+            - (n - movable) * (n - movable).saturating_sub(1) / 2;
+        let pairwise = pairwise.unwrap_or(pairs <= PAIRWISE_NO_OVERLAP_PAIRS);
+        let mut m = Self::build_core(problem, rules, opts, stop, pairwise)?;
+        m.pairwise_no_overlap = pairwise || !m.too_large.is_empty();
+        Some(m)
+    }
+
     /// [`Model::build`], given up (`None`) as soon as `stop` says so
     /// (checked per rule and every 256 subject objects: a deadline or
     /// Ctrl-C while a large model is built).
@@ -306,6 +349,16 @@ impl Model {
         rules: &RuleSet,
         opts: BuildOptions,
         stop: &dyn Fn() -> bool,
+    ) -> Option<Model> {
+        Self::build_encoded(problem, rules, opts, stop, forced_encoding())
+    }
+
+    fn build_core(
+        problem: &Scene,
+        rules: &RuleSet,
+        opts: BuildOptions,
+        stop: &dyn Fn() -> bool,
+        pairwise: bool,
     ) -> Option<Model> {
         let sp = problem.space;
         let g = problem.grid;
@@ -322,6 +375,7 @@ impl Model {
             symmetry: Vec::new(),
             cumulative: Vec::new(),
             too_large: Vec::new(),
+            pairwise_no_overlap: false,
             interned: HashMap::new(),
         };
         for (i, o) in problem.objects.iter().enumerate() {
@@ -352,10 +406,14 @@ impl Model {
         if !m.too_large.is_empty() {
             return Some(m);
         }
-        // Non-overlap between every pair with at least one variable object
-        // is implicit: the engine posts one propagator for all of them
-        // (linear memory, issue 35 item 6); `add_pairwise_no_overlap`
-        // writes it as clauses for the peers and the tests.
+        // Non-overlap between every pair with at least one variable object:
+        // one clause per pair for a small model (the pair literals also
+        // guide the search), else implicit — the engine posts one
+        // propagator for all pairs (linear memory, issue 35 item 6) and
+        // `add_pairwise_no_overlap` writes the clauses for the peers.
+        if pairwise {
+            m.add_pairwise_no_overlap(opts.contact);
+        }
         if opts.symmetry_breaking {
             m.post_symmetry(problem);
         }
@@ -372,9 +430,10 @@ impl Model {
     /// DR_W` per pair with at least one variable object (quadratic: for
     /// `--emit`'s peers, which have no propagator of their own).
     pub fn add_pairwise_no_overlap(&mut self, contact: Contact) {
-        if !self.too_large.is_empty() {
+        if !self.too_large.is_empty() || self.pairwise_no_overlap {
             return;
         }
+        self.pairwise_no_overlap = true;
         let n = self.coords.len();
         let mut clauses = Vec::new();
         for a in 0..n {

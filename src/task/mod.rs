@@ -116,13 +116,23 @@ pub fn read_text_at_most(path: &Path, max: usize) -> Result<String, TaskError> {
     use std::io::Read as _;
     let read = |path: &Path| -> std::io::Result<Vec<u8>> {
         let f = std::fs::File::open(path)?;
+        let len = f.metadata().ok().filter(|m| m.is_file()).map(|m| m.len());
+        let too_large = |size: String| {
+            std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!(
+                    "the file is {size} bytes; expected at most {max} bytes ({} MiB)",
+                    max >> 20
+                ),
+            )
+        };
+        if let Some(len) = len.filter(|&l| l > max as u64) {
+            return Err(too_large(len.to_string()));
+        }
         let mut bytes = Vec::new();
         f.take(max as u64 + 1).read_to_end(&mut bytes)?;
         if bytes.len() > max {
-            return Err(std::io::Error::new(
-                std::io::ErrorKind::InvalidData,
-                format!("the file is larger than {max} bytes, the most it may be"),
-            ));
+            return Err(too_large(format!("larger than {max}")));
         }
         Ok(bytes)
     };

@@ -582,7 +582,7 @@ impl<'m> Builder<'m> {
     /// (see `no_overlap`).
     fn post_no_overlap(&mut self) -> Result<(), SynthError> {
         let model = self.model;
-        if model.vars.is_empty() || model.coords.len() < 2 {
+        if model.pairwise_no_overlap || model.vars.is_empty() || model.coords.len() < 2 {
             return Ok(());
         }
         let pos = |c: Coord| match c {
@@ -1327,6 +1327,18 @@ mod tests {
     /// the `AtLeast` encoding (and every other) is exact under assumptions.
     #[test]
     fn guarded_literals_match_the_definitions() {
+        literals_match_the_definitions(true);
+    }
+
+    /// The same with non-overlap as the engine's propagator instead of one
+    /// clause per pair (what models past `PAIRWISE_NO_OVERLAP_PAIRS` get):
+    /// the same layouts are possible and impossible.
+    #[test]
+    fn the_no_overlap_propagator_matches_the_clauses() {
+        literals_match_the_definitions(false);
+    }
+
+    fn literals_match_the_definitions(pairwise: bool) {
         let scene = Scene {
             space: Space {
                 x: 0,
@@ -1368,7 +1380,7 @@ mod tests {
             Rule::new("r5", q(al_s, Quant::AtLeast(2), Target::Any))
                 .with_scope(Scope::Scene(Quant::AtLeast(3))),
         ]);
-        let m = Model::build(
+        let m = Model::build_encoded(
             &scene,
             &rules,
             BuildOptions {
@@ -1377,7 +1389,11 @@ mod tests {
                 symmetry_breaking: false,
                 redundant: false,
             },
-        );
+            &|| false,
+            Some(pairwise),
+        )
+        .expect("never stopped");
+        assert_eq!(m.pairwise_no_overlap, pairwise);
         let counts = m
             .bools
             .iter()
@@ -1390,7 +1406,9 @@ mod tests {
         let mut vals = vec![0i64; ub.len()];
         'outer: loop {
             let bools = m.eval_bools(&vals);
-            if m.clauses.iter().all(|c| c.iter().any(|l| l.value(&bools))) {
+            if m.clauses.iter().all(|c| c.iter().any(|l| l.value(&bools)))
+                && m.non_overlapping(&vals)
+            {
                 all.push((vals.clone(), bools));
             }
             let mut i = 0;
@@ -1425,6 +1443,7 @@ mod tests {
                         let b = m.eval_bools(&v);
                         assert!(lit.value(&b), "{lit:?} false in the engine's {v:?}");
                         assert!(m.clauses.iter().all(|c| c.iter().any(|l| l.value(&b))));
+                        assert!(m.non_overlapping(&v), "{v:?} overlaps");
                         sat += 1;
                     }
                     Sat::Unsat => {

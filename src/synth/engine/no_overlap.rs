@@ -28,10 +28,11 @@
 //! # Practical
 //!
 //! Three impossible disjuncts need both of one axis impossible, i.e. the
-//! two objects' compulsory parts on that axis (`[hi, lo + size)`) overlap;
-//! each run reads every object's bounds once, sweeps both axes for those
-//! pairs (objects still free to move have no compulsory part and are
-//! never looked at) and repeats until nothing moves. 400 movable objects:
+//! two objects' intervals `[hi, lo + size)` on that axis cross (`hi(b) <
+//! lo(a) + size(a)` and `hi(a) < lo(b) + size(b)`); each run reads every
+//! object's bounds once, sweeps both axes sorted by `hi` for those pairs
+//! (an object still free to move has a large `hi` and meets few) and
+//! repeats until nothing moves. 400 movable objects:
 //! 12.6 MB and about 1 s for 3 000 nodes (the pairwise clauses took 2 GB).
 //!
 //! # How to extend
@@ -180,30 +181,35 @@ impl Propagator for NoOverlapPropagator {
             let spans: Vec<[Span; 2]> = (0..n)
                 .map(|o| [self.span(&ctx, o, 0), self.span(&ctx, o, 1)])
                 .collect();
-            // The compulsory part of `o` on `axis`, if any.
-            let part = |o: usize, axis: usize| {
-                let (start, end) = (spans[o][axis].hi, spans[o][axis].lo + self.size[o][axis]);
-                (start < end).then_some((start, end))
-            };
-            let overlap = |a: usize, b: usize, axis: usize| match (part(a, axis), part(b, axis)) {
-                (Some(p), Some(q)) => p.0 < q.1 && q.0 < p.1,
-                _ => false,
+            // On `axis`, both disjuncts of a pair are impossible iff
+            // `hi(b) < lo(a) + size(a)` and `hi(a) < lo(b) + size(b)`: the
+            // intervals `[hi, lo + size)` — the compulsory parts, empty or
+            // "inverted" for an object still free to move — cross.
+            let iv = |o: usize, axis: usize| (spans[o][axis].hi, spans[o][axis].lo + self.size[o][axis]);
+            let cross = |a: usize, b: usize, axis: usize| {
+                let (p, q) = (iv(a, axis), iv(b, axis));
+                p.0 < q.1 && q.0 < p.1
             };
             let mut moved = false;
-            // Three impossible disjuncts need both of one axis impossible:
-            // the two compulsory parts on that axis overlap. A sweep over
-            // each axis finds those pairs (a pair found on x is not looked
-            // at again on y).
+            // Three impossible disjuncts need both of one axis impossible.
+            // A sweep over each axis, sorted by `hi`, finds those pairs (a
+            // pair found on x is not looked at again on y).
             for axis in 0..2 {
                 parts.clear();
-                parts.extend((0..n).filter_map(|o| part(o, axis).map(|(s, e)| (s, e, o))));
+                parts.extend((0..n).map(|o| {
+                    let (start, end) = iv(o, axis);
+                    (start, end, o)
+                }));
                 parts.sort_unstable();
-                for (i, &(_, end, a)) in parts.iter().enumerate() {
-                    for &(start, _, b) in &parts[i + 1..] {
-                        if start >= end {
+                for (i, &(start_a, end_a, a)) in parts.iter().enumerate() {
+                    for &(start_b, end_b, b) in &parts[i + 1..] {
+                        if start_b >= end_a {
                             break;
                         }
-                        if !(movable[a] || movable[b]) || (axis == 1 && overlap(a, b, 0)) {
+                        if start_a >= end_b
+                            || !(movable[a] || movable[b])
+                            || (axis == 1 && cross(a, b, 0))
+                        {
                             continue;
                         }
                         moved |= self.check_pair(&mut ctx, a.min(b), a.max(b), &spans)?;
