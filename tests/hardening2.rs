@@ -40,7 +40,9 @@ fn scene(objects: &[(&str, &str, i64, i64)]) -> String {
     let o: Vec<String> = objects
         .iter()
         .map(|(id, c, x, y)| {
-            format!(r#"{{"id": "{id}", "class": "{c}", "x": {x}, "y": {y}, "width": 10, "height": 10}}"#)
+            format!(
+                r#"{{"id": "{id}", "class": "{c}", "x": {x}, "y": {y}, "width": 10, "height": 10}}"#
+            )
         })
         .collect();
     format!(
@@ -66,7 +68,11 @@ fn a_failing_oracle_confirms_nothing() {
         let e = stderr(&o);
         assert_eq!(o.status.code(), Some(1), "{oracle}: {e}");
         assert!(e.contains("failed rather than answered"), "{e}");
-        assert!(!stdout(&o).contains("not acceptable: confirmed"), "{}", stdout(&o));
+        assert!(
+            !stdout(&o).contains("not acceptable: confirmed"),
+            "{}",
+            stdout(&o)
+        );
         if let Ok(a) = std::fs::read_to_string(task.join("answers.json")) {
             let v: serde_json::Value = serde_json::from_str(&a).unwrap();
             assert_eq!(v["answers"], serde_json::json!([]), "{a}");
@@ -116,7 +122,11 @@ fn absent_classes_are_one_rule_everywhere() {
     ] {
         let o = rccpack(&args);
         assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
-        assert!(stderr(&o).contains("no objects of class green"), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("no objects of class green"),
+            "{}",
+            stderr(&o)
+        );
     }
     let svg = d.join("red.svg");
     let o = rccpack(&[
@@ -131,7 +141,11 @@ fn absent_classes_are_one_rule_everywhere() {
     // Hand-written, and in no scene read: the likely misspelling.
     let o = rccpack(&["score", &only_red, "--rules", &hand]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    assert!(stderr(&o).contains("unknown class `green`"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("unknown class `green`"),
+        "{}",
+        stderr(&o)
+    );
     let typo = write(&d, "typo.rcc", "rule g_on_r: EC_N(gren, red)\n");
     let o = rccpack(&["check", &typo, "--scene", &demos]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
@@ -166,7 +180,11 @@ fn run_never_destroys_curated_rules() {
         let _held = rccpack::fsutil::DirLock::try_lock(&task).unwrap().unwrap();
         let o = rccpack(&["run", t, "--samples", "200", "--time-limit", "5"]);
         assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-        assert!(stderr(&o).contains("another `rccpack ask`"), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("another `rccpack ask`"),
+            "{}",
+            stderr(&o)
+        );
         assert!(!task.join("solution.json").exists());
     }
     let o = rccpack(&["run", t, "--samples", "200", "--time-limit", "5"]);
@@ -207,7 +225,9 @@ fn ctrl_c_while_relearning_keeps_the_answer() {
     let a = std::fs::read_to_string(task.join("answers.json")).expect("the answer is journaled");
     let v: serde_json::Value = serde_json::from_str(&a).unwrap();
     let answers = v["answers"].as_array().unwrap();
-    assert_eq!(answers.len(), 1, "{a}");
+    // (On a fast machine a second answer may be journaled before the
+    // signal arrives.)
+    assert!(!answers.is_empty(), "{a}");
     assert_eq!(answers[0]["accepted"], true, "{a}");
 }
 
@@ -217,7 +237,12 @@ fn ctrl_c_while_relearning_keeps_the_answer() {
 #[test]
 fn a_full_stderr_never_panics() {
     let d = dir("full-stderr");
-    let full = || std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+    let full = || {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap()
+    };
     let run = |args: &[&str]| {
         Command::new(bin())
             .args(args)
@@ -238,11 +263,21 @@ fn a_full_stderr_never_panics() {
     );
     let rules = write(&d, "r.rcc", "rule t: EC_N(R, *) | !EC_N(R, *)\n");
     assert_eq!(
-        run(&["synth", &free, "--rules", &rules, "-o", sol.to_str().unwrap()]),
+        run(&[
+            "synth",
+            &free,
+            "--rules",
+            &rules,
+            "-o",
+            sol.to_str().unwrap()
+        ]),
         Some(0)
     );
     assert!(sol.exists());
-    assert_eq!(run(&["render", &problem, "-o", svg.to_str().unwrap()]), Some(0));
+    assert_eq!(
+        run(&["render", &problem, "-o", svg.to_str().unwrap()]),
+        Some(0)
+    );
     assert_eq!(run(&["check", "no-such.rcc"]), Some(1));
     assert_eq!(run(&["score", &problem, "--rules", "no-such.rcc"]), Some(1));
     // `--help` that cannot be written is not a success.
@@ -261,7 +296,10 @@ fn bench_sample_time_limits_are_checked() {
         let o = rccpack(&["bench", "sample", "--time-limit", v]);
         let e = stderr(&o);
         assert_eq!(o.status.code(), Some(1), "{v}: {e}");
-        assert!(e.contains("time limit") && e.contains("expected"), "{v}: {e}");
+        assert!(
+            e.contains("time limit") && e.contains("expected"),
+            "{v}: {e}"
+        );
     }
 }
 
@@ -328,7 +366,11 @@ fn echoed_values_are_cut() {
     let r = write(&d, "r.rcc", &rules);
     let o = rccpack(&["score", &p, "--rules", &r]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("unknown class"), "{}", &stderr(&o)[..200]);
+    assert!(
+        stderr(&o).contains("unknown class"),
+        "{}",
+        &stderr(&o)[..200]
+    );
     assert!(o.stderr.len() < 100_000, "{} bytes", o.stderr.len());
     let dup = write(
         &d,
@@ -337,7 +379,11 @@ fn echoed_values_are_cut() {
     );
     let o = rccpack(&["check", &dup]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("duplicate rule name"), "{}", &stderr(&o)[..200]);
+    assert!(
+        stderr(&o).contains("duplicate rule name"),
+        "{}",
+        &stderr(&o)[..200]
+    );
     assert!(o.stderr.len() < 20_000, "{} bytes", o.stderr.len());
     let rel = write(&d, "rel.rcc", &format!("rule a: {long}(R, R)\n"));
     let o = rccpack(&["check", &rel]);
@@ -425,7 +471,11 @@ fn outputs_never_overwrite_inputs() {
     let x = d.join("x.rcc");
     let x = x.to_str().unwrap();
     let y = d.join("y.json").to_str().unwrap().to_string();
-    let demos = write(&d, "demos.json", &format!("[{}]", scene(&[("r0", "R", 0, 0)])));
+    let demos = write(
+        &d,
+        "demos.json",
+        &format!("[{}]", scene(&[("r0", "R", 0, 0)])),
+    );
     let cases: Vec<Vec<&str>> = vec![
         vec!["learn", &demos, "-o", x, "--report", x],
         vec!["learn", &demos, "-o", &demos],
@@ -479,9 +529,9 @@ fn base_problem(n: usize) -> String {
     let mut objects = vec![format!(
         r#"{{"id": "base", "class": "W", "x": 0, "y": 0, "width": {side}, "height": 10, "fixed": true}}"#
     )];
-    objects.extend((0..n).map(|i| {
-        format!(r#"{{"id": "r{i}", "class": "R", "width": 10, "height": 10}}"#)
-    }));
+    objects.extend(
+        (0..n).map(|i| format!(r#"{{"id": "r{i}", "class": "R", "width": 10, "height": 10}}"#)),
+    );
     format!(
         r#"{{"space": {{"width": {side}, "height": {side}}}, "grid": 10, "objects": [{}]}}"#,
         objects.join(", ")
@@ -490,6 +540,7 @@ fn base_problem(n: usize) -> String {
 
 /// Peak resident memory (KiB) and exit code of one `rccpack` run.
 #[cfg(target_os = "linux")]
+#[allow(clippy::zombie_processes)] // waited for by `wait4`, below
 fn peak_kib(args: &[&str]) -> (i64, Option<i32>) {
     let child = Command::new(bin())
         .args(args)

@@ -1083,7 +1083,10 @@ async fn answering_never_overwrites_an_edited_answers_file() {
     .await;
     assert_eq!(s, StatusCode::CONFLICT, "{v}");
     assert_eq!(v["kind"], "stale_files", "{v}");
-    assert!(v["error"].as_str().unwrap_or("").contains("answers.json"), "{v}");
+    assert!(
+        v["error"].as_str().unwrap_or("").contains("answers.json"),
+        "{v}"
+    );
     assert_eq!(
         std::fs::read_to_string(dir.join("answers.json")).unwrap(),
         text
@@ -1328,8 +1331,14 @@ async fn method_not_allowed_and_non_utf8_files() {
     let (s, v) = call(&app, Method::GET, "/api/demos", Body::empty()).await;
     assert_eq!(s, StatusCode::CONFLICT, "{v}");
     assert_eq!(v["kind"], "corrupt_demos", "{v}");
-    assert!(v["error"].as_str().unwrap().contains("byte offset 2"), "{v}");
+    assert!(
+        v["error"].as_str().unwrap().contains("byte offset 2"),
+        "{v}"
+    );
     std::fs::write(dir.join("problem.json"), b"{\n\xff}").unwrap();
     let e = rccpack::studio::router(&dir).unwrap_err().to_string();
-    assert!(e.contains("byte offset 2") && !e.contains("needs a problem.json"), "{e}");
+    assert!(
+        e.contains("byte offset 2") && !e.contains("needs a problem.json"),
+        "{e}"
+    );
 }

@@ -237,7 +237,11 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
 /// acceptable (what it printed is passed on), 1 with nothing on standard
 /// error not acceptable; 1 with an error (a mistyped rules path, a
 /// crashed script) aborts, so a failure never confirms a rule.
-fn oracle_verdict(cmd: &str, status: std::io::Result<std::process::ExitStatus>, said: &str) -> Verdict {
+fn oracle_verdict(
+    cmd: &str,
+    status: std::io::Result<std::process::ExitStatus>,
+    said: &str,
+) -> Verdict {
     if !said.is_empty() && !matches!(status.as_ref().map(|s| s.code()), Ok(Some(1))) {
         ewriteln!("{said}");
     }

@@ -57,7 +57,10 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
     inputs.extend(a.statements.as_deref());
     super::guard_outputs(
         &inputs,
-        &[("-o", a.output.as_deref()), ("--report", a.report.as_deref())],
+        &[
+            ("-o", a.output.as_deref()),
+            ("--report", a.report.as_deref()),
+        ],
         &[],
     )?;
     let params = LearnParams {

@@ -291,7 +291,8 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         Status::Unknown => {
             ewriteln!(
                 "unknown: a limit stopped the search before any solution ({:.1} ms, {} nodes)",
-                result.stats.time_ms, result.stats.nodes
+                result.stats.time_ms,
+                result.stats.nodes
             );
             Ok(ExitCode::from(3))
         }

@@ -363,7 +363,11 @@ impl<'a> NullModel<'a> {
                     }
                     if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                         first_failure.fetch_min(i, Ordering::Relaxed);
-                        return (scratch, counts, merge_err(err, Some((i, InferError::Cancelled))));
+                        return (
+                            scratch,
+                            counts,
+                            merge_err(err, Some((i, InferError::Cancelled))),
+                        );
                     }
                     let d = i % self.demos.len();
                     let scene = &mut scratch[d];

@@ -3,9 +3,7 @@
 
 use super::storage::{self, ANSWERS, DEMOS, LEARNED, LEARNED_BACKUP, STATEMENTS};
 use super::AppState;
-use crate::ask::{
-    Answer, AnswersFile, AskError, AskOptions, Asker, ProbeOptions, Question,
-};
+use crate::ask::{Answer, AnswersFile, AskError, AskOptions, Asker, ProbeOptions, Question};
 use crate::infer::{learn_cancellable, statement_text, LearnParams, StatementSource};
 use crate::limits::cut;
 use crate::rules::{
@@ -664,12 +662,12 @@ pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
         learn_cancellable(&demos, statements.as_ref(), &params, None, Some(&cancel))
     })
     .await
-            .map_err(|e| {
-                ApiError::new(
-                    StatusCode::INTERNAL_SERVER_ERROR,
-                    format!("learning failed: {e}"),
-                )
-            })?
+    .map_err(|e| {
+        ApiError::new(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            format!("learning failed: {e}"),
+        )
+    })?
     .map_err(|e| match e {
         crate::infer::InferError::Cancelled => ApiError::new(
             StatusCode::CONFLICT,
@@ -1374,8 +1372,12 @@ pub(crate) async fn sample_layout(State(st): St, body: Bytes) -> ApiResult {
 }
 
 fn job_id(raw: &str) -> Result<u64, ApiError> {
-    raw.parse()
-        .map_err(|_| ApiError::new(StatusCode::NOT_FOUND, format!("no synthesis job {}", cut(raw))))
+    raw.parse().map_err(|_| {
+        ApiError::new(
+            StatusCode::NOT_FOUND,
+            format!("no synthesis job {}", cut(raw)),
+        )
+    })
 }
 
 pub(crate) async fn synth_status(State(st): St, Path(job): Path<String>) -> ApiResult {

@@ -89,7 +89,9 @@ pub fn router(dir: &Path) -> Result<Router, StudioError> {
         Err(e) => {
             let missing = matches!(&e, crate::task::TaskError::Read { source, .. } if source.kind() == std::io::ErrorKind::NotFound);
             let message = match e {
-                crate::task::TaskError::Read { source, .. } => format!("cannot read file: {source}"),
+                crate::task::TaskError::Read { source, .. } => {
+                    format!("cannot read file: {source}")
+                }
                 e => e.to_string(),
             };
             return Err(StudioError::Io {

@@ -333,8 +333,8 @@ impl Model {
         let movable = problem.objects.iter().filter(|o| !o.is_placed()).count();
         let n = problem.objects.len();
         // Pairs with at least one movable object.
-        let pairs = n * (n.saturating_sub(1)) / 2
-            - (n - movable) * (n - movable).saturating_sub(1) / 2;
+        let pairs =
+            n * (n.saturating_sub(1)) / 2 - (n - movable) * (n - movable).saturating_sub(1) / 2;
         let pairwise = pairwise.unwrap_or(pairs <= PAIRWISE_NO_OVERLAP_PAIRS);
         let mut m = Self::build_core(problem, rules, opts, stop, pairwise)?;
         m.pairwise_no_overlap = pairwise || !m.too_large.is_empty();
@@ -873,13 +873,8 @@ impl Model {
     /// model holds a few Booleans and the engine a few propagators per
     /// pair literal, so this bounds their memory ([`MAX_PAIR_LITERALS`]).
     pub fn pair_literals(problem: &Scene, rules: &RuleSet) -> u128 {
-        let count = |class: &str| {
-            problem
-                .objects
-                .iter()
-                .filter(|o| o.class == class)
-                .count() as u128
-        };
+        let count =
+            |class: &str| problem.objects.iter().filter(|o| o.class == class).count() as u128;
         let n = problem.objects.len() as u128;
         let mut total = 0u128;
         for rule in &rules.rules {

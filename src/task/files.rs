@@ -171,8 +171,7 @@ pub fn carry_confirmed(
     let old_rules = crate::rules::parse_rules(old).unwrap_or_default();
     let mut set = new_rules.clone();
     for r in &mut set.rules {
-        let kept = confirmed.contains(&r.name)
-            && old_rules.rules.iter().any(|o| o.same_rule(r));
+        let kept = confirmed.contains(&r.name) && old_rules.rules.iter().any(|o| o.same_rule(r));
         if kept && !r.comments.iter().any(|c| c == crate::ask::CONFIRMED) {
             r.comments.push(crate::ask::CONFIRMED.into());
         }

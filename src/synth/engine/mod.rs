@@ -590,7 +590,11 @@ impl<'m> Builder<'m> {
             Coord::Const(x) => no_overlap::Pos::Const(x),
         };
         let args = no_overlap::NoOverlapArgs {
-            pos: model.coords.iter().map(|&(x, y)| [pos(x), pos(y)]).collect(),
+            pos: model
+                .coords
+                .iter()
+                .map(|&(x, y)| [pos(x), pos(y)])
+                .collect(),
             size: model.sizes.iter().map(|&(w, h)| [w, h]).collect(),
             origin: [model.origin.0, model.origin.1],
             grid: model.grid,

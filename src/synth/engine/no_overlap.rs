@@ -185,7 +185,8 @@ impl Propagator for NoOverlapPropagator {
             // `hi(b) < lo(a) + size(a)` and `hi(a) < lo(b) + size(b)`: the
             // intervals `[hi, lo + size)` — the compulsory parts, empty or
             // "inverted" for an object still free to move — cross.
-            let iv = |o: usize, axis: usize| (spans[o][axis].hi, spans[o][axis].lo + self.size[o][axis]);
+            let iv =
+                |o: usize, axis: usize| (spans[o][axis].hi, spans[o][axis].lo + self.size[o][axis]);
             let cross = |a: usize, b: usize, axis: usize| {
                 let (p, q) = (iv(a, axis), iv(b, axis));
                 p.0 < q.1 && q.0 < p.1
@@ -236,10 +237,26 @@ impl NoOverlapPropagator {
         let possible =
             |d: Before| spans[d.p][d.axis].lo + self.size[d.p][d.axis] <= spans[d.q][d.axis].hi;
         let ds = [
-            Before { axis: 0, p: a, q: b },
-            Before { axis: 0, p: b, q: a },
-            Before { axis: 1, p: a, q: b },
-            Before { axis: 1, p: b, q: a },
+            Before {
+                axis: 0,
+                p: a,
+                q: b,
+            },
+            Before {
+                axis: 0,
+                p: b,
+                q: a,
+            },
+            Before {
+                axis: 1,
+                p: a,
+                q: b,
+            },
+            Before {
+                axis: 1,
+                p: b,
+                q: a,
+            },
         ];
         let mut open = ds.iter().filter(|&&d| possible(d));
         let sole = match (open.next(), open.next()) {
