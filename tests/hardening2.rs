@@ -9,10 +9,7 @@ use std::time::{Duration, Instant};
 
 /// A fresh folder for one test.
 fn dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rccpack-harden2-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::support::scratch(&format!("harden2-{tag}"))
 }
 
 fn write(d: &Path, name: &str, text: &str) -> String {

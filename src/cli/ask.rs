@@ -287,24 +287,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
     let answers_path = dir.join(storage::ANSWERS);
     let learned_path = dir.join(storage::LEARNED);
     // One session per task folder (the studio takes the same lock to write).
-    let _lock = match rccpack::fsutil::DirLock::try_lock(dir) {
-        Ok(Some(l)) => l,
-        Ok(None) => {
-            return Err(Reported(format!(
-                "error: {}: another `rccpack ask` or the studio is writing this task folder (it holds {}); wait until it ends, then run again",
-                dir.display(),
-                rccpack::fsutil::LOCK_FILE
-            ))
-            .into())
-        }
-        Err(e) => {
-            return Err(Reported(format!(
-                "error: {}: cannot lock the task folder: {e}",
-                dir.join(rccpack::fsutil::LOCK_FILE).display()
-            ))
-            .into())
-        }
-    };
+    let _lock = super::io::lock_folder(dir)?;
     on_interrupt(dir.clone(), answers_path.clone());
     let problem = read_scene(&problem_path)?;
     let (demos, _) = read_scenes(&demos_path)?;

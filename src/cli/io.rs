@@ -257,3 +257,22 @@ pub fn guard_outputs(
     }
     Ok(())
 }
+
+/// Take a task folder's lock (shared by `ask`, `run` and the studio)
+/// without waiting; an error (exit 1) when another session holds it.
+pub fn lock_folder(dir: &Path) -> Result<rccpack::fsutil::DirLock> {
+    match rccpack::fsutil::DirLock::try_lock(dir) {
+        Ok(Some(l)) => Ok(l),
+        Ok(None) => Err(Reported(format!(
+            "error: {}: another `rccpack ask` or the studio is writing this task folder (it holds {}); wait until it ends, then run again",
+            dir.display(),
+            rccpack::fsutil::LOCK_FILE
+        ))
+        .into()),
+        Err(e) => Err(Reported(format!(
+            "error: {}: cannot lock the task folder: {e}",
+            dir.join(rccpack::fsutil::LOCK_FILE).display()
+        ))
+        .into()),
+    }
+}

@@ -66,24 +66,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     })?;
     // The folder `run` writes is locked as `ask` and the studio lock it:
     // nothing is written while another session writes there.
-    let _lock = match rccpack::fsutil::DirLock::try_lock(&out) {
-        Ok(Some(l)) => l,
-        Ok(None) => {
-            return Err(Reported(format!(
-                "error: {}: another `rccpack ask` or the studio is writing this folder (it holds {}); wait until it ends, then run again",
-                out.display(),
-                rccpack::fsutil::LOCK_FILE
-            ))
-            .into())
-        }
-        Err(e) => {
-            return Err(Reported(format!(
-                "error: {}: cannot lock the folder: {e}",
-                out.join(rccpack::fsutil::LOCK_FILE).display()
-            ))
-            .into())
-        }
-    };
+    let _lock = super::io::lock_folder(&out)?;
     // Every input is read and checked before anything is written.
     let problem_path = a.dir.join(files::PROBLEM);
     let problem = read_scene(&problem_path)?;

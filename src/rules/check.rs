@@ -15,40 +15,13 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
     } else {
         format!("the scene has classes {}", cut_list(&classes))
     };
-    let mut diags = Vec::new();
-    for rule in &rules.rules {
-        for (i, atom) in rule.formula.atoms().into_iter().enumerate() {
-            let span = rule
-                .origin
-                .as_ref()
-                .and_then(|o| o.atoms.get(i).copied())
-                .unwrap_or(Span::new(0, 0));
-            let mut named = vec![atom.subject.as_str()];
-            if let Target::Class(c) = &atom.target {
-                if c != &atom.subject {
-                    named.push(c);
-                }
-            }
-            for class in named {
-                if !classes.contains(&class) {
-                    diags.push(Diagnostic::new(
-                        DiagnosticKind::UnknownClass,
-                        span,
-                        format!(
-                            "unknown class `{}` in rule `{}`: {listing}",
-                            crate::limits::cut(class),
-                            crate::limits::cut(&rule.name)
-                        ),
-                    ));
-                }
-            }
-        }
-    }
-    if diags.is_empty() {
-        Ok(())
-    } else {
-        Err(RulesError::new(diags))
-    }
+    unknown_classes(rules, &classes, |class, rule| {
+        format!(
+            "unknown class `{}` in rule `{}`: {listing}",
+            crate::limits::cut(class),
+            crate::limits::cut(rule)
+        )
+    })
 }
 
 /// Check that every class named by `rules` exists in at least one of
@@ -72,6 +45,26 @@ pub fn check_classes_across(rules: &RuleSet, scenes: &[&Scene]) -> Result<(), Ru
     } else {
         format!("the scenes have classes {}", cut_list(&classes))
     };
+    unknown_classes(rules, &classes, |class, rule| {
+        let hint = closest(class, &classes)
+            .map(|c| format!(" (did you mean `{c}`?)"))
+            .unwrap_or_default();
+        format!(
+            "unknown class `{}` in rule `{}`{hint}: expected a class of the scenes read; {listing}",
+            crate::limits::cut(class),
+            crate::limits::cut(rule)
+        )
+    })
+}
+
+/// One diagnostic per atom naming a class (subject or target) not in
+/// `classes`, at the atom's span when the rule was parsed; `message(class,
+/// rule name)` words it.
+fn unknown_classes(
+    rules: &RuleSet,
+    classes: &[&str],
+    message: impl Fn(&str, &str) -> String,
+) -> Result<(), RulesError> {
     let mut diags = Vec::new();
     for rule in &rules.rules {
         for (i, atom) in rule.formula.atoms().into_iter().enumerate() {
@@ -88,17 +81,10 @@ pub fn check_classes_across(rules: &RuleSet, scenes: &[&Scene]) -> Result<(), Ru
             }
             for class in named {
                 if !classes.contains(&class) {
-                    let hint = closest(class, &classes)
-                        .map(|c| format!(" (did you mean `{c}`?)"))
-                        .unwrap_or_default();
                     diags.push(Diagnostic::new(
                         DiagnosticKind::UnknownClass,
                         span,
-                        format!(
-                            "unknown class `{}` in rule `{}`{hint}: expected a class of the scenes read; {listing}",
-                            crate::limits::cut(class),
-                            crate::limits::cut(&rule.name)
-                        ),
+                        message(class, &rule.name),
                     ));
                 }
             }

@@ -99,14 +99,7 @@ pub struct Task {
 
 /// Read a whole UTF-8 text file (a leading byte-order mark is dropped).
 pub fn read_text(path: &Path) -> Result<String, TaskError> {
-    let bytes = std::fs::read(path).map_err(|source| TaskError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    crate::fsutil::utf8_text(bytes).map_err(|source| TaskError::NotUtf8 {
-        path: path.to_path_buf(),
-        source,
-    })
+    read_text_at_most(path, usize::MAX)
 }
 
 /// [`read_text`] that reads at most `max` bytes: a longer file (or an
@@ -130,7 +123,8 @@ pub fn read_text_at_most(path: &Path, max: usize) -> Result<String, TaskError> {
             return Err(too_large(len.to_string()));
         }
         let mut bytes = Vec::new();
-        f.take(max as u64 + 1).read_to_end(&mut bytes)?;
+        f.take((max as u64).saturating_add(1))
+            .read_to_end(&mut bytes)?;
         if bytes.len() > max {
             return Err(too_large(format!("larger than {max}")));
         }
