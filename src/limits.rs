@@ -12,6 +12,7 @@
 //! | values echoed in error messages | cut past [`MAX_ECHO`] characters | [`cut`] |
 //! | synthesis coordinates | `|v| ≤ 2^28` (the engine works in `i32`) | `synth::synthesize` ([`crate::synth::MAX_COORD`]) |
 //! | synthesis grid positions per object and axis | `≤ 2^18` | `synth::synthesize` ([`crate::synth::MAX_POSITIONS`]) |
+//! | synthesis: pairs of objects the rules relate | at most 120 000 | `synth::synthesize` (`synth::model::MAX_PAIR_LITERALS`) |
 //!
 //! With every coordinate and size within ±10^15, every edge `x + width` is
 //! within ±2·10^15 and every difference of two edges within ±4·10^15 <

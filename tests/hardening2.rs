@@ -591,3 +591,19 @@ fn synth_memory_is_near_linear_in_the_objects() {
         peaks[1]
     );
 }
+
+/// Item 6, the other half: rules that relate too many pairs of objects are
+/// refused at once with exit 1 and a message, before the memory runs out
+/// (400 objects under `EC_N(R, *)`: 160 000 pair literals, about 2 GB).
+#[test]
+fn too_many_rule_pairs_are_refused_at_once() {
+    let d = dir("pairs");
+    let p = write(&d, "p.json", &base_problem(400));
+    let r = write(&d, "r.rcc", "rule t: EC_N(R, *)\n");
+    let start = Instant::now();
+    let o = rccpack(&["synth", &p, "--rules", &r, "--quiet"]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("pairs of objects") && e.contains("120000"), "{e}");
+    assert!(start.elapsed() < Duration::from_secs(5));
+}

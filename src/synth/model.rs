@@ -271,10 +271,13 @@ fn forced_encoding() -> Option<bool> {
 }
 
 /// Most pairwise relation literals the rules may ask for in one model
-/// ([`Model::pair_literals`]): 4 million, about 1.5 GB at the engine's
-/// cost per literal; past it synthesis is refused before anything is
-/// built instead of running out of memory.
-pub const MAX_PAIR_LITERALS: u128 = 4_000_000;
+/// ([`Model::pair_literals`]): 120 000, about 1.5 GB at the engine's cost
+/// of about 12.5 KB per literal (measured: `rule t: EC_N(R, *)` over 200
+/// objects, 40 000 literals, 513 MB); past it synthesis is refused before
+/// anything is built instead of running out of memory. A rule against a
+/// landmark costs one literal per subject; `*` or a large target class,
+/// one per pair.
+pub const MAX_PAIR_LITERALS: u128 = 120_000;
 
 /// Atom literals already built: `(object, relation, quantifier, target)`.
 type AtomCache = HashMap<(usize, Relation, Quant, Target), Lit>;
