@@ -604,6 +604,9 @@ fn too_many_rule_pairs_are_refused_at_once() {
     let o = rccpack(&["synth", &p, "--rules", &r, "--quiet"]);
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{e}");
-    assert!(e.contains("pairs of objects") && e.contains("120000"), "{e}");
+    assert!(
+        e.contains("pairs of objects") && e.contains("120000"),
+        "{e}"
+    );
     assert!(start.elapsed() < Duration::from_secs(5));
 }
