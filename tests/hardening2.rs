@@ -348,6 +348,10 @@ fn weights_are_reduced_before_the_size_check() {
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert!(e.contains("odd.rcc") && !e.contains("p.json"), "{e}");
     assert!(e.contains("weights are too large"), "{e}");
+    let o = rccpack(&["sample", &p, "--rules", &odd, "-n", "1", "--quiet"]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("odd.rcc") && !e.contains("p.json"), "{e}");
 }
 
 /// Item 12: values echoed in errors are cut (60 characters and `…`).

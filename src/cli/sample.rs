@@ -113,7 +113,16 @@ pub fn run(a: SampleArgs) -> Result<ExitCode> {
         ..SampleOptions::default()
     };
     let start = Instant::now();
-    let bad = |e: SampleError| Reported(format!("error: {}: {e}", a.problem.display()));
+    let bad = |e: SampleError| {
+        // A fault of the rules (their weights) names the rule file.
+        let file = match &e {
+            SampleError::Synth(
+                rccpack::SynthError::WeightsTooLarge | rccpack::SynthError::BadWeight { .. },
+            ) => &a.rules,
+            _ => &a.problem,
+        };
+        Reported(format!("error: {}: {e}", file.display()))
+    };
     let mut sampler = sample(&problem, &rules, &opts).map_err(bad)?;
     let mut layouts = Vec::with_capacity(a.n.min(1 << 16));
     let mut limit = false;
