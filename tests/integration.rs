@@ -17,6 +17,7 @@ mod example;
 mod first_edition;
 mod fuzz_replay;
 mod hardening;
+mod hardening2;
 mod learn;
 mod learn_cli;
 mod learn_props;

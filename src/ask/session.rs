@@ -1229,6 +1229,21 @@ impl Asker {
         Ok(Scan::Done)
     }
 
+    /// The answer to `q` as [`Asker::answer`] will record it (for a journal
+    /// written before the answer is applied).
+    pub fn answer_record(&self, q: &Question, accepted: bool) -> Answer {
+        Answer {
+            rule: q.rule.clone(),
+            statement: q.statement.clone(),
+            english: q.english.clone(),
+            accepted,
+            demo: accepted.then_some(self.demos.len()),
+            broken: q.probe.broken.clone(),
+            probe: q.probe.scene.clone(),
+            edit: q.probe.edit.clone(),
+        }
+    }
+
     /// Apply the person's answer to question `q` (SPEC §13): accepted → the
     /// probe becomes a demonstration and learning is redone; rejected → the
     /// rule is confirmed. Returns the answer to save.
@@ -1237,18 +1252,8 @@ impl Asker {
             return Err(AskError::NotAsked(q.rule.clone()));
         }
         self.open = None;
-        let mut a = Answer {
-            rule: q.rule.clone(),
-            statement: q.statement.clone(),
-            english: q.english.clone(),
-            accepted,
-            demo: None,
-            broken: q.probe.broken.clone(),
-            probe: q.probe.scene.clone(),
-            edit: q.probe.edit.clone(),
-        };
+        let a = self.answer_record(q, accepted);
         if accepted {
-            a.demo = Some(self.demos.len());
             let mut demos = self.demos.clone();
             demos.push(q.probe.scene.clone());
             let learned = learn(&demos, self.statements.as_ref(), &self.opts.learn)?;

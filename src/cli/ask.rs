@@ -96,6 +96,15 @@ fn write(path: &Path, contents: &str) -> Result<()> {
     write_file(path, contents, "file")
 }
 
+/// Write `answers.json` with the answer to `q` appended, before the
+/// answer is applied: what [`Asker::answer`] will journal, so a resumed
+/// session replays it.
+fn journal_answer(path: &Path, asker: &Asker, q: &Question, accepted: bool) -> Result<()> {
+    let mut answers = asker.answers().to_vec();
+    answers.push(asker.answer_record(q, accepted));
+    write(path, &AnswersFile { answers }.to_json())
+}
+
 enum Verdict {
     Yes,
     No,
@@ -227,7 +236,8 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
         .arg("rccpack-ask")
         .arg(probe)
         .stdin(Stdio::null())
-        .stdout(Stdio::null());
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
     #[cfg(unix)]
     {
         use std::os::unix::process::CommandExt;
@@ -240,6 +250,16 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
     };
     let pgid = i32::try_from(child.id()).unwrap_or(0);
     ORACLE_GROUP.store(pgid, Ordering::SeqCst);
+    // Its standard error, read as it comes (a full pipe would hang it).
+    let errors = child.stderr.take().map(|mut e| {
+        std::thread::spawn(move || {
+            use std::io::Read as _;
+            let mut text = Vec::new();
+            let _ = (&mut e).take(1 << 16).read_to_end(&mut text);
+            let _ = std::io::copy(&mut e, &mut std::io::sink());
+            String::from_utf8_lossy(&text).into_owned()
+        })
+    });
     let start = Instant::now();
     let status = loop {
         match child.try_wait() {
@@ -261,10 +281,36 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
     // Whatever the shell left running goes with it.
     kill_group(pgid);
     ORACLE_GROUP.store(0, Ordering::SeqCst);
+    let said = errors
+        .and_then(|t| t.join().ok())
+        .unwrap_or_default()
+        .trim()
+        .to_string();
+    oracle_verdict(cmd, status, &said)
+}
+
+/// What the oracle's exit status and standard error mean (SPEC §16): 0 is
+/// acceptable (what it printed is passed on), 1 with nothing on standard
+/// error not acceptable; 1 with an error (a mistyped rules path, a
+/// crashed script) aborts, so a failure never confirms a rule.
+fn oracle_verdict(
+    cmd: &str,
+    status: std::io::Result<std::process::ExitStatus>,
+    said: &str,
+) -> Verdict {
+    if !said.is_empty() && !matches!(status.as_ref().map(|s| s.code()), Ok(Some(1))) {
+        ewriteln!("{said}");
+    }
     match status {
         Ok(s) => match s.code() {
             Some(0) => Verdict::Yes,
-            Some(1) => Verdict::No,
+            Some(1) if said.is_empty() => Verdict::No,
+            Some(1) => Verdict::Abort(format!(
+                "the oracle `{}` exited with 1 and printed an error, so it failed rather than answered: {}; \
+                 expected exit 1 with nothing on standard error for \"not acceptable\"",
+                rccpack::limits::cut(cmd),
+                rccpack::limits::cut(said)
+            )),
             Some(c) => Verdict::Abort(format!(
                 "the oracle `{cmd}` exited with {c}; expected 0 (acceptable) or 1 (not acceptable)"
             )),
@@ -278,11 +324,11 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
 /// temporary files in the task folder, say what is saved, exit 1 (README:
 /// an abort loses nothing answered; the next run resumes).
 fn on_interrupt(dir: PathBuf, answers: PathBuf) {
-    let _ = ctrlc::set_handler(move || {
+    super::signals::on_signal(move || {
         kill_group(ORACLE_GROUP.load(Ordering::SeqCst));
         rccpack::fsutil::remove_own_temp_files(&dir);
         rccpack::fsutil::remove_own_temp_files(&dir.join(storage::PROBES));
-        eprintln!(
+        ewriteln!(
             "error: interrupted (Ctrl-C); every answer given is saved in {}, run again to resume",
             answers.display()
         );
@@ -297,24 +343,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
     let answers_path = dir.join(storage::ANSWERS);
     let learned_path = dir.join(storage::LEARNED);
     // One session per task folder (the studio takes the same lock to write).
-    let _lock = match rccpack::fsutil::DirLock::try_lock(dir) {
-        Ok(Some(l)) => l,
-        Ok(None) => {
-            return Err(Reported(format!(
-                "error: {}: another `rccpack ask` or the studio is writing this task folder (it holds {}); wait until it ends, then run again",
-                dir.display(),
-                rccpack::fsutil::LOCK_FILE
-            ))
-            .into())
-        }
-        Err(e) => {
-            return Err(Reported(format!(
-                "error: {}: cannot lock the task folder: {e}",
-                dir.join(rccpack::fsutil::LOCK_FILE).display()
-            ))
-            .into())
-        }
-    };
+    let _lock = super::io::lock_folder(dir)?;
     on_interrupt(dir.clone(), answers_path.clone());
     let problem = read_scene(&problem_path)?;
     let (demos, _) = read_scenes(&demos_path)?;
@@ -487,6 +516,10 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
                 }
             ))?;
         }
+        // The journal first: relearning from an accepted probe takes a
+        // while, and Ctrl-C during it must not lose the answer (the next
+        // run replays the journal).
+        journal_answer(&answers_path, &asker, &q, accepted)?;
         let t = Instant::now();
         let (after, upcoming) = match ahead.answer(accepted) {
             Ok(b) => b,
@@ -539,7 +572,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         ))?;
     }
     if let Some(why) = aborted {
-        eprintln!(
+        ewriteln!(
             "error: aborted ({why}); {} answers are saved in {}, run again to resume",
             p.asked,
             answers_path.display()

@@ -64,6 +64,18 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
             out.display()
         ))
     })?;
+    // The folder `run` writes is locked as `ask` and the studio lock it:
+    // nothing is written while another session writes there.
+    let _lock = super::io::lock_folder(&out)?;
+    // Every input is read and checked before anything is written.
+    let problem_path = a.dir.join(files::PROBLEM);
+    let problem = read_scene(&problem_path)?;
+    let like = match a.like.as_deref() {
+        Some(p) if p == Path::new("none") => Like::Off,
+        Some(p) => Like::Scenes(read_scenes(p)?.0),
+        None => Like::Demos,
+    };
+    let demos = read_scenes(&a.dir.join(files::DEMOS))?.0;
     let statements = a.dir.join(files::STATEMENTS);
     let statements = statements.exists().then_some(statements);
     let params = LearnParams {
@@ -86,17 +98,6 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         deadline,
     )?;
     let rules = learned.rules();
-    write(&out.join(files::LEARNED), learned.to_rcc())?;
-    write(&out.join(files::LEARN_REPORT), learned.report_json())?;
-
-    let problem_path = a.dir.join(files::PROBLEM);
-    let problem = read_scene(&problem_path)?;
-    let like = match a.like.as_deref() {
-        Some(p) if p == Path::new("none") => Like::Off,
-        Some(p) => Like::Scenes(read_scenes(p)?.0),
-        None => Like::Demos,
-    };
-    let demos = read_scenes(&a.dir.join(files::DEMOS))?.0;
     let opts = SynthOptions {
         contact: a.contact,
         time_limit: Some(a.time_limit.saturating_sub(start.elapsed())),
@@ -110,6 +111,28 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
             super::task_error_text(&e)
         ))
     })?;
+    // A curated learned.rcc (confirmed by `ask` or the studio, or edited)
+    // is never lost: confirmed marks carry over to the rules learned again
+    // unchanged, and a file that would still change is kept as a backup.
+    let learned_path = out.join(files::LEARNED);
+    let old = files::read_optional(&out, files::LEARNED).map_err(|e| {
+        Reported(format!(
+            "error: {}: cannot read file: {e}",
+            learned_path.display()
+        ))
+    })?;
+    let (rcc, backup) = files::carry_confirmed(old.as_deref(), &learned.rcc_header(), &rules);
+    if backup {
+        let bak = out.join(files::LEARNED_BACKUP);
+        write(&bak, old.unwrap_or_default())?;
+        outln(format!(
+            "note: {} was not what this run learned; kept as {}",
+            learned_path.display(),
+            bak.display()
+        ))?;
+    }
+    write(&learned_path, rcc)?;
+    write(&out.join(files::LEARN_REPORT), learned.report_json())?;
     let result = placement.result;
     let like = placement.like;
     // Learned rules about a class today's problem lacks hold as SPEC §4
@@ -174,11 +197,11 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         }
         _ if result.status == Status::Infeasible => {
             let c = result.conflict.clone().unwrap_or_default();
-            eprintln!("infeasible: {}", super::synth::conflict_text(&c));
+            ewriteln!("infeasible: {}", super::synth::conflict_text(&c));
             ExitCode::from(2)
         }
         _ => {
-            eprintln!("unknown: the time limit stopped the search before any layout was found");
+            ewriteln!("unknown: the time limit stopped the search before any layout was found");
             ExitCode::from(3)
         }
     };

@@ -158,6 +158,10 @@ pub enum InferError {
         /// The samples asked for.
         samples: usize,
     },
+    /// Learning was cancelled ([`learn_cancellable`]: the studio's client
+    /// left, or a newer request replaced it).
+    #[error("learning was cancelled; nothing was learned")]
+    Cancelled,
 }
 
 /// Learning parameters (SPEC §7; the defaults are the spec's).
@@ -204,7 +208,7 @@ impl LearnParams {
             } else {
                 Err(InferError::BadParameter {
                     param,
-                    value: v.to_string(),
+                    value: crate::limits::number(v),
                     expected: "a number strictly between 0 and 1",
                 })
             }
@@ -334,6 +338,18 @@ pub fn learn_until(
     params: &LearnParams,
     deadline: Option<std::time::Instant>,
 ) -> Result<Learned, InferError> {
+    learn_cancellable(demos, statements, params, deadline, None)
+}
+
+/// [`learn_until`] that also gives up with [`InferError::Cancelled`] once
+/// `cancel` is set (checked per random scene of the null model).
+pub fn learn_cancellable(
+    demos: &[Scene],
+    statements: Option<&RuleSet>,
+    params: &LearnParams,
+    deadline: Option<std::time::Instant>,
+    cancel: Option<&std::sync::atomic::AtomicBool>,
+) -> Result<Learned, InferError> {
     params.validate()?;
     check_demos(demos)?;
     let class_list = templates::demo_classes(demos);
@@ -393,6 +409,7 @@ pub fn learn_until(
             &cand,
             params.contact,
             deadline,
+            cancel,
         )?
     };
 

@@ -307,11 +307,12 @@ impl<'a> NullModel<'a> {
         rules: &[CompiledRule],
         contact: Contact,
     ) -> Result<Vec<u64>, InferError> {
-        self.count_until(samples, classes, rules, contact, None)
+        self.count_until(samples, classes, rules, contact, None, None)
     }
 
     /// [`NullModel::count`] that stops with [`InferError::TimeLimit`] once
-    /// `deadline` passes (checked before each random scene).
+    /// `deadline` passes, and with [`InferError::Cancelled`] once `cancel`
+    /// is set (both checked before each random scene).
     pub fn count_until(
         &self,
         samples: usize,
@@ -319,6 +320,7 @@ impl<'a> NullModel<'a> {
         rules: &[CompiledRule],
         contact: Contact,
         deadline: Option<std::time::Instant>,
+        cancel: Option<&std::sync::atomic::AtomicBool>,
     ) -> Result<Vec<u64>, InferError> {
         // Per demonstration, per class, the object indices.
         let by_class: Vec<Vec<Vec<usize>>> = self
@@ -358,6 +360,14 @@ impl<'a> NullModel<'a> {
                         first_failure.fetch_min(i, Ordering::Relaxed);
                         let e = InferError::TimeLimit { samples };
                         return (scratch, counts, merge_err(err, Some((i, e))));
+                    }
+                    if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                        first_failure.fetch_min(i, Ordering::Relaxed);
+                        return (
+                            scratch,
+                            counts,
+                            merge_err(err, Some((i, InferError::Cancelled))),
+                        );
                     }
                     let d = i % self.demos.len();
                     let scene = &mut scratch[d];

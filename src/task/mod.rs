@@ -99,7 +99,38 @@ pub struct Task {
 
 /// Read a whole UTF-8 text file (a leading byte-order mark is dropped).
 pub fn read_text(path: &Path) -> Result<String, TaskError> {
-    let bytes = std::fs::read(path).map_err(|source| TaskError::Read {
+    read_text_at_most(path, usize::MAX)
+}
+
+/// [`read_text`] that reads at most `max` bytes: a longer file (or an
+/// endless device, `/dev/zero`) is refused once `max` is passed, before
+/// it fills the memory.
+pub fn read_text_at_most(path: &Path, max: usize) -> Result<String, TaskError> {
+    use std::io::Read as _;
+    let read = |path: &Path| -> std::io::Result<Vec<u8>> {
+        let f = std::fs::File::open(path)?;
+        let len = f.metadata().ok().filter(|m| m.is_file()).map(|m| m.len());
+        let too_large = |size: String| {
+            std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!(
+                    "the file is {size} bytes; expected at most {max} bytes ({} MiB)",
+                    max >> 20
+                ),
+            )
+        };
+        if let Some(len) = len.filter(|&l| l > max as u64) {
+            return Err(too_large(len.to_string()));
+        }
+        let mut bytes = Vec::new();
+        f.take((max as u64).saturating_add(1))
+            .read_to_end(&mut bytes)?;
+        if bytes.len() > max {
+            return Err(too_large(format!("larger than {max}")));
+        }
+        Ok(bytes)
+    };
+    let bytes = read(path).map_err(|source| TaskError::Read {
         path: path.to_path_buf(),
         source,
     })?;
