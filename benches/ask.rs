@@ -337,7 +337,6 @@ fn main() {
     for i in 0..TASKS {
         let name = format!("task{i:02}");
         if !selected(&name, LearnParams::default().cutoff) && !selected("tasks", 0.0) {
-
             continue;
         }
         let task = generate_task(&cfg, i).unwrap();
@@ -374,7 +373,11 @@ fn main() {
             let modes: &[bool] = if compare { &[false, true] } else { &[true] };
             let mut transcripts = Vec::new();
             for &budget in modes {
-                let cap = if task.starts_with("task") { questions } else { 100 };
+                let cap = if task.starts_with("task") {
+                    questions
+                } else {
+                    100
+                };
                 let s = session(problem, demos, &params, budget, oracle, cap);
                 let (recall, spurious) = judge(problem, demos, &s.held, oracle);
                 println!(

@@ -80,8 +80,14 @@ fn session(
     threads: usize,
     stop_after: usize,
 ) -> (Vec<(String, Scene, bool)>, Asker) {
-    let mut asker =
-        Asker::new(problem.clone(), demos.clone(), None, Vec::new(), opts.clone()).unwrap();
+    let mut asker = Asker::new(
+        problem.clone(),
+        demos.clone(),
+        None,
+        Vec::new(),
+        opts.clone(),
+    )
+    .unwrap();
     let mut out = Vec::new();
     let mut next = asker.next_question().unwrap();
     while let Some(q) = next {
@@ -104,14 +110,10 @@ fn session(
 #[test]
 fn probes_under_a_budget_are_real_probes() {
     let bp = example("box-packing");
-    for nodes in [rccpack::ask::DEFAULT_QUESTION_NODES, 300] {
-        let (t, asker) = session(&bp, &options(nodes), 1, 14);
-        assert!(t.len() >= 10, "{nodes}: {} questions", t.len());
-        let edits = asker
-            .answers()
-            .iter()
-            .filter(|a| a.edit.is_some())
-            .count();
+    for (nodes, least) in [(rccpack::ask::DEFAULT_QUESTION_NODES, 10), (3_000, 3)] {
+        let (t, asker) = session(&bp, &options(nodes), 1, 10);
+        assert!(t.len() >= least, "{nodes}: {} questions", t.len());
+        let edits = asker.answers().iter().filter(|a| a.edit.is_some()).count();
         assert!(edits > 0, "{nodes}: no edit");
     }
 }

@@ -901,5 +901,8 @@ fn a_session_agrees_with_enumeration() {
         }
     }
     eprintln!("a_session_agrees_with_enumeration: {sessions} sessions, {questions} questions, {implied} unasked as implied ({with_edits} with edits tried)");
-    assert!(sessions >= 100 && questions >= 100 && with_edits >= 50, "{sessions} {questions} {implied} {with_edits}");
+    assert!(
+        sessions >= 100 && questions >= 100 && with_edits >= 50,
+        "{sessions} {questions} {implied} {with_edits}"
+    );
 }

@@ -27,7 +27,9 @@ pub const WEIGHT_UNIT: usize = 1024;
 
 /// The weight of a node on a model with `bools` Booleans.
 pub(crate) fn weight(bools: usize) -> u64 {
-    u64::try_from(bools / WEIGHT_UNIT).unwrap_or(u64::MAX).max(1)
+    u64::try_from(bools / WEIGHT_UNIT)
+        .unwrap_or(u64::MAX)
+        .max(1)
 }
 
 /// Default [`QuestionBudget::wall`].
@@ -100,7 +102,9 @@ impl Meter {
 
     /// Charge `nodes` spent on a model of weight `weight`.
     pub fn spend(&mut self, nodes: u64, weight: u64) {
-        self.left = self.left.saturating_sub(nodes.saturating_mul(weight.max(1)));
+        self.left = self
+            .left
+            .saturating_sub(nodes.saturating_mul(weight.max(1)));
     }
 
     /// The deadline (the wall-clock cap), if any.

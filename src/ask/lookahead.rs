@@ -31,7 +31,7 @@ enum Pending {
     /// Computed on a thread; the flag stops its solves.
     Thread(JoinHandle<Branch>, Arc<AtomicBool>),
     /// Computed when the answer comes (a look-ahead on one thread).
-    Later(Box<Asker>, Question),
+    Later(Box<(Asker, Question)>),
 }
 
 /// The session after answering `q` with `accepted`, and its next question.
@@ -48,7 +48,7 @@ impl Asker {
     pub fn look_ahead(&self, q: &Question, threads: usize) -> Lookahead {
         let pending = |accepted: bool| {
             if threads < 2 {
-                return Pending::Later(Box::new(self.clone()), q.clone());
+                return Pending::Later(Box::new((self.clone(), q.clone())));
             }
             let cancel = Arc::new(AtomicBool::new(false));
             let mut asker = self.clone();
@@ -80,7 +80,10 @@ impl Lookahead {
                 Ok(b) => b,
                 Err(panic) => std::panic::resume_unwind(panic),
             },
-            Some(Pending::Later(asker, q)) => branch(*asker, &q, accepted),
+            Some(Pending::Later(b)) => {
+                let (asker, q) = *b;
+                branch(asker, &q, accepted)
+            }
             None => unreachable!("each branch is taken once"),
         }
     }

@@ -28,5 +28,6 @@ pub use probe::{
     DEFAULT_PROBE_NODES,
 };
 pub use session::{
-    Answer, AnswersFile, AnswersFileError, AskError, AskOptions, Asker, Question, Tally, Unasked, CONFIRMED,
+    Answer, AnswersFile, AnswersFileError, AskError, AskOptions, Asker, Question, Tally, Unasked,
+    CONFIRMED,
 };

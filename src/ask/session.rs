@@ -262,7 +262,7 @@ impl Default for AskOptions {
 
 /// How a scan for the next question ended.
 enum Scan {
-    Question(Question),
+    Question(Box<Question>),
     /// The question's budget ran out before any rule had a probe; the rule
     /// that used it up is decided or deferred, so the next scan goes on.
     OutOfBudget,
@@ -503,7 +503,10 @@ impl Asker {
     }
 
     /// Stop every solve when `cancel` is set (`None`: never).
-    pub(crate) fn set_cancel(&mut self, cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>) {
+    pub(crate) fn set_cancel(
+        &mut self,
+        cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    ) {
         self.opts.probe.cancel = cancel;
     }
 
@@ -939,7 +942,9 @@ impl Asker {
             let t = std::time::Instant::now();
             let before = c.nodes();
             let checked = c.implies_within(a, b, Some(grant));
-            self.meter.borrow_mut().spend(c.nodes() - before, c.weight());
+            self.meter
+                .borrow_mut()
+                .spend(c.nodes() - before, c.weight());
             log::debug!(
                 "ask: implies {} -> {}: {} in {:.1} ms",
                 ra.name,
@@ -1001,7 +1006,7 @@ impl Asker {
             match self.scan(&mut checker, &mut edit_checkers)? {
                 Scan::Question(q) => {
                     self.open = Some(q.rule.clone());
-                    return Ok(Some(q));
+                    return Ok(Some(*q));
                 }
                 Scan::OutOfBudget => {}
                 Scan::Done => {
@@ -1121,7 +1126,8 @@ impl Asker {
                 {
                     return Ok(Scan::OutOfBudget);
                 }
-                if (pass == 1 || pass == 2) && matches!(self.known.get(&name), Some(Known::Implied)) {
+                if (pass == 1 || pass == 2) && matches!(self.known.get(&name), Some(Known::Implied))
+                {
                     // The unconfirmed implied rules; skip `k` when one of
                     // them alone implies it and not the other way round
                     // (the stronger rule is asked about, and once settled,
@@ -1155,8 +1161,8 @@ impl Asker {
                     // alone implies), weakest evidence first, until the
                     // firm rules no longer imply `k`; then keep hard every
                     // part that can be kept: the fewest break with `k`.
-                    let mut probe_able = with.iter().any(|&w| w)
-                        && self.check(checker, k, &with)? == Some(true);
+                    let mut probe_able =
+                        with.iter().any(|&w| w) && self.check(checker, k, &with)? == Some(true);
                     for &j in order.iter().filter(|&&j| parts[j]) {
                         if probe_able {
                             break;
@@ -1222,7 +1228,7 @@ impl Asker {
                         english: stmt.english.clone(),
                         probe: p.clone(),
                     };
-                    return Ok(Scan::Question(q));
+                    return Ok(Scan::Question(Box::new(q)));
                 }
             }
         }

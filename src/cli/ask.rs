@@ -173,10 +173,7 @@ fn show_unasked(asker: &Asker) -> Result<()> {
         } else {
             ""
         };
-        outln(format!(
-            "unasked, {why}{hint}: {}",
-            cut_list(&names, 12)
-        ))?;
+        outln(format!("unasked, {why}{hint}: {}", cut_list(&names, 12)))?;
     }
     Ok(())
 }
@@ -435,15 +432,13 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
     } else {
         std::thread::available_parallelism().map_or(1, |n| n.get())
     };
-    let problem_error = |e: rccpack::ask::AskError| {
-        Reported(format!("error: {}: {e}", problem_path.display()))
-    };
+    let problem_error =
+        |e: rccpack::ask::AskError| Reported(format!("error: {}: {e}", problem_path.display()));
     let t = Instant::now();
     let mut next = asker.next_question().map_err(problem_error)?;
     // The wait before the first question, then answer → next question.
     let mut ready_ms = t.elapsed().as_secs_f64() * 1000.0;
-    loop {
-        let Some(q) = next.take() else { break };
+    while let Some(q) = next.take() {
         if asked_now >= a.max_questions {
             out_of_budget = true;
             break;
@@ -524,9 +519,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         let (after, upcoming) = match ahead.answer(accepted) {
             Ok(b) => b,
             Err(e @ rccpack::ask::AskError::Synth(_)) => return Err(problem_error(e).into()),
-            Err(e) => {
-                return Err(Reported(format!("error: {}: {e}", demos_path.display())).into())
-            }
+            Err(e) => return Err(Reported(format!("error: {}: {e}", demos_path.display())).into()),
         };
         ready_ms = t.elapsed().as_secs_f64() * 1000.0;
         asker = after;
