@@ -33,7 +33,7 @@ pub(crate) fn weight(bools: usize) -> u64 {
 }
 
 /// Default [`QuestionBudget::wall`].
-pub const DEFAULT_QUESTION_WALL: Duration = Duration::from_secs(3);
+pub const DEFAULT_QUESTION_WALL: Duration = Duration::from_secs(10);
 
 /// How much one question may cost.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

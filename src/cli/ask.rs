@@ -73,7 +73,7 @@ pub struct AskArgs {
     question_nodes: u64,
     /// Wall-clock cap per question in seconds: a safety net for slow
     /// machines (what it stops depends on the machine's speed).
-    #[arg(long, value_name = "SECONDS", default_value = "3", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
+    #[arg(long, value_name = "SECONDS", default_value = "10", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
     question_seconds: Duration,
     /// Only probes of the problem: never a demonstration with a few objects
     /// moved.
