@@ -6,15 +6,13 @@
 //! short summary on stdout. `OUT` defaults to `DIR`.
 
 use super::learn::learn_files;
-use super::{outln, read_scene, read_scenes, write_file, Reported};
+use super::{outln, read_scene, read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
-use rccpack::render::{render_to_path, RenderOptions};
-use rccpack::rules::missing_classes_note;
-use rccpack::synth::{Status, SynthOptions};
-use rccpack::task::{self, files, Like};
+use rccpack::synth::SynthOptions;
+use rccpack::task::{files, folder, Like};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
@@ -52,18 +50,12 @@ pub struct RunArgs {
     templates: Templates,
 }
 
-fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
-    write_file(path, bytes, "file")
-}
-
 pub fn run(a: RunArgs) -> Result<ExitCode> {
     let out = a.out.clone().unwrap_or_else(|| a.dir.clone());
-    std::fs::create_dir_all(&out).map_err(|e| {
-        Reported(format!(
-            "error: {}: cannot create folder: {e}",
-            out.display()
-        ))
-    })?;
+    // The output folder's lock (that of `rccpack ask` and the studio) for
+    // the whole command; the files and the summary are the library's
+    // (`rccpack::task::folder`, also behind Python's `Task.run`).
+    let _lock = folder::lock(&out).map_err(folder_error)?;
     let statements = a.dir.join(files::STATEMENTS);
     let statements = statements.exists().then_some(statements);
     let params = LearnParams {
@@ -86,8 +78,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         deadline,
     )?;
     let rules = learned.rules();
-    write(&out.join(files::LEARNED), learned.to_rcc())?;
-    write(&out.join(files::LEARN_REPORT), learned.report_json())?;
+    folder::write_learned(&out, &learned).map_err(folder_error)?;
 
     let problem_path = a.dir.join(files::PROBLEM);
     let problem = read_scene(&problem_path)?;
@@ -103,83 +94,26 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         seed: a.seed,
         ..SynthOptions::default()
     };
-    let placement = task::place(&problem, &rules, &demos, &like, &opts).map_err(|e| {
-        Reported(format!(
+    let written = folder::place_and_write(
+        &a.dir, &out, &problem, &learned, &rules, &demos, &like, &opts,
+    )
+    .map_err(|e| match e {
+        folder::FolderError::Task(e) => Reported(format!(
             "error: {}: {}",
             problem_path.display(),
             super::task_error_text(&e)
-        ))
+        )),
+        e => folder_error(e),
     })?;
-    let result = placement.result;
-    let like = placement.like;
-    // Learned rules about a class today's problem lacks hold as SPEC §4
-    // says (SPEC §15): a note, then a layout.
-    let absent = missing_classes_note(&placement.missing_classes);
-    if let Some(note) = &absent {
-        outln(note)?;
+    for line in &written.stdout {
+        outln(line)?;
     }
-    let candidates = learned.statements.iter().filter(|s| s.candidate).count();
-    outln(format!(
-        "learned {} rules ({} candidates of {} statements) from {} demonstrations -> {}",
-        rules.rules.len(),
-        candidates,
-        learned.statements.len(),
-        learned.demos,
-        out.join(files::LEARNED).display()
-    ))?;
-    let code = match (&result.scene, &result.evaluation) {
-        (Some(scene), Some(ev)) => {
-            write(&out.join(files::SOLUTION), scene.to_json())?;
-            let png = out.join(files::SOLUTION_PNG);
-            let ropts = RenderOptions {
-                contact: a.contact,
-                scale: 1.0,
-                title: Some(format!("{} — synthesised", a.dir.display())),
-                like,
-            };
-            render_to_path(scene, Some(&rules), &ropts, &png)
-                .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;
-            let broken: Vec<String> = ev
-                .rules
-                .iter()
-                .filter(|r| r.satisfied < r.subjects)
-                .map(|r| format!("{} {}/{}", r.name, r.satisfied, r.subjects))
-                .collect();
-            outln(format!(
-                "placed {} objects: {} score {:.6} (weight {:.3} / {:.3}){}{} in {:.1} ms -> {}, {}",
-                problem.objects.iter().filter(|o| !o.is_placed()).count(),
-                match result.status {
-                    Status::Optimal => "optimal,",
-                    _ => "feasible (time limit),",
-                },
-                ev.score,
-                ev.satisfied_weight,
-                ev.total_weight,
-                super::synth::bound_text(&result),
-                super::synth::resemblance_text(result.resemblance),
-                result.stats.time_ms,
-                out.join(files::SOLUTION).display(),
-                png.display()
-            ))?;
-            if broken.is_empty() {
-                outln("every placed object keeps every learned rule")?;
-            } else {
-                outln(format!(
-                    "rules not kept by every object: {}",
-                    broken.join(", ")
-                ))?;
-            }
-            ExitCode::SUCCESS
-        }
-        _ if result.status == Status::Infeasible => {
-            let c = result.conflict.clone().unwrap_or_default();
-            eprintln!("infeasible: {}", super::synth::conflict_text(&c));
-            ExitCode::from(2)
-        }
-        _ => {
-            eprintln!("unknown: the time limit stopped the search before any layout was found");
-            ExitCode::from(3)
-        }
-    };
-    Ok(code)
+    if let Some(line) = &written.stderr {
+        eprintln!("{line}");
+    }
+    Ok(ExitCode::from(written.exit_code))
+}
+
+fn folder_error(e: folder::FolderError) -> Reported {
+    Reported(format!("error: {e}"))
 }

@@ -158,6 +158,13 @@ pub enum InferError {
         /// The samples asked for.
         samples: usize,
     },
+    /// The cancel flag was set (Ctrl-C) while the null model drew its
+    /// random scenes ([`learn_stoppable`]).
+    #[error("interrupted while learning ({samples} random scenes to draw); nothing was learned")]
+    Interrupted {
+        /// The samples asked for.
+        samples: usize,
+    },
 }
 
 /// Learning parameters (SPEC §7; the defaults are the spec's).
@@ -334,6 +341,19 @@ pub fn learn_until(
     params: &LearnParams,
     deadline: Option<std::time::Instant>,
 ) -> Result<Learned, InferError> {
+    learn_stoppable(demos, statements, params, deadline, None)
+}
+
+/// [`learn_until`] that also gives up with [`InferError::Interrupted`] once
+/// `cancel` is set (checked per random scene of the null model): Ctrl-C
+/// during learning.
+pub fn learn_stoppable(
+    demos: &[Scene],
+    statements: Option<&RuleSet>,
+    params: &LearnParams,
+    deadline: Option<std::time::Instant>,
+    cancel: Option<&std::sync::atomic::AtomicBool>,
+) -> Result<Learned, InferError> {
     params.validate()?;
     check_demos(demos)?;
     let class_list = templates::demo_classes(demos);
@@ -387,12 +407,13 @@ pub fn learn_until(
     let counts = if cand.is_empty() {
         Vec::new()
     } else {
-        NullModel::new(demos, params.seed)?.count_until(
+        NullModel::new(demos, params.seed)?.count_stoppable(
             params.samples,
             &classes,
             &cand,
             params.contact,
             deadline,
+            cancel,
         )?
     };
 

@@ -320,6 +320,21 @@ impl<'a> NullModel<'a> {
         contact: Contact,
         deadline: Option<std::time::Instant>,
     ) -> Result<Vec<u64>, InferError> {
+        self.count_stoppable(samples, classes, rules, contact, deadline, None)
+    }
+
+    /// [`NullModel::count_until`] that also stops with
+    /// [`InferError::Interrupted`] once `cancel` is set (checked before
+    /// each random scene, like the deadline).
+    pub fn count_stoppable(
+        &self,
+        samples: usize,
+        classes: &ClassIndex,
+        rules: &[CompiledRule],
+        contact: Contact,
+        deadline: Option<std::time::Instant>,
+        cancel: Option<&std::sync::atomic::AtomicBool>,
+    ) -> Result<Vec<u64>, InferError> {
         // Per demonstration, per class, the object indices.
         let by_class: Vec<Vec<Vec<usize>>> = self
             .demos
@@ -357,6 +372,11 @@ impl<'a> NullModel<'a> {
                     if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
                         first_failure.fetch_min(i, Ordering::Relaxed);
                         let e = InferError::TimeLimit { samples };
+                        return (scratch, counts, merge_err(err, Some((i, e))));
+                    }
+                    if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                        first_failure.fetch_min(i, Ordering::Relaxed);
+                        let e = InferError::Interrupted { samples };
                         return (scratch, counts, merge_err(err, Some((i, e))));
                     }
                     let d = i % self.demos.len();
