@@ -24,7 +24,6 @@ use std::time::Duration;
 #[derive(Clone, Copy, Default)]
 struct Counts {
     state: &'static str,
-    found: usize,
     skipped: usize,
     target_proven: Option<bool>,
 }
@@ -37,7 +36,7 @@ enum Msg {
 
 struct Inner {
     requests: Option<Sender<()>>,
-    replies: Receiver<Msg>,
+    replies: Mutex<Receiver<Msg>>,
     counts: Counts,
     done: bool,
     limit_reached: bool,
@@ -66,7 +65,6 @@ fn counts(s: &rccpack_core::Sampler) -> Counts {
             rccpack_core::sample::State::Exhausted => "exhausted",
             rccpack_core::sample::State::Stopped => "stopped",
         },
-        found: s.found(),
         skipped: s.skipped(),
         target_proven: s.target_proven(),
     }
@@ -101,12 +99,15 @@ fn sample_error(e: SampleError) -> PyErr {
 /// returned with the message that follows it.
 fn wait(
     py: Python<'_>,
-    rx: &Receiver<Msg>,
+    rx: &Mutex<Receiver<Msg>>,
     cancel: &AtomicBool,
 ) -> (Option<Msg>, Option<PyErr>) {
     let mut signal = None;
     loop {
-        let got = py.detach(|| rx.recv_timeout(Duration::from_millis(50)));
+        let got = py.detach(|| match rx.lock() {
+            Ok(rx) => rx.recv_timeout(Duration::from_millis(50)),
+            Err(_) => Err(RecvTimeoutError::Disconnected),
+        });
         match got {
             Ok(m) => return (Some(m), signal),
             Err(RecvTimeoutError::Disconnected) => return (None, signal),
@@ -360,6 +361,7 @@ pub fn sample(
             }
         })
         .map_err(|e| Error::new_err(format!("cannot start the sampler's thread: {e}")))?;
+    let rx = Mutex::new(rx);
     let (msg, signal) = wait(py, &rx, &cancel);
     if let Some(e) = signal {
         return Err(e);

@@ -55,24 +55,29 @@ fn folder_error(e: FolderError) -> PyErr {
     }
 }
 
-/// `like=`: `"demos"` (the task's demonstrations), `None` (off) or scenes.
-fn like_arg(like: Option<&Bound<'_, PyAny>>) -> PyResult<Like> {
-    match like {
-        None => Ok(Like::Off),
-        Some(l) if l.is_none() => Ok(Like::Off),
-        Some(l) => {
-            if let Ok(s) = l.cast::<PyString>() {
-                return match s.to_str()? {
-                    "demos" => Ok(Like::Demos),
-                    other => Err(Error::new_err(format!(
-                        "invalid like {other:?}: expected \"demos\", None or scenes"
-                    ))),
-                };
-            }
-            Ok(Like::Scenes(scenes_arg(l, "like")?))
+/// `like=`: `"demos"` (the task's demonstrations, the default), `None`
+/// (off) or scenes.
+pub(crate) struct LikeArg(Like);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for LikeArg {
+    type Error = PyErr;
+    fn extract(obj: pyo3::Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if obj.is_none() {
+            return Ok(LikeArg(Like::Off));
         }
+        if obj.is_instance_of::<PyString>() {
+            return match obj.extract::<String>()?.as_str() {
+                "demos" => Ok(LikeArg(Like::Demos)),
+                other => Err(Error::new_err(format!(
+                    "invalid like {other:?}: expected \"demos\", None or scenes"
+                ))),
+            };
+        }
+        Ok(LikeArg(Like::Scenes(scenes_arg(&obj.to_owned(), "like")?)))
     }
 }
+
+const DEMOS: LikeArg = LikeArg(Like::Demos);
 
 /// A task folder (SPEC §10): `demos.json`, `problem.json` and, when
 /// present, `statements.rcc`, read as `rccpack run` reads them.
@@ -224,23 +229,20 @@ impl PyTask {
     /// landmarks checked, the demonstrations the warm start and, with
     /// `like="demos"` (the default), the resemblance target. Nothing is
     /// written. Ctrl-C returns the best layout found (`interrupted`).
-    #[pyo3(signature = (rules, like = None, time_limit = None, node_limit = None, seed = 0,
+    #[pyo3(signature = (rules, like = DEMOS, time_limit = None, node_limit = None, seed = 0,
                         contact = "point"))]
     #[allow(clippy::too_many_arguments)]
     fn place(
         &self,
         py: Python<'_>,
         rules: &PyRuleSet,
-        like: Option<&Bound<'_, PyAny>>,
+        like: LikeArg,
         time_limit: Option<f64>,
         node_limit: Option<u64>,
         seed: u64,
         contact: &str,
     ) -> PyResult<PySynthResult> {
-        let like = match like {
-            None => Like::Demos,
-            l => like_arg(l)?,
-        };
+        let like = like.0;
         let cancel = Arc::new(AtomicBool::new(false));
         let opts = SynthOptions {
             contact: self::contact(contact)?,
@@ -270,7 +272,7 @@ impl PyTask {
     /// learned, the layout and what the command prints; an infeasible or
     /// unknown result is an outcome (`exit_code` 2 or 3), not an exception.
     #[pyo3(signature = (out = None, samples = 1000, cutoff = 0.01, seed = 0, time_limit = 60.0,
-                        contact = "point", like = None, templates = "second", node_limit = None))]
+                        contact = "point", like = DEMOS, templates = "second", node_limit = None))]
     #[allow(clippy::too_many_arguments)]
     fn run(
         &self,
@@ -281,14 +283,11 @@ impl PyTask {
         seed: u64,
         time_limit: Option<f64>,
         contact: &str,
-        like: Option<&Bound<'_, PyAny>>,
+        like: LikeArg,
         templates: &str,
         node_limit: Option<u64>,
     ) -> PyResult<PyRunOutcome> {
-        let like = match like {
-            None => Like::Demos,
-            l => like_arg(l)?,
-        };
+        let like = like.0;
         let contact = self::contact(contact)?;
         let cancel = Arc::new(AtomicBool::new(false));
         let opts = RunOptions {
