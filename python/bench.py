@@ -112,10 +112,10 @@ def main() -> None:
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:
-        t = Path(tmp) / "task"
-        shutil.copytree(EXAMPLE, t, ignore=shutil.ignore_patterns("answers.json", "probes", "learned.rcc*"))
+        task_dir = Path(tmp) / "task"
+        shutil.copytree(EXAMPLE, task_dir, ignore=shutil.ignore_patterns("answers.json", "probes", "learned.rcc*"))
         t0 = time.perf_counter()
-        with rccpack.AskSession(t) as session:
+        with rccpack.AskSession(task_dir) as session:
             opened = (time.perf_counter() - t0) * 1000
             per_q = []
             while True:

@@ -514,7 +514,7 @@ class Task:
     def place(
         self,
         rules: RuleSet,
-        like: _Like = "demos",
+        like: _Like = ...,
         time_limit: Optional[float] = None,
         node_limit: Optional[int] = None,
         seed: int = 0,
@@ -528,7 +528,7 @@ class Task:
         seed: int = 0,
         time_limit: Optional[float] = 60.0,
         contact: str = "point",
-        like: _Like = "demos",
+        like: _Like = ...,
         templates: str = "second",
         node_limit: Optional[int] = None,
     ) -> RunOutcome: ...

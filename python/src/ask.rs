@@ -8,8 +8,8 @@ use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use rccpack_core::ask::{
-    AnswersFile, AskError, AskOptions, ProbeOptions, Question as CoreQuestion,
-    DEFAULT_CHECK_NODES, DEFAULT_PROBE_NODES,
+    AnswersFile, AskError, AskOptions, ProbeOptions, Question as CoreQuestion, DEFAULT_CHECK_NODES,
+    DEFAULT_PROBE_NODES,
 };
 use rccpack_core::infer::{LearnParams, Templates};
 use rccpack_core::task::session::{Session, SessionError, SessionOptions, Shown};
@@ -149,18 +149,16 @@ impl PyAskResult {
     }
 }
 
-
 fn session_error(e: SessionError) -> PyErr {
     match e {
-        SessionError::Task(e) => crate::task::task_error(e),
-        SessionError::Ask {
-            source: AskError::Learn(e),
-            ..
-        } => learn_error(e),
-        SessionError::Ask {
-            source: AskError::Synth(e),
-            ..
-        } => SynthError::new_err(format!("the problem cannot be used for probes: {e}")),
+        SessionError::Task(e) => crate::task::task_error(*e),
+        SessionError::Ask { source, path } => match *source {
+            AskError::Learn(e) => learn_error(e),
+            AskError::Synth(e) => {
+                SynthError::new_err(format!("the problem cannot be used for probes: {e}"))
+            }
+            other => PyAskError::new_err(format!("{}: {other}", path.display())),
+        },
         SessionError::Write { path, source } | SessionError::Lock { path, source } => {
             let errno = source.raw_os_error().unwrap_or(0);
             PyOSError::new_err((errno, source.to_string(), path.display().to_string()))

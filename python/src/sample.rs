@@ -203,7 +203,12 @@ impl PySampler {
     /// layout of this quality: all were returned) or `"stopped"`.
     #[getter]
     fn state(&self) -> PyResult<&'static str> {
-        Ok(self.inner.try_lock().map_err(|_| Self::busy())?.counts.state)
+        Ok(self
+            .inner
+            .try_lock()
+            .map_err(|_| Self::busy())?
+            .counts
+            .state)
     }
     /// Layouts returned so far.
     #[getter]
@@ -213,7 +218,12 @@ impl PySampler {
     /// Layouts drawn and skipped for scoring below `min_score`.
     #[getter]
     fn skipped(&self) -> PyResult<usize> {
-        Ok(self.inner.try_lock().map_err(|_| Self::busy())?.counts.skipped)
+        Ok(self
+            .inner
+            .try_lock()
+            .map_err(|_| Self::busy())?
+            .counts
+            .skipped)
     }
     /// Whether a limit (`time_limit`, `layout_node_limit`, …) ended the
     /// iterator.
@@ -348,9 +358,8 @@ pub fn sample(
                 }
             };
             while req_rx.recv().is_ok() {
-                let next = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    sampler.next()
-                }));
+                let next =
+                    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| sampler.next()));
                 let msg = match next {
                     Ok(item) => Msg::Item(item.transpose(), counts(&sampler)),
                     Err(p) => Msg::Panicked(panic_text(p)),

@@ -30,9 +30,7 @@ fn io_error(path: &std::path::Path, e: &std::io::Error) -> PyErr {
 pub(crate) fn task_error(e: TaskError) -> PyErr {
     match e {
         TaskError::Read { path, source } => io_error(&path, &source),
-        TaskError::Scene { path, source } => {
-            scene_error(source, Some(&path.display().to_string()))
-        }
+        TaskError::Scene { path, source } => scene_error(source, Some(&path.display().to_string())),
         TaskError::Rules { path, text, source } => {
             rules_error(&source, &text, &path.display().to_string())
         }
@@ -175,7 +173,12 @@ impl PyTask {
     /// The demonstrations (`demos.json`).
     #[getter]
     fn demos(&self) -> Vec<PyScene> {
-        self.inner.demos.iter().cloned().map(PyScene::wrap).collect()
+        self.inner
+            .demos
+            .iter()
+            .cloned()
+            .map(PyScene::wrap)
+            .collect()
     }
     /// The problem (`problem.json`).
     #[getter]
@@ -311,9 +314,8 @@ impl PyTask {
         };
         let out = out.unwrap_or_else(|| self.dir.clone());
         let (t, dir, o) = (&self.inner, &self.dir, &out);
-        let (ran, signal) = run_interruptible(py, &cancel, || {
-            folder::run_folder(t, dir, o, &opts)
-        })?;
+        let (ran, signal) =
+            run_interruptible(py, &cancel, || folder::run_folder(t, dir, o, &opts))?;
         let (ran, interrupted) = settle(py, ran, signal, folder_error)?;
         let mut summary = String::new();
         for line in &ran.stdout {
@@ -338,11 +340,7 @@ impl PyTask {
             summary,
             message: ran.stderr,
             exit_code: ran.exit_code,
-            files: ran
-                .files
-                .iter()
-                .map(|p| p.display().to_string())
-                .collect(),
+            files: ran.files.iter().map(|p| p.display().to_string()).collect(),
         })
     }
 

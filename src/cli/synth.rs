@@ -3,9 +3,7 @@ use anyhow::Result;
 use clap::Args;
 use rccpack::relations::Contact;
 use rccpack::resemblance::Likeness;
-use rccpack::synth::{
-    emit, synthesize, Progress, ProgressFn, Status, SynthError, SynthOptions,
-};
+use rccpack::synth::{emit, synthesize, Progress, ProgressFn, Status, SynthError, SynthOptions};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

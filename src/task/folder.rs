@@ -227,9 +227,7 @@ pub fn place_and_write(
             (Some(format!("infeasible: {}", conflict_text(&c))), 2)
         }
         _ => (
-            Some(
-                "unknown: the time limit stopped the search before any layout was found".into(),
-            ),
+            Some("unknown: the time limit stopped the search before any layout was found".into()),
             3,
         ),
     };

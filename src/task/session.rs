@@ -51,7 +51,7 @@ pub enum SessionError {
     },
     /// `problem.json`, `demos.json` or `statements.rcc` cannot be read.
     #[error(transparent)]
-    Task(#[from] TaskError),
+    Task(Box<TaskError>),
     /// `answers.json` is not an answers file.
     #[error("{}: {source}", path.display())]
     Answers {
@@ -67,7 +67,7 @@ pub enum SessionError {
         /// The file at fault.
         path: PathBuf,
         /// The error.
-        source: AskError,
+        source: Box<AskError>,
     },
     /// A file or folder cannot be written.
     #[error("{}: cannot write: {source}", path.display())]
@@ -85,6 +85,19 @@ pub enum SessionError {
         /// Why.
         source: RenderError,
     },
+}
+
+impl From<TaskError> for SessionError {
+    fn from(e: TaskError) -> Self {
+        SessionError::Task(Box::new(e))
+    }
+}
+
+fn ask_err(path: PathBuf) -> impl FnOnce(AskError) -> SessionError {
+    move |source| SessionError::Ask {
+        path,
+        source: Box::new(source),
+    }
 }
 
 /// Options of [`Session::open`].
@@ -196,13 +209,13 @@ impl Session {
             answers,
             opts.ask.clone(),
         )
-        .map_err(|source| SessionError::Ask {
-            path: match source {
+        .map_err(|source| {
+            let path = match source {
                 AskError::BadAnswer { .. } => answers_path,
                 AskError::Synth(_) => problem_path,
                 _ => demos_path,
-            },
-            source,
+            };
+            ask_err(path)(source)
         })?;
         let backup = if opts.save {
             files::write_session_start(&dir, &asker, n_demos, resumed).map_err(
@@ -273,18 +286,11 @@ impl Session {
         let next = self
             .asker
             .next_question()
-            .map_err(|source| SessionError::Ask {
-                path: self.dir.join(files::PROBLEM),
-                source,
-            })?;
+            .map_err(ask_err(self.dir.join(files::PROBLEM)))?;
         let Some(question) = next else {
             return Ok(None);
         };
-        if self
-            .opts
-            .max_questions
-            .is_some_and(|m| self.asked_now >= m)
-        {
+        if self.opts.max_questions.is_some_and(|m| self.asked_now >= m) {
             self.out_of_budget = true;
             return Ok(None);
         }
@@ -316,10 +322,7 @@ impl Session {
     pub fn answer(&mut self, question: &Question, accepted: bool) -> Result<&Answer, SessionError> {
         self.asker
             .answer(question, accepted)
-            .map_err(|source| SessionError::Ask {
-                path: self.dir.join(files::DEMOS),
-                source,
-            })?;
+            .map_err(ask_err(self.dir.join(files::DEMOS)))?;
         self.asked_now += 1;
         if self.opts.save {
             files::write_after_answer(&self.dir, &self.asker, accepted).map_err(
@@ -355,10 +358,7 @@ impl Session {
             answers,
             self.opts.ask.clone(),
         )
-        .map_err(|source| SessionError::Ask {
-            path: self.dir.join(files::ANSWERS),
-            source,
-        })?;
+        .map_err(ask_err(self.dir.join(files::ANSWERS)))?;
         self.asker = asker;
         self.asked_now = self.asked_now.saturating_sub(1);
         self.out_of_budget = false;
@@ -416,11 +416,11 @@ pub fn write_probe_files(
         )),
         like: None,
     };
-    render_to_path(&q.probe.scene, Some(&RuleSet::new(rule)), &ropts, &png).map_err(
-        |source| SessionError::Render {
+    render_to_path(&q.probe.scene, Some(&RuleSet::new(rule)), &ropts, &png).map_err(|source| {
+        SessionError::Render {
             path: png.clone(),
             source,
-        },
-    )?;
+        }
+    })?;
     Ok((json, png))
 }
