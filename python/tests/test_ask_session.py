@@ -7,41 +7,11 @@ from __future__ import annotations
 import shutil
 import subprocess
 from pathlib import Path
-from typing import Callable
 
 import pytest
+from conftest import Oracle, tree
 
 import rccpack
-
-Oracle = Callable[[rccpack.Scene], bool]
-
-
-def tree(d: Path) -> dict[str, bytes]:
-    return {str(p.relative_to(d)): p.read_bytes() for p in sorted(d.rglob("*")) if p.is_file()}
-
-
-@pytest.fixture(scope="module")
-def pilot_oracle(example: Path) -> Oracle:
-    pilot = rccpack.load_rules(example / "pilot.rcc")
-
-    def oracle(probe: rccpack.Scene) -> bool:
-        # what `rccpack score --rules pilot.rcc --require` answers
-        return all(r.satisfied >= r.subjects for r in rccpack.evaluate(probe, pilot).rules)
-
-    return oracle
-
-
-@pytest.fixture(scope="module")
-def cli_session(cli: Path, example: Path, tmp_path_factory: pytest.TempPathFactory) -> dict[str, bytes]:
-    """The files an uninterrupted `rccpack ask --oracle` leaves."""
-    d = tmp_path_factory.mktemp("cli") / "task"
-    shutil.copytree(example, d)
-    p = subprocess.run(
-        [str(cli), "ask", str(d), "--oracle", f"{cli} score --rules {example / 'pilot.rcc'} --require"],
-        capture_output=True, text=True, check=False,
-    )
-    assert p.returncode == 0, p.stderr
-    return tree(d)
 
 
 def answer_all(session: rccpack.AskSession, oracle: Oracle, k: int | None = None) -> int:
@@ -59,7 +29,7 @@ def answer_all(session: rccpack.AskSession, oracle: Oracle, k: int | None = None
 
 @pytest.mark.parametrize("k", [3, 7])
 def test_interrupted_and_resumed_is_the_uninterrupted_session(
-    example: Path, tmp_path: Path, pilot_oracle: Oracle, cli_session: dict[str, bytes], k: int
+    example: Path, tmp_path: Path, pilot_oracle: Oracle, cli_session: tuple[dict[str, bytes], str], k: int
 ) -> None:
     d = tmp_path / "task"
     shutil.copytree(example, d)
@@ -75,11 +45,11 @@ def test_interrupted_and_resumed_is_the_uninterrupted_session(
     assert s2.progress["asked"] == k + rest == len(s2.questions) + k
     s2.close()
     assert s2.closed
-    assert tree(d) == cli_session
+    assert tree(d) == cli_session[0]
 
 
 def test_cli_interrupted_python_resumes(cli: Path, example: Path, tmp_path: Path, pilot_oracle: Oracle,
-                                        cli_session: dict[str, bytes]) -> None:
+                                        cli_session: tuple[dict[str, bytes], str]) -> None:
     d = tmp_path / "task"
     shutil.copytree(example, d)
     p = subprocess.run(
@@ -90,16 +60,16 @@ def test_cli_interrupted_python_resumes(cli: Path, example: Path, tmp_path: Path
     assert p.returncode == 0, p.stderr
     r = rccpack.ask(d, pilot_oracle, save=True)
     assert r.progress["asked"] == len(r.questions) + 4
-    assert tree(d) == cli_session
+    assert tree(d) == cli_session[0]
 
 
 def test_ask_saves_like_the_cli(example: Path, tmp_path: Path, pilot_oracle: Oracle,
-                                cli_session: dict[str, bytes]) -> None:
+                                cli_session: tuple[dict[str, bytes], str]) -> None:
     d = tmp_path / "task"
     shutil.copytree(example, d)
     r = rccpack.ask(d, pilot_oracle, save=True)
-    assert tree(d) == cli_session
-    assert r.answers_json.encode() == cli_session["answers.json"]
+    assert tree(d) == cli_session[0]
+    assert r.answers_json.encode() == cli_session[0]["answers.json"]
 
 
 def test_budget_lock_stale_answers_and_undo(example: Path, tmp_path: Path) -> None:
