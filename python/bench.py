@@ -12,7 +12,9 @@
 3. A 1 000-object scene converted to and from Python objects: `from_dict`,
    `to_dict`, `objects`, `Scene(...)`.
 
-Medians over the repeats; build with `maturin develop --release` first.
+Medians over the repeats; install a wheel first and run with `python -P` (the
+source tree off `sys.path`). Also: `sample` against `rccpack sample`, `Task.run`
+against `rccpack run`, and a whole `AskSession`.
 """
 
 from __future__ import annotations

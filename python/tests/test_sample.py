@@ -20,7 +20,7 @@ def cli_sample(cli: Path, problem: Path, rules: Path, *args: object) -> str:
 
 
 @pytest.mark.parametrize(("n", "seed", "extra"), [(6, 3, ["--all-rules"]), (4, 0, []),
-                                                  (5, 11, ["--min-score", "0.9", "--repair", "activity"])])
+                                                  (5, 11, ["--min-score", "0.99", "--repair", "activity"])])
 def test_sample_matches_cli(cli: Path, example: Path, tmp_path: Path, problem: rccpack.Scene,
                             learned: rccpack.Learned, n: int, seed: int, extra: list[str]) -> None:
     rules_path = tmp_path / "learned.rcc"
@@ -30,7 +30,7 @@ def test_sample_matches_cli(cli: Path, example: Path, tmp_path: Path, problem: r
     if "--all-rules" in extra:
         kw["all_rules"] = True
     if "--min-score" in extra:
-        kw["min_score"] = 0.9
+        kw["min_score"] = 0.99
     if "--repair" in extra:
         kw["repair"] = "activity"
     got = list(rccpack.sample(problem, learned.rules, n=n, seed=seed, **kw))  # type: ignore[arg-type]
