@@ -1,5 +1,5 @@
-//! Question benchmark (SPEC §13): `cargo bench --bench ask [-- FILTER…]
-//! [--compare] [--no-probes]`.
+//! Question benchmark: `cargo bench --bench ask [-- FILTER…] [--compare]
+//! [--no-probes] [--questions N]`.
 //!
 //! For each bundled task (box-packing with `pilot.rcc`, shelf with
 //! `intended.rcc` as the oracle) and several learning cutoffs (more rules
@@ -9,32 +9,52 @@
 //! rule holds for every object), with the time until each question is
 //! ready (the probe searches of the rules skipped on the way included).
 //!
-//! Then the first six generated realistic tasks of seed 0
+//! Then the first ten generated realistic tasks of seed 0
 //! (`rccpack::bench::tasks`, their 1× problem, rules learned with the
 //! defaults). Their hidden style has no rule form, so the oracle is the
 //! rules learned from the same demonstrations at a 10× stricter cutoff
 //! ([`TASK_ORACLE_CUTOFF`]): the rules with the strongest evidence stand
 //! for what the person meant, and a probe is accepted iff it keeps all of
-//! them. Only their first [`TASK_QUESTIONS`] questions are timed; the
-//! last line sums up every question of those tasks.
+//! them. At most `--questions N` questions (default 15) are asked per
+//! session; the last line sums up every question of those tasks.
+//!
+//! After each session, two columns judge its result on the problem with
+//! [`JUDGE_LAYOUTS`] sampled layouts each: *recall* counts the oracle rules
+//! that no layout keeping the final held rules breaks, *spurious* the held
+//! rules that some layout keeping the oracle breaks (a rule the person
+//! never meant and the questions left standing).
 //!
 //! A FILTER is `TASK` or `TASK@CUTOFF` (`box-packing`, `shelf@0.01`,
-//! `task03`, `tasks` for all six). `--compare` runs every session twice,
-//! alternating, with `AskOptions::reuse` off (every check a solve, the
-//! implementation before issue 20's item 5) and on (the default), and says
-//! whether both asked the same questions with the same answers.
-//! `--no-probes` skips the probe-search columns.
+//! `task03`, `tasks` for all ten). `--compare` runs every session twice,
+//! alternating: `plain` (no demonstration edits, no question budget: every
+//! check and probe search runs to its own limits) and `budget` (the
+//! defaults). `--no-probes` skips the probe-search columns.
 
-use rccpack::ask::{find_probe, AskOptions, Asker, ProbeOptions, ProbeOutcome};
+use rccpack::ask::{find_probe, AskOptions, Asker, ProbeOptions, ProbeOutcome, QuestionBudget};
 use rccpack::bench::tasks::{generate_task, TasksConfig};
 use rccpack::eval::evaluate;
 use rccpack::infer::{learn, LearnParams};
 use rccpack::relations::Contact;
 use rccpack::resemblance::Likeness;
 use rccpack::rules::{parse_rules, RuleSet};
+use rccpack::sample::{sample, Quality, SampleOptions};
 use rccpack::scene::{scenes_from_json, Scene};
 use std::path::Path;
 use std::time::{Duration, Instant};
+
+/// CPU seconds of this process so far (every thread): what a question
+/// costs on a machine shared with other work.
+fn cpu_seconds() -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid timespec for the call to write.
+    unsafe {
+        libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut t);
+    }
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+}
 
 fn median(mut v: Vec<f64>) -> f64 {
     if v.is_empty() {
@@ -90,12 +110,14 @@ fn selected(task: &str, cutoff: f64) -> bool {
 const TASK_ORACLE_CUTOFF: f64 = 0.001;
 
 /// How many generated tasks (of seed 0).
-const TASKS: usize = 6;
+const TASKS: usize = 10;
 
-/// The first this many questions of each generated task are timed (their
-/// checks are much slower than the bundled tasks': a whole session of six
-/// tasks would take hours).
-const TASK_QUESTIONS: usize = 5;
+/// Sampled layouts per judgement (recall, spurious).
+const JUDGE_LAYOUTS: usize = 30;
+
+/// A session stops after this long (a plain session on a hard task can run
+/// for an hour).
+const SESSION_CAP: Duration = Duration::from_secs(600);
 
 /// A series: name, learning cutoffs, problem, demonstrations, oracle.
 type Series = (String, Vec<f64>, Scene, Vec<Scene>, RuleSet);
@@ -104,17 +126,86 @@ type Series = (String, Vec<f64>, Scene, Vec<Scene>, RuleSet);
 struct Session {
     asked: usize,
     dropped: usize,
+    edits: usize,
+    deferred: usize,
     ready: Vec<f64>,
+    /// CPU milliseconds per question.
+    cpu: Vec<f64>,
     total: f64,
+    capped: bool,
     /// (rule, accepted) per question.
     transcript: Vec<(String, bool)>,
+    held: RuleSet,
+}
+
+/// The options of a `plain` (`budget == false`) or `budget` session.
+fn options(params: &LearnParams, budget: bool) -> AskOptions {
+    if budget {
+        AskOptions {
+            learn: *params,
+            ..AskOptions::default()
+        }
+    } else {
+        AskOptions {
+            learn: *params,
+            edits: false,
+            budget: QuestionBudget {
+                nodes: u64::MAX,
+                wall: None,
+            },
+            ..AskOptions::default()
+        }
+    }
+}
+
+/// Layouts of `problem` keeping every rule of `rules` (at most
+/// [`JUDGE_LAYOUTS`]; none when it has none).
+fn layouts(problem: &Scene, demos: &[Scene], rules: &RuleSet) -> Vec<Scene> {
+    let mut hard = rules.clone();
+    for r in &mut hard.rules {
+        r.strength = rccpack::rules::Strength::Hard;
+    }
+    let opts = SampleOptions {
+        quality: Quality::AllRules,
+        like: demos.to_vec(),
+        layout_node_limit: Some(20_000),
+        time_limit: Some(Duration::from_secs(20)),
+        ..SampleOptions::default()
+    };
+    match sample(problem, &hard, &opts) {
+        Ok(s) => s.take(JUDGE_LAYOUTS).filter_map(Result::ok).collect(),
+        Err(_) => Vec::new(),
+    }
+}
+
+/// (recall: oracle rules no layout keeping `held` breaks, of all;
+/// spurious: held rules some layout keeping `oracle` breaks).
+fn judge(problem: &Scene, demos: &[Scene], held: &RuleSet, oracle: &RuleSet) -> (usize, usize) {
+    let broken_in = |scenes: &[Scene], rules: &RuleSet| -> Vec<bool> {
+        let mut out = vec![false; rules.rules.len()];
+        for s in scenes {
+            for (i, r) in evaluate(s, rules, Contact::Point).rules.iter().enumerate() {
+                out[i] |= r.satisfied < r.subjects;
+            }
+        }
+        out
+    };
+    let kept = broken_in(&layouts(problem, demos, held), oracle)
+        .iter()
+        .filter(|b| !**b)
+        .count();
+    let spurious = broken_in(&layouts(problem, demos, oracle), held)
+        .iter()
+        .filter(|b| **b)
+        .count();
+    (kept, spurious)
 }
 
 fn session(
     problem: &Scene,
     demos: &[Scene],
     params: &LearnParams,
-    reuse: bool,
+    budget: bool,
     oracle: &RuleSet,
     max_questions: usize,
 ) -> Session {
@@ -124,21 +215,22 @@ fn session(
         demos.to_vec(),
         None,
         Vec::new(),
-        AskOptions {
-            learn: *params,
-            reuse,
-            ..AskOptions::default()
-        },
+        options(params, budget),
     )
     .unwrap();
+    let mut edits = 0;
+    let mut capped = false;
     let mut ready = Vec::new();
+    let mut cpu = Vec::new();
     let mut transcript = Vec::new();
     loop {
         let t = Instant::now();
+        let c = cpu_seconds();
         let Some(q) = asker.next_question().unwrap() else {
             break;
         };
         ready.push(t.elapsed().as_secs_f64() * 1e3);
+        cpu.push((cpu_seconds() - c) * 1e3);
         log::debug!(
             target: "rccpack::bench",
             "bench: question {} about {} ready in {:.1} ms",
@@ -147,9 +239,14 @@ fn session(
             ready.last().copied().unwrap_or(0.0)
         );
         let ok = keeps(&q.probe.scene, oracle);
+        edits += usize::from(q.probe.edit.is_some());
         transcript.push((q.rule.clone(), ok));
         asker.answer(&q, ok).unwrap();
         if ready.len() >= max_questions {
+            break;
+        }
+        if started.elapsed() > SESSION_CAP {
+            capped = true;
             break;
         }
     }
@@ -157,9 +254,14 @@ fn session(
     Session {
         asked: p.asked,
         dropped: p.dropped,
+        edits,
+        deferred: p.unknown,
         ready,
+        cpu,
         total: started.elapsed().as_secs_f64(),
+        capped,
         transcript,
+        held: asker.learned().rules(),
     }
 }
 
@@ -188,20 +290,32 @@ fn main() {
     let flag = |f: &str| std::env::args().any(|a| a == f);
     let compare = flag("--compare");
     let probes = !flag("--no-probes");
+    let args: Vec<String> = std::env::args().collect();
+    let questions: usize = args
+        .iter()
+        .position(|a| a == "--questions")
+        .and_then(|i| args.get(i + 1))
+        .map_or(15, |v| v.parse().expect("--questions N"));
     println!(
-        "{:<12} {:>7} {:>5} {:>6} {:>7} {:>9} {:>9} {:>6} {:>7} {:>9} {:>9} {:>8}",
+        "{:<12} {:>7} {:>5} {:>6} {:>7} {:>9} {:>9} {:>6} {:>7} {:>5} {:>5} {:>9} {:>9} {:>8} {:>8} {:>8} {:>7} {:>8}",
         "task",
         "cutoff",
         "held",
-        "reuse",
+        "mode",
         "probes",
         "probe med",
         "probe max",
         "asked",
         "dropped",
+        "edits",
+        "defer",
         "ready med",
         "ready max",
-        "total s"
+        "cpu med",
+        "cpu max",
+        "total s",
+        "recall",
+        "spurious"
     );
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     let mut series: Vec<Series> = Vec::new();
@@ -258,30 +372,37 @@ fn main() {
             };
             let modes: &[bool] = if compare { &[false, true] } else { &[true] };
             let mut transcripts = Vec::new();
-            for &reuse in modes {
+            for &budget in modes {
                 let cap = if task.starts_with("task") {
-                    TASK_QUESTIONS
+                    questions
                 } else {
                     100
                 };
-                let s = session(problem, demos, &params, reuse, oracle, cap);
+                let s = session(problem, demos, &params, budget, oracle, cap);
+                let (recall, spurious) = judge(problem, demos, &s.held, oracle);
                 println!(
-                    "{:<12} {:>7} {:>5} {:>6} {:>7} {:>9.1} {:>9.1} {:>6} {:>7} {:>9.1} {:>9.1} {:>8.1}",
+                    "{:<12} {:>7} {:>5} {:>6} {:>7} {:>9.1} {:>9.1} {:>6} {:>7} {:>5} {:>5} {:>9.1} {:>9.1} {:>8.1} {:>8.1} {:>8.1} {:>7} {:>8}",
                     task,
                     cutoff,
                     held.rules.len(),
-                    if reuse { "on" } else { "off" },
+                    if budget { "budget" } else { "plain" },
                     found,
                     probe_med,
                     probe_max,
-                    s.asked,
+                    format!("{}{}", s.asked, if s.capped { "+" } else { "" }),
                     s.dropped,
+                    s.edits,
+                    s.deferred,
                     median(s.ready.clone()),
                     max(&s.ready),
-                    s.total
+                    median(s.cpu.clone()),
+                    max(&s.cpu),
+                    s.total,
+                    format!("{recall}/{}", oracle.rules.len()),
+                    spurious
                 );
                 if task.starts_with("task") {
-                    all_tasks[usize::from(reuse)].extend(s.ready.iter().copied());
+                    all_tasks[usize::from(budget)].extend(s.ready.iter().copied());
                 }
                 transcripts.push(s.transcript);
             }
@@ -293,18 +414,18 @@ fn main() {
                     if transcripts[0] == transcripts[1] {
                         "yes"
                     } else {
-                        "NO"
+                        "no"
                     }
                 );
             }
         }
     }
-    for (reuse, ready) in all_tasks.iter().enumerate() {
+    for (budget, ready) in all_tasks.iter().enumerate() {
         if !ready.is_empty() {
             println!(
-                "generated tasks 0-{}, reuse {}: {} questions, ready median {:.1} ms, max {:.1} ms",
+                "generated tasks 0-{}, {}: {} questions, ready median {:.1} ms, max {:.1} ms",
                 TASKS - 1,
-                if reuse == 1 { "on" } else { "off" },
+                if budget == 1 { "budget" } else { "plain" },
                 ready.len(),
                 median(ready.clone()),
                 max(ready)

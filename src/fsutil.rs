@@ -18,6 +18,23 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 static TMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
+/// The temporary files [`atomic_write`] is writing now, for
+/// [`remove_in_flight`].
+static IN_FLIGHT: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+fn in_flight() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    IN_FLIGHT.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Remove the temporary files of the [`atomic_write`]s going on now (for a
+/// signal handler that is about to end the process: SIGTERM, SIGHUP,
+/// Ctrl-C). The targets keep their previous contents. Errors are ignored.
+pub fn remove_in_flight() {
+    for p in in_flight().drain(..) {
+        let _ = fs::remove_file(p);
+    }
+}
+
 /// The name prefix shared by every temporary file of [`atomic_write`]:
 /// `.NAME.tmp-PID-N` beside the target `NAME`.
 pub fn temp_name(target_name: &str, n: u64) -> String {
@@ -67,6 +84,7 @@ pub fn atomic_write(path: &Path, contents: impl AsRef<[u8]>) -> io::Result<()> {
         .unwrap_or_default();
     let n = TMP_COUNTER.fetch_add(1, Ordering::Relaxed);
     let tmp = dir.join(temp_name(&name, n));
+    in_flight().push(tmp.clone());
     let result = (|| {
         let mut f = fs::OpenOptions::new()
             .write(true)
@@ -89,6 +107,7 @@ pub fn atomic_write(path: &Path, contents: impl AsRef<[u8]>) -> io::Result<()> {
     if result.is_err() {
         let _ = fs::remove_file(&tmp);
     }
+    in_flight().retain(|p| p != &tmp);
     result
 }
 
@@ -159,7 +178,14 @@ pub fn utf8_text(bytes: Vec<u8>) -> Result<String, NotUtf8> {
         Err(e) => {
             let at = e.utf8_error().valid_up_to();
             let b = e.as_bytes();
-            let line = b[..at].iter().filter(|&&c| c == b'\n').count() + 1;
+            // `\n`, `\r\n` and a lone `\r` end a line (as everywhere else).
+            let head = &b[..at];
+            let line = head
+                .iter()
+                .enumerate()
+                .filter(|&(i, &c)| c == b'\n' || (c == b'\r' && b.get(i + 1) != Some(&b'\n')))
+                .count()
+                + 1;
             Err(NotUtf8 {
                 byte: b[at],
                 offset: at,
@@ -244,6 +270,9 @@ mod tests {
             e.to_string().contains("0xff at byte offset 5 (line 2)"),
             "{e}"
         );
+        // Old Mac line ends count as lines too (issue 35 item 13).
+        assert_eq!(utf8_text(b"a\rb\rc\xff".to_vec()).unwrap_err().line, 3);
+        assert_eq!(utf8_text(b"a\r\nb\xff".to_vec()).unwrap_err().line, 2);
     }
 
     #[cfg(unix)]

@@ -12,6 +12,7 @@
 //! | values echoed in error messages | cut past [`MAX_ECHO`] characters | [`cut`] |
 //! | synthesis coordinates | `|v| ≤ 2^28` (the engine works in `i32`) | `synth::synthesize` ([`crate::synth::MAX_COORD`]) |
 //! | synthesis grid positions per object and axis | `≤ 2^18` | `synth::synthesize` ([`crate::synth::MAX_POSITIONS`]) |
+//! | synthesis: pairs of objects the rules relate | at most 120 000 | `synth::synthesize` (`synth::model::MAX_PAIR_LITERALS`) |
 //!
 //! With every coordinate and size within ±10^15, every edge `x + width` is
 //! within ±2·10^15 and every difference of two edges within ±4·10^15 <
@@ -63,6 +64,17 @@ pub fn cut(value: &str) -> String {
     }
 }
 
+/// A user-supplied number as echoed in an error message: as `{}` writes it
+/// when that is short, else in exponent form (`-1e-320`, not 330 digits).
+pub fn number(v: f64) -> String {
+    let s = v.to_string();
+    if s.chars().count() > 24 {
+        format!("{v:e}")
+    } else {
+        s
+    }
+}
+
 /// A number outside its documented limit.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LimitError {
@@ -87,7 +99,7 @@ pub fn time_limit(seconds: f64) -> Result<Duration, LimitError> {
         Ok(Duration::from_secs_f64(seconds))
     } else {
         Err(LimitError::TimeLimit {
-            value: seconds.to_string(),
+            value: number(seconds),
         })
     }
 }
@@ -145,6 +157,14 @@ mod tests {
             .to_string()
             .contains("`ten`"));
         assert_eq!(parse_time_limit("2.5"), Ok(Duration::from_millis(2500)));
+    }
+
+    #[test]
+    fn long_numbers_are_echoed_short() {
+        assert_eq!(number(2.5), "2.5");
+        assert_eq!(number(-1e-320), "-1e-320");
+        let e = time_limit(-1e-320).unwrap_err().to_string();
+        assert!(e.len() < 120, "{e}");
     }
 
     #[test]

@@ -356,6 +356,31 @@ pub fn strip_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
+/// JSON text with every lone `\r` (an old Mac line end) made a `\n`, so
+/// the parser's "line L column C" counts lines as an editor does. JSON
+/// allows a raw `\r` only as whitespace between tokens, so the meaning is
+/// the same.
+fn lone_cr_as_lf(text: &str) -> std::borrow::Cow<'_, str> {
+    let b = text.as_bytes();
+    if !b
+        .iter()
+        .enumerate()
+        .any(|(i, &c)| c == b'\r' && b.get(i + 1) != Some(&b'\n'))
+    {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len());
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        if c == '\r' && chars.peek() != Some(&'\n') {
+            out.push('\n');
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
+}
+
 fn is_false(b: &bool) -> bool {
     !*b
 }
@@ -436,7 +461,8 @@ fn is_identifier(s: &str) -> bool {
 impl Scene {
     /// Parse and validate one scene from JSON text.
     pub fn from_json(text: &str) -> Result<Scene, SceneError> {
-        let text = strip_bom(text);
+        let text = lone_cr_as_lf(strip_bom(text));
+        let text = text.as_ref();
         if text.trim_start().starts_with('[') {
             return Err(SceneError::Json {
                 path: ".".into(),
@@ -711,7 +737,8 @@ impl fmt::Display for Scene {
 /// Error paths are prefixed with the scene index: `[2].objects[3].x`.
 /// A single scene object (not an array) is accepted as a one-element list.
 pub fn scenes_from_json(text: &str) -> Result<Vec<Scene>, SceneError> {
-    let text = strip_bom(text);
+    let text = lone_cr_as_lf(strip_bom(text));
+    let text = text.as_ref();
     if !text.trim_start().starts_with('[') {
         return Ok(vec![Scene::from_json(text)?]);
     }

@@ -47,6 +47,8 @@ fn ask(dir: &Path, extra: &[&str]) -> Output {
             "1000",
             "--time-limit",
             "600",
+            "--question-seconds",
+            "600",
         ])
         .args(extra)
         .output()
@@ -331,4 +333,36 @@ fn bad_node_budgets_exit_1() {
         let e = String::from_utf8_lossy(&o.stderr);
         assert!(e.contains(flag) && e.contains(value), "{flag} {value}: {e}");
     }
+}
+
+/// The look-ahead (the next question for both answers, computed while the
+/// oracle looks) writes nothing of the branch not taken: a session with it
+/// and one without (`--no-lookahead`) leave the same files, byte for byte,
+/// and ask the same questions.
+#[test]
+fn lookahead_writes_what_a_session_without_it_writes() {
+    let with = task("lookahead-on");
+    let without = task("lookahead-off");
+    let a = ask(&with, &["--max-questions", "8"]);
+    let b = ask(&without, &["--max-questions", "8", "--no-lookahead"]);
+    assert!(a.status.success(), "{}", text(&a));
+    assert!(b.status.success(), "{}", text(&b));
+    let questions = |o: &Output| -> Vec<String> {
+        String::from_utf8_lossy(&o.stdout)
+            .lines()
+            .filter(|l| l.starts_with("question "))
+            .map(str::to_string)
+            .collect()
+    };
+    assert_eq!(questions(&a).len(), 8, "{}", text(&a));
+    assert_eq!(questions(&a), questions(&b));
+    for f in ["answers.json", "demos.json", "learned.rcc"] {
+        assert_eq!(read(&with, f), read(&without, f), "{f}");
+    }
+    for n in 1..=8 {
+        let f = format!("probes/probe-{n}.json");
+        assert_eq!(read(&with, &f), read(&without, &f), "{f}");
+    }
+    let _ = std::fs::remove_dir_all(&with);
+    let _ = std::fs::remove_dir_all(&without);
 }

@@ -434,6 +434,8 @@ fn check_case(case: &Case, t: &mut Tally) {
             check_nodes: None,
             like: like.clone(),
             explain,
+            warm_start: Vec::new(),
+            cancel: None,
         };
         let fail = |t: &mut Tally, why: String| {
             t.failures
@@ -747,4 +749,160 @@ fn negation_holds_iff_the_rule_is_broken() {
         both[0], both[1]
     );
     assert!(checked > 5000 && both[0] > 1000 && both[1] > 1000 && none > 500);
+}
+
+// ---- a whole session against enumeration -----------------------------------
+
+/// Whether some complete layout of `scene`'s unplaced objects breaks
+/// `held.rules[k]` and keeps every other held rule (enumerated).
+fn breakable_by_enumeration(scene: &Scene, held: &RuleSet, k: usize, contact: Contact) -> bool {
+    let doms = domains(scene);
+    fn dfs(
+        depth: usize,
+        doms: &[(usize, Vec<Rect>)],
+        scene: &mut Scene,
+        chosen: &mut Vec<Rect>,
+        held: &RuleSet,
+        k: usize,
+        contact: Contact,
+    ) -> bool {
+        if depth == doms.len() {
+            let ev = Evaluator::new(scene, held, contact);
+            return held.rules.iter().enumerate().all(|(j, r)| {
+                let rep = ev.evaluate_rule(r);
+                (rep.satisfied == rep.subjects) != (j == k)
+            });
+        }
+        let (i, dom) = &doms[depth];
+        for r in dom {
+            if chosen.iter().any(|c| c.interiors_overlap(r)) {
+                continue;
+            }
+            scene.objects[*i].x = Some(r.x);
+            scene.objects[*i].y = Some(r.y);
+            chosen.push(*r);
+            let found = dfs(depth + 1, doms, scene, chosen, held, k, contact);
+            chosen.pop();
+            if found {
+                return true;
+            }
+        }
+        scene.objects[*i].x = None;
+        scene.objects[*i].y = None;
+        false
+    }
+    let mut s = scene.clone();
+    dfs(0, &doms, &mut s, &mut Vec::new(), held, k, contact)
+}
+
+/// A session on tiny problems, every probe rejected (so the held rules stay
+/// the same): every question's probe breaks its rule and keeps the others,
+/// and every rule the session leaves unasked because the others imply it
+/// cannot be broken, by enumeration, on the problem nor — when the session
+/// says it searched them — on any demonstration with one or two movable
+/// objects moved.
+#[test]
+fn a_session_agrees_with_enumeration() {
+    use rccpack::ask::{AskOptions, Asker, QuestionBudget, Unasked};
+    use rccpack::infer::LearnParams;
+    let (mut sessions, mut implied, mut with_edits, mut questions) = (0, 0, 0, 0);
+    for i in 0..300 {
+        let case = random_case(i);
+        let mut rng = ChaCha8Rng::seed_from_u64(i);
+        let demos: Vec<Scene> = (0..200)
+            .filter_map(|_| random_layout(&case, &mut rng))
+            .filter(|s| {
+                let ev = Evaluator::new(s, &case.rules, case.contact);
+                case.rules.rules.iter().all(|r| holds(&ev, r))
+            })
+            .take(2)
+            .collect();
+        if demos.len() < 2 {
+            continue;
+        }
+        let opts = AskOptions {
+            learn: LearnParams {
+                samples: 200,
+                cutoff: 0.99,
+                contact: case.contact,
+                ..LearnParams::default()
+            },
+            probe: ProbeOptions {
+                contact: case.contact,
+                ..ProbeOptions::default()
+            },
+            budget: QuestionBudget {
+                nodes: u64::MAX,
+                wall: None,
+            },
+            ..AskOptions::default()
+        };
+        let Ok(mut asker) = Asker::new(
+            case.scene.clone(),
+            demos.clone(),
+            Some(case.rules.clone()),
+            Vec::new(),
+            opts,
+        ) else {
+            continue;
+        };
+        sessions += 1;
+        while let Some(q) = asker.next_question().unwrap() {
+            questions += 1;
+            let ev = evaluate(&q.probe.scene, asker.held(), case.contact);
+            for r in &ev.rules {
+                let broken = r.satisfied < r.subjects;
+                assert_eq!(
+                    broken,
+                    r.name == q.rule || q.also_broken.contains(&r.name),
+                    "question about {}: {} ({})",
+                    q.rule,
+                    r.name,
+                    case.describe()
+                );
+            }
+            asker.answer(&q, false).unwrap();
+        }
+        let held = asker.held().clone();
+        for (name, why) in asker.unasked() {
+            let k = held.rules.iter().position(|r| r.name == name).unwrap();
+            let Unasked::Implied { edits_tried } = why else {
+                continue;
+            };
+            implied += 1;
+            assert!(
+                !breakable_by_enumeration(&case.scene, &held, k, case.contact),
+                "{name} is breakable on the problem\n{}",
+                case.describe()
+            );
+            if !edits_tried {
+                continue;
+            }
+            with_edits += 1;
+            for d in asker.demos() {
+                let movable: Vec<usize> = (0..d.objects.len())
+                    .filter(|&j| !d.objects[j].fixed)
+                    .collect();
+                for (a, &x) in movable.iter().enumerate() {
+                    for y in std::iter::once(None).chain(movable[a + 1..].iter().map(Some)) {
+                        let mut s = d.clone();
+                        for j in std::iter::once(x).chain(y.copied()) {
+                            s.objects[j].x = None;
+                            s.objects[j].y = None;
+                        }
+                        assert!(
+                            !breakable_by_enumeration(&s, &held, k, case.contact),
+                            "{name} is breakable in an edit of a demonstration\n{}",
+                            case.describe()
+                        );
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("a_session_agrees_with_enumeration: {sessions} sessions, {questions} questions, {implied} unasked as implied ({with_edits} with edits tried)");
+    assert!(
+        sessions >= 100 && questions >= 100 && with_edits >= 50,
+        "{sessions} {questions} {implied} {with_edits}"
+    );
 }

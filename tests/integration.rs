@@ -5,6 +5,7 @@
 mod support;
 
 mod architecture;
+mod ask_budget;
 mod ask_cli;
 mod ask_probes;
 mod ask_tasks;
@@ -16,6 +17,7 @@ mod example;
 mod first_edition;
 mod fuzz_replay;
 mod hardening;
+mod hardening2;
 mod learn;
 mod learn_cli;
 mod learn_props;

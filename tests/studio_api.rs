@@ -1064,6 +1064,35 @@ async fn answering_never_overwrites_hand_edits() {
     assert!(v["question"].is_object() || v["question"].is_null(), "{v}");
 }
 
+/// Issue 35, item 4: an outside edit to answers.json (a hand fix, a
+/// `rccpack ask` run between two questions) is never overwritten by an
+/// answer given in the studio.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn answering_never_overwrites_an_edited_answers_file() {
+    let dir = task_dir("hand-answers", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let q = next_question(&app).await["question"].clone();
+    let text = "{\n  \"answers\": []\n}\n";
+    std::fs::write(dir.join("answers.json"), text).unwrap();
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/ask/answer",
+        json!({"rule": q["rule"], "accepted": false}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::CONFLICT, "{v}");
+    assert_eq!(v["kind"], "stale_files", "{v}");
+    assert!(
+        v["error"].as_str().unwrap_or("").contains("answers.json"),
+        "{v}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("answers.json")).unwrap(),
+        text
+    );
+}
+
 /// Issue 21, item 7 (studio side): while `rccpack ask` holds the task
 /// folder's lock, the studio writes nothing and says why.
 #[tokio::test]
@@ -1238,4 +1267,78 @@ async fn another_layout_like_this() {
     .await;
     assert_eq!(s, StatusCode::BAD_REQUEST, "{v}");
     assert!(v["error"].as_str().unwrap().contains("min_score"), "{v}");
+}
+
+/// Issue 35, item 11: a learning request whose client leaves is cancelled
+/// (no core kept busy), and a newer request cancels an older one.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn left_learning_requests_are_cancelled() {
+    let dir = task_dir("learn-cancel", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let jobs = |app: axum::Router| async move {
+        let (_, t) = call(&app, Method::GET, "/api/task", Body::empty()).await;
+        t["learning_jobs"].as_u64().expect("learning_jobs")
+    };
+    let slow = json!({"samples": 1_000_000}).to_string();
+    let left = tokio::time::timeout(
+        std::time::Duration::from_millis(300),
+        call(&app, Method::POST, "/api/learn", slow.clone()),
+    )
+    .await;
+    assert!(left.is_err(), "10^6 samples learned in 0.3 s?");
+    let start = std::time::Instant::now();
+    while jobs(app.clone()).await > 0 {
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(5),
+            "learning still runs after its client left"
+        );
+        tokio::time::sleep(std::time::Duration::from_millis(50)).await;
+    }
+    // One job per folder: the second request cancels the first.
+    let first = tokio::spawn({
+        let app = app.clone();
+        async move { call(&app, Method::POST, "/api/learn", slow).await }
+    });
+    tokio::time::sleep(std::time::Duration::from_millis(300)).await;
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/learn",
+        json!({"samples": 200}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    let (s, v) = tokio::time::timeout(std::time::Duration::from_secs(5), first)
+        .await
+        .expect("the older request ends")
+        .unwrap();
+    assert_eq!(s, StatusCode::CONFLICT, "{v}");
+    assert_eq!(v["kind"], "cancelled", "{v}");
+}
+
+/// Issue 35, the smaller findings: a 405 is JSON; a demos.json that is not
+/// UTF-8 is 409 (corrupt, with the byte offset), not 500; a problem.json
+/// that is not UTF-8 names the byte offset.
+#[tokio::test]
+async fn method_not_allowed_and_non_utf8_files() {
+    let dir = task_dir("405-utf8", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let (s, v) = call(&app, Method::PUT, "/api/task", Body::empty()).await;
+    assert_eq!(s, StatusCode::METHOD_NOT_ALLOWED, "{v}");
+    assert_eq!(v["kind"], "method_not_allowed", "{v}");
+    assert!(v["error"].as_str().unwrap().contains("method"), "{v}");
+    std::fs::write(dir.join("demos.json"), b"[\n\xff]").unwrap();
+    let (s, v) = call(&app, Method::GET, "/api/demos", Body::empty()).await;
+    assert_eq!(s, StatusCode::CONFLICT, "{v}");
+    assert_eq!(v["kind"], "corrupt_demos", "{v}");
+    assert!(
+        v["error"].as_str().unwrap().contains("byte offset 2"),
+        "{v}"
+    );
+    std::fs::write(dir.join("problem.json"), b"{\n\xff}").unwrap();
+    let e = rccpack::studio::router(&dir).unwrap_err().to_string();
+    assert!(
+        e.contains("byte offset 2") && !e.contains("needs a problem.json"),
+        "{e}"
+    );
 }

@@ -8,7 +8,7 @@ use pyo3::exceptions::PyKeyboardInterrupt;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyBytes, PyTuple};
-use rccpack_core::infer::{learn_stoppable, InferError, LearnParams, Templates};
+use rccpack_core::infer::{learn_cancellable, InferError, LearnParams, Templates};
 use rccpack_core::render::render_png as core_render_png;
 use rccpack_core::resemblance::Likeness;
 use rccpack_core::synth::{Progress, ProgressFn};
@@ -330,7 +330,7 @@ pub(crate) fn learn_interruptible(
 ) -> PyResult<PyLearned> {
     let cancel = AtomicBool::new(false);
     let (out, signal) = run_interruptible(py, &cancel, || {
-        learn_stoppable(demos, statements, params, deadline, Some(&cancel))
+        learn_cancellable(demos, statements, params, deadline, Some(&cancel))
     })?;
     if let Some(e) = signal {
         return Err(e);
@@ -674,6 +674,7 @@ fn render_options(
         scale,
         title,
         like,
+        ..RenderOptions::default()
     })
 }
 

@@ -116,6 +116,12 @@ pub struct ProbeOptions {
     /// For a rule with no probe, name the held rules implying it (one more
     /// solve per held rule).
     pub explain: bool,
+    /// Layouts to start the probe search from (a probe a check found):
+    /// the search then only improves on it.
+    pub warm_start: Vec<Scene>,
+    /// Set to true to stop every solve (a look-ahead for the answer not
+    /// given).
+    pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
 }
 
 impl Default for ProbeOptions {
@@ -128,6 +134,8 @@ impl Default for ProbeOptions {
             check_nodes: Some(DEFAULT_CHECK_NODES),
             like: None,
             explain: false,
+            warm_start: Vec::new(),
+            cancel: None,
         }
     }
 }
@@ -163,6 +171,9 @@ pub struct Probe {
     pub cost: u64,
     /// Search time in milliseconds.
     pub time_ms: f64,
+    /// When the probe is a demonstration with a few objects moved: which
+    /// one, and what moved from where (`None`: a layout of the problem).
+    pub edit: Option<super::edit::Edit>,
 }
 
 /// The probe problem for `held.rules[target]`: the other held rules hard,
@@ -213,6 +224,12 @@ pub struct ProbeChecker {
     held: usize,
     negation_of: Vec<Option<usize>>,
     opts: ProbeOptions,
+    /// A deadline besides the options' time limit (the question's
+    /// wall-clock cap).
+    deadline: Option<std::time::Instant>,
+    /// Per object of the problem: the hard index of its pin (see
+    /// [`ProbeChecker::pinned`]), `None` when it has none.
+    pins: Vec<Option<usize>>,
 }
 
 impl ProbeChecker {
@@ -222,8 +239,45 @@ impl ProbeChecker {
         held: &RuleSet,
         opts: &ProbeOptions,
     ) -> Result<ProbeChecker, SynthError> {
+        Self::build(problem, held, opts, false)
+    }
+
+    /// A checker for edits of the complete scene `demo`: every movable
+    /// object on the grid becomes unplaced with a *pin* (a guarded hard
+    /// constraint holding it where it is), so that
+    /// [`ProbeChecker::has_probe_moving`] can free any few of them under
+    /// assumptions. Objects off the grid stay where they are.
+    pub fn pinned(
+        demo: &Scene,
+        held: &RuleSet,
+        opts: &ProbeOptions,
+    ) -> Result<ProbeChecker, SynthError> {
+        Self::build(demo, held, opts, true)
+    }
+
+    fn build(
+        problem: &Scene,
+        held: &RuleSet,
+        opts: &ProbeOptions,
+        pin: bool,
+    ) -> Result<ProbeChecker, SynthError> {
         use crate::synth::engine::Engine;
         use crate::synth::model::{BuildOptions, Model};
+        let mut problem = problem.clone();
+        let mut at: Vec<Option<(i64, i64)>> = vec![None; problem.objects.len()];
+        if pin {
+            let (sp, g) = (problem.space, problem.grid);
+            for (i, o) in problem.objects.iter_mut().enumerate() {
+                if let (false, Some(x), Some(y)) = (o.fixed, o.x, o.y) {
+                    if (x - sp.x) % g == 0 && (y - sp.y) % g == 0 {
+                        at[i] = Some((x, y));
+                        o.x = None;
+                        o.y = None;
+                    }
+                }
+            }
+        }
+        let problem = &problem;
         crate::synth::check_problem(problem)?;
         let n = held.rules.len();
         let mut rules: Vec<Rule> = held
@@ -253,10 +307,17 @@ impl ProbeChecker {
             BuildOptions {
                 contact: opts.contact,
                 rules: true,
-                symmetry_breaking: true,
+                // Pins hold interchangeable objects in any order.
+                symmetry_breaking: !pin,
                 redundant: true,
             },
         );
+        let mut model = model;
+        let pins = at
+            .iter()
+            .enumerate()
+            .map(|(i, p)| p.and_then(|(x, y)| model.pin(i, x, y)))
+            .collect();
         // Every rule is hard, so `model.hard[i]` is rule `i`.
         debug_assert!(model.hard.iter().enumerate().all(|(i, h)| h.rule == i));
         let engine = if model.too_large.is_empty() {
@@ -271,7 +332,49 @@ impl ProbeChecker {
             held: n,
             negation_of,
             opts: opts.clone(),
+            deadline: None,
+            pins,
         })
+    }
+
+    /// Whether rule `k` has a probe that moves only the objects in `free`
+    /// (indices into the scene of [`ProbeChecker::pinned`]; every other
+    /// pinned object stays where it is), within `nodes` search nodes.
+    pub fn has_probe_moving(&mut self, k: usize, free: &[usize], nodes: Option<u64>) -> Checked {
+        let Some(neg) = self.negation_of[k] else {
+            return Checked::Proven;
+        };
+        let mut assume: Vec<usize> = (0..self.held).filter(|&j| j != k).collect();
+        assume.push(neg);
+        assume.extend(
+            self.pins
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| !free.contains(i))
+                .filter_map(|(_, p)| *p),
+        );
+        self.solve(&assume, nodes)
+    }
+
+    /// Whether object `i` of the scene can move (it has a pin).
+    pub fn can_move(&self, i: usize) -> bool {
+        self.pins.get(i).is_some_and(Option::is_some)
+    }
+
+    /// The weight of one of its search nodes (see `super::budget`).
+    pub fn weight(&self) -> u64 {
+        super::budget::weight(self.model.bools.len())
+    }
+
+    /// Search nodes spent by every solve so far.
+    pub fn nodes(&self) -> u64 {
+        self.engine.as_ref().map_or(0, |e| e.nodes())
+    }
+
+    /// Stop every later solve at `deadline` too (besides the options' time
+    /// limit).
+    pub fn set_deadline(&mut self, deadline: Option<std::time::Instant>) {
+        self.deadline = deadline;
     }
 
     /// [`Checked::Witness`]: rule `k` has a probe (the layout found, which
@@ -281,6 +384,7 @@ impl ProbeChecker {
     /// later checks do not depend on how far the stopped search got).
     /// Rules with `removed[j]` (allowed to break with `k`) are left out of
     /// the assumptions.
+    #[cfg(test)]
     pub fn has_probe(&mut self, k: usize, removed: &[bool]) -> Checked {
         self.has_probe_within(k, removed, None)
     }
@@ -303,11 +407,18 @@ impl ProbeChecker {
     /// [`Checked::Witness`] with a layout keeping `a` and breaking `b`
     /// when it does not, [`Checked::Stopped`] when a limit stopped the
     /// solve.
+    #[cfg(test)]
     pub fn implies(&mut self, a: usize, b: usize) -> Checked {
+        self.implies_within(a, b, None)
+    }
+
+    /// [`ProbeChecker::implies`] with at most `nodes` search nodes when
+    /// that is below the options' check budget.
+    pub fn implies_within(&mut self, a: usize, b: usize, nodes: Option<u64>) -> Checked {
         let Some(neg) = self.negation_of[b] else {
             return Checked::Proven;
         };
-        self.solve(&[a, neg], None)
+        self.solve(&[a, neg], nodes)
     }
 
     /// One solve under the assumptions "these rules hold".
@@ -318,13 +429,21 @@ impl ProbeChecker {
             return Checked::Proven;
         };
         let mut limits = check_limits(&self.opts, engine);
+        if let Some(d) = self.deadline {
+            limits.deadline = Some(limits.deadline.map_or(d, |l| l.min(d)));
+        }
         if let Some(n) = nodes {
             let cap = engine.nodes().saturating_add(n);
             limits.node_limit = Some(limits.node_limit.map_or(cap, |l| l.min(cap)));
         }
         let before = engine.nodes();
+        let t = std::time::Instant::now();
         let sat = engine.satisfy_rules(assume, &limits);
-        log::debug!("ask: checker solve, {} nodes", engine.nodes() - before);
+        log::debug!(
+            "ask: checker solve, {} nodes in {:.1} ms",
+            engine.nodes() - before,
+            t.elapsed().as_secs_f64() * 1e3
+        );
         match sat {
             Sat::Solution(v) => Checked::Witness(self.model.scene(&self.problem, &v)),
             Sat::Unsat => Checked::Proven,
@@ -367,7 +486,7 @@ fn check_limits(
             .time_limit
             .and_then(|t| std::time::Instant::now().checked_add(t)),
         node_limit: opts.check_nodes.map(|n| engine.nodes().saturating_add(n)),
-        cancel: None,
+        cancel: opts.cancel.clone(),
     }
 }
 
@@ -378,8 +497,18 @@ pub fn find_probe(
     target: usize,
     opts: &ProbeOptions,
 ) -> Result<ProbeOutcome, SynthError> {
+    search_probe(problem, held, target, opts).map(|(o, _)| o)
+}
+
+/// [`find_probe`], with the search nodes it spent.
+pub(crate) fn search_probe(
+    problem: &Scene,
+    held: &RuleSet,
+    target: usize,
+    opts: &ProbeOptions,
+) -> Result<(ProbeOutcome, u64), SynthError> {
     let Some(rules) = probe_rules(held, target) else {
-        return Ok(ProbeOutcome::Implied { by: Vec::new() });
+        return Ok((ProbeOutcome::Implied { by: Vec::new() }, 0));
     };
     let sopts = SynthOptions {
         contact: opts.contact,
@@ -388,22 +517,29 @@ pub fn find_probe(
         seed: opts.seed,
         like: opts.like.clone(),
         explain: opts.explain,
+        // A probe needs a layout first and resemblance second: the
+        // engine's own search, from a probe a check found when there is one.
+        lns: None,
+        warm_start: opts.warm_start.clone(),
+        cancel: opts.cancel.clone(),
         ..SynthOptions::default()
     };
     let r = synthesize(problem, &rules, &sopts)?;
     let name = &held.rules[target].name;
-    match r.status {
+    let nodes = r.stats.nodes;
+    let outcome = match r.status {
         Status::Optimal | Status::Feasible => {
             let scene = r.scene.expect("a layout with a solution status");
             let one = RuleSet::new(vec![held.rules[target].clone()]);
             let ev = evaluate(&scene, &one, opts.contact);
-            Ok(ProbeOutcome::Probe(Probe {
+            ProbeOutcome::Probe(Probe {
                 rule: name.clone(),
                 scene,
                 broken: ev.rules[0].violators.clone(),
                 cost: r.resemblance.map_or(0, |c| c.cost),
                 time_ms: r.stats.time_ms,
-            }))
+                edit: None,
+            })
         }
         Status::Infeasible => {
             let neg = format!("{NEGATION_PREFIX}{name}");
@@ -411,8 +547,9 @@ pub fn find_probe(
                 .conflict
                 .map(|c| c.hard_rules.into_iter().filter(|n| *n != neg).collect())
                 .unwrap_or_default();
-            Ok(ProbeOutcome::Implied { by })
+            ProbeOutcome::Implied { by }
         }
-        Status::Unknown => Ok(ProbeOutcome::Unknown),
-    }
+        Status::Unknown => ProbeOutcome::Unknown,
+    };
+    Ok((outcome, nodes))
 }

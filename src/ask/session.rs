@@ -61,7 +61,9 @@
 //! The bench (`cargo bench --bench ask -- --compare`) and
 //! `tests/ask_tasks.rs` check that the questions stay the same.
 
-use super::probe::{find_probe, Checked, Probe, ProbeChecker, ProbeOptions, ProbeOutcome};
+use super::budget::{Meter, QuestionBudget};
+use super::edit::{Edit, EditSearch};
+use super::probe::{search_probe, Checked, Probe, ProbeChecker, ProbeOptions, ProbeOutcome};
 use crate::infer::english::rule_implies;
 use crate::infer::{learn, InferError, LearnParams, Learned};
 use crate::resemblance::Likeness;
@@ -127,6 +129,10 @@ pub struct Answer {
     pub broken: Vec<String>,
     /// The probe layout.
     pub probe: Scene,
+    /// When the probe was a demonstration with a few objects moved: which
+    /// one, and what moved from where.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edit: Option<Edit>,
 }
 
 /// The `answers.json` file.
@@ -171,6 +177,33 @@ pub struct Question {
     pub also_broken: Vec<String>,
 }
 
+/// Why a held rule was not asked about ([`Asker::unasked`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unasked {
+    /// The other held rules imply it on the problem (proven, or on every
+    /// scene); with `edits_tried`, no demonstration with one or two objects
+    /// moved breaks it either.
+    Implied {
+        /// The demonstrations' edits were searched too.
+        edits_tried: bool,
+    },
+    /// The question budget (or a limit) stopped its check or probe search
+    /// before it decided.
+    Deferred,
+}
+
+impl std::fmt::Display for Unasked {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Unasked::Implied { edits_tried: true } => {
+                "follows from the others on the problem and on every demonstration edit tried"
+            }
+            Unasked::Implied { edits_tried: false } => "follows from the others on the problem",
+            Unasked::Deferred => "the question budget did not decide it",
+        })
+    }
+}
+
 /// How far the questions have come (counts of a session).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 pub struct Tally {
@@ -182,7 +215,8 @@ pub struct Tally {
     pub confirmed: usize,
     /// Held rules not asked because the others imply them.
     pub implied: usize,
-    /// Held rules whose probe search hit the limit.
+    /// Held rules deferred: the question budget (or a limit) stopped their
+    /// check or probe search before it decided them.
     pub unknown: usize,
     /// Held rules now.
     pub held: usize,
@@ -206,6 +240,11 @@ pub struct AskOptions {
     /// questions are the same either way unless a check reaches its
     /// budget.
     pub reuse: bool,
+    /// How much search one question may cost (see [`QuestionBudget`]).
+    pub budget: QuestionBudget,
+    /// Look for probes that are a demonstration with one or two objects
+    /// moved before searching the problem (on by default).
+    pub edits: bool,
 }
 
 impl Default for AskOptions {
@@ -215,8 +254,19 @@ impl Default for AskOptions {
             probe: ProbeOptions::default(),
             resemble: true,
             reuse: true,
+            budget: QuestionBudget::default(),
+            edits: true,
         }
     }
+}
+
+/// How a scan for the next question ended.
+enum Scan {
+    Question(Question),
+    /// The question's budget ran out before any rule had a probe; the rule
+    /// that used it up is decided or deferred, so the next scan goes on.
+    OutOfBudget,
+    Done,
 }
 
 #[derive(Debug, Clone)]
@@ -304,6 +354,14 @@ pub struct Asker {
     /// Decided [`ProbeChecker::has_probe`] checks (rule, rules allowed to
     /// break with it), while the held rules stay the same.
     checks: std::cell::RefCell<HashMap<(String, Vec<String>), bool>>,
+    /// What is left of the current question's budget.
+    meter: std::cell::RefCell<Meter>,
+    /// Rules implied on the problem whose edits were searched in the last
+    /// pass, while the held rules stay the same.
+    edit_tried: std::cell::RefCell<BTreeSet<String>>,
+    /// The weight of a node of a probe search on the problem (the
+    /// problem checker's, once one is built).
+    weight: std::cell::Cell<u64>,
     open: Option<String>,
 }
 
@@ -345,6 +403,65 @@ impl Asker {
                 }
             }
         }
+        if let Some(asker) = Self::replay(&problem, &demos, &statements, &answers, &opts)? {
+            return Ok(asker);
+        }
+        Self::start(problem, demos, statements, answers, opts)
+    }
+
+    /// Resume by asking the answered questions again: the session is then
+    /// in the state an uninterrupted one would be in (the layouts and
+    /// proofs found on the way, the budget spent the same way), so it asks
+    /// the same next question. `None` when the answers do not replay (the
+    /// accepted probes are not the last demonstrations in order, or a
+    /// question comes out differently — other options, or the wall-clock
+    /// cap struck): the session then starts from the answers as they are.
+    fn replay(
+        problem: &Scene,
+        demos: &[Scene],
+        statements: &Option<RuleSet>,
+        answers: &[Answer],
+        opts: &AskOptions,
+    ) -> Result<Option<Asker>, AskError> {
+        if answers.is_empty() {
+            return Ok(None);
+        }
+        let accepted: Vec<usize> = answers.iter().filter_map(|a| a.demo).collect();
+        let Some(n0) = demos.len().checked_sub(accepted.len()) else {
+            return Ok(None);
+        };
+        if !accepted.iter().copied().eq(n0..demos.len()) {
+            return Ok(None);
+        }
+        let mut asker = Self::start(
+            problem.clone(),
+            demos[..n0].to_vec(),
+            statements.clone(),
+            Vec::new(),
+            opts.clone(),
+        )?;
+        for a in answers {
+            match asker.next_question()? {
+                Some(q) if q.rule == a.rule && q.probe.scene == a.probe => {
+                    asker.answer(&q, a.accepted)?;
+                }
+                _ => {
+                    log::debug!("ask: the answers do not replay at `{}`", a.rule);
+                    return Ok(None);
+                }
+            }
+        }
+        Ok((asker.demos == demos).then_some(asker))
+    }
+
+    /// A session on `demos` with `answers` taken as given (no replay).
+    fn start(
+        problem: Scene,
+        demos: Vec<Scene>,
+        statements: Option<RuleSet>,
+        answers: Vec<Answer>,
+        opts: AskOptions,
+    ) -> Result<Asker, AskError> {
         let learned = learn(&demos, statements.as_ref(), &opts.learn)?;
         let like = opts.resemble.then(|| Likeness::new(&demos));
         let mut asker = Asker {
@@ -366,6 +483,9 @@ impl Asker {
             pool: Default::default(),
             proofs: Default::default(),
             checks: Default::default(),
+            meter: std::cell::RefCell::new(Meter::unlimited()),
+            edit_tried: Default::default(),
+            weight: std::cell::Cell::new(1),
             open: None,
         };
         asker.held = asker.held_rules();
@@ -380,6 +500,14 @@ impl Asker {
             }
         }
         set
+    }
+
+    /// Stop every solve when `cancel` is set (`None`: never).
+    pub(crate) fn set_cancel(
+        &mut self,
+        cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    ) {
+        self.opts.probe.cancel = cancel;
     }
 
     /// The demonstrations, accepted probes included (what `demos.json`
@@ -437,6 +565,28 @@ impl Asker {
         }
     }
 
+    /// The held rules not confirmed and not open to a question now, with
+    /// why, in asking order (after [`Asker::next_question`] returned
+    /// `None`: every rule the session leaves unasked).
+    pub fn unasked(&self) -> Vec<(String, Unasked)> {
+        self.asking_order()
+            .into_iter()
+            .map(|k| &self.held.rules[k].name)
+            .filter(|name| !self.confirmed.contains(*name))
+            .filter_map(|name| {
+                let why = match self.known.get(name)? {
+                    Known::Implied if self.edit_tried.borrow().contains(name) => {
+                        Unasked::Implied { edits_tried: true }
+                    }
+                    Known::Implied => Unasked::Implied { edits_tried: false },
+                    Known::Unknown => Unasked::Deferred,
+                    Known::Probe(_) => return None,
+                };
+                Some((name.clone(), why))
+            })
+            .collect()
+    }
+
     /// Held rules in asking order: weakest evidence first.
     fn asking_order(&self) -> Vec<usize> {
         // `held` is strongest first.
@@ -467,9 +617,11 @@ impl Asker {
             None => {
                 let t = std::time::Instant::now();
                 let c = ProbeChecker::new(&self.problem, &self.held, &self.opts.probe)?;
+                self.weight.set(c.weight());
                 log::debug!(
-                    "ask: checker built in {:.1} ms",
-                    t.elapsed().as_secs_f64() * 1e3
+                    "ask: checker built in {:.1} ms (weight {})",
+                    t.elapsed().as_secs_f64() * 1e3,
+                    c.weight()
                 );
                 checker.insert(c)
             }
@@ -479,17 +631,30 @@ impl Asker {
     /// The probe for rule `k` keeping every held rule but `k` and those in
     /// `equivalent`.
     fn search(&self, k: usize, equivalent: &[bool]) -> Result<Known, AskError> {
-        let opts = ProbeOptions {
+        let mut opts = ProbeOptions {
             like: self.like.clone(),
             ..self.opts.probe.clone()
         };
+        {
+            let meter = self.meter.borrow();
+            let want = opts.node_limit.unwrap_or(u64::MAX);
+            let Some(nodes) = meter.grant(want, self.weight.get()) else {
+                return Ok(Known::Unknown);
+            };
+            opts.node_limit = Some(nodes);
+            if let Some(d) = meter.deadline() {
+                let left = d.saturating_duration_since(std::time::Instant::now());
+                opts.time_limit = Some(opts.time_limit.map_or(left, |t| t.min(left)));
+            }
+        }
         let keep: Vec<usize> = (0..self.held.rules.len())
             .filter(|&j| j == k || !equivalent[j])
             .collect();
         let set = RuleSet::new(keep.iter().map(|&j| self.held.rules[j].clone()).collect());
         let at = keep.iter().position(|&j| j == k).expect("kept");
         let t = std::time::Instant::now();
-        let found = find_probe(&self.problem, &set, at, &opts)?;
+        let (found, nodes) = search_probe(&self.problem, &set, at, &opts)?;
+        self.meter.borrow_mut().spend(nodes, self.weight.get());
         log::debug!(
             "ask: probe search {} ({} may break): {} in {:.1} ms",
             self.held.rules[k].name,
@@ -507,7 +672,41 @@ impl Asker {
                 Known::Probe(p)
             }
             ProbeOutcome::Implied { .. } => Known::Implied,
-            ProbeOutcome::Unknown => Known::Unknown,
+            // A layout a check found is a probe too (not the most like
+            // the demonstrations, but the budget found no better).
+            ProbeOutcome::Unknown => match self.pool_probe(k, equivalent) {
+                Some(p) => Known::Probe(p),
+                None => Known::Unknown,
+            },
+        })
+    }
+
+    /// A pool layout that breaks rule `k` and keeps every held rule but
+    /// those in `removed`, as a probe.
+    fn pool_probe(&self, k: usize, removed: &[bool]) -> Option<Probe> {
+        let n = self.held.rules.len();
+        let premise = |j: usize| j != k && !removed.get(j).copied().unwrap_or(false);
+        let pool = self.pool_holds();
+        let at = pool
+            .holds
+            .iter()
+            .position(|h| !h[k] && (0..n).filter(|&j| premise(j)).all(|j| h[j]))?;
+        let scene = pool.scenes[at].clone();
+        drop(pool);
+        let one = RuleSet::new(vec![self.held.rules[k].clone()]);
+        let broken = crate::eval::evaluate(&scene, &one, self.opts.probe.contact).rules[0]
+            .violators
+            .clone();
+        Some(Probe {
+            rule: self.held.rules[k].name.clone(),
+            cost: self
+                .like
+                .as_ref()
+                .map_or(0, |l| l.cost(&self.problem, &scene)),
+            scene,
+            broken,
+            time_ms: 0.0,
+            edit: None,
         })
     }
 
@@ -620,12 +819,35 @@ impl Asker {
             return Ok(Some(v));
         }
         let t = std::time::Instant::now();
+        // At most half of what is left: an undecided check leaves the
+        // other half to the demonstrations' edits and the probe search.
+        let c = self.checker(checker)?;
+        let want = self
+            .opts
+            .probe
+            .check_nodes
+            .unwrap_or(u64::MAX)
+            .min(self.meter.borrow().half_nodes(c.weight()));
+        let deadline = self.meter.borrow().deadline();
+        let Some(grant) = self.meter.borrow().grant(want, c.weight()) else {
+            // The question's budget is spent: undecided, not remembered.
+            return Ok(None);
+        };
         // With `reuse`: a short first try on the checker of the scan, then
         // the full budget on a fresh one of the premises and the rule only
         // (see `FIRST_TRY_NODES`).
-        let first = self.opts.reuse.then_some(FIRST_TRY_NODES);
-        let mut checked = self.checker(checker)?.has_probe_within(k, removed, first);
-        if first.is_some() && checked == Checked::Stopped {
+        let first = if self.opts.reuse {
+            FIRST_TRY_NODES.min(grant)
+        } else {
+            grant
+        };
+        c.set_deadline(deadline);
+        let before = c.nodes();
+        let mut checked = c.has_probe_within(k, removed, Some(first));
+        let w = c.weight();
+        self.meter.borrow_mut().spend(c.nodes() - before, w);
+        let more = self.meter.borrow().grant(want, w);
+        if let (true, Checked::Stopped, Some(more)) = (self.opts.reuse, &checked, more) {
             log::debug!(
                 "ask: check {} stopped at the first try after {:.1} ms: a fresh checker",
                 key.0,
@@ -639,7 +861,10 @@ impl Asker {
                 .collect();
             let set = RuleSet::new(keep.iter().map(|&j| self.held.rules[j].clone()).collect());
             let at = keep.iter().position(|&j| j == k).expect("kept");
-            checked = ProbeChecker::new(&self.problem, &set, &self.opts.probe)?.has_probe(at, &[]);
+            let mut fresh = ProbeChecker::new(&self.problem, &set, &self.opts.probe)?;
+            fresh.set_deadline(deadline);
+            checked = fresh.has_probe_within(at, &[], Some(more));
+            self.meter.borrow_mut().spend(fresh.nodes(), fresh.weight());
         }
         log::debug!(
             "ask: check {} ({} may break): {} in {:.1} ms",
@@ -706,9 +931,20 @@ impl Asker {
             // A layout keeping `a` and breaking `b`.
             Some(false)
         } else {
+            let want = self.opts.probe.check_nodes.unwrap_or(u64::MAX);
+            let deadline = self.meter.borrow().deadline();
             let c = self.checker(checker)?;
+            let Some(grant) = self.meter.borrow().grant(want, c.weight()) else {
+                // The question's budget is spent: "no", not remembered.
+                return Ok(false);
+            };
+            c.set_deadline(deadline);
             let t = std::time::Instant::now();
-            let checked = c.implies(a, b);
+            let before = c.nodes();
+            let checked = c.implies_within(a, b, Some(grant));
+            self.meter
+                .borrow_mut()
+                .spend(c.nodes() - before, c.weight());
             log::debug!(
                 "ask: implies {} -> {}: {} in {:.1} ms",
                 ra.name,
@@ -762,29 +998,136 @@ impl Asker {
     /// depend on the budgets, never on the machine's speed, unless the
     /// time limit (a safety net) stops a solve first.
     pub fn next_question(&mut self) -> Result<Option<Question>, AskError> {
+        // One checker of the problem and one per demonstration for every
+        // scan of this question (built when first needed).
+        let mut checker: Option<ProbeChecker> = None;
+        let mut edit_checkers: Vec<Option<ProbeChecker>> = Vec::new();
+        loop {
+            match self.scan(&mut checker, &mut edit_checkers)? {
+                Scan::Question(q) => {
+                    self.open = Some(q.rule.clone());
+                    return Ok(Some(q));
+                }
+                Scan::OutOfBudget => {}
+                Scan::Done => {
+                    self.open = None;
+                    return Ok(None);
+                }
+            }
+        }
+    }
+
+    /// A probe for rule `k` that is a demonstration with a few objects
+    /// moved, within the question's budget.
+    fn edit_probe(&self, k: usize, checkers: &mut Vec<Option<ProbeChecker>>) -> Option<Probe> {
+        if !self.opts.edits {
+            return None;
+        }
+        let search = EditSearch {
+            demos: &self.demos,
+            like: self.like.as_ref(),
+            contact: self.opts.probe.contact,
+            seed: self.opts.probe.seed,
+            time_limit: self.opts.probe.time_limit,
+            cancel: self.opts.probe.cancel.clone(),
+        };
+        let t = std::time::Instant::now();
+        let found = search.find(&self.held, k, checkers, &mut self.meter.borrow_mut());
+        log::debug!(
+            "ask: edit search {}: {} in {:.1} ms",
+            self.held.rules[k].name,
+            if found.is_some() { "probe" } else { "none" },
+            t.elapsed().as_secs_f64() * 1e3
+        );
+        found
+    }
+
+    /// One scan of the held rules for the next question, under a fresh
+    /// question budget (see [`Asker::next_question`]).
+    fn scan(
+        &mut self,
+        checker: &mut Option<ProbeChecker>,
+        edit_checkers: &mut Vec<Option<ProbeChecker>>,
+    ) -> Result<Scan, AskError> {
+        *self.meter.get_mut() = Meter::start(&self.opts.budget);
+        let mut decided = 0usize;
+        // Decided checks so far: a group pass that runs out of budget after
+        // deciding new ones goes on in the next scan (the decided ones are
+        // kept), so every scan makes progress and the loop ends.
+        let settled = |a: &Asker| a.checks.borrow().len() + a.alone.borrow().len();
+        let settled_before = settled(self);
         let order = self.asking_order();
         let n = self.held.rules.len();
         let none = vec![false; n];
-        let mut checker: Option<ProbeChecker> = None;
         let mut group: Option<Probe> = None;
-        for pass in 0..3 {
+        for pass in 0..4 {
+            if pass > 0 {
+                // The group passes and the last one get budgets of their
+                // own.
+                *self.meter.get_mut() = Meter::start(&self.opts.budget);
+            }
+            let mut tried = 0usize;
             for &k in &order {
                 let name = self.held.rules[k].name.clone();
                 if self.confirmed.contains(&name) {
                     continue;
                 }
+                if pass == 3 {
+                    // Other mixes: a rule the others imply on the problem
+                    // may still break in a demonstration with an object or
+                    // two moved.
+                    if !matches!(self.known.get(&name), Some(Known::Implied))
+                        || !self.opts.edits
+                        || !self.edit_tried.borrow_mut().insert(name.clone())
+                    {
+                        continue;
+                    }
+                    if tried > 0 && self.meter.borrow().exhausted() {
+                        self.edit_tried.borrow_mut().remove(&name);
+                        return Ok(Scan::OutOfBudget);
+                    }
+                    tried += 1;
+                    if self.syntactically_implied(k) {
+                        continue;
+                    }
+                    match self.edit_probe(k, edit_checkers) {
+                        Some(p) => group = Some(p),
+                        None => continue,
+                    }
+                }
                 if pass == 0 && !self.known.contains_key(&name) {
+                    if decided > 0 && self.meter.borrow().exhausted() {
+                        // Every rule so far is decided or deferred: the
+                        // next scan goes on from here with a fresh budget.
+                        return Ok(Scan::OutOfBudget);
+                    }
+                    // The problem first: a rule the others imply there is
+                    // not asked about now (the last pass looks at other
+                    // mixes); one that can break is shown as an edit of a
+                    // demonstration when one breaks it, else as a layout of
+                    // the problem.
                     let known = if self.syntactically_implied(k) {
                         Known::Implied
                     } else {
-                        match self.check(&mut checker, k, &none)? {
+                        match self.check(checker, k, &none)? {
                             Some(false) => Known::Implied,
-                            _ => self.search(k, &none)?,
+                            _ => match self.edit_probe(k, edit_checkers) {
+                                Some(p) => Known::Probe(p),
+                                None => self.search(k, &none)?,
+                            },
                         }
                     };
+                    decided += 1;
                     self.known.insert(name.clone(), known);
                 }
-                if pass >= 1 && matches!(self.known.get(&name), Some(Known::Implied)) {
+                if (pass == 1 || pass == 2)
+                    && self.meter.borrow().exhausted()
+                    && settled(self) > settled_before
+                {
+                    return Ok(Scan::OutOfBudget);
+                }
+                if (pass == 1 || pass == 2) && matches!(self.known.get(&name), Some(Known::Implied))
+                {
                     // The unconfirmed implied rules; skip `k` when one of
                     // them alone implies it and not the other way round
                     // (the stronger rule is asked about, and once settled,
@@ -802,8 +1145,8 @@ impl Asker {
                     let mut parts = vec![false; n];
                     let mut weaker = false;
                     for &j in &open {
-                        let j_k = self.alone_implies(&mut checker, j, k)?;
-                        let k_j = self.alone_implies(&mut checker, k, j)?;
+                        let j_k = self.alone_implies(checker, j, k)?;
+                        let k_j = self.alone_implies(checker, k, j)?;
                         if j_k && !k_j {
                             weaker = true;
                             break;
@@ -818,14 +1161,14 @@ impl Asker {
                     // alone implies), weakest evidence first, until the
                     // firm rules no longer imply `k`; then keep hard every
                     // part that can be kept: the fewest break with `k`.
-                    let mut probe_able = with.iter().any(|&w| w)
-                        && self.check(&mut checker, k, &with)? == Some(true);
+                    let mut probe_able =
+                        with.iter().any(|&w| w) && self.check(checker, k, &with)? == Some(true);
                     for &j in order.iter().filter(|&&j| parts[j]) {
                         if probe_able {
                             break;
                         }
                         with[j] = true;
-                        probe_able = self.check(&mut checker, k, &with)? == Some(true);
+                        probe_able = self.check(checker, k, &with)? == Some(true);
                     }
                     if !probe_able && pass == 2 {
                         // Last pass, one solve: every open rule about the same
@@ -835,7 +1178,7 @@ impl Asker {
                         for &j in &open {
                             all[j] |= related(&self.held.rules[k], &self.held.rules[j]);
                         }
-                        if all != with && self.check(&mut checker, k, &all)? == Some(true) {
+                        if all != with && self.check(checker, k, &all)? == Some(true) {
                             with = all;
                             probe_able = true;
                         }
@@ -847,7 +1190,7 @@ impl Asker {
                     for j in 0..n {
                         if with[j] {
                             with[j] = false;
-                            if self.check(&mut checker, k, &with)? != Some(true) {
+                            if self.check(checker, k, &with)? != Some(true) {
                                 with[j] = true;
                             }
                         }
@@ -885,13 +1228,26 @@ impl Asker {
                         english: stmt.english.clone(),
                         probe: p.clone(),
                     };
-                    self.open = Some(name);
-                    return Ok(Some(q));
+                    return Ok(Scan::Question(q));
                 }
             }
         }
-        self.open = None;
-        Ok(None)
+        Ok(Scan::Done)
+    }
+
+    /// The answer to `q` as [`Asker::answer`] will record it (for a journal
+    /// written before the answer is applied).
+    pub fn answer_record(&self, q: &Question, accepted: bool) -> Answer {
+        Answer {
+            rule: q.rule.clone(),
+            statement: q.statement.clone(),
+            english: q.english.clone(),
+            accepted,
+            demo: accepted.then_some(self.demos.len()),
+            broken: q.probe.broken.clone(),
+            probe: q.probe.scene.clone(),
+            edit: q.probe.edit.clone(),
+        }
     }
 
     /// Apply the person's answer to question `q` (SPEC §13): accepted → the
@@ -902,17 +1258,8 @@ impl Asker {
             return Err(AskError::NotAsked(q.rule.clone()));
         }
         self.open = None;
-        let mut a = Answer {
-            rule: q.rule.clone(),
-            statement: q.statement.clone(),
-            english: q.english.clone(),
-            accepted,
-            demo: None,
-            broken: q.probe.broken.clone(),
-            probe: q.probe.scene.clone(),
-        };
+        let a = self.answer_record(q, accepted);
         if accepted {
-            a.demo = Some(self.demos.len());
             let mut demos = self.demos.clone();
             demos.push(q.probe.scene.clone());
             let learned = learn(&demos, self.statements.as_ref(), &self.opts.learn)?;
@@ -930,11 +1277,12 @@ impl Asker {
                 self.alone.get_mut().clear();
             }
             self.checks.get_mut().clear();
+            self.edit_tried.get_mut().clear();
         } else {
             self.confirmed.insert(q.rule.clone());
             // The held rules are the same, so is every probe and every
-            // proof; a search a limit stopped is tried again.
-            self.known.retain(|_, k| !matches!(k, Known::Unknown));
+            // proof; a rule the budget deferred stays deferred (it is
+            // looked at again when learning is redone).
         }
         self.held = self.held_rules();
         self.answers.push(a);

@@ -651,7 +651,10 @@ pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
             quality,
             seed: cfg.seed,
             repair: repair(random_search),
-            time_limit: Some(std::time::Duration::from_secs_f64(cfg.time_limit_s)),
+            // Never panics on an unchecked value (the command line checks it).
+            time_limit: Some(crate::limits::time_limit(cfg.time_limit_s).unwrap_or(
+                std::time::Duration::from_secs_f64(crate::limits::MAX_TIME_LIMIT_SECS),
+            )),
             ..SampleOptions::default()
         };
         let movable = problem.objects.iter().filter(|o| !o.is_placed()).count();

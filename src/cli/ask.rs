@@ -65,6 +65,25 @@ pub struct AskArgs {
     /// this many search nodes (the rule is then left unsettled, not asked).
     #[arg(long, value_name = "N", default_value_t = rccpack::ask::DEFAULT_CHECK_NODES, value_parser = clap::value_parser!(u64).range(1..), allow_hyphen_values = true)]
     check_nodes: u64,
+    /// Search nodes each question may cost, over every check and probe
+    /// search it needs (deterministic: the same folder, answers and budget
+    /// ask the same questions on any machine); a rule the budget does not
+    /// decide is deferred, never waited on.
+    #[arg(long, value_name = "N", default_value_t = rccpack::ask::DEFAULT_QUESTION_NODES, value_parser = clap::value_parser!(u64).range(1..), allow_hyphen_values = true)]
+    question_nodes: u64,
+    /// Wall-clock cap per question in seconds: a safety net for slow
+    /// machines (what it stops depends on the machine's speed).
+    #[arg(long, value_name = "SECONDS", default_value = "3", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
+    question_seconds: Duration,
+    /// Only probes of the problem: never a demonstration with a few objects
+    /// moved.
+    #[arg(long)]
+    no_edits: bool,
+    /// Do not compute the next question for both answers while a question
+    /// waits (the questions are the same either way; with it, the next one
+    /// is usually ready when the answer comes).
+    #[arg(long)]
+    no_lookahead: bool,
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
     #[arg(long, default_value = "point")]
     contact: Contact,
@@ -75,6 +94,15 @@ pub struct AskArgs {
 
 fn write(path: &Path, contents: &str) -> Result<()> {
     write_file(path, contents, "file")
+}
+
+/// Write `answers.json` with the answer to `q` appended, before the
+/// answer is applied: what [`Asker::answer`] will journal, so a resumed
+/// session replays it.
+fn journal_answer(path: &Path, asker: &Asker, q: &Question, accepted: bool) -> Result<()> {
+    let mut answers = asker.answers().to_vec();
+    answers.push(asker.answer_record(q, accepted));
+    write(path, &AnswersFile { answers }.to_json())
 }
 
 enum Verdict {
@@ -90,6 +118,14 @@ fn show_question(q: &Question, number: usize, picture: &Path) -> Result<()> {
         q.rule, q.english
     ))?;
     outln(format!("  rule {}: {}", q.rule, q.statement))?;
+    if let Some(e) = &q.probe.edit {
+        let ids: Vec<&str> = e.moved.iter().map(|m| m.id.as_str()).collect();
+        outln(format!(
+            "  this is demonstration [{}] with {} moved (outlined; dashed: where it was)",
+            e.demo,
+            ids.join(" and ")
+        ))?;
+    }
     if q.probe.broken.is_empty() {
         outln("  this layout breaks it and keeps every other learned rule")?;
     } else {
@@ -105,6 +141,40 @@ fn show_question(q: &Question, number: usize, picture: &Path) -> Result<()> {
         ))?;
     }
     outln(format!("  picture: {}", picture.display()))?;
+    Ok(())
+}
+
+/// At most `n` names, then how many more.
+fn cut_list(names: &[&str], n: usize) -> String {
+    let mut out = names[..names.len().min(n)].join(", ");
+    if names.len() > n {
+        out.push_str(&format!(" and {} more", names.len() - n));
+    }
+    out
+}
+
+/// Which held rules the session leaves unasked, and why.
+fn show_unasked(asker: &Asker) -> Result<()> {
+    let unasked = asker.unasked();
+    let mut reasons: Vec<rccpack::ask::Unasked> = Vec::new();
+    for (_, why) in &unasked {
+        if !reasons.contains(why) {
+            reasons.push(*why);
+        }
+    }
+    for why in reasons {
+        let names: Vec<&str> = unasked
+            .iter()
+            .filter(|(_, w)| *w == why)
+            .map(|(n, _)| n.as_str())
+            .collect();
+        let hint = if why == rccpack::ask::Unasked::Deferred {
+            " (a larger --question-nodes gives them more)"
+        } else {
+            ""
+        };
+        outln(format!("unasked, {why}{hint}: {}", cut_list(&names, 12)))?;
+    }
     Ok(())
 }
 
@@ -163,7 +233,8 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
         .arg("rccpack-ask")
         .arg(probe)
         .stdin(Stdio::null())
-        .stdout(Stdio::null());
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
     #[cfg(unix)]
     {
         use std::os::unix::process::CommandExt;
@@ -176,6 +247,16 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
     };
     let pgid = i32::try_from(child.id()).unwrap_or(0);
     ORACLE_GROUP.store(pgid, Ordering::SeqCst);
+    // Its standard error, read as it comes (a full pipe would hang it).
+    let errors = child.stderr.take().map(|mut e| {
+        std::thread::spawn(move || {
+            use std::io::Read as _;
+            let mut text = Vec::new();
+            let _ = (&mut e).take(1 << 16).read_to_end(&mut text);
+            let _ = std::io::copy(&mut e, &mut std::io::sink());
+            String::from_utf8_lossy(&text).into_owned()
+        })
+    });
     let start = Instant::now();
     let status = loop {
         match child.try_wait() {
@@ -197,10 +278,36 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
     // Whatever the shell left running goes with it.
     kill_group(pgid);
     ORACLE_GROUP.store(0, Ordering::SeqCst);
+    let said = errors
+        .and_then(|t| t.join().ok())
+        .unwrap_or_default()
+        .trim()
+        .to_string();
+    oracle_verdict(cmd, status, &said)
+}
+
+/// What the oracle's exit status and standard error mean (SPEC §16): 0 is
+/// acceptable (what it printed is passed on), 1 with nothing on standard
+/// error not acceptable; 1 with an error (a mistyped rules path, a
+/// crashed script) aborts, so a failure never confirms a rule.
+fn oracle_verdict(
+    cmd: &str,
+    status: std::io::Result<std::process::ExitStatus>,
+    said: &str,
+) -> Verdict {
+    if !said.is_empty() && !matches!(status.as_ref().map(|s| s.code()), Ok(Some(1))) {
+        ewriteln!("{said}");
+    }
     match status {
         Ok(s) => match s.code() {
             Some(0) => Verdict::Yes,
-            Some(1) => Verdict::No,
+            Some(1) if said.is_empty() => Verdict::No,
+            Some(1) => Verdict::Abort(format!(
+                "the oracle `{}` exited with 1 and printed an error, so it failed rather than answered: {}; \
+                 expected exit 1 with nothing on standard error for \"not acceptable\"",
+                rccpack::limits::cut(cmd),
+                rccpack::limits::cut(said)
+            )),
             Some(c) => Verdict::Abort(format!(
                 "the oracle `{cmd}` exited with {c}; expected 0 (acceptable) or 1 (not acceptable)"
             )),
@@ -214,11 +321,11 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
 /// temporary files in the task folder, say what is saved, exit 1 (README:
 /// an abort loses nothing answered; the next run resumes).
 fn on_interrupt(dir: PathBuf, answers: PathBuf) {
-    let _ = ctrlc::set_handler(move || {
+    super::signals::on_signal(move || {
         kill_group(ORACLE_GROUP.load(Ordering::SeqCst));
         rccpack::fsutil::remove_own_temp_files(&dir);
         rccpack::fsutil::remove_own_temp_files(&dir.join(storage::PROBES));
-        eprintln!(
+        ewriteln!(
             "error: interrupted (Ctrl-C); every answer given is saved in {}, run again to resume",
             answers.display()
         );
@@ -233,24 +340,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
     let answers_path = dir.join(storage::ANSWERS);
     let learned_path = dir.join(storage::LEARNED);
     // One session per task folder (the studio takes the same lock to write).
-    let _lock = match rccpack::fsutil::DirLock::try_lock(dir) {
-        Ok(Some(l)) => l,
-        Ok(None) => {
-            return Err(Reported(format!(
-                "error: {}: another `rccpack ask` or the studio is writing this task folder (it holds {}); wait until it ends, then run again",
-                dir.display(),
-                rccpack::fsutil::LOCK_FILE
-            ))
-            .into())
-        }
-        Err(e) => {
-            return Err(Reported(format!(
-                "error: {}: cannot lock the task folder: {e}",
-                dir.join(rccpack::fsutil::LOCK_FILE).display()
-            ))
-            .into())
-        }
-    };
+    let _lock = super::io::lock_folder(dir)?;
     on_interrupt(dir.clone(), answers_path.clone());
     let problem = read_scene(&problem_path)?;
     let (demos, _) = read_scenes(&demos_path)?;
@@ -286,6 +376,11 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             ..ProbeOptions::default()
         },
         resemble: true,
+        budget: rccpack::ask::QuestionBudget {
+            nodes: a.question_nodes,
+            wall: Some(a.question_seconds),
+        },
+        edits: !a.no_edits,
         ..AskOptions::default()
     };
     let n_demos = demos.len();
@@ -332,17 +427,24 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
     let mut times: Vec<f64> = Vec::new();
     let mut aborted: Option<String> = None;
     let mut out_of_budget = false;
+    let threads = if a.no_lookahead {
+        1
+    } else {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    };
+    let problem_error =
+        |e: rccpack::ask::AskError| Reported(format!("error: {}: {e}", problem_path.display()));
+    let t = Instant::now();
+    let mut next = asker.next_question().map_err(problem_error)?;
+    // The wait before the first question, then answer → next question.
+    let mut ready_ms = t.elapsed().as_secs_f64() * 1000.0;
     loop {
-        let t = Instant::now();
-        let next = asker
-            .next_question()
-            .map_err(|e| Reported(format!("error: {}: {e}", problem_path.display())))?;
-        let Some(q) = next else { break };
+        let Some(q) = next.take() else { break };
         if asked_now >= a.max_questions {
             out_of_budget = true;
             break;
         }
-        times.push(t.elapsed().as_secs_f64() * 1000.0);
+        times.push(ready_ms);
         let number = asker.answers().len() + 1;
         std::fs::create_dir_all(&probes).map_err(|e| {
             Reported(format!(
@@ -368,6 +470,13 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
                 q.rule
             )),
             like: None,
+            moved: q
+                .probe
+                .edit
+                .iter()
+                .flat_map(|e| &e.moved)
+                .map(|m| (m.id.clone(), m.x, m.y))
+                .collect(),
         };
         render_to_path(
             &q.probe.scene,
@@ -376,6 +485,9 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             &png,
         )
         .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;
+        // While the person (or the oracle) looks: the next question for
+        // both answers.
+        let ahead = asker.look_ahead(&q, threads);
         let verdict = match &a.oracle {
             Some(cmd) => ask_oracle(cmd, &json, a.oracle_timeout),
             None => ask_terminal(&q, number, &png),
@@ -400,9 +512,19 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
                 }
             ))?;
         }
-        asker
-            .answer(&q, accepted)
-            .map_err(|e| Reported(format!("error: {}: {e}", demos_path.display())))?;
+        // The journal first: relearning from an accepted probe takes a
+        // while, and Ctrl-C during it must not lose the answer (the next
+        // run replays the journal).
+        journal_answer(&answers_path, &asker, &q, accepted)?;
+        let t = Instant::now();
+        let (after, upcoming) = match ahead.answer(accepted) {
+            Ok(b) => b,
+            Err(e @ rccpack::ask::AskError::Synth(_)) => return Err(problem_error(e).into()),
+            Err(e) => return Err(Reported(format!("error: {}: {e}", demos_path.display())).into()),
+        };
+        ready_ms = t.elapsed().as_secs_f64() * 1000.0;
+        asker = after;
+        next = upcoming;
         asked_now += 1;
         storage::write_after_answer(dir, &asker, accepted).map_err(io_error)?;
     }
@@ -428,12 +550,15 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             ""
         },
         if p.unknown > 0 {
-            format!(", {} unsettled (probe time limit)", p.unknown)
+            format!(", {} deferred (the question budget did not decide them)", p.unknown)
         } else {
             String::new()
         },
         learned_path.display()
     ))?;
+    if !out_of_budget && aborted.is_none() {
+        show_unasked(&asker)?;
+    }
     if out_of_budget {
         outln(format!(
             "stopped at --max-questions {}; run again to go on",
@@ -441,7 +566,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         ))?;
     }
     if let Some(why) = aborted {
-        eprintln!(
+        ewriteln!(
             "error: aborted ({why}); {} answers are saved in {}, run again to resume",
             p.asked,
             answers_path.display()

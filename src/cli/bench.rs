@@ -183,7 +183,7 @@ fn available_peers(asked: &[Peer], bench: &str) -> Vec<Peer> {
         .filter(|&p| match peers::check_available(p) {
             Ok(()) => true,
             Err(why) => {
-                eprintln!("rccpack bench {bench}: skipping peer {p}: {why}");
+                ewriteln!("rccpack bench {bench}: skipping peer {p}: {why}");
                 false
             }
         })
@@ -274,7 +274,7 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
                 )?;
             }
         }
-        eprintln!("wrote the problems to {}", dir.display());
+        ewriteln!("wrote the problems to {}", dir.display());
     }
 
     let total: usize = all.iter().map(|t| t.problems.len()).sum();
@@ -297,7 +297,7 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
             if tty {
                 bar.println(line);
             } else {
-                eprintln!("[{done}/{total}] {line}");
+                ewriteln!("[{done}/{total}] {line}");
             }
         }
     };
@@ -344,7 +344,7 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
         serde_json::to_string_pretty(&report)? + "\n",
         "the report",
     )?;
-    eprintln!("wrote {}", json.display());
+    ewriteln!("wrote {}", json.display());
     Ok(if bad.is_empty() {
         ExitCode::SUCCESS
     } else {
@@ -492,7 +492,7 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
         written.push(png);
     }
     for p in written {
-        eprintln!("wrote {}", p.display());
+        ewriteln!("wrote {}", p.display());
     }
     Ok(if bad > 0 {
         ExitCode::from(1)

@@ -5,7 +5,7 @@ use anyhow::Result;
 use rccpack::rules::{self, RuleSet};
 use rccpack::scene::{self, Scene};
 use std::io::IsTerminal;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// An error whose full text is already formatted for the user.
 #[derive(Debug)]
@@ -96,17 +96,59 @@ pub fn read_scenes(path: &Path) -> Result<(Vec<Scene>, bool)> {
     Ok((scenes, is_array))
 }
 
-/// Read and check a `.rcc` file; with scenes, also check that every class it
-/// names exists in each of them and that every landmark `@ID` names a fixed
-/// object of each of them.
+/// Read and check a `.rcc` file against the scenes it applies to (see
+/// [`read_rules_seen`]).
 pub fn read_rules(path: &Path, scenes: &[Scene]) -> Result<RuleSet> {
-    let text = read_text(path)?;
+    read_rules_seen(path, scenes, &[])
+}
+
+/// Whether `.rcc` text was written by `learn`/`ask`/`run` (its header says
+/// so; SPEC §16).
+fn is_learned(text: &str) -> bool {
+    text.trim_start().starts_with("# learned by rccpack")
+}
+
+/// Read and check a `.rcc` file: every landmark `@ID` names a fixed object
+/// of each of `scenes` (the scenes the rules apply to). A class a rule
+/// names and one of `scenes` lacks is a note on standard error, and its
+/// rules hold vacuously there, when the file was learned or when the class
+/// is in some scene the command reads (`scenes` and `also`: `--like`,
+/// warm starts); a hand-written file naming a class no such scene has is
+/// refused, naming the closest class (SPEC §16).
+pub fn read_rules_seen(path: &Path, scenes: &[Scene], also: &[Scene]) -> Result<RuleSet> {
+    // The size limit while reading, not after (`check /dev/zero`).
+    let text = rccpack::task::read_text_at_most(path, rccpack::limits::MAX_RULES_BYTES)
+        .map_err(|e| Reported(format!("error: {e}")))?;
     let set = parse_rules_text(path, &text)?;
     let color = std::io::stderr().is_terminal();
     let name = path.display().to_string();
+    if scenes.is_empty() {
+        return Ok(set);
+    }
+    if !is_learned(&text) {
+        let read: Vec<&Scene> = scenes.iter().chain(also).collect();
+        rules::check_classes_across(&set, &read)
+            .map_err(|e| Reported(e.render(&name, &text, color)))?;
+    }
     for s in scenes {
-        rules::check_classes(&set, s).map_err(|e| Reported(e.render(&name, &text, color)))?;
         rules::check_landmarks(&set, s).map_err(|e| Reported(e.render(&name, &text, color)))?;
+    }
+    let mut missing: Vec<String> = Vec::new();
+    for s in scenes {
+        for c in rules::missing_classes(&set, s) {
+            if !missing.contains(&c) {
+                missing.push(c);
+            }
+        }
+    }
+    let missing: Vec<String> = missing.iter().map(|c| rccpack::limits::cut(c)).collect();
+    if let Some(note) = rules::missing_classes_note(&missing) {
+        let note = if scenes.len() > 1 {
+            note.replacen("the problem has", "some scenes have", 1)
+        } else {
+            note
+        };
+        ewriteln!("{note}");
     }
     Ok(set)
 }
@@ -145,4 +187,92 @@ pub fn out(text: impl AsRef<str>) -> Result<()> {
 /// [`out`] with a line end.
 pub fn outln(text: impl AsRef<str>) -> Result<()> {
     out(format!("{}\n", text.as_ref()))
+}
+
+/// Whether two paths name the same file: the same device and inode when
+/// both exist, else the same absolute path.
+fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    if let (Ok(ma), Ok(mb)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+        use std::os::unix::fs::MetadataExt as _;
+        return ma.dev() == mb.dev() && ma.ino() == mb.ino();
+    }
+    let abs = |p: &Path| {
+        std::path::absolute(p)
+            .map(|p| p.components().collect::<PathBuf>())
+            .unwrap_or_else(|_| p.to_path_buf())
+    };
+    abs(a) == abs(b)
+}
+
+/// Whether a path is a device, a FIFO or a socket (`/dev/null`): two
+/// outputs or an input and an output may share one.
+fn is_special(p: &Path) -> bool {
+    std::fs::metadata(p).is_ok_and(|m| !m.is_file() && !m.is_dir())
+}
+
+/// Refuse before anything is read or written (exit 1) when an output file
+/// is one of the inputs or another output (`synth --rules r.rcc -o r.rcc`
+/// would replace the rules with a scene; `learn -o x --report x` would keep
+/// only the report). `outputs` and `more_inputs` pair each path with its
+/// flag; devices such as `/dev/null` may be shared.
+pub fn guard_outputs(
+    inputs: &[&Path],
+    outputs: &[(&str, Option<&Path>)],
+    more_inputs: &[(&str, Option<&Path>)],
+) -> Result<()> {
+    let outs: Vec<(&str, &Path)> = outputs
+        .iter()
+        .filter_map(|(f, p)| p.map(|p| (*f, p)))
+        .filter(|(_, p)| !is_special(p))
+        .collect();
+    let ins: Vec<(String, &Path)> = inputs
+        .iter()
+        .map(|p| (format!("input {}", p.display()), *p))
+        .chain(
+            more_inputs
+                .iter()
+                .filter_map(|(f, p)| p.map(|p| (format!("{f} {}", p.display()), p)))
+                .filter(|(_, p)| *p != Path::new("none")),
+        )
+        .collect();
+    for (i, (flag, out)) in outs.iter().enumerate() {
+        let clash = ins
+            .iter()
+            .find(|(_, p)| same_file(p, out))
+            .map(|(what, _)| what.clone())
+            .or_else(|| {
+                outs[..i]
+                    .iter()
+                    .find(|(_, p)| same_file(p, out))
+                    .map(|(f, p)| format!("{f} {}", p.display()))
+            });
+        if let Some(what) = clash {
+            return Err(Reported(format!(
+                "error: {flag} {}: the same file as {what}; expected a different file for each output, none of them an input",
+                out.display()
+            ))
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// Take a task folder's lock (shared by `ask`, `run` and the studio)
+/// without waiting; an error (exit 1) when another session holds it.
+pub fn lock_folder(dir: &Path) -> Result<rccpack::fsutil::DirLock> {
+    match rccpack::fsutil::DirLock::try_lock(dir) {
+        Ok(Some(l)) => Ok(l),
+        Ok(None) => Err(Reported(format!(
+            "error: {}: another `rccpack ask` or the studio is writing this task folder (it holds {}); wait until it ends, then run again",
+            dir.display(),
+            rccpack::fsutil::LOCK_FILE
+        ))
+        .into()),
+        Err(e) => Err(Reported(format!(
+            "error: {}: cannot lock the task folder: {e}",
+            dir.join(rccpack::fsutil::LOCK_FILE).display()
+        ))
+        .into()),
+    }
 }

@@ -53,6 +53,16 @@ pub struct LearnArgs {
 }
 
 pub fn run(a: LearnArgs) -> Result<ExitCode> {
+    let mut inputs = vec![a.demos.as_path()];
+    inputs.extend(a.statements.as_deref());
+    super::guard_outputs(
+        &inputs,
+        &[
+            ("-o", a.output.as_deref()),
+            ("--report", a.report.as_deref()),
+        ],
+        &[],
+    )?;
     let params = LearnParams {
         samples: a.samples,
         cutoff: a.cutoff,
@@ -69,7 +79,7 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
         Some(p) => {
             write_file(p, &rcc, "rules")?;
             if progress {
-                eprintln!("wrote {}", p.display());
+                ewriteln!("wrote {}", p.display());
             }
         }
         None => out(&rcc)?,
@@ -77,7 +87,7 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
     if let Some(p) = &a.report {
         write_file(p, learned.report_json(), "report")?;
         if progress {
-            eprintln!("wrote {}", p.display());
+            ewriteln!("wrote {}", p.display());
         }
     }
     Ok(ExitCode::SUCCESS)
@@ -115,7 +125,7 @@ pub fn learn_files(
         None => (None, String::new()),
     };
     if progress {
-        eprintln!(
+        ewriteln!(
             "learning from {} demonstrations with {} random scenes…",
             demos.len(),
             params.samples
@@ -160,7 +170,7 @@ pub fn learn_files(
     })?;
     if progress {
         let candidates = learned.statements.iter().filter(|s| s.candidate).count();
-        eprintln!(
+        ewriteln!(
             "{} statements, {} candidates, {} learned in {:.1} s",
             learned.statements.len(),
             candidates,

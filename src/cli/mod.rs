@@ -3,6 +3,24 @@
 //! Exit codes (SPEC §10): 0 success; 1 bad input; 2 infeasible; 3 a limit
 //! stopped the search before any solution.
 
+/// `eprintln!` that never panics: a failed write to standard error
+/// (`2>/dev/full`, a closed terminal) is ignored, as there is nowhere left
+/// to report it; the exit code still tells.
+macro_rules! ewriteln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($t)*);
+    }};
+}
+
+/// `eprint!` that never panics (see `ewriteln!`).
+macro_rules! ewrite {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stderr(), $($t)*);
+    }};
+}
+
 mod ask;
 mod bench;
 mod check;
@@ -12,6 +30,7 @@ mod render;
 mod run;
 mod sample;
 mod score;
+mod signals;
 mod studio;
 mod synth;
 
@@ -19,8 +38,8 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 pub use io::{
-    learn_error_text, out, outln, read_rules, read_scene, read_scenes, read_text, synth_error_text,
-    task_error_text, write_file, LimitStruck, Reported,
+    guard_outputs, learn_error_text, out, outln, read_rules, read_rules_seen, read_scene,
+    read_scenes, read_text, synth_error_text, task_error_text, write_file, LimitStruck, Reported,
 };
 
 /// Clap value parser for `--time-limit SECONDS` (the library's shared,
@@ -75,7 +94,7 @@ impl log::Log for DebugLog {
     }
     fn log(&self, r: &log::Record) {
         if self.enabled(r.metadata()) {
-            eprintln!("{}", r.args());
+            ewriteln!("{}", r.args());
         }
     }
     fn flush(&self) {}
@@ -96,14 +115,18 @@ pub fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {
-            let _ = e.print();
-            return if e.use_stderr() {
+            let printed = e.print();
+            // `--help > /dev/full`: nothing was written, so not a success.
+            return if e.use_stderr() || printed.is_err() {
                 ExitCode::from(1)
             } else {
                 ExitCode::SUCCESS
             };
         }
     };
+    if !matches!(cli.command, Command::Studio(_)) {
+        signals::install();
+    }
     let result = match cli.command {
         Command::Check(a) => check::run(a),
         Command::Score(a) => score::run(a),
@@ -120,16 +143,16 @@ pub fn main() -> ExitCode {
         Ok(code) => code,
         Err(e) => {
             if let Some(l) = e.downcast_ref::<LimitStruck>() {
-                eprintln!("{}", l.0);
+                ewriteln!("{}", l.0);
                 return ExitCode::from(3);
             }
             if let Some(r) = e.downcast_ref::<Reported>() {
-                eprint!("{}", r.0);
+                ewrite!("{}", r.0);
                 if !r.0.ends_with('\n') {
-                    eprintln!();
+                    ewriteln!("");
                 }
             } else {
-                eprintln!("error: {e:#}");
+                ewriteln!("error: {e:#}");
             }
             ExitCode::from(1)
         }

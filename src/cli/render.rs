@@ -1,4 +1,4 @@
-use super::{read_rules, read_scenes};
+use super::{read_rules_seen, read_scenes};
 use anyhow::Result;
 use clap::Args;
 use rccpack::relations::Contact;
@@ -34,6 +34,10 @@ pub struct RenderArgs {
 }
 
 pub fn run(a: RenderArgs) -> Result<ExitCode> {
+    let mut inputs = vec![a.scene.as_path()];
+    inputs.extend(a.rules.as_deref());
+    inputs.extend(a.like.as_deref());
+    super::guard_outputs(&inputs, &[("-o", Some(a.output.as_path()))], &[])?;
     let (mut scenes, is_array) = read_scenes(&a.scene)?;
     let scene = match (is_array, a.index) {
         (false, None | Some(0)) => scenes.remove(0),
@@ -54,27 +58,33 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
             scenes.len()
         ),
     };
+    let like = match &a.like {
+        Some(p) => Some(read_scenes(p)?.0),
+        None => None,
+    };
     let rules = match &a.rules {
-        Some(p) => Some(read_rules(p, std::slice::from_ref(&scene))?),
+        Some(p) => Some(read_rules_seen(
+            p,
+            std::slice::from_ref(&scene),
+            like.as_deref().unwrap_or_default(),
+        )?),
         None => None,
     };
     if !(a.scale.is_finite() && a.scale > 0.0 && a.scale <= 20.0) {
         anyhow::bail!(
             "--scale {} is out of range; expected a number in (0, 20]",
-            a.scale
+            rccpack::limits::number(a.scale)
         );
     }
     let opts = RenderOptions {
         contact: a.contact,
         scale: a.scale,
         title: Some(a.scene.display().to_string()),
-        like: match &a.like {
-            Some(p) => Some(Likeness::new(&read_scenes(p)?.0)),
-            None => None,
-        },
+        like: like.as_deref().map(Likeness::new),
+        ..RenderOptions::default()
     };
     render_to_path(&scene, rules.as_ref(), &opts, &a.output)
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.output.display()))?;
-    eprintln!("wrote {}", a.output.display());
+    ewriteln!("wrote {}", a.output.display());
     Ok(ExitCode::SUCCESS)
 }

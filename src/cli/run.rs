@@ -12,7 +12,7 @@ use clap::Args;
 use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
 use rccpack::synth::SynthOptions;
-use rccpack::task::{files, folder, Like};
+use rccpack::task::{self, files, folder, Like};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
@@ -52,10 +52,24 @@ pub struct RunArgs {
 
 pub fn run(a: RunArgs) -> Result<ExitCode> {
     let out = a.out.clone().unwrap_or_else(|| a.dir.clone());
-    // The output folder's lock (that of `rccpack ask` and the studio) for
-    // the whole command; the files and the summary are the library's
-    // (`rccpack::task::folder`, also behind Python's `Task.run`).
-    let _lock = folder::lock(&out).map_err(folder_error)?;
+    std::fs::create_dir_all(&out).map_err(|e| {
+        Reported(format!(
+            "error: {}: cannot create folder: {e}",
+            out.display()
+        ))
+    })?;
+    // The folder `run` writes is locked as `ask` and the studio lock it:
+    // nothing is written while another session writes there.
+    let _lock = super::io::lock_folder(&out)?;
+    // Every input is read and checked before anything is written.
+    let problem_path = a.dir.join(files::PROBLEM);
+    let problem = read_scene(&problem_path)?;
+    let like = match a.like.as_deref() {
+        Some(p) if p == Path::new("none") => Like::Off,
+        Some(p) => Like::Scenes(read_scenes(p)?.0),
+        None => Like::Demos,
+    };
+    let demos = read_scenes(&a.dir.join(files::DEMOS))?.0;
     let statements = a.dir.join(files::STATEMENTS);
     let statements = statements.exists().then_some(statements);
     let params = LearnParams {
@@ -78,42 +92,33 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         deadline,
     )?;
     let rules = learned.rules();
-    folder::write_learned(&out, &learned).map_err(folder_error)?;
-
-    let problem_path = a.dir.join(files::PROBLEM);
-    let problem = read_scene(&problem_path)?;
-    let like = match a.like.as_deref() {
-        Some(p) if p == Path::new("none") => Like::Off,
-        Some(p) => Like::Scenes(read_scenes(p)?.0),
-        None => Like::Demos,
-    };
-    let demos = read_scenes(&a.dir.join(files::DEMOS))?.0;
     let opts = SynthOptions {
         contact: a.contact,
         time_limit: Some(a.time_limit.saturating_sub(start.elapsed())),
         seed: a.seed,
         ..SynthOptions::default()
     };
-    let written = folder::place_and_write(
-        &a.dir, &out, &problem, &learned, &rules, &demos, &like, &opts,
-    )
-    .map_err(|e| match e {
-        folder::FolderError::Task(e) => Reported(format!(
+    let placement = task::place(&problem, &rules, &demos, &like, &opts).map_err(|e| {
+        Reported(format!(
             "error: {}: {}",
             problem_path.display(),
             super::task_error_text(&e)
-        )),
-        e => folder_error(e),
+        ))
     })?;
+    // The files and the summary are the library's (`rccpack::task::folder`,
+    // also behind Python's `Task.run`): a curated learned.rcc (confirmed by
+    // `ask` or the studio, or edited) is never lost — confirmed marks carry
+    // over to the rules learned again unchanged, and a file that would
+    // still change is kept as a backup.
+    let written = folder::write_outcome(
+        &a.dir, &out, &problem, &learned, &rules, placement, a.contact,
+    )
+    .map_err(|e| Reported(format!("error: {e}")))?;
     for line in &written.stdout {
         outln(line)?;
     }
     if let Some(line) = &written.stderr {
-        eprintln!("{line}");
+        ewriteln!("{line}");
     }
     Ok(ExitCode::from(written.exit_code))
-}
-
-fn folder_error(e: folder::FolderError) -> Reported {
-    Reported(format!("error: {e}"))
 }

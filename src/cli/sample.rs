@@ -1,6 +1,6 @@
 //! `rccpack sample`: many distinct layouts that keep the rules (SPEC §14).
 
-use super::{read_rules, read_scene, read_scenes, LimitStruck, Reported};
+use super::{read_rules_seen, read_scene, read_scenes, LimitStruck, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::relations::Contact;
@@ -66,14 +66,24 @@ pub struct SampleArgs {
 }
 
 pub fn run(a: SampleArgs) -> Result<ExitCode> {
+    super::guard_outputs(
+        &[&a.problem, &a.rules],
+        &[("-o", a.output.as_deref())],
+        &[("--like", a.like.as_deref())],
+    )?;
     let problem = read_scene(&a.problem)?;
-    let rules = read_rules(&a.rules, std::slice::from_ref(&problem))?;
+    let like = match &a.like {
+        Some(p) => read_scenes(p)?.0,
+        None => Vec::new(),
+    };
+    let rules = read_rules_seen(&a.rules, std::slice::from_ref(&problem), &like)?;
     let quality = match (a.all_rules, a.min_score) {
         (true, _) => Quality::AllRules,
         (false, Some(x)) => {
             if !(0.0..=1.0).contains(&x) {
                 return Err(Reported(format!(
-                    "error: --min-score {x}: expected a number from 0 to 1"
+                    "error: --min-score {}: expected a number from 0 to 1",
+                    rccpack::limits::number(x)
                 ))
                 .into());
             }
@@ -81,15 +91,11 @@ pub fn run(a: SampleArgs) -> Result<ExitCode> {
         }
         (false, None) => Quality::Optimum,
     };
-    let like = match &a.like {
-        Some(p) => read_scenes(p)?.0,
-        None => Vec::new(),
-    };
     let cancel = Arc::new(AtomicBool::new(false));
     {
         let c = cancel.clone();
         // Ctrl-C stops the search; what was found is still written.
-        let _ = ctrlc::set_handler(move || c.store(true, Ordering::Relaxed));
+        super::signals::on_signal(move || c.store(true, Ordering::Relaxed));
     }
     let opts = SampleOptions {
         quality,
@@ -107,7 +113,16 @@ pub fn run(a: SampleArgs) -> Result<ExitCode> {
         ..SampleOptions::default()
     };
     let start = Instant::now();
-    let bad = |e: SampleError| Reported(format!("error: {}: {e}", a.problem.display()));
+    let bad = |e: SampleError| {
+        // A fault of the rules (their weights) names the rule file.
+        let file = match &e {
+            SampleError::Synth(
+                rccpack::SynthError::WeightsTooLarge | rccpack::SynthError::BadWeight { .. },
+            ) => &a.rules,
+            _ => &a.problem,
+        };
+        Reported(format!("error: {}: {e}", file.display()))
+    };
     let mut sampler = sample(&problem, &rules, &opts).map_err(bad)?;
     let mut layouts = Vec::with_capacity(a.n.min(1 << 16));
     let mut limit = false;
@@ -120,11 +135,11 @@ pub fn run(a: SampleArgs) -> Result<ExitCode> {
                 break;
             }
             Some(Err(SampleError::Infeasible(c))) => {
-                eprintln!("infeasible: {}", super::synth::conflict_text(&c));
+                ewriteln!("infeasible: {}", super::synth::conflict_text(&c));
                 return Ok(ExitCode::from(2));
             }
             Some(Err(e @ SampleError::NoLayout { .. })) => {
-                eprintln!("{e}");
+                ewriteln!("{e}");
                 return Ok(ExitCode::from(2));
             }
             Some(Err(e)) => return Err(bad(e).into()),
@@ -144,9 +159,9 @@ pub fn run(a: SampleArgs) -> Result<ExitCode> {
     }
     let k = layouts.len();
     if limit {
-        eprintln!("a limit stopped the search: {k} of {} layouts written", a.n);
+        ewriteln!("a limit stopped the search: {k} of {} layouts written", a.n);
     } else if k < a.n && sampler.state() == State::Exhausted {
-        eprintln!(
+        ewriteln!(
             "only {k} distinct layouts of this quality exist (the solver proved there is no other); all {k} written"
         );
     }
@@ -157,7 +172,7 @@ pub fn run(a: SampleArgs) -> Result<ExitCode> {
             (_, Some(false)) => "the best score found (a limit stopped synthesis)".to_string(),
             _ => "the optimum score".to_string(),
         };
-        eprintln!("{k} distinct layouts of {what} in {ms:.1} ms");
+        ewriteln!("{k} distinct layouts of {what} in {ms:.1} ms");
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -183,8 +198,8 @@ pub struct BenchSampleArgs {
     #[arg(long)]
     peers: bool,
     /// Per problem, stop the sampler after this many seconds.
-    #[arg(long, default_value_t = 60.0)]
-    time_limit: f64,
+    #[arg(long, value_name = "SECONDS", default_value = "60", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
+    time_limit: Duration,
     /// Write `sample.json` into this directory.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -200,9 +215,9 @@ pub fn run_bench(a: BenchSampleArgs) -> Result<ExitCode> {
         draws_per_layout: a.draws_per_layout,
         tasks: a.tasks,
         baseline: a.peers,
-        time_limit_s: a.time_limit,
+        time_limit_s: a.time_limit.as_secs_f64(),
     };
-    let report = run_bench(&cfg, &mut |what| eprintln!("  {what}"));
+    let report = run_bench(&cfg, &mut |what| ewriteln!("  {what}"));
     super::out(report_text(&report))?;
     if let Some(dir) = &a.out {
         std::fs::create_dir_all(dir)?;

@@ -35,18 +35,37 @@ pub fn run(a: StudioArgs) -> Result<ExitCode> {
         super::outln("press Ctrl-C to stop")?;
         if a.open {
             if let Err(e) = std::process::Command::new("xdg-open").arg(&url).spawn() {
-                eprintln!("warning: cannot open a browser ({e}); open {url} yourself");
+                ewriteln!("warning: cannot open a browser ({e}); open {url} yourself");
             }
         }
         axum::serve(listener, app)
-            .with_graceful_shutdown(async {
-                let _ = tokio::signal::ctrl_c().await;
-            })
+            .with_graceful_shutdown(stop_signal())
             .await
             .context("server error")?;
         Ok(ExitCode::SUCCESS)
     });
     // Do not wait for a long solve still running on a blocking thread.
     rt.shutdown_timeout(std::time::Duration::from_millis(500));
+    rccpack::fsutil::remove_in_flight();
     served
+}
+
+/// Ctrl-C, SIGTERM or SIGHUP: the server stops taking requests and lets
+/// the ones going on finish their writes (no temporary file is left).
+async fn stop_signal() {
+    #[cfg(unix)]
+    {
+        use tokio::signal::unix::{signal, SignalKind};
+        let term = signal(SignalKind::terminate());
+        let hup = signal(SignalKind::hangup());
+        if let (Ok(mut term), Ok(mut hup)) = (term, hup) {
+            tokio::select! {
+                _ = tokio::signal::ctrl_c() => {}
+                _ = term.recv() => {}
+                _ = hup.recv() => {}
+            }
+            return;
+        }
+    }
+    let _ = tokio::signal::ctrl_c().await;
 }

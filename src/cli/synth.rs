@@ -1,4 +1,4 @@
-use super::{read_rules, read_scene, read_scenes, Reported};
+use super::{read_rules_seen, read_scene, read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::relations::Contact;
@@ -98,19 +98,38 @@ fn emit_format(path: &Path) -> Result<EmitFormat> {
 fn write_emitted(
     path: &Path,
     format: EmitFormat,
-    problem_path: &Path,
     problem: &rccpack::scene::Scene,
     rules: &rccpack::rules::RuleSet,
     opts: &SynthOptions,
-) -> Result<()> {
-    let e = emit::emitted(problem, rules, opts)
-        .map_err(|e| Reported(format!("error: {}: {e}", problem_path.display())))?;
+) -> Result<(), Emitted> {
+    let e = emit::emitted(problem, rules, opts).map_err(Emitted::Refused)?;
     let text = match format {
         EmitFormat::MiniZinc => emit::to_minizinc(&e),
         EmitFormat::Json => emit::to_json(&e),
     };
-    super::write_file(path, &text, "the model")?;
-    Ok(())
+    super::write_file(path, &text, "the model").map_err(Emitted::Write)
+}
+
+/// Why `--emit` wrote nothing.
+enum Emitted {
+    /// The checks of `synthesize` refused the problem or the rules.
+    Refused(SynthError),
+    /// The file could not be written.
+    Write(anyhow::Error),
+}
+
+/// A synthesis error naming its file: a fault of the rules (their weights)
+/// the rule file, any other the problem.
+fn failure(a: &SynthArgs, e: &SynthError) -> Reported {
+    let file = match e {
+        SynthError::WeightsTooLarge | SynthError::BadWeight { .. } => &a.rules,
+        _ => &a.problem,
+    };
+    Reported(format!(
+        "error: {}: {}",
+        file.display(),
+        super::synth_error_text(e)
+    ))
 }
 
 pub fn run(a: SynthArgs) -> Result<ExitCode> {
@@ -118,25 +137,19 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         Some(p) => Some((p.clone(), emit_format(p)?)),
         None => None,
     };
+    super::guard_outputs(
+        &[&a.problem, &a.rules],
+        &[
+            ("-o", a.output.as_deref()),
+            ("--report", a.report.as_deref()),
+            ("--emit", a.emit.as_deref()),
+        ],
+        &[
+            ("--like", a.like.as_deref()),
+            ("--warm-start", a.warm_start.as_deref()),
+        ],
+    )?;
     let problem = read_scene(&a.problem)?;
-    let rules = read_rules(&a.rules, std::slice::from_ref(&problem))?;
-    let time_limit = a.time_limit;
-    let cancel = Arc::new(AtomicBool::new(false));
-    {
-        let c = cancel.clone();
-        // Ctrl-C stops the search; the best layout found is still written.
-        let _ = ctrlc::set_handler(move || c.store(true, Ordering::Relaxed));
-    }
-    let show = !a.quiet && std::io::stderr().is_terminal();
-    let progress = show.then(|| {
-        ProgressFn(Arc::new(|p: &Progress| {
-            eprintln!(
-                "  incumbent score {:.6} at {:.1} ms",
-                p.score,
-                p.elapsed.as_secs_f64() * 1000.0
-            );
-        }))
-    });
     let like_scenes = match &a.like {
         Some(p) => Some(read_scenes(p)?.0),
         None => None,
@@ -146,6 +159,28 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         Some(p) => read_scenes(p)?.0,
         None => like_scenes.clone().unwrap_or_default(),
     };
+    let rules = read_rules_seen(
+        &a.rules,
+        std::slice::from_ref(&problem),
+        &[like_scenes.as_deref().unwrap_or_default(), &warm_start[..]].concat(),
+    )?;
+    let time_limit = a.time_limit;
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        let c = cancel.clone();
+        // Ctrl-C stops the search; the best layout found is still written.
+        super::signals::on_signal(move || c.store(true, Ordering::Relaxed));
+    }
+    let show = !a.quiet && std::io::stderr().is_terminal();
+    let progress = show.then(|| {
+        ProgressFn(Arc::new(|p: &Progress| {
+            ewriteln!(
+                "  incumbent score {:.6} at {:.1} ms",
+                p.score,
+                p.elapsed.as_secs_f64() * 1000.0
+            );
+        }))
+    });
     let opts = SynthOptions {
         contact: a.contact,
         time_limit,
@@ -160,21 +195,18 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         ..SynthOptions::default()
     };
     if let Some((path, format)) = &emit_to {
-        write_emitted(path, *format, &a.problem, &problem, &rules, &opts)?;
+        write_emitted(path, *format, &problem, &rules, &opts).map_err(|e| match e {
+            Emitted::Refused(e) => failure(&a, &e).into(),
+            Emitted::Write(e) => e,
+        })?;
         if opts.like.is_some() && !a.quiet {
-            eprintln!(
+            ewriteln!(
                 "note: {}: the model holds the score objective only, not --like's resemblance",
                 path.display()
             );
         }
     }
-    let result = synthesize(&problem, &rules, &opts).map_err(|e: SynthError| {
-        Reported(format!(
-            "error: {}: {}",
-            a.problem.display(),
-            super::synth_error_text(&e)
-        ))
-    })?;
+    let result = synthesize(&problem, &rules, &opts).map_err(|e| failure(&a, &e))?;
     let ev = result.evaluation.as_ref();
     if let Some(path) = &a.report {
         super::write_file(path, rccpack::synth::report::report_json(&result), "report")?;
@@ -189,7 +221,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             }
             if !a.quiet {
                 let e = ev.expect("a solution has an evaluation");
-                eprintln!(
+                ewriteln!(
                     "{}: score {:.6} ({} / {}){}{}, {:.1} ms, {} nodes",
                     match result.status {
                         Status::Optimal => "optimal",
@@ -209,13 +241,14 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         Status::Infeasible => {
             let c = result.conflict.clone().unwrap_or_default();
             let msg = format!("infeasible: {}", conflict_text(&c));
-            eprintln!("{msg}");
+            ewriteln!("{msg}");
             Ok(ExitCode::from(2))
         }
         Status::Unknown => {
-            eprintln!(
+            ewriteln!(
                 "unknown: a limit stopped the search before any solution ({:.1} ms, {} nodes)",
-                result.stats.time_ms, result.stats.nodes
+                result.stats.time_ms,
+                result.stats.nodes
             );
             Ok(ExitCode::from(3))
         }

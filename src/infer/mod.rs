@@ -158,13 +158,10 @@ pub enum InferError {
         /// The samples asked for.
         samples: usize,
     },
-    /// The cancel flag was set (Ctrl-C) while the null model drew its
-    /// random scenes ([`learn_stoppable`]).
-    #[error("interrupted while learning ({samples} random scenes to draw); nothing was learned")]
-    Interrupted {
-        /// The samples asked for.
-        samples: usize,
-    },
+    /// Learning was cancelled ([`learn_cancellable`]: the studio's client
+    /// left, or a newer request replaced it).
+    #[error("learning was cancelled; nothing was learned")]
+    Cancelled,
 }
 
 /// Learning parameters (SPEC §7; the defaults are the spec's).
@@ -211,7 +208,7 @@ impl LearnParams {
             } else {
                 Err(InferError::BadParameter {
                     param,
-                    value: v.to_string(),
+                    value: crate::limits::number(v),
                     expected: "a number strictly between 0 and 1",
                 })
             }
@@ -341,13 +338,12 @@ pub fn learn_until(
     params: &LearnParams,
     deadline: Option<std::time::Instant>,
 ) -> Result<Learned, InferError> {
-    learn_stoppable(demos, statements, params, deadline, None)
+    learn_cancellable(demos, statements, params, deadline, None)
 }
 
-/// [`learn_until`] that also gives up with [`InferError::Interrupted`] once
-/// `cancel` is set (checked per random scene of the null model): Ctrl-C
-/// during learning.
-pub fn learn_stoppable(
+/// [`learn_until`] that also gives up with [`InferError::Cancelled`] once
+/// `cancel` is set (checked per random scene of the null model).
+pub fn learn_cancellable(
     demos: &[Scene],
     statements: Option<&RuleSet>,
     params: &LearnParams,
@@ -407,7 +403,7 @@ pub fn learn_stoppable(
     let counts = if cand.is_empty() {
         Vec::new()
     } else {
-        NullModel::new(demos, params.seed)?.count_stoppable(
+        NullModel::new(demos, params.seed)?.count_until(
             params.samples,
             &classes,
             &cand,

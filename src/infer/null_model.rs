@@ -307,26 +307,13 @@ impl<'a> NullModel<'a> {
         rules: &[CompiledRule],
         contact: Contact,
     ) -> Result<Vec<u64>, InferError> {
-        self.count_until(samples, classes, rules, contact, None)
+        self.count_until(samples, classes, rules, contact, None, None)
     }
 
     /// [`NullModel::count`] that stops with [`InferError::TimeLimit`] once
-    /// `deadline` passes (checked before each random scene).
+    /// `deadline` passes, and with [`InferError::Cancelled`] once `cancel`
+    /// is set (both checked before each random scene).
     pub fn count_until(
-        &self,
-        samples: usize,
-        classes: &ClassIndex,
-        rules: &[CompiledRule],
-        contact: Contact,
-        deadline: Option<std::time::Instant>,
-    ) -> Result<Vec<u64>, InferError> {
-        self.count_stoppable(samples, classes, rules, contact, deadline, None)
-    }
-
-    /// [`NullModel::count_until`] that also stops with
-    /// [`InferError::Interrupted`] once `cancel` is set (checked before
-    /// each random scene, like the deadline).
-    pub fn count_stoppable(
         &self,
         samples: usize,
         classes: &ClassIndex,
@@ -376,8 +363,11 @@ impl<'a> NullModel<'a> {
                     }
                     if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                         first_failure.fetch_min(i, Ordering::Relaxed);
-                        let e = InferError::Interrupted { samples };
-                        return (scratch, counts, merge_err(err, Some((i, e))));
+                        return (
+                            scratch,
+                            counts,
+                            merge_err(err, Some((i, InferError::Cancelled))),
+                        );
                     }
                     let d = i % self.demos.len();
                     let scene = &mut scratch[d];

@@ -44,6 +44,10 @@ pub struct RenderOptions {
     /// layout in each class's colour: a heat map of where each class was
     /// shown.
     pub like: Option<Likeness>,
+    /// Objects that moved, each with where it was `(id, x, y)` (a probe
+    /// that is an edit of a demonstration): the old place is drawn dashed,
+    /// with a line to the object, which is outlined.
+    pub moved: Vec<(String, i64, i64)>,
 }
 
 impl Default for RenderOptions {
@@ -53,6 +57,7 @@ impl Default for RenderOptions {
             scale: 1.0,
             title: None,
             like: None,
+            moved: Vec::new(),
         }
     }
 }
@@ -180,7 +185,10 @@ fn esc(s: &str) -> String {
             '>' => out.push_str("&gt;"),
             '"' => out.push_str("&quot;"),
             '\'' => out.push_str("&apos;"),
+            // What XML 1.0 does not allow at all (control characters, the
+            // non-characters U+FFFE and U+FFFF) is shown as U+FFFD.
             c if (c as u32) < 0x20 && c != '\t' && c != '\n' => out.push('\u{fffd}'),
+            '\u{fffe}' | '\u{ffff}' => out.push('\u{fffd}'),
             c => out.push(c),
         }
     }
@@ -471,6 +479,9 @@ fn legend_width(lines: &[Line]) -> f64 {
     lw
 }
 
+/// The colour of moved-object marks.
+const MOVED_STROKE: &str = "#1f5fbf";
+
 /// Render `scene` as an SVG document (see the module docs for what is drawn).
 ///
 /// With `rules`, the scene is evaluated under `opts.contact`; objects that
@@ -510,6 +521,19 @@ pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) 
                 "#666666",
                 false,
                 "shaded: where the demonstrations put each class".into(),
+            )],
+        });
+    }
+    if !opts.moved.is_empty() {
+        lines.push(Line {
+            dy: 20.0,
+            parts: vec![text(
+                0.0,
+                11.0,
+                false,
+                MOVED_STROKE,
+                false,
+                "dashed: where a moved block was".into(),
             )],
         });
     }
@@ -677,6 +701,45 @@ pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) 
                 y = n(y),
                 w = n(w),
                 h = n(h)
+            );
+        }
+        out.push_str("</g>\n");
+    }
+    // Moved objects: where each was (dashed), a line to where it is, and
+    // an outline.
+    if !opts.moved.is_empty() {
+        out.push_str("<g class=\"moved\">\n");
+        for (id, ox, oy) in &opts.moved {
+            let Some(o) = scene.objects.iter().find(|o| &o.id == id) else {
+                continue;
+            };
+            let was = Object {
+                x: Some(*ox),
+                y: Some(*oy),
+                ..o.clone()
+            };
+            let (Some((x0, y0, w, h)), Some((x1, y1, _, _))) = (to_screen(&was), to_screen(o))
+            else {
+                continue;
+            };
+            let _ = writeln!(
+                out,
+                "<g class=\"move\" data-id=\"{id}\"><rect class=\"was\" x=\"{x0}\" y=\"{y0}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"{MOVED_STROKE}\" stroke-width=\"2\" stroke-dasharray=\"5 3\"/>\
+                 <line x1=\"{cx0}\" y1=\"{cy0}\" x2=\"{cx1}\" y2=\"{cy1}\" stroke=\"{MOVED_STROKE}\" stroke-width=\"1.5\" stroke-dasharray=\"2 3\"/>\
+                 <rect class=\"now\" x=\"{x1o}\" y=\"{y1o}\" width=\"{wo}\" height=\"{ho}\" fill=\"none\" stroke=\"{MOVED_STROKE}\" stroke-width=\"2.5\"/></g>",
+                id = esc(id),
+                x0 = n(x0),
+                y0 = n(y0),
+                w = n(w),
+                h = n(h),
+                cx0 = n(x0 + w / 2.0),
+                cy0 = n(y0 + h / 2.0),
+                cx1 = n(x1 + w / 2.0),
+                cy1 = n(y1 + h / 2.0),
+                x1o = n(x1 - 4.0),
+                y1o = n(y1 - 4.0),
+                wo = n(w + 8.0),
+                ho = n(h + 8.0),
             );
         }
         out.push_str("</g>\n");

@@ -13,8 +13,58 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
     let listing = if classes.is_empty() {
         "the scene has no objects".to_string()
     } else {
-        format!("the scene has classes {}", classes.join(", "))
+        format!("the scene has classes {}", cut_list(&classes))
     };
+    unknown_classes(rules, &classes, |class, rule| {
+        format!(
+            "unknown class `{}` in rule `{}`: {listing}",
+            crate::limits::cut(class),
+            crate::limits::cut(rule)
+        )
+    })
+}
+
+/// Check that every class named by `rules` exists in at least one of
+/// `scenes` (SPEC §16: a class some scene the command reads has is
+/// ordinary, its rules hold vacuously where it is absent; a class no scene
+/// has is the likely misspelling). Each error names the closest class the
+/// scenes have.
+pub fn check_classes_across(rules: &RuleSet, scenes: &[&Scene]) -> Result<(), RulesError> {
+    let mut classes: Vec<&str> = Vec::new();
+    for s in scenes {
+        for c in s.classes() {
+            if !classes.contains(&c) {
+                classes.push(c);
+            }
+        }
+    }
+    let listing = if classes.is_empty() {
+        "the scenes have no objects".to_string()
+    } else if scenes.len() == 1 {
+        format!("the scene has classes {}", cut_list(&classes))
+    } else {
+        format!("the scenes have classes {}", cut_list(&classes))
+    };
+    unknown_classes(rules, &classes, |class, rule| {
+        let hint = closest(class, &classes)
+            .map(|c| format!(" (did you mean `{c}`?)"))
+            .unwrap_or_default();
+        format!(
+            "unknown class `{}` in rule `{}`{hint}: expected a class of the scenes read; {listing}",
+            crate::limits::cut(class),
+            crate::limits::cut(rule)
+        )
+    })
+}
+
+/// One diagnostic per atom naming a class (subject or target) not in
+/// `classes`, at the atom's span when the rule was parsed; `message(class,
+/// rule name)` words it.
+fn unknown_classes(
+    rules: &RuleSet,
+    classes: &[&str],
+    message: impl Fn(&str, &str) -> String,
+) -> Result<(), RulesError> {
     let mut diags = Vec::new();
     for rule in &rules.rules {
         for (i, atom) in rule.formula.atoms().into_iter().enumerate() {
@@ -34,7 +84,7 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
                     diags.push(Diagnostic::new(
                         DiagnosticKind::UnknownClass,
                         span,
-                        format!("unknown class `{class}` in rule `{}`: {listing}", rule.name),
+                        message(class, &rule.name),
                     ));
                 }
             }
@@ -45,6 +95,56 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
     } else {
         Err(RulesError::new(diags))
     }
+}
+
+/// A list of classes for a message, cut after a few.
+fn cut_list(classes: &[&str]) -> String {
+    const SHOWN: usize = 12;
+    let mut s: Vec<String> = classes
+        .iter()
+        .take(SHOWN)
+        .map(|c| crate::limits::cut(c))
+        .collect();
+    if classes.len() > SHOWN {
+        s.push(format!("and {} more", classes.len() - SHOWN));
+    }
+    s.join(", ")
+}
+
+/// The class of `classes` closest to `name` (case-insensitive equality
+/// first, then the smallest edit distance, at most half the name's
+/// length), if any.
+fn closest<'a>(name: &str, classes: &[&'a str]) -> Option<&'a str> {
+    if name.chars().count() > crate::limits::MAX_ECHO {
+        return None;
+    }
+    if let Some(c) = classes.iter().find(|c| c.eq_ignore_ascii_case(name)) {
+        return Some(c);
+    }
+    let limit = name.chars().count().div_ceil(2).max(1);
+    classes
+        .iter()
+        .filter(|c| c.chars().count() <= crate::limits::MAX_ECHO)
+        .map(|c| (edit_distance(name, c), *c))
+        .filter(|(d, _)| *d <= limit)
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, c)| c)
+}
+
+/// Levenshtein distance over characters.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let cur = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != *cb)).min(row[j] + 1).min(cur + 1);
+            prev = cur;
+        }
+    }
+    row[b.len()]
 }
 
 /// The classes named by `rules` (as subject or target) that `scene` has no
@@ -102,7 +202,7 @@ pub fn check_landmarks(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError>
     let listing = if fixed.is_empty() {
         "the scene has no fixed objects that can be landmarks".to_string()
     } else {
-        format!("the scene's fixed objects are {}", fixed.join(", "))
+        format!("the scene's fixed objects are {}", cut_list(&fixed))
     };
     let mut diags = Vec::new();
     for rule in &rules.rules {
@@ -121,13 +221,15 @@ pub fn check_landmarks(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError>
             let movable = scene.objects.iter().any(|o| &o.id == id && !o.fixed);
             let message = if movable {
                 format!(
-                    "landmark `@{id}` in rule `{}` is not a fixed object: expected the id of a fixed object; {listing}",
-                    rule.name
+                    "landmark `@{}` in rule `{}` is not a fixed object: expected the id of a fixed object; {listing}",
+                    crate::limits::cut(id),
+                    crate::limits::cut(&rule.name)
                 )
             } else {
                 format!(
-                    "unknown landmark `@{id}` in rule `{}`: expected the id of a fixed object; {listing}",
-                    rule.name
+                    "unknown landmark `@{}` in rule `{}`: expected the id of a fixed object; {listing}",
+                    crate::limits::cut(id),
+                    crate::limits::cut(&rule.name)
                 )
             };
             diags.push(Diagnostic::new(

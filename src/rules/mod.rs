@@ -12,7 +12,9 @@ mod parser;
 mod printer;
 
 pub use ast::{Atom, Formula, Quant, Rule, RuleOrigin, RuleSet, Scope, Span, Strength, Target};
-pub use check::{check_classes, check_landmarks, missing_classes, missing_classes_note};
+pub use check::{
+    check_classes, check_classes_across, check_landmarks, missing_classes, missing_classes_note,
+};
 pub use diagnostic::{Diagnostic, DiagnosticKind, RulesError};
 pub use parser::parse_rules;
 pub use printer::{format_number, print_formula, print_rule, print_rules};

@@ -89,7 +89,7 @@ pub fn parse_rules(src: &str) -> Result<RuleSet, RulesError> {
                         origin,
                         format!(
                             "duplicate rule name `{}`: it is already defined on line {line}",
-                            rule.name
+                            crate::limits::cut(&rule.name)
                         ),
                     )
                     .with_related(*first, "first defined here"),
@@ -438,9 +438,9 @@ fn modifier(p: Pair<'_, R>) -> Result<Strength, Diagnostic> {
     let Some(num) = m.into_inner().find(|q| q.as_rule() == R::number) else {
         return Ok(Strength::default());
     };
-    let text = num.as_str();
     let span = span_of(&num);
-    let v: f64 = match text.parse() {
+    let text = crate::limits::cut(num.as_str());
+    let v: f64 = match num.as_str().parse() {
         Ok(v) => v,
         Err(_) => {
             return Err(Diagnostic::new(
@@ -560,7 +560,7 @@ impl Builder<'_> {
                             span_of(&c),
                             format!(
                                 "unknown relation `{}`: expected one of {}",
-                                c.as_str(),
+                                crate::limits::cut(c.as_str()),
                                 Relation::ALL.map(|r| r.name()).join(", ")
                             ),
                         ));

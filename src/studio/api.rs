@@ -3,10 +3,8 @@
 
 use super::storage::{self, ANSWERS, DEMOS, LEARNED, LEARNED_BACKUP, STATEMENTS};
 use super::AppState;
-use crate::ask::{
-    Answer, AnswersFile, AskError, AskOptions, Asker, ProbeOptions, Question, CONFIRMED,
-};
-use crate::infer::{learn as run_learn, statement_text, LearnParams, StatementSource};
+use crate::ask::{Answer, AnswersFile, AskError, AskOptions, Asker, ProbeOptions, Question};
+use crate::infer::{learn_cancellable, statement_text, LearnParams, StatementSource};
 use crate::limits::cut;
 use crate::rules::{
     check_classes, check_landmarks, missing_classes, missing_classes_note, parse_rules, RuleSet,
@@ -137,7 +135,10 @@ pub(crate) async fn local_host_only(
         if !matches!(name, "127.0.0.1" | "localhost" | "[::1]") {
             return ApiError::new(
                 StatusCode::FORBIDDEN,
-                format!("host `{host}` refused: the studio answers only on 127.0.0.1"),
+                format!(
+                    "host `{}` refused: the studio answers only on 127.0.0.1",
+                    cut(host)
+                ),
             )
             .into_response();
         }
@@ -218,7 +219,8 @@ pub(crate) async fn same_origin_only(
 }
 
 /// Answer a body past [`super::BODY_LIMIT`] with the studio's JSON error
-/// form (the body-limit layers answer 413 in plain text).
+/// form (the body-limit layers answer 413 in plain text), and a method a
+/// route does not take too (the router answers 405 with an empty body).
 pub(crate) async fn json_413(
     req: axum::extract::Request,
     next: axum::middleware::Next,
@@ -238,6 +240,26 @@ pub(crate) async fn json_413(
         )
         .with("kind", json!("too_large"))
         .into_response();
+    }
+    if res.status() == StatusCode::METHOD_NOT_ALLOWED && !is_json {
+        // The router's 405 has an empty body; every error is JSON.
+        let allow = res.headers().get(header::ALLOW).cloned();
+        let mut r = ApiError::new(
+            StatusCode::METHOD_NOT_ALLOWED,
+            format!(
+                "method not allowed here; expected {}",
+                allow
+                    .as_ref()
+                    .and_then(|a| a.to_str().ok())
+                    .unwrap_or("another method (see docs/studio-api.md)")
+            ),
+        )
+        .with("kind", json!("method_not_allowed"))
+        .into_response();
+        if let Some(a) = allow {
+            r.headers_mut().insert(header::ALLOW, a);
+        }
+        return r;
     }
     res
 }
@@ -285,6 +307,7 @@ pub(crate) async fn task(State(st): St) -> ApiResult {
         "colours": colours,
         "fixed_colour": "#4a4a4a",
         "statements": statements,
+        "learning_jobs": st.learning_jobs.load(Ordering::SeqCst),
     }))
 }
 
@@ -299,7 +322,15 @@ fn read_demos(st: &AppState) -> Result<Vec<Scene>, ApiError> {
 /// The demonstrations and the version of the file they came from.
 fn read_demos_versioned(st: &AppState) -> Result<(Vec<Scene>, String), ApiError> {
     let text = storage::read_optional(&st.dir, DEMOS)
-        .map_err(|e| ApiError::io(DEMOS, e))?
+        .map_err(|e| {
+            // Not UTF-8: corrupt like any other bad content (409), not a
+            // failure of the server.
+            if e.kind() == std::io::ErrorKind::InvalidData {
+                corrupt(&e.to_string())
+            } else {
+                ApiError::io(DEMOS, e)
+            }
+        })?
         .unwrap_or_else(|| "[]".into());
     if !text.trim_start().starts_with('[') {
         return Err(corrupt("expected a JSON array of scenes"));
@@ -585,6 +616,25 @@ fn learn_params(b: &LearnBody) -> Result<LearnParams, ApiError> {
     Ok(params)
 }
 
+/// Sets its flag when dropped: a request's learning run ends when the
+/// request does, however it ends.
+struct CancelOnDrop(Arc<AtomicBool>);
+
+impl Drop for CancelOnDrop {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::SeqCst);
+    }
+}
+
+/// Counts a running job down when dropped.
+struct CountDown(Arc<std::sync::atomic::AtomicUsize>);
+
+impl Drop for CountDown {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
 pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
     let b: LearnBody = parse_body(&body)?;
     let params = learn_params(&b)?;
@@ -592,18 +642,40 @@ pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
     st.reset_ask();
     let demos = read_demos(&st)?;
     let statements = read_statements(&st)?;
-    let learned =
-        tokio::task::spawn_blocking(move || run_learn(&demos, statements.as_ref(), &params))
-            .await
-            .map_err(|e| {
-                ApiError::new(
-                    StatusCode::INTERNAL_SERVER_ERROR,
-                    format!("learning failed: {e}"),
-                )
-            })?
-            .map_err(|e| {
-                ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, format!("{DEMOS}: {e}"))
-            })?;
+    // One learning job per folder: a newer request cancels the one going
+    // on, and so does this request's client leaving (the handler's future
+    // is dropped, and with it `_leave`).
+    let cancel = Arc::new(AtomicBool::new(false));
+    if let Some(old) = st
+        .learning
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .replace(cancel.clone())
+    {
+        old.store(true, Ordering::SeqCst);
+    }
+    let _leave = CancelOnDrop(cancel.clone());
+    let jobs = st.learning_jobs.clone();
+    jobs.fetch_add(1, Ordering::SeqCst);
+    let learned = tokio::task::spawn_blocking(move || {
+        let _done = CountDown(jobs);
+        learn_cancellable(&demos, statements.as_ref(), &params, None, Some(&cancel))
+    })
+    .await
+    .map_err(|e| {
+        ApiError::new(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            format!("learning failed: {e}"),
+        )
+    })?
+    .map_err(|e| match e {
+        crate::infer::InferError::Cancelled => ApiError::new(
+            StatusCode::CONFLICT,
+            "learning was cancelled: a newer learning request replaced this one",
+        )
+        .with("kind", json!("cancelled")),
+        e => ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, format!("{DEMOS}: {e}")),
+    })?;
     let rcc = learned.to_rcc();
     let header = rcc.split("\n\n").next().unwrap_or("").to_string() + "\n";
     let set = learned.rules();
@@ -657,7 +729,7 @@ fn learned_value(st: &AppState, text: Option<&str>) -> Value {
                 if let Some(note) = missing_classes_note(&missing_classes(&set, &st.problem)) {
                     v["note"] = json!(note);
                 }
-                let confirmed = confirmed_names(t);
+                let confirmed = storage::confirmed_names(t);
                 let mut rules = rule_summary(&set);
                 for r in rules.as_array_mut().expect("an array") {
                     let name = r["name"].as_str().unwrap_or("");
@@ -669,31 +741,6 @@ fn learned_value(st: &AppState, text: Option<&str>) -> Value {
         }
     }
     v
-}
-
-/// Names of the rules marked `# confirmed` (SPEC §13) in `.rcc` text: the
-/// comment lines right above a `rule` line belong to it.
-fn confirmed_names(text: &str) -> Vec<String> {
-    let mark = format!("# {CONFIRMED}");
-    let mut out = Vec::new();
-    let mut pending = false;
-    for line in text.lines().map(str::trim) {
-        if line == mark {
-            pending = true;
-        } else if let Some(rest) = line.strip_prefix("rule ") {
-            if pending {
-                let name = rest
-                    .split(|c: char| c.is_whitespace() || c == ':')
-                    .next()
-                    .unwrap_or("");
-                out.push(name.to_string());
-            }
-            pending = false;
-        } else if !line.starts_with('#') {
-            pending = false;
-        }
-    }
-    out
 }
 
 fn rule_summary(set: &RuleSet) -> Value {
@@ -784,19 +831,27 @@ pub(crate) struct AskSession {
     /// [`AppState::ask_generation`] when the session read the files.
     generation: u64,
     params: LearnParams,
-    /// Versions of demos.json and learned.rcc as the session last wrote
-    /// them: a file changed outside the studio since (a hand edit) is
-    /// never overwritten by an answer.
-    versions: (String, String),
+    /// Versions of demos.json, learned.rcc and answers.json as the session
+    /// last wrote them: a file changed outside the studio since (a hand
+    /// edit) is never overwritten by an answer.
+    versions: (String, String, String),
+    /// The next question for both answers to the open one, being computed
+    /// while the person looks.
+    ahead: Option<crate::ask::Lookahead>,
+    /// The next question, computed ahead (`Some(None)`: there is none).
+    prepared: Option<Option<Question>>,
 }
 
-/// Versions ([`storage::version`]) of demos.json and learned.rcc on disk.
-fn disk_versions(st: &AppState) -> Result<(String, String), ApiError> {
+/// Versions ([`storage::version`]) of demos.json, learned.rcc and
+/// answers.json on disk.
+fn disk_versions(st: &AppState) -> Result<(String, String, String), ApiError> {
     let demos = storage::read_optional(&st.dir, DEMOS).map_err(|e| ApiError::io(DEMOS, e))?;
     let learned = storage::read_optional(&st.dir, LEARNED).map_err(|e| ApiError::io(LEARNED, e))?;
+    let answers = storage::read_optional(&st.dir, ANSWERS).map_err(|e| ApiError::io(ANSWERS, e))?;
     Ok((
         storage::version(demos.as_deref()),
         storage::version(learned.as_deref()),
+        storage::version(answers.as_deref()),
     ))
 }
 
@@ -902,6 +957,8 @@ async fn start_session(
             generation,
             params,
             versions: disk_versions(st)?,
+            ahead: None,
+            prepared: None,
         },
         backup,
     ))
@@ -917,6 +974,7 @@ fn question_value(q: &Question, number: usize) -> Value {
         "scene": scene_value(&q.probe.scene),
         "cost": q.probe.cost,
         "time_ms": q.probe.time_ms,
+        "edit": q.probe.edit,
     })
 }
 
@@ -958,9 +1016,14 @@ pub(crate) async fn ask_next(State(st): St, body: Bytes) -> ApiResult {
             let joined = tokio::task::spawn_blocking(move || {
                 let mut guard = guard;
                 let s = guard.as_mut().expect("a session was just started");
-                let next = s.asker.next_question();
+                let next = match s.prepared.take() {
+                    Some(q) => Ok(q),
+                    None => s.asker.next_question(),
+                };
                 if let Ok(q) = &next {
                     s.question = q.clone();
+                    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+                    s.ahead = q.as_ref().map(|q| s.asker.look_ahead(q, threads));
                 }
                 (guard, next)
             })
@@ -1038,7 +1101,15 @@ pub(crate) async fn ask_answer(State(st): St, body: Bytes) -> ApiResult {
         let mut guard = guard;
         let s = guard.as_mut().expect("checked above");
         let q = s.question.take().expect("checked above");
-        let r = s.asker.answer(&q, accepted).map(|_| ());
+        let r = match s.ahead.take() {
+            // The branch computed ahead for this answer: the session after
+            // it and its next question.
+            Some(ahead) => ahead.answer(accepted).map(|(asker, next)| {
+                s.asker = asker;
+                s.prepared = Some(next);
+            }),
+            None => s.asker.answer(&q, accepted).map(|_| ()),
+        };
         (guard, r)
     })
     .await;
@@ -1080,7 +1151,7 @@ pub(crate) async fn ask_answer(State(st): St, body: Bytes) -> ApiResult {
         *guard = None;
         return Err(ApiError::new(
             StatusCode::CONFLICT,
-            format!("{DEMOS} or {LEARNED} changed on disk since the question was asked; the answer was not saved and nothing was overwritten — ask again"),
+            format!("{DEMOS}, {LEARNED} or {ANSWERS} changed on disk since the question was asked; the answer was not saved and nothing was overwritten — ask again"),
         )
         .with("kind", json!("stale_files")));
     }
@@ -1322,8 +1393,12 @@ pub(crate) async fn sample_layout(State(st): St, body: Bytes) -> ApiResult {
 }
 
 fn job_id(raw: &str) -> Result<u64, ApiError> {
-    raw.parse()
-        .map_err(|_| ApiError::new(StatusCode::NOT_FOUND, format!("no synthesis job {raw}")))
+    raw.parse().map_err(|_| {
+        ApiError::new(
+            StatusCode::NOT_FOUND,
+            format!("no synthesis job {}", cut(raw)),
+        )
+    })
 }
 
 pub(crate) async fn synth_status(State(st): St, Path(job): Path<String>) -> ApiResult {

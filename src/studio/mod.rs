@@ -61,6 +61,13 @@ pub(crate) struct AppState {
     /// runs through the other endpoints: a session of an older generation
     /// is dropped and the files are read again.
     pub ask_generation: std::sync::atomic::AtomicU64,
+    /// The cancel flag of the learning run of `POST /api/learn` going on
+    /// now, if any: a newer request cancels it (one learning job per
+    /// folder), and so does its client leaving.
+    pub learning: std::sync::Mutex<Option<Arc<std::sync::atomic::AtomicBool>>>,
+    /// Learning runs of `POST /api/learn` still computing (shown by `GET
+    /// /api/task` as `learning_jobs`).
+    pub learning_jobs: Arc<std::sync::atomic::AtomicUsize>,
 }
 
 /// Build the studio's router over the task folder `dir`: reads and checks
@@ -70,11 +77,33 @@ pub fn router(dir: &Path) -> Result<Router, StudioError> {
         path: dir.join(name),
         message: e.to_string(),
     };
-    let text =
-        std::fs::read_to_string(dir.join(storage::PROBLEM)).map_err(|e| StudioError::Io {
-            path: dir.join(storage::PROBLEM),
-            message: format!("cannot read file: {e} (a task folder needs a problem.json)"),
-        })?;
+    let path = dir.join(storage::PROBLEM);
+    let text = match crate::task::read_text(&path) {
+        Ok(t) => t,
+        Err(crate::task::TaskError::NotUtf8 { source, .. }) => {
+            return Err(StudioError::Problem {
+                path,
+                message: source.to_string(),
+            })
+        }
+        Err(e) => {
+            let missing = matches!(&e, crate::task::TaskError::Read { source, .. } if source.kind() == std::io::ErrorKind::NotFound);
+            let message = match e {
+                crate::task::TaskError::Read { source, .. } => {
+                    format!("cannot read file: {source}")
+                }
+                e => e.to_string(),
+            };
+            return Err(StudioError::Io {
+                path,
+                message: if missing {
+                    format!("{message} (a task folder needs a problem.json)")
+                } else {
+                    message
+                },
+            });
+        }
+    };
     let problem = Scene::from_json(&text).map_err(|e| StudioError::Problem {
         path: dir.join(storage::PROBLEM),
         message: e.to_string(),
@@ -95,6 +124,8 @@ pub fn router(dir: &Path) -> Result<Router, StudioError> {
         next_job: std::sync::atomic::AtomicU64::new(1),
         ask: Arc::new(tokio::sync::Mutex::new(None)),
         ask_generation: std::sync::atomic::AtomicU64::new(0),
+        learning: std::sync::Mutex::new(None),
+        learning_jobs: Arc::new(std::sync::atomic::AtomicUsize::new(0)),
     });
     Ok(Router::new()
         .route("/", get(api::index))

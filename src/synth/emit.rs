@@ -124,7 +124,10 @@ pub fn emitted(
     rules: &RuleSet,
     opts: &SynthOptions,
 ) -> Result<Emitted, SynthError> {
-    let (model, coefs, _) = super::objective_model(problem, rules, opts)?;
+    let (mut model, coefs, _) = super::objective_model(problem, rules, opts)?;
+    // The engine keeps non-overlap in one propagator; a peer gets it as
+    // one clause per pair.
+    model.add_pairwise_no_overlap(opts.contact);
     let constant = model
         .soft
         .iter()

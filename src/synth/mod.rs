@@ -282,6 +282,11 @@ pub enum SynthError {
     /// solver's 32-bit arithmetic; the message names it.
     #[error("{0}")]
     TooLarge(String),
+    /// The rules' weights, divided by their common factor, still total
+    /// more than the solver's objective can hold (a fault of the rule
+    /// file, not of the problem).
+    #[error("the rule weights are too large for the solver: divided by their common factor, the weights of all (object, rule) terms total more than 2^30; expected smaller weights")]
+    WeightsTooLarge,
     /// The layout the engine found fails the independent check
     /// ([`verify_solution`]): a bug in rccpack, never the input's fault.
     #[error("internal error: the layout found fails the independent check: {0}")]
@@ -407,14 +412,35 @@ pub(crate) fn objective_model(
     rules: &RuleSet,
     opts: &SynthOptions,
 ) -> Result<(model::Model, Vec<i64>, model::BuildOptions), SynthError> {
+    Ok(objective_model_until(problem, rules, opts, &|| false)?.expect("never stopped"))
+}
+
+/// [`objective_model`], given up (`Ok(None)`) once `stop` says so while
+/// the model is built.
+pub(crate) fn objective_model_until(
+    problem: &Scene,
+    rules: &RuleSet,
+    opts: &SynthOptions,
+    stop: &dyn Fn() -> bool,
+) -> Result<Option<(model::Model, Vec<i64>, model::BuildOptions)>, SynthError> {
     check_problem(problem)?;
+    let pairs = model::Model::pair_literals(problem, rules);
+    if pairs > model::MAX_PAIR_LITERALS {
+        return Err(SynthError::TooLarge(format!(
+            "the rules relate {pairs} pairs of objects (subject objects × target objects, summed over the rules' relations), \
+             more than the {} the solver can hold in memory; expected fewer objects, or rules about a landmark or a smaller class",
+            model::MAX_PAIR_LITERALS
+        )));
+    }
     let build = model::BuildOptions {
         contact: opts.contact,
         rules: true,
         symmetry_breaking: opts.symmetry_breaking,
         redundant: opts.redundant,
     };
-    let model = model::Model::build(problem, rules, build);
+    let Some(model) = model::Model::build_until(problem, rules, build, stop) else {
+        return Ok(None);
+    };
     // Weights from the parser are finite and positive; a rule built in code
     // may carry anything, and NaN would silently become a coefficient of 1.
     if let Some(s) = model
@@ -425,16 +451,12 @@ pub(crate) fn objective_model(
         let name = rules.rules.get(s.rule).map_or("?", |r| r.name.as_str());
         return Err(SynthError::BadWeight {
             rule: name.to_string(),
-            weight: s.weight.to_string(),
+            weight: crate::limits::number(s.weight),
         });
     }
     let weights: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();
-    let coefs = weights::integer_weights(&weights).ok_or_else(|| {
-        SynthError::TooLarge(
-            "rule weights are too large for the solver: their integer scaling exceeds 2^30".into(),
-        )
-    })?;
-    Ok((model, coefs, build))
+    let coefs = weights::integer_weights(&weights).ok_or(SynthError::WeightsTooLarge)?;
+    Ok(Some((model, coefs, build)))
 }
 
 /// Synthesise a layout (SPEC §9): place every unplaced object on the grid,
@@ -460,11 +482,17 @@ pub fn synthesize(
         node_limit: opts.node_limit,
         cancel: opts.cancel.clone(),
     };
-    let (model, coefs, build) = objective_model(problem, rules, opts)?;
+    let mut stats = SolveStats::default();
+    // The deadline and Ctrl-C are checked while the model is built.
+    let Some((model, coefs, build)) =
+        objective_model_until(problem, rules, opts, &|| limits.expired())?
+    else {
+        stats.time_ms = ms(start.elapsed());
+        return Ok(SynthResult::without_layout(Status::Unknown, None, stats));
+    };
     if let Some(r) = capacity::infeasible_at_once(problem, opts) {
         return Ok(r);
     }
-    let mut stats = SolveStats::default();
     let infeasible = |conflict: Conflict, mut stats: SolveStats| {
         stats.time_ms = ms(start.elapsed());
         SynthResult::without_layout(Status::Infeasible, Some(conflict), stats)
@@ -487,13 +515,13 @@ pub fn synthesize(
         None => None,
     };
     let t_model = start.elapsed();
-    let Some(mut engine) = Engine::with_like_until(
+    let Some(mut engine) = Engine::with_like_stop(
         &model,
         opts.seed,
         false,
         Some(&coefs),
         like_terms.as_deref().unwrap_or(&[]),
-        limits.deadline,
+        &limits,
     )?
     else {
         // The time limit struck while the model was being posted.

@@ -232,7 +232,9 @@ pub struct Model {
     pub sizes: Vec<(i64, i64)>,
     /// Boolean definitions, children before parents.
     pub bools: Vec<BoolDef>,
-    /// Clauses that must hold (non-overlap).
+    /// Clauses that must hold (the symmetry fallback; non-overlap only
+    /// after [`Model::add_pairwise_no_overlap`] — every model implies it,
+    /// the engine posts it as one propagator).
     pub clauses: Vec<Vec<Lit>>,
     /// Hard rules.
     pub hard: Vec<HardRule>,
@@ -244,8 +246,38 @@ pub struct Model {
     pub cumulative: Vec<Cumulative>,
     /// Objects that cannot lie inside the space at all (too large), by index.
     pub too_large: Vec<usize>,
+    /// Whether `clauses` state non-overlap pairwise; otherwise the engine
+    /// posts it as one propagator ([`PAIRWISE_NO_OVERLAP_PAIRS`]).
+    pub pairwise_no_overlap: bool,
     interned: HashMap<BoolDef, u32>,
 }
+
+/// Most pairs of objects (at least one movable) whose non-overlap the model
+/// states as one clause each (four reified pair literals, about 16 KB in
+/// the engine per pair); past it the engine's non-overlap propagator holds
+/// them all in linear memory. 2 000 pairs is about 64 objects.
+pub const PAIRWISE_NO_OVERLAP_PAIRS: usize = 2_000;
+
+/// `RCCPACK_NO_OVERLAP=clauses|propagator` forces one non-overlap encoding
+/// for every model (to run the differential tests and fuzz corpora through
+/// the propagator); unset, the number of pairs decides.
+fn forced_encoding() -> Option<bool> {
+    static FORCED: std::sync::OnceLock<Option<bool>> = std::sync::OnceLock::new();
+    *FORCED.get_or_init(|| match std::env::var("RCCPACK_NO_OVERLAP").as_deref() {
+        Ok("clauses") => Some(true),
+        Ok("propagator") => Some(false),
+        _ => None,
+    })
+}
+
+/// Most pairwise relation literals the rules may ask for in one model
+/// ([`Model::pair_literals`]): 120 000, about 1.5 GB at the engine's cost
+/// of about 12.5 KB per literal (measured: `rule t: EC_N(R, *)` over 200
+/// objects, 40 000 literals, 513 MB); past it synthesis is refused before
+/// anything is built instead of running out of memory. A rule against a
+/// landmark costs one literal per subject; `*` or a large target class,
+/// one per pair.
+pub const MAX_PAIR_LITERALS: u128 = 120_000;
 
 /// Atom literals already built: `(object, relation, quantifier, target)`.
 type AtomCache = HashMap<(usize, Relation, Quant, Target), Lit>;
@@ -287,6 +319,50 @@ impl Model {
     ///
     /// The problem must be a valid scene (see [`Scene::validate`]).
     pub fn build(problem: &Scene, rules: &RuleSet, opts: BuildOptions) -> Model {
+        Self::build_until(problem, rules, opts, &|| false).expect("never stopped")
+    }
+
+    /// [`Model::build_until`] with the non-overlap encoding chosen by the
+    /// caller: `Some(true)` pairwise clauses, `Some(false)` the engine's
+    /// propagator, `None` by the number of pairs (see
+    /// [`PAIRWISE_NO_OVERLAP_PAIRS`]).
+    pub(crate) fn build_encoded(
+        problem: &Scene,
+        rules: &RuleSet,
+        opts: BuildOptions,
+        stop: &dyn Fn() -> bool,
+        pairwise: Option<bool>,
+    ) -> Option<Model> {
+        let movable = problem.objects.iter().filter(|o| !o.is_placed()).count();
+        let n = problem.objects.len();
+        // Pairs with at least one movable object.
+        let pairs =
+            n * (n.saturating_sub(1)) / 2 - (n - movable) * (n - movable).saturating_sub(1) / 2;
+        let pairwise = pairwise.unwrap_or(pairs <= PAIRWISE_NO_OVERLAP_PAIRS);
+        let mut m = Self::build_core(problem, rules, opts, stop, pairwise)?;
+        m.pairwise_no_overlap = pairwise || !m.too_large.is_empty();
+        Some(m)
+    }
+
+    /// [`Model::build`], given up (`None`) as soon as `stop` says so
+    /// (checked per rule and every 256 subject objects: a deadline or
+    /// Ctrl-C while a large model is built).
+    pub fn build_until(
+        problem: &Scene,
+        rules: &RuleSet,
+        opts: BuildOptions,
+        stop: &dyn Fn() -> bool,
+    ) -> Option<Model> {
+        Self::build_encoded(problem, rules, opts, stop, forced_encoding())
+    }
+
+    fn build_core(
+        problem: &Scene,
+        rules: &RuleSet,
+        opts: BuildOptions,
+        stop: &dyn Fn() -> bool,
+        pairwise: bool,
+    ) -> Option<Model> {
         let sp = problem.space;
         let g = problem.grid;
         let mut m = Model {
@@ -302,6 +378,7 @@ impl Model {
             symmetry: Vec::new(),
             cumulative: Vec::new(),
             too_large: Vec::new(),
+            pairwise_no_overlap: false,
             interned: HashMap::new(),
         };
         for (i, o) in problem.objects.iter().enumerate() {
@@ -330,24 +407,15 @@ impl Model {
             }
         }
         if !m.too_large.is_empty() {
-            return m;
+            return Some(m);
         }
-        let n = problem.objects.len();
-        // Non-overlap between every pair with at least one variable object.
-        for a in 0..n {
-            for b in a + 1..n {
-                if m.is_const(a) && m.is_const(b) {
-                    continue;
-                }
-                let c: Vec<Lit> = Dir::ALL
-                    .iter()
-                    .map(|&d| m.pair(Relation::new(Kind::DR, d), a, b, opts.contact))
-                    .collect();
-                let l = m.or(c);
-                if l != Lit::TRUE {
-                    m.clauses.push(vec![l]);
-                }
-            }
+        // Non-overlap between every pair with at least one variable object:
+        // one clause per pair for a small model (the pair literals also
+        // guide the search), else implicit — the engine posts one
+        // propagator for all pairs (linear memory, issue 35 item 6) and
+        // `add_pairwise_no_overlap` writes the clauses for the peers.
+        if pairwise {
+            m.add_pairwise_no_overlap(opts.contact);
         }
         if opts.symmetry_breaking {
             m.post_symmetry(problem);
@@ -355,10 +423,66 @@ impl Model {
         if opts.redundant {
             m.post_cumulative(problem);
         }
-        if opts.rules {
-            m.post_rules(problem, rules, opts.contact);
+        if opts.rules && !m.post_rules(problem, rules, opts.contact, stop) {
+            return None;
         }
-        m
+        Some(m)
+    }
+
+    /// State non-overlap explicitly, as the clause `DR_N ∨ DR_S ∨ DR_E ∨
+    /// DR_W` per pair with at least one variable object (quadratic: for
+    /// `--emit`'s peers, which have no propagator of their own).
+    pub fn add_pairwise_no_overlap(&mut self, contact: Contact) {
+        if !self.too_large.is_empty() || self.pairwise_no_overlap {
+            return;
+        }
+        self.pairwise_no_overlap = true;
+        let n = self.coords.len();
+        let mut clauses = Vec::new();
+        for a in 0..n {
+            for b in a + 1..n {
+                if self.is_const(a) && self.is_const(b) {
+                    continue;
+                }
+                let c: Vec<Lit> = Dir::ALL
+                    .iter()
+                    .map(|&d| self.pair(Relation::new(Kind::DR, d), a, b, contact))
+                    .collect();
+                let l = self.or(c);
+                if l != Lit::TRUE {
+                    clauses.push(vec![l]);
+                }
+            }
+        }
+        // First, as `build` used to put them.
+        clauses.append(&mut self.clauses);
+        self.clauses = clauses;
+    }
+
+    /// Whether grid values `vals` place no two objects with overlapping
+    /// interiors (the non-overlap every model implies; see
+    /// [`Model::add_pairwise_no_overlap`]).
+    pub fn non_overlapping(&self, vals: &[i64]) -> bool {
+        let at = |c: Coord, o: i64| match c {
+            Coord::Const(v) => v,
+            Coord::Var(v) => o + self.grid * vals[v],
+        };
+        let boxes: Vec<(i64, i64, i64, i64)> = (0..self.coords.len())
+            .map(|i| {
+                let (cx, cy) = self.coords[i];
+                let (w, h) = self.sizes[i];
+                let (x, y) = (at(cx, self.origin.0), at(cy, self.origin.1));
+                (x, y, x + w, y + h)
+            })
+            .collect();
+        (0..boxes.len()).all(|a| {
+            (a + 1..boxes.len()).all(|b| {
+                (self.is_const(a) && self.is_const(b)) || {
+                    let (p, q) = (boxes[a], boxes[b]);
+                    p.2 <= q.0 || q.2 <= p.0 || p.3 <= q.1 || q.3 <= p.1
+                }
+            })
+        })
     }
 
     fn is_const(&self, o: usize) -> bool {
@@ -397,6 +521,32 @@ impl Model {
     }
 
     /// `vars[v] ≥ k`.
+    /// A hard "rule" pinning unplaced object `object` at `(x, y)` (its
+    /// index in [`Model::hard`]; `HardRule::rule` is that index too, past
+    /// any rule set's). `None` when the position is not on the object's
+    /// grid domain (or the object is a constant).
+    pub(crate) fn pin(&mut self, object: usize, x: i64, y: i64) -> Option<usize> {
+        let (Coord::Var(vx), Coord::Var(vy)) = self.coords[object] else {
+            return None;
+        };
+        let mut lits = Vec::with_capacity(4);
+        for (v, at, origin) in [(vx, x, self.origin.0), (vy, y, self.origin.1)] {
+            let d = at - origin;
+            if d % self.grid != 0 {
+                return None;
+            }
+            let k = d / self.grid;
+            if k < 0 || k > self.vars[v].ub {
+                return None;
+            }
+            lits.push(self.ge(v, k));
+            lits.push(!self.ge(v, k + 1));
+        }
+        let at = self.hard.len();
+        self.hard.push(HardRule { rule: at, lits });
+        Some(at)
+    }
+
     fn ge(&mut self, v: usize, k: i64) -> Lit {
         if k <= 0 {
             Lit::TRUE
@@ -686,15 +836,28 @@ impl Model {
         }
     }
 
-    fn post_rules(&mut self, problem: &Scene, rules: &RuleSet, contact: Contact) {
+    /// Post every rule; `false` when `stop` said so first.
+    fn post_rules(
+        &mut self,
+        problem: &Scene,
+        rules: &RuleSet,
+        contact: Contact,
+        stop: &dyn Fn() -> bool,
+    ) -> bool {
         let mut cache: AtomCache = HashMap::new();
         for (ri, rule) in rules.rules.iter().enumerate() {
+            if stop() {
+                return false;
+            }
             let subject = rule.subject();
             let mut lits = Vec::new();
             let mut objects = Vec::new();
             for (o, obj) in problem.objects.iter().enumerate() {
                 if obj.class != subject {
                     continue;
+                }
+                if objects.len() % 256 == 255 && stop() {
+                    return false;
                 }
                 lits.push(self.formula(&rule.formula, o, problem, contact, &mut cache));
                 objects.push(o);
@@ -731,6 +894,31 @@ impl Model {
                 }
             }
         }
+        true
+    }
+
+    /// How many pairwise relation literals the rules ask for on `problem`
+    /// at most: per rule and atom, subject objects × target objects. The
+    /// model holds a few Booleans and the engine a few propagators per
+    /// pair literal, so this bounds their memory ([`MAX_PAIR_LITERALS`]).
+    pub fn pair_literals(problem: &Scene, rules: &RuleSet) -> u128 {
+        let count =
+            |class: &str| problem.objects.iter().filter(|o| o.class == class).count() as u128;
+        let n = problem.objects.len() as u128;
+        let mut total = 0u128;
+        for rule in &rules.rules {
+            let subjects = count(rule.subject());
+            for atom in rule.formula.atoms() {
+                let targets = match &atom.target {
+                    Target::Any => n.saturating_sub(1),
+                    Target::Class(c) if c == rule.subject() => subjects.saturating_sub(1),
+                    Target::Class(c) => count(c),
+                    Target::Landmark(_) => 1,
+                };
+                total += subjects * targets;
+            }
+        }
+        total
     }
 
     fn formula(

@@ -22,37 +22,34 @@ pub fn integer_weights(weights: &[f64]) -> Option<Vec<i64>> {
     if weights.is_empty() {
         return Some(Vec::new());
     }
-    let all_int = weights.iter().all(|w| w.fract() == 0.0 && *w < 1e12);
-    let mut ints: Option<Vec<i64>> = None;
-    if all_int {
-        let v: Vec<i64> = weights.iter().map(|&w| w as i64).collect();
-        // Summed in i128: many terms of up to 1e12 must not overflow.
-        if v.iter().map(|&x| i128::from(x)).sum::<i128>() <= i128::from(MAX_TOTAL) {
-            ints = Some(v);
-        }
-    }
-    if ints.is_none() {
-        for p in (0..=6).rev() {
-            let k = 10f64.powi(p);
-            let v: Vec<i64> = weights
-                .iter()
-                .map(|&w| ((w * k).round() as i64).max(1))
-                .collect();
-            let total: i128 = v.iter().map(|&x| x as i128).sum();
-            if total <= MAX_TOTAL as i128 {
-                ints = Some(v);
-                break;
+    // Divided by their gcd *before* the total is checked: `weight
+    // 1000000000` and `weight 2000000000` are 1 and 2.
+    let reduced = |mut v: Vec<i64>| {
+        let g = v.iter().fold(0, |g, &x| gcd(g, x));
+        if g > 1 {
+            for x in &mut v {
+                *x /= g;
             }
         }
-    }
-    let mut v = ints?;
-    let g = v.iter().fold(0, |g, &x| gcd(g, x));
-    if g > 1 {
-        for x in &mut v {
-            *x /= g;
+        // Summed in i128: many terms of up to 1e12 must not overflow.
+        let total: i128 = v.iter().map(|&x| i128::from(x)).sum();
+        (total <= i128::from(MAX_TOTAL)).then_some(v)
+    };
+    let all_int = weights.iter().all(|w| w.fract() == 0.0 && *w < 1e12);
+    if all_int {
+        if let Some(v) = reduced(weights.iter().map(|&w| w as i64).collect()) {
+            return Some(v);
         }
     }
-    Some(v)
+    (0..=6).rev().find_map(|p| {
+        let k = 10f64.powi(p);
+        reduced(
+            weights
+                .iter()
+                .map(|&w| ((w * k).round() as i64).max(1))
+                .collect(),
+        )
+    })
 }
 
 fn gcd(a: i64, b: i64) -> i64 {
@@ -175,6 +172,8 @@ mod tests {
     fn integer_weights_exact_and_reduced() {
         assert_eq!(integer_weights(&[1.0, 1.0, 2.0]), Some(vec![1, 1, 2]));
         assert_eq!(integer_weights(&[2.5, 1.0]), Some(vec![5, 2]));
+        // Reduced before the size check (issue 35, item 10).
+        assert_eq!(integer_weights(&[1e9, 2e9, 1e9]), Some(vec![1, 2, 1]));
         let p = [-(1e-8f64).ln(), -(0.001f64).ln()];
         let v = integer_weights(&p).unwrap();
         assert!((v[0] as f64 / v[1] as f64 - p[0] / p[1]).abs() < 1e-5);

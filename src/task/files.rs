@@ -120,3 +120,63 @@ pub fn write_after_answer(
     }
     atomic_write(dir, LEARNED, &asker.learned_rcc()).map_err(|e| (LEARNED, e))
 }
+
+/// Names of the rules marked `# confirmed` (SPEC §13) in `.rcc` text: the
+/// comment lines right above a `rule` line belong to it.
+pub fn confirmed_names(text: &str) -> Vec<String> {
+    let mark = format!("# {}", crate::ask::CONFIRMED);
+    let mut out = Vec::new();
+    let mut pending = false;
+    for line in text.lines().map(str::trim) {
+        if line == mark {
+            pending = true;
+        } else if let Some(rest) = line.strip_prefix("rule ") {
+            if pending {
+                let name = rest
+                    .split(|c: char| c.is_whitespace() || c == ':')
+                    .next()
+                    .unwrap_or("");
+                out.push(name.to_string());
+            }
+            pending = false;
+        } else if !line.starts_with('#') {
+            pending = false;
+        }
+    }
+    out
+}
+
+/// The `learned.rcc` a fresh learning run writes over `old` (the file
+/// there now, perhaps curated by `rccpack ask` or the studio): `new_rcc`
+/// with the `# confirmed` mark carried over to every rule the old file
+/// confirmed and the new one has unchanged (same name, strength and
+/// formula). Returns the text and whether `old` must be kept as
+/// [`LEARNED_BACKUP`] first (it differs and would be lost).
+pub fn carry_confirmed(
+    old: Option<&str>,
+    header: &str,
+    new_rules: &crate::rules::RuleSet,
+) -> (String, bool) {
+    let print = |set: &crate::rules::RuleSet| {
+        let mut s = header.to_string();
+        for r in &set.rules {
+            s.push_str(&crate::rules::print_rule(r));
+        }
+        s
+    };
+    let Some(old) = old else {
+        return (print(new_rules), false);
+    };
+    let confirmed = confirmed_names(old);
+    let old_rules = crate::rules::parse_rules(old).unwrap_or_default();
+    let mut set = new_rules.clone();
+    for r in &mut set.rules {
+        let kept = confirmed.contains(&r.name) && old_rules.rules.iter().any(|o| o.same_rule(r));
+        if kept && !r.comments.iter().any(|c| c == crate::ask::CONFIRMED) {
+            r.comments.push(crate::ask::CONFIRMED.into());
+        }
+    }
+    let text = print(&set);
+    let backup = text != old;
+    (text, backup)
+}

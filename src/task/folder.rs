@@ -2,18 +2,15 @@
 //! command line and the Python package (`Task.run`), so both write the
 //! same bytes.
 //!
-//! The steps, each write atomic, under the folder lock of the output
-//! folder ([`lock`]):
-//!
-//! 1. [`write_learned`]: `learned.rcc` and `learn-report.json`;
-//! 2. [`place_and_write`]: the layout ([`super::place`]), then
-//!    `solution.json` and `solution.png`, and the summary lines the
-//!    command prints.
-//!
-//! [`run_folder`] is the whole of it on a folder already read
-//! ([`super::Task::load`]).
+//! Under the folder lock of the output folder ([`lock`]), every input read
+//! and checked first: learn, place ([`super::place`]), then
+//! [`write_outcome`] writes, each atomically, `learned.rcc` (confirmed
+//! marks carried over, a curated file kept as `learned.rcc.bak`:
+//! [`files::carry_confirmed`]), `learn-report.json`, `solution.json` and
+//! `solution.png`, and says what the command prints. [`run_folder`] is
+//! the whole of it on a folder already read ([`super::Task::load`]).
 
-use super::{files, learn_stoppable, place, Like, Outcome, Placement, RunOptions, Task, TaskError};
+use super::{files, learn_cancellable, place, Outcome, Placement, RunOptions, Task, TaskError};
 use crate::fsutil::DirLock;
 use crate::infer::Learned;
 use crate::render::{render_to_path, RenderError, RenderOptions};
@@ -46,6 +43,14 @@ pub enum FolderError {
     #[error("{}: cannot lock the task folder: {source}", path.display())]
     Lock {
         /// The lock file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A file cannot be read.
+    #[error("{}: cannot read file: {source}", path.display())]
+    Read {
+        /// The file.
         path: PathBuf,
         /// Why.
         source: std::io::Error,
@@ -83,7 +88,7 @@ pub struct Written {
     /// Its exit code: 0 a layout, 2 infeasible, 3 a limit before any
     /// layout (SPEC §10).
     pub exit_code: u8,
-    /// The files written (besides `learned.rcc` and `learn-report.json`).
+    /// The files written, in order.
     pub files: Vec<PathBuf>,
 }
 
@@ -128,36 +133,40 @@ fn write(path: PathBuf, contents: impl AsRef<[u8]>) -> Result<PathBuf, FolderErr
     }
 }
 
-/// Write `out/learned.rcc` ([`Learned::to_rcc`]) and
-/// `out/learn-report.json` ([`Learned::report_json`]); returns the two
-/// paths.
-pub fn write_learned(out: &Path, learned: &Learned) -> Result<Vec<PathBuf>, FolderError> {
-    Ok(vec![
-        write(out.join(files::LEARNED), learned.to_rcc())?,
-        write(out.join(files::LEARN_REPORT), learned.report_json())?,
-    ])
-}
-
-/// Place `problem` under the learned rules ([`super::place`]: the
-/// landmarks checked, the demonstrations the warm start), write
-/// `out/solution.json` and `out/solution.png` (titled `DIR — synthesised`,
-/// `dir` as given) when there is a layout, and say what `rccpack run`
-/// says. `opts` are the synthesis options (`time_limit` what is left of
-/// the command's).
-#[allow(clippy::too_many_arguments)]
-pub fn place_and_write(
+/// Write what a run produced into `out` and say what `rccpack run` says:
+/// `learned.rcc` (the confirmed marks of the file there carried over; a
+/// file that would change otherwise kept as `learned.rcc.bak` first, with
+/// a note), `learn-report.json`, then with a layout `solution.json` and
+/// `solution.png` (titled `DIR — synthesised`, `dir` as given).
+pub fn write_outcome(
     dir: &Path,
     out: &Path,
     problem: &Scene,
     learned: &Learned,
     rules: &RuleSet,
-    demos: &[Scene],
-    like: &Like,
-    opts: &SynthOptions,
+    placement: Placement,
+    contact: crate::relations::Contact,
 ) -> Result<Written, FolderError> {
-    let placement = place(problem, rules, demos, like, opts)?;
-    let result = &placement.result;
     let mut stdout = Vec::new();
+    let mut written = Vec::new();
+    let learned_path = out.join(files::LEARNED);
+    let old = files::read_optional(out, files::LEARNED).map_err(|source| FolderError::Read {
+        path: learned_path.clone(),
+        source,
+    })?;
+    let (rcc, backup) = files::carry_confirmed(old.as_deref(), &learned.rcc_header(), rules);
+    if backup {
+        let bak = out.join(files::LEARNED_BACKUP);
+        written.push(write(bak.clone(), old.unwrap_or_default())?);
+        stdout.push(format!(
+            "note: {} was not what this run learned; kept as {}",
+            learned_path.display(),
+            bak.display()
+        ));
+    }
+    written.push(write(learned_path, rcc)?);
+    written.push(write(out.join(files::LEARN_REPORT), learned.report_json())?);
+    let result = &placement.result;
     // Learned rules about a class today's problem lacks hold as SPEC §4
     // says (SPEC §15): a note, then a layout.
     if let Some(note) = missing_classes_note(&placement.missing_classes) {
@@ -172,16 +181,16 @@ pub fn place_and_write(
         learned.demos,
         out.join(files::LEARNED).display()
     ));
-    let mut written = Vec::new();
     let (stderr, exit_code) = match (&result.scene, &result.evaluation) {
         (Some(scene), Some(ev)) => {
             written.push(write(out.join(files::SOLUTION), scene.to_json())?);
             let png = out.join(files::SOLUTION_PNG);
             let ropts = RenderOptions {
-                contact: opts.contact,
+                contact,
                 scale: 1.0,
                 title: Some(format!("{} — synthesised", dir.display())),
                 like: placement.like.clone(),
+                ..RenderOptions::default()
             };
             render_to_path(scene, Some(rules), &ropts, &png).map_err(|source| {
                 FolderError::Render {
@@ -242,7 +251,7 @@ pub fn place_and_write(
 
 /// `rccpack run DIR --out OUT` on a task already read from `dir`: lock
 /// `out`, learn (the time limit `opts.synth.time_limit` covers the whole
-/// run), write the files, place. `opts.synth.contact` is taken from
+/// run), place, write the files. `opts.synth.contact` is taken from
 /// `opts.learn.contact`, as [`super::run`] does.
 pub fn run_folder(
     task: &Task,
@@ -256,9 +265,8 @@ pub fn run_folder(
         .synth
         .time_limit
         .and_then(|limit| start.checked_add(limit));
-    let learned = learn_stoppable(task, &opts.learn, deadline, opts.synth.cancel.as_deref())?;
+    let learned = learn_cancellable(task, &opts.learn, deadline, opts.synth.cancel.as_deref())?;
     let rules = learned.rules();
-    let mut files = write_learned(out, &learned)?;
     let synth = SynthOptions {
         contact: opts.learn.contact,
         time_limit: opts
@@ -267,17 +275,17 @@ pub fn run_folder(
             .map(|limit| limit.saturating_sub(start.elapsed())),
         ..opts.synth.clone()
     };
-    let w = place_and_write(
+    let placement = place(&task.problem, &rules, &task.demos, &opts.like, &synth)?;
+    let w = write_outcome(
         dir,
         out,
         &task.problem,
         &learned,
         &rules,
-        &task.demos,
-        &opts.like,
-        &synth,
+        placement,
+        opts.learn.contact,
     )?;
-    files.extend(w.files);
+    let files = w.files;
     Ok(FolderRun {
         outcome: Outcome {
             learned,

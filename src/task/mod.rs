@@ -101,7 +101,38 @@ pub struct Task {
 
 /// Read a whole UTF-8 text file (a leading byte-order mark is dropped).
 pub fn read_text(path: &Path) -> Result<String, TaskError> {
-    let bytes = std::fs::read(path).map_err(|source| TaskError::Read {
+    read_text_at_most(path, usize::MAX)
+}
+
+/// [`read_text`] that reads at most `max` bytes: a longer file (or an
+/// endless device, `/dev/zero`) is refused once `max` is passed, before
+/// it fills the memory.
+pub fn read_text_at_most(path: &Path, max: usize) -> Result<String, TaskError> {
+    use std::io::Read as _;
+    let read = |path: &Path| -> std::io::Result<Vec<u8>> {
+        let f = std::fs::File::open(path)?;
+        let len = f.metadata().ok().filter(|m| m.is_file()).map(|m| m.len());
+        let too_large = |size: String| {
+            std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!(
+                    "the file is {size} bytes; expected at most {max} bytes ({} MiB)",
+                    max >> 20
+                ),
+            )
+        };
+        if let Some(len) = len.filter(|&l| l > max as u64) {
+            return Err(too_large(len.to_string()));
+        }
+        let mut bytes = Vec::new();
+        f.take((max as u64).saturating_add(1))
+            .read_to_end(&mut bytes)?;
+        if bytes.len() > max {
+            return Err(too_large(format!("larger than {max}")));
+        }
+        Ok(bytes)
+    };
+    let bytes = read(path).map_err(|source| TaskError::Read {
         path: path.to_path_buf(),
         source,
     })?;
@@ -254,19 +285,19 @@ pub fn learn(
     params: &LearnParams,
     deadline: Option<Instant>,
 ) -> Result<Learned, TaskError> {
-    learn_stoppable(task, params, deadline, None)
+    learn_cancellable(task, params, deadline, None)
 }
 
-/// [`learn`] that also stops ([`InferError::Interrupted`]) once `cancel` is
+/// [`learn`] that also stops ([`InferError::Cancelled`]) once `cancel` is
 /// set; [`run`] passes the synthesis cancel flag
 /// ([`SynthOptions::cancel`]), so one flag stops the whole pipeline.
-pub fn learn_stoppable(
+pub fn learn_cancellable(
     task: &Task,
     params: &LearnParams,
     deadline: Option<Instant>,
     cancel: Option<&std::sync::atomic::AtomicBool>,
 ) -> Result<Learned, TaskError> {
-    Ok(crate::infer::learn_stoppable(
+    Ok(crate::infer::learn_cancellable(
         &task.demos,
         task.statements.as_ref(),
         params,
@@ -283,7 +314,7 @@ pub fn run(task: &Task, opts: &RunOptions) -> Result<Outcome, TaskError> {
         .synth
         .time_limit
         .and_then(|limit| start.checked_add(limit));
-    let learned = learn_stoppable(task, &opts.learn, deadline, opts.synth.cancel.as_deref())?;
+    let learned = learn_cancellable(task, &opts.learn, deadline, opts.synth.cancel.as_deref())?;
     let rules = learned.rules();
     let synth = SynthOptions {
         contact: opts.learn.contact,

@@ -415,6 +415,13 @@ pub fn write_probe_files(
             q.rule
         )),
         like: None,
+        moved: q
+            .probe
+            .edit
+            .iter()
+            .flat_map(|e| &e.moved)
+            .map(|m| (m.id.clone(), m.x, m.y))
+            .collect(),
     };
     render_to_path(&q.probe.scene, Some(&RuleSet::new(rule)), &ropts, &png).map_err(|source| {
         SessionError::Render {

@@ -194,13 +194,24 @@ try {
   assert.ok((await page.locator('[data-testid=ask-english]').textContent()).length > 0);
   assert.equal(await question.getAttribute('data-rule'), rule1);
   // The probe is on the board, the objects breaking the rule outlined.
-  assert.equal(await page.locator('#board .obj:not(.fixed)').count(), 9);
+  // (A layout of the problem, or a demonstration with one or two blocks
+  // moved: then each moved block is marked.)
+  assert.equal(String(await page.locator('#board .obj:not(.fixed)').count()), await question.getAttribute('data-objects'));
   assert.equal(String(await page.locator('#board .obj .violation').count()), await question.getAttribute('data-broken'));
+  assert.equal(String(await page.locator('#board .moved .move').count()), await question.getAttribute('data-moved'));
   await page.screenshot({ path: path.join(out, 'studio-check.png') });
   log('question 1 about', rule1);
+  // The person looks for a moment; meanwhile the next question is computed
+  // for both answers. Measured: the click on an answer until the next
+  // question is on the page.
+  await page.waitForTimeout(1500);
+  const clicked = Date.now();
   await page.click('[data-testid=ask-yes]');
   await page.waitForFunction(() => /asked 1 /.test(document.querySelector('[data-testid=ask-progress-line]')?.textContent || ''));
   await askSettled();
+  const wait = Date.now() - clicked;
+  log(`answer -> next question on the page: ${wait} ms`);
+  assert.ok(wait < 5000, `the next question took ${wait} ms after the click`);
   assert.match(await progressLine(), /asked 1 · dropped 1 · confirmed 0/);
   assert.equal(JSON.parse(fs.readFileSync(path.join(task, 'demos.json'), 'utf8')).length, exampleDemos.length + 1);
   await page.waitForFunction((n) => document.getElementById('demo-count').textContent === String(n), exampleDemos.length + 1);

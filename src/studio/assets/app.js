@@ -69,7 +69,7 @@ function redraw() {
   const svg = $('board');
   const shown = state.boardMode === 'result' ? state.result : state.boardMode === 'probe' ? state.probe : null;
   if (shown) {
-    const { view } = drawScene(svg, shown.scene, drawOpts({ violators: shown.violators }));
+    const { view } = drawScene(svg, shown.scene, drawOpts({ violators: shown.violators, moved: shown.moved }));
     state.view = view;
     return;
   }
@@ -545,10 +545,14 @@ function showProbe(q) {
   const info = q.broken.length
     ? `${q.broken.join(', ')} break${q.broken.length === 1 ? 's' : ''} ${q.rule} (outlined)`
     : `the layout breaks ${q.rule}`;
-  state.probe = { scene: q.scene, violators, title, info };
+  const moved = q.edit ? q.edit.moved : [];
+  const info2 = q.edit
+    ? `${info} · demonstration ${q.edit.demo + 1} with ${moved.map((m) => m.id).join(' and ')} moved (dashed: where it was)`
+    : info;
+  state.probe = { scene: q.scene, violators, title, info: info2, moved };
   state.boardMode = 'probe';
   $('stage-title').textContent = title;
-  $('stage-info').textContent = info;
+  $('stage-info').textContent = info2;
   renderLegend();
   redraw();
 }
@@ -566,7 +570,7 @@ function applyAsk(d) {
     const p = d.progress;
     $('ask-done').innerHTML = `<h3>No more questions</h3>
       <p id="ask-summary" data-testid="ask-summary">${p.asked} answered: ${p.dropped} rules dropped, ${p.confirmed} confirmed;
-      ${p.held} rules held${p.implied ? `, ${p.implied} of them follow from the others` : ''}${p.unknown ? `, ${p.unknown} unsettled` : ''}.
+      ${p.held} rules held${p.implied ? `, ${p.implied} of them follow from the others` : ''}${p.unknown ? `, ${p.unknown} deferred (the question budget did not decide them)` : ''}.
       learned.rcc holds the checked rules.</p>`;
     state.probe = null;
     if (state.boardMode === 'probe') showEditor();
@@ -582,6 +586,8 @@ function applyAsk(d) {
     : 'Every other learned rule holds.';
   $('ask-question').dataset.rule = q.rule;
   $('ask-question').dataset.broken = String(q.broken.length);
+  $('ask-question').dataset.objects = String(q.scene.objects.filter((o) => !o.fixed).length);
+  $('ask-question').dataset.moved = String(q.edit ? q.edit.moved.length : 0);
   $('btn-ask-yes').disabled = false;
   $('btn-ask-no').disabled = false;
   showProbe(q);

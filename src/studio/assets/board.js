@@ -71,6 +71,24 @@ export function drawScene(svg, scene, opts) {
     if (o.x === undefined || o.y === undefined) continue;
     drawObject(layer, view, o, opts);
   }
+  // A probe that is an edit of a demonstration: where each moved object
+  // was (dashed), a line to where it is, and an outline.
+  if (opts.moved && opts.moved.length) {
+    const marks = el('g', { class: 'moved' }, svg);
+    for (const m of opts.moved) {
+      const o = scene.objects.find((x) => x.id === m.id);
+      if (!o || o.x === undefined) continue;
+      const was = view.rect({ ...o, x: m.x, y: m.y });
+      const now = view.rect(o);
+      const g = el('g', { class: 'move', 'data-id': m.id }, marks);
+      el('rect', { class: 'was', x: was.x, y: was.y, width: was.w, height: was.h, fill: 'none',
+        stroke: '#1f5fbf', 'stroke-width': 2, 'stroke-dasharray': '5 3' }, g);
+      el('line', { x1: was.x + was.w / 2, y1: was.y + was.h / 2, x2: now.x + now.w / 2, y2: now.y + now.h / 2,
+        stroke: '#1f5fbf', 'stroke-width': 1.5, 'stroke-dasharray': '2 3' }, g);
+      el('rect', { class: 'now', x: now.x - 4, y: now.y - 4, width: now.w + 8, height: now.h + 8, fill: 'none',
+        stroke: '#1f5fbf', 'stroke-width': 2.5 }, g);
+    }
+  }
   return { view, layer };
 }
 

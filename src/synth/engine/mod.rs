@@ -41,6 +41,7 @@ use super::model::{BoolDef, Coord, Lit, Model};
 use super::SynthError;
 
 mod like_map;
+mod no_overlap;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
 use pumpkin_constraints::{boolean_equals, cumulative, equals, less_than_or_equals};
 use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
@@ -367,7 +368,8 @@ struct Builder<'m> {
     lits: Vec<Literal>,
     truth: Literal,
     /// Building stops (and the engine is not made) past this instant.
-    deadline: Option<std::time::Instant>,
+    /// The deadline and the cancel flag (the node limit is not used here).
+    stop: Limits,
 }
 
 impl<'m> Builder<'m> {
@@ -375,8 +377,7 @@ impl<'m> Builder<'m> {
     /// every few thousand definitions: posting a large model can take
     /// longer than the whole time limit).
     fn late(&self) -> bool {
-        self.deadline
-            .is_some_and(|d| std::time::Instant::now() >= d)
+        self.stop.expired()
     }
 
     /// The solver with one integer variable per grid variable.
@@ -400,7 +401,7 @@ impl<'m> Builder<'m> {
             vars,
             lits: Vec::new(),
             truth,
-            deadline: None,
+            stop: Limits::default(),
         })
     }
 
@@ -577,7 +578,36 @@ impl<'m> Builder<'m> {
         Ok(())
     }
 
-    /// The model's clauses (non-overlap).
+    /// Non-overlap of every pair with a variable object: one propagator
+    /// (see `no_overlap`).
+    fn post_no_overlap(&mut self) -> Result<(), SynthError> {
+        let model = self.model;
+        if model.pairwise_no_overlap || model.vars.is_empty() || model.coords.len() < 2 {
+            return Ok(());
+        }
+        let pos = |c: Coord| match c {
+            Coord::Var(v) => no_overlap::Pos::Var(self.vars[v]),
+            Coord::Const(x) => no_overlap::Pos::Const(x),
+        };
+        let args = no_overlap::NoOverlapArgs {
+            pos: model
+                .coords
+                .iter()
+                .map(|&(x, y)| [pos(x), pos(y)])
+                .collect(),
+            size: model.sizes.iter().map(|&(w, h)| [w, h]).collect(),
+            origin: [model.origin.0, model.origin.1],
+            grid: model.grid,
+            tag: self.tag,
+        };
+        // The root propagation may already fail (the objects cannot all
+        // fit): the engine then reports "infeasible" at its first solve.
+        let _ = self.solver.add_propagator(args);
+        Ok(())
+    }
+
+    /// The model's clauses (the symmetry fallback; non-overlap when the
+    /// model states it pairwise).
     fn post_clauses(&mut self) {
         for c in &self.model.clauses {
             let c: Vec<Predicate> = c
@@ -805,9 +835,30 @@ impl Engine {
         like: &[LikeTerm],
         deadline: Option<std::time::Instant>,
     ) -> Result<Option<Engine>, SynthError> {
+        let stop = Limits {
+            deadline,
+            ..Limits::default()
+        };
+        Self::with_like_stop(model, seed, guarded, coefs, like, &stop)
+    }
+
+    /// [`Engine::with_like_until`] that also gives up when `stop`'s cancel
+    /// flag is set (Ctrl-C while a large model is posted).
+    pub fn with_like_stop(
+        model: &Model,
+        seed: u64,
+        guarded: bool,
+        coefs: Option<&[i64]>,
+        like: &[LikeTerm],
+        stop: &Limits,
+    ) -> Result<Option<Engine>, SynthError> {
         check_ranges(model, like)?;
         let mut b = Builder::new(model, seed)?;
-        b.deadline = deadline;
+        b.stop = Limits {
+            deadline: stop.deadline,
+            node_limit: None,
+            cancel: stop.cancel.clone(),
+        };
         // Every variable and literal first ...
         b.create_literals()?;
         let guards = b.create_guards(guarded);
@@ -823,6 +874,7 @@ impl Engine {
             return Ok(None);
         }
         b.post_clauses();
+        b.post_no_overlap()?;
         b.post_hard(&guards);
         b.post_symmetry()?;
         b.post_cumulative(starts)?;
@@ -1279,6 +1331,18 @@ mod tests {
     /// the `AtLeast` encoding (and every other) is exact under assumptions.
     #[test]
     fn guarded_literals_match_the_definitions() {
+        literals_match_the_definitions(true);
+    }
+
+    /// The same with non-overlap as the engine's propagator instead of one
+    /// clause per pair (what models past `PAIRWISE_NO_OVERLAP_PAIRS` get):
+    /// the same layouts are possible and impossible.
+    #[test]
+    fn the_no_overlap_propagator_matches_the_clauses() {
+        literals_match_the_definitions(false);
+    }
+
+    fn literals_match_the_definitions(pairwise: bool) {
         let scene = Scene {
             space: Space {
                 x: 0,
@@ -1320,7 +1384,7 @@ mod tests {
             Rule::new("r5", q(al_s, Quant::AtLeast(2), Target::Any))
                 .with_scope(Scope::Scene(Quant::AtLeast(3))),
         ]);
-        let m = Model::build(
+        let m = Model::build_encoded(
             &scene,
             &rules,
             BuildOptions {
@@ -1329,7 +1393,11 @@ mod tests {
                 symmetry_breaking: false,
                 redundant: false,
             },
-        );
+            &|| false,
+            Some(pairwise),
+        )
+        .expect("never stopped");
+        assert_eq!(m.pairwise_no_overlap, pairwise);
         let counts = m
             .bools
             .iter()
@@ -1342,7 +1410,9 @@ mod tests {
         let mut vals = vec![0i64; ub.len()];
         'outer: loop {
             let bools = m.eval_bools(&vals);
-            if m.clauses.iter().all(|c| c.iter().any(|l| l.value(&bools))) {
+            if m.clauses.iter().all(|c| c.iter().any(|l| l.value(&bools)))
+                && m.non_overlapping(&vals)
+            {
                 all.push((vals.clone(), bools));
             }
             let mut i = 0;
@@ -1377,6 +1447,7 @@ mod tests {
                         let b = m.eval_bools(&v);
                         assert!(lit.value(&b), "{lit:?} false in the engine's {v:?}");
                         assert!(m.clauses.iter().all(|c| c.iter().any(|l| l.value(&b))));
+                        assert!(m.non_overlapping(&v), "{v:?} overlaps");
                         sat += 1;
                     }
                     Sat::Unsat => {

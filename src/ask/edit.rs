@@ -1,0 +1,311 @@
+//! Probes as small edits of the person's own demonstrations.
+//!
+//! # Background
+//!
+//! A probe may be a layout of the problem or of a demonstration's object
+//! mix (the docs' *Checking rules with questions*). A demonstration with one
+//! or two blocks moved is the cheapest probe to find — every other object
+//! is a constant, so the search is over the positions of one or two
+//! objects — and the easiest to judge: "your third demonstration with `b2`
+//! moved here, acceptable?". The picture marks what moved and where it was.
+//!
+//! # Practical
+//!
+//! For a held rule `r` the neighbourhoods are tried in this order, each one
+//! the probe problem of [`super::probe::probe_rules`] (every other held rule
+//! hard, `r`'s negation hard) on the demonstration with the chosen objects
+//! made movable:
+//!
+//! 1. one object moved, then two ([`MAX_MOVED`]);
+//! 2. demonstrations with the fewest objects of `r`'s classes first (the
+//!    smallest picture, the fewest ways to keep `r`), ties by index;
+//! 3. within one, the objects of `r`'s subject class first, then those of
+//!    its target classes (every movable object for `*`), in file order.
+//!
+//! At most [`MAX_SOLVES`] neighbourhoods per rule are searched, each with a
+//! node budget; every search is charged to the question's budget
+//! (`super::budget`). The first probe found is shown: it breaks `r` for at
+//! least one object and keeps every other held rule (the evaluator checks
+//! it again). A neighbourhood without a probe proves nothing about the
+//! problem; the session then checks the problem as before.
+//!
+//! # How to extend
+//!
+//! Larger neighbourhoods (three objects, a whole class) are more searches
+//! of the same kind: add them to [`neighbourhoods`], after the cheaper ones.
+
+use super::budget::Meter;
+use super::probe::{probe_rules, Checked, Probe, ProbeChecker, ProbeOptions};
+use crate::eval::evaluate;
+use crate::resemblance::Likeness;
+use crate::rules::{Rule, RuleSet, Target};
+use crate::scene::Scene;
+use crate::synth::{synthesize, SynthOptions};
+use serde::{Deserialize, Serialize};
+use std::time::Duration;
+
+/// At most this many objects are moved in a demonstration.
+pub const MAX_MOVED: usize = 2;
+
+/// At most this many neighbourhoods are searched per rule.
+pub const MAX_SOLVES: usize = 24;
+
+/// Search nodes for one neighbourhood (one or two objects free: a complete
+/// search is far below this on every bundled and generated task).
+pub const EDIT_NODES: u64 = 2_000;
+
+/// A probe that is a demonstration with a few objects moved.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Edit {
+    /// The demonstration's index (in the demonstrations the question was
+    /// asked with, accepted probes included).
+    pub demo: usize,
+    /// The objects that moved, with where they were.
+    pub moved: Vec<Moved>,
+}
+
+/// One moved object of an [`Edit`].
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Moved {
+    /// The object's id.
+    pub id: String,
+    /// Its x in the demonstration.
+    pub x: i64,
+    /// Its y in the demonstration.
+    pub y: i64,
+}
+
+/// The classes whose objects may move to break `rule`: its subject classes
+/// first, then its target classes; `None` for `*` targets (every class).
+fn rule_classes(rule: &Rule) -> Option<Vec<String>> {
+    let mut subjects = Vec::new();
+    let mut targets = Vec::new();
+    for a in rule.formula.atoms() {
+        if !subjects.contains(&a.subject) {
+            subjects.push(a.subject.clone());
+        }
+        match &a.target {
+            Target::Class(c) => {
+                if !targets.contains(c) {
+                    targets.push(c.clone());
+                }
+            }
+            Target::Any => return None,
+            Target::Landmark(_) => {}
+        }
+    }
+    for t in targets {
+        if !subjects.contains(&t) {
+            subjects.push(t);
+        }
+    }
+    Some(subjects)
+}
+
+/// The sets of object indices to free in `demo`, cheapest first.
+fn neighbourhoods(demo: &Scene, classes: Option<&[String]>) -> Vec<Vec<usize>> {
+    let rank = |c: &str| match classes {
+        Some(cs) => cs.iter().position(|x| x == c),
+        None => Some(0),
+    };
+    let mut movable: Vec<(usize, usize)> = demo
+        .objects
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| !o.fixed && o.is_placed())
+        .filter_map(|(i, o)| rank(&o.class).map(|r| (r, i)))
+        .collect();
+    movable.sort();
+    let idx: Vec<usize> = movable.into_iter().map(|(_, i)| i).collect();
+    let mut out: Vec<Vec<usize>> = idx.iter().map(|&i| vec![i]).collect();
+    if MAX_MOVED >= 2 {
+        for (a, &i) in idx.iter().enumerate() {
+            for &j in &idx[a + 1..] {
+                out.push(vec![i, j]);
+            }
+        }
+    }
+    out
+}
+
+/// The number of objects of `classes` in `demo` (every movable one for
+/// `None`).
+fn weight(demo: &Scene, classes: Option<&[String]>) -> usize {
+    demo.objects
+        .iter()
+        .filter(|o| !o.fixed && classes.is_none_or(|cs| cs.contains(&o.class)))
+        .count()
+}
+
+/// Settings of the edit search.
+pub(crate) struct EditSearch<'a> {
+    /// The demonstrations (accepted probes included).
+    pub demos: &'a [Scene],
+    /// Resemblance of the moved objects to the demonstrations.
+    pub like: Option<&'a Likeness>,
+    /// How EC decides that two sides touch.
+    pub contact: crate::relations::Contact,
+    /// Seed of every solve.
+    pub seed: u64,
+    /// The time limit of one solve (a safety net).
+    pub time_limit: Option<Duration>,
+    /// Stops every solve when set.
+    pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+}
+
+impl EditSearch<'_> {
+    /// A probe for `held.rules[target]` that is a demonstration with at
+    /// most [`MAX_MOVED`] objects moved, within the meter's budget; `None`
+    /// when no neighbourhood tried has one (or the budget ran out).
+    /// `checkers` holds one pinned checker per demonstration, built when
+    /// first needed (they stay valid while `held` does).
+    pub fn find(
+        &self,
+        held: &RuleSet,
+        target: usize,
+        checkers: &mut Vec<Option<ProbeChecker>>,
+        meter: &mut Meter,
+    ) -> Option<Probe> {
+        let rule = &held.rules[target];
+        let rules = probe_rules(held, target)?;
+        let classes = rule_classes(rule);
+        let cs = classes.as_deref();
+        let mut order: Vec<usize> = (0..self.demos.len()).collect();
+        order.sort_by_key(|&d| (weight(&self.demos[d], cs), d));
+        let mut tries: Vec<(usize, Vec<usize>)> = Vec::new();
+        for moved in 1..=MAX_MOVED {
+            for &d in &order {
+                for s in neighbourhoods(&self.demos[d], cs) {
+                    if s.len() == moved {
+                        tries.push((d, s));
+                    }
+                }
+            }
+        }
+        checkers.resize_with(self.demos.len(), || None);
+        let popts = ProbeOptions {
+            contact: self.contact,
+            seed: self.seed,
+            time_limit: self.time_limit,
+            cancel: self.cancel.clone(),
+            ..ProbeOptions::default()
+        };
+        for (n, (d, free)) in tries.into_iter().take(MAX_SOLVES).enumerate() {
+            let demo = &self.demos[d];
+            if checkers[d].is_none() {
+                match ProbeChecker::pinned(demo, held, &popts) {
+                    Ok(c) => checkers[d] = Some(c),
+                    Err(_) => continue,
+                }
+            }
+            let c = checkers[d].as_mut().expect("built");
+            if !free.iter().all(|&i| c.can_move(i)) {
+                continue;
+            }
+            let nodes = meter.grant(EDIT_NODES, c.weight())?;
+            c.set_deadline(meter.deadline());
+            let before = c.nodes();
+            let found = c.has_probe_moving(target, &free, Some(nodes));
+            meter.spend(c.nodes() - before, c.weight());
+            let Checked::Witness(witness) = found else {
+                continue;
+            };
+            // The neighbourhood has a probe: the one to show breaks the
+            // rule for the most objects, most like the demonstrations.
+            let (layout, cost) = self
+                .refine(demo, &free, &rules, meter)
+                .unwrap_or((witness, 0));
+            if let Some(p) = self.probe(held, target, d, layout, cost) {
+                log::debug!(
+                    "ask: edit probe of {} at try {n}: demonstration {d}, {} moved",
+                    rule.name,
+                    free.len()
+                );
+                return Some(p);
+            }
+        }
+        None
+    }
+
+    /// The best probe of one neighbourhood (a synthesis of the probe
+    /// problem with only `free` unplaced), within the meter's budget.
+    fn refine(
+        &self,
+        demo: &Scene,
+        free: &[usize],
+        rules: &RuleSet,
+        meter: &mut Meter,
+    ) -> Option<(Scene, u64)> {
+        // One or two objects free: a small model (weight 1).
+        let nodes = meter.grant(EDIT_NODES, 1)?;
+        let mut scene = demo.clone();
+        for &i in free {
+            scene.objects[i].x = None;
+            scene.objects[i].y = None;
+        }
+        let opts = SynthOptions {
+            contact: self.contact,
+            time_limit: self.time_limit,
+            node_limit: Some(nodes),
+            seed: self.seed,
+            like: self.like.cloned(),
+            explain: false,
+            lns: None,
+            cancel: self.cancel.clone(),
+            ..SynthOptions::default()
+        };
+        let r = synthesize(&scene, rules, &opts).ok()?;
+        meter.spend(r.stats.nodes, 1);
+        let cost = r.resemblance.map_or(0, |c| c.cost);
+        r.scene.map(|s| (s, cost))
+    }
+
+    /// `layout` (an edit of demonstration `d`) as a probe of
+    /// `held.rules[target]`, after the evaluator confirms it breaks the
+    /// rule and keeps every other held rule.
+    fn probe(
+        &self,
+        held: &RuleSet,
+        target: usize,
+        d: usize,
+        layout: Scene,
+        cost: u64,
+    ) -> Option<Probe> {
+        let rule = &held.rules[target];
+        let ev = evaluate(&layout, held, self.contact);
+        let breaks = ev.rules[target].satisfied < ev.rules[target].subjects;
+        let keeps = ev
+            .rules
+            .iter()
+            .enumerate()
+            .all(|(j, e)| j == target || e.satisfied == e.subjects);
+        if !(breaks && keeps) {
+            // The engine and the evaluator disagree: never shown.
+            log::warn!("ask: an edit probe of {} failed the evaluator", rule.name);
+            return None;
+        }
+        let demo = &self.demos[d];
+        let moved: Vec<Moved> = demo
+            .objects
+            .iter()
+            .zip(&layout.objects)
+            .filter(|(a, b)| (a.x, a.y) != (b.x, b.y))
+            .map(|(a, _)| Moved {
+                id: a.id.clone(),
+                x: a.x.unwrap_or(0),
+                y: a.y.unwrap_or(0),
+            })
+            .collect();
+        let broken = ev.rules[target].violators.clone();
+        Some(Probe {
+            rule: rule.name.clone(),
+            scene: layout,
+            broken,
+            cost,
+            time_ms: 0.0,
+            edit: Some(Edit { demo: d, moved }),
+        })
+    }
+}
