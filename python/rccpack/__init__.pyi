@@ -417,6 +417,9 @@ class AskSession:
         check_nodes: int = ...,
         contact: str = "point",
         templates: str = "second",
+        question_nodes: int = ...,
+        question_seconds: Optional[float] = 3.0,
+        edits: bool = True,
     ) -> AskSession: ...
     def next_question(self) -> Optional[Question]: ...
     def answer(self, question: Question, accepted: bool) -> Question: ...
@@ -461,6 +464,9 @@ def ask(
     check_nodes: int = ...,
     contact: str = "point",
     templates: str = "second",
+    question_nodes: int = ...,
+    question_seconds: Optional[float] = 3.0,
+    edits: bool = True,
 ) -> AskResult: ...
 
 # ---- task folders ------------------------------------------------------------

@@ -8,8 +8,8 @@ use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use rccpack_core::ask::{
-    AnswersFile, AskError, AskOptions, ProbeOptions, Question as CoreQuestion, DEFAULT_CHECK_NODES,
-    DEFAULT_PROBE_NODES,
+    AnswersFile, AskError, AskOptions, ProbeOptions, Question as CoreQuestion, QuestionBudget,
+    DEFAULT_CHECK_NODES, DEFAULT_PROBE_NODES, DEFAULT_QUESTION_NODES,
 };
 use rccpack_core::infer::{LearnParams, Templates};
 use rccpack_core::task::session::{Session, SessionError, SessionOptions, Shown};
@@ -231,7 +231,9 @@ impl PyAskSession {
     #[pyo3(signature = (task_dir, max_questions = None, save = true, samples = 1000,
                         cutoff = 0.01, seed = 0, time_limit = 10.0,
                         node_limit = DEFAULT_PROBE_NODES, check_nodes = DEFAULT_CHECK_NODES,
-                        contact = "point", templates = "second"))]
+                        contact = "point", templates = "second",
+                        question_nodes = DEFAULT_QUESTION_NODES, question_seconds = 3.0,
+                        edits = true))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -246,6 +248,9 @@ impl PyAskSession {
         check_nodes: u64,
         contact: &str,
         templates: &str,
+        question_nodes: u64,
+        question_seconds: Option<f64>,
+        edits: bool,
     ) -> PyResult<PyAskSession> {
         let contact = self::contact(contact)?;
         let templates: Templates = templates.parse().map_err(Error::new_err)?;
@@ -269,6 +274,11 @@ impl PyAskSession {
                     ..ProbeOptions::default()
                 },
                 resemble: true,
+                budget: QuestionBudget {
+                    nodes: question_nodes.max(1),
+                    wall: crate::api::duration(question_seconds)?,
+                },
+                edits,
                 ..AskOptions::default()
             },
             max_questions,
@@ -492,7 +502,9 @@ impl PyAskSession {
 #[pyo3(signature = (task_dir, oracle, max_questions = None, save = false, samples = 1000,
                     cutoff = 0.01, seed = 0, time_limit = 10.0,
                     node_limit = DEFAULT_PROBE_NODES, check_nodes = DEFAULT_CHECK_NODES,
-                    contact = "point", templates = "second"))]
+                    contact = "point", templates = "second",
+                    question_nodes = DEFAULT_QUESTION_NODES, question_seconds = 3.0,
+                    edits = true))]
 #[allow(clippy::too_many_arguments)]
 pub fn ask(
     py: Python<'_>,
@@ -508,6 +520,9 @@ pub fn ask(
     check_nodes: u64,
     contact: &str,
     templates: &str,
+    question_nodes: u64,
+    question_seconds: Option<f64>,
+    edits: bool,
 ) -> PyResult<PyAskResult> {
     let session = PyAskSession::new(
         py,
@@ -522,6 +537,9 @@ pub fn ask(
         check_nodes,
         contact,
         templates,
+        question_nodes,
+        question_seconds,
+        edits,
     )?;
     let run = || -> PyResult<PyAskResult> {
         while let Some(q) = session.next_question(py)? {

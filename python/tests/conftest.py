@@ -90,7 +90,7 @@ def cli_session(cli: Path, tmp_path_factory: pytest.TempPathFactory) -> tuple[di
     d = tmp_path_factory.mktemp("cli") / "task"
     shutil.copytree(EXAMPLE, d)
     p = subprocess.run(
-        [str(cli), "ask", str(d), "--oracle", f"{cli} score --rules {EXAMPLE / 'pilot.rcc'} --require"],
+        [str(cli), "ask", str(d), "--question-seconds", "600", "--oracle", f"{cli} score --rules {EXAMPLE / 'pilot.rcc'} --require"],
         capture_output=True, text=True, check=False,
     )
     assert p.returncode == 0, p.stderr

@@ -17,7 +17,7 @@ def test_ask_matches_cli_oracle(example: Path, tmp_path: Path, pilot_oracle: Ora
                                 cli_session: tuple[dict[str, bytes], str]) -> None:
     task = tmp_path / "task"
     shutil.copytree(example, task)
-    result = rccpack.ask(task, pilot_oracle)
+    result = rccpack.ask(task, pilot_oracle, question_seconds=600)
     # nothing written to the folder
     assert sorted(p.name for p in task.iterdir()) == sorted(p.name for p in example.iterdir())
     files, stdout = cli_session

@@ -33,12 +33,12 @@ def test_interrupted_and_resumed_is_the_uninterrupted_session(
 ) -> None:
     d = tmp_path / "task"
     shutil.copytree(example, d)
-    with rccpack.AskSession(d) as s:
+    with rccpack.AskSession(d, question_seconds=600) as s:
         assert s.resumed == 0 and not s.backup_written
         assert answer_all(s, pilot_oracle, k) == k
         assert s.progress["asked"] == k
     # a fresh session (a new process would do the same) resumes
-    s2 = rccpack.AskSession(d)
+    s2 = rccpack.AskSession(d, question_seconds=600)
     assert s2.resumed == k
     rest = answer_all(s2, pilot_oracle)
     assert s2.next_question() is None and not s2.stopped_at_budget
@@ -53,12 +53,12 @@ def test_cli_interrupted_python_resumes(cli: Path, example: Path, tmp_path: Path
     d = tmp_path / "task"
     shutil.copytree(example, d)
     p = subprocess.run(
-        [str(cli), "ask", str(d), "--max-questions", "4",
+        [str(cli), "ask", str(d), "--max-questions", "4", "--question-seconds", "600",
          "--oracle", f"{cli} score --rules {example / 'pilot.rcc'} --require"],
         capture_output=True, text=True, check=False,
     )
     assert p.returncode == 0, p.stderr
-    r = rccpack.ask(d, pilot_oracle, save=True)
+    r = rccpack.ask(d, pilot_oracle, save=True, question_seconds=600)
     assert r.progress["asked"] == len(r.questions) + 4
     assert tree(d) == cli_session[0]
 
@@ -67,7 +67,7 @@ def test_ask_saves_like_the_cli(example: Path, tmp_path: Path, pilot_oracle: Ora
                                 cli_session: tuple[dict[str, bytes], str]) -> None:
     d = tmp_path / "task"
     shutil.copytree(example, d)
-    r = rccpack.ask(d, pilot_oracle, save=True)
+    r = rccpack.ask(d, pilot_oracle, save=True, question_seconds=600)
     assert tree(d) == cli_session[0]
     assert r.answers_json.encode() == cli_session[0]["answers.json"]
 
@@ -77,7 +77,7 @@ def test_budget_lock_stale_answers_and_undo(example: Path, tmp_path: Path) -> No
     shutil.copytree(example, d)
     s = rccpack.AskSession(d, max_questions=2)
     with pytest.raises(rccpack.AskError, match="another `rccpack ask`"):
-        rccpack.AskSession(d)
+        rccpack.AskSession(d, question_seconds=600)
     q1 = s.next_question()
     assert q1 is not None and q1.number == 1
     again = s.next_question()
