@@ -12,7 +12,9 @@
 3. A 1 000-object scene converted to and from Python objects: `from_dict`,
    `to_dict`, `objects`, `Scene(...)`.
 
-Medians over the repeats; build with `maturin develop --release` first.
+Medians over the repeats; install a wheel first and run with `python -P` (the
+source tree off `sys.path`). Also: `sample` against `rccpack sample`, `Task.run`
+against `rccpack run`, and a whole `AskSession`.
 """
 
 from __future__ import annotations
@@ -82,6 +84,52 @@ def main() -> None:
               f"difference {py_learn - rust:.2f} ms")
     else:
         print(f"learn: python {py_learn:.2f} ms (no CLI at {cli} to compare with)")
+
+    # sample: 50 layouts of score 1 through Python against `rccpack sample`
+    # minus its start-up (reading the two files is a few hundred µs).
+    py_sample = median_ms(lambda: list(rccpack.sample(problem, rules, n=50, seed=1, all_rules=True)), max(3, a.repeat // 4))
+    if cli.exists():
+        import tempfile
+
+        with tempfile.TemporaryDirectory() as tmp:
+            rules_path = Path(tmp) / "learned.rcc"
+            rules_path.write_text(rccpack.learn(demos).to_rcc())
+            cli_sample = median_ms(lambda: run("sample", str(EXAMPLE / "problem.json"), "--rules", str(rules_path),
+                                               "-n", "50", "--seed", "1", "--all-rules", "--quiet"),
+                                   max(3, a.repeat // 4))
+        print(f"sample 50: python {py_sample:.2f} ms, rust (CLI - start-up) {cli_sample - start:.2f} ms, "
+              f"difference {py_sample - (cli_sample - start):.2f} ms")
+
+        # Task.run against `rccpack run` (learn + place + four files)
+        with tempfile.TemporaryDirectory() as tmp:
+            task = rccpack.Task.load(EXAMPLE)
+            py_run = median_ms(lambda: task.run(out=Path(tmp) / "py"), max(3, a.repeat // 4))
+            cli_run = median_ms(lambda: run("run", str(EXAMPLE), "--out", str(Path(tmp) / "cli")), max(3, a.repeat // 4))
+        print(f"Task.run: python {py_run:.2f} ms, rust (CLI - start-up) {cli_run - start:.2f} ms, "
+              f"difference {py_run - (cli_run - start):.2f} ms")
+
+    # AskSession: one question (next_question + answer, files written)
+    # against the session's own work; the whole session against ask().
+    import shutil
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        task_dir = Path(tmp) / "task"
+        shutil.copytree(EXAMPLE, task_dir, ignore=shutil.ignore_patterns("answers.json", "probes", "learned.rcc*"))
+        t0 = time.perf_counter()
+        with rccpack.AskSession(task_dir) as session:
+            opened = (time.perf_counter() - t0) * 1000
+            per_q = []
+            while True:
+                t1 = time.perf_counter()
+                q = session.next_question()
+                if q is None:
+                    break
+                session.answer(q, False)
+                per_q.append((time.perf_counter() - t1) * 1000)
+        total = (time.perf_counter() - t0) * 1000
+    print(f"AskSession: open {opened:.1f} ms, {len(per_q)} questions, median {statistics.median(per_q):.1f} ms "
+          f"per question (next_question + answer + files), whole session {total:.0f} ms")
 
     d = big_scene()
     scene = rccpack.Scene.from_dict(d)

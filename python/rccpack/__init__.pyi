@@ -4,7 +4,7 @@ pure-Python `Status`)."""
 import enum
 import os
 from collections.abc import Callable, Iterator, Sequence
-from typing import Any, Optional, Union, final
+from typing import Any, Literal, Optional, Union, final
 
 __version__: str
 
@@ -45,6 +45,12 @@ class LearnError(Error):
 
 class AskError(Error):
     """The question loop cannot go on."""
+
+class SampleError(Error):
+    """Sampling found no layout of the quality asked for."""
+
+    kind: str
+    """`infeasible`, `no_layout`, `synth`, …"""
 
 class InternalError(Error):
     """A bug in rccpack (a Rust panic caught at the boundary)."""
@@ -319,6 +325,8 @@ class SynthResult:
     def stats(self) -> SolveStats: ...
     @property
     def interrupted(self) -> bool: ...
+    def report_json(self) -> str:
+        """The JSON `rccpack synth --report` writes."""
 
 def synthesize(
     problem: Scene,
@@ -356,6 +364,8 @@ def render_png(
 @final
 class Question:
     @property
+    def number(self) -> int: ...
+    @property
     def rule(self) -> str: ...
     @property
     def statement(self) -> str: ...
@@ -368,7 +378,12 @@ class Question:
     @property
     def also_broken(self) -> list[str]: ...
     @property
-    def accepted(self) -> bool: ...
+    def accepted(self) -> Optional[bool]:
+        """`None` while the question is open."""
+    @property
+    def probe_file(self) -> Optional[str]: ...
+    @property
+    def picture_file(self) -> Optional[str]: ...
 
 @final
 class AskResult:
@@ -387,10 +402,60 @@ class AskResult:
     @property
     def stopped_at_budget(self) -> bool: ...
 
+@final
+class AskSession:
+    def __new__(
+        cls,
+        task_dir: _Path,
+        max_questions: Optional[int] = None,
+        save: bool = True,
+        samples: int = 1000,
+        cutoff: float = 0.01,
+        seed: int = 0,
+        time_limit: Optional[float] = 10.0,
+        node_limit: int = ...,
+        check_nodes: int = ...,
+        contact: str = "point",
+        templates: str = "second",
+        question_nodes: int = ...,
+        question_seconds: Optional[float] = 3.0,
+        edits: bool = True,
+    ) -> AskSession: ...
+    def next_question(self) -> Optional[Question]: ...
+    def answer(self, question: Question, accepted: bool) -> Question: ...
+    def undo(self) -> Optional[str]: ...
+    @property
+    def progress(self) -> dict[str, int]: ...
+    @property
+    def questions(self) -> tuple[Question, ...]: ...
+    @property
+    def resumed(self) -> int: ...
+    @property
+    def stopped_at_budget(self) -> bool: ...
+    @property
+    def backup_written(self) -> bool: ...
+    @property
+    def rules(self) -> RuleSet: ...
+    @property
+    def learned_rcc(self) -> str: ...
+    @property
+    def demos(self) -> list[Scene]: ...
+    @property
+    def answers_json(self) -> str: ...
+    @property
+    def dir(self) -> str: ...
+    @property
+    def closed(self) -> bool: ...
+    def result(self) -> AskResult: ...
+    def close(self) -> None: ...
+    def __enter__(self) -> AskSession: ...
+    def __exit__(self, *_args: object) -> bool: ...
+
 def ask(
     task_dir: _Path,
     oracle: Callable[[Scene], object],
     max_questions: Optional[int] = None,
+    save: bool = False,
     samples: int = 1000,
     cutoff: float = 0.01,
     seed: int = 0,
@@ -399,11 +464,119 @@ def ask(
     check_nodes: int = ...,
     contact: str = "point",
     templates: str = "second",
+    question_nodes: int = ...,
+    question_seconds: Optional[float] = 3.0,
+    edits: bool = True,
 ) -> AskResult: ...
+
+# ---- task folders ------------------------------------------------------------
+
+_Like = Union[Literal["demos"], "Scene", Sequence["Scene"], None]
+
+@final
+class RunOutcome:
+    @property
+    def learned(self) -> Learned: ...
+    @property
+    def rules(self) -> RuleSet: ...
+    @property
+    def result(self) -> SynthResult: ...
+    @property
+    def scene(self) -> Optional[Scene]: ...
+    @property
+    def missing_classes(self) -> list[str]: ...
+    @property
+    def summary(self) -> str: ...
+    @property
+    def message(self) -> Optional[str]: ...
+    @property
+    def exit_code(self) -> int: ...
+    @property
+    def files(self) -> list[str]: ...
+
+@final
+class Task:
+    @staticmethod
+    def load(dir: _Path) -> Task: ...
+    @property
+    def dir(self) -> str: ...
+    @property
+    def demos(self) -> list[Scene]: ...
+    @property
+    def problem(self) -> Scene: ...
+    @property
+    def statements(self) -> Optional[RuleSet]: ...
+    def learn(
+        self,
+        samples: int = 1000,
+        cutoff: float = 0.01,
+        seed: int = 0,
+        templates: str = "second",
+        prior: float = 0.5,
+        epsilon: Optional[float] = None,
+        contact: str = "point",
+        time_limit: Optional[float] = None,
+    ) -> Learned: ...
+    def place(
+        self,
+        rules: RuleSet,
+        like: _Like = ...,
+        time_limit: Optional[float] = None,
+        node_limit: Optional[int] = None,
+        seed: int = 0,
+        contact: str = "point",
+    ) -> SynthResult: ...
+    def run(
+        self,
+        out: Optional[_Path] = None,
+        samples: int = 1000,
+        cutoff: float = 0.01,
+        seed: int = 0,
+        time_limit: Optional[float] = 60.0,
+        contact: str = "point",
+        like: _Like = ...,
+        templates: str = "second",
+        node_limit: Optional[int] = None,
+    ) -> RunOutcome: ...
+
+# ---- sample ------------------------------------------------------------------
+
+@final
+class Sampler:
+    def __iter__(self) -> Sampler: ...
+    def __next__(self) -> Scene: ...
+    def close(self) -> None: ...
+    @property
+    def state(self) -> str: ...
+    @property
+    def found(self) -> int: ...
+    @property
+    def skipped(self) -> int: ...
+    @property
+    def limit_reached(self) -> bool: ...
+    @property
+    def target_proven(self) -> Optional[bool]: ...
+
+def sample(
+    problem: Scene,
+    rules: RuleSet,
+    n: Optional[int] = None,
+    seed: int = 0,
+    all_rules: bool = False,
+    min_score: Optional[float] = None,
+    like: Optional[_Scenes] = None,
+    repair: str = "random",
+    time_limit: Optional[float] = None,
+    layout_node_limit: Optional[int] = None,
+    layout_time_limit: Optional[float] = None,
+    contact: str = "point",
+) -> Sampler: ...
+def _null_scene(demos: _Scenes, seed: int, index: int) -> Scene: ...
 
 __all__ = [
     "AskError",
     "AskResult",
+    "AskSession",
     "Conflict",
     "Error",
     "Evaluation",
@@ -417,6 +590,9 @@ __all__ = [
     "RuleReport",
     "RulesError",
     "RuleSet",
+    "RunOutcome",
+    "SampleError",
+    "Sampler",
     "Scene",
     "SceneError",
     "SolveStats",
@@ -425,6 +601,7 @@ __all__ = [
     "Status",
     "SynthError",
     "SynthResult",
+    "Task",
     "__version__",
     "ask",
     "evaluate",
@@ -434,6 +611,7 @@ __all__ = [
     "load_scenes",
     "render",
     "render_png",
+    "sample",
     "scenes_to_json",
     "synthesize",
 ]

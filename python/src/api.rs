@@ -8,7 +8,7 @@ use pyo3::exceptions::PyKeyboardInterrupt;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyBytes, PyTuple};
-use rccpack_core::infer::{learn, InferError, LearnParams, Templates};
+use rccpack_core::infer::{learn_cancellable, InferError, LearnParams, Templates};
 use rccpack_core::render::render_png as core_render_png;
 use rccpack_core::resemblance::Likeness;
 use rccpack_core::synth::{Progress, ProgressFn};
@@ -25,7 +25,7 @@ pub(crate) fn contact(s: &str) -> PyResult<Contact> {
     s.parse::<Contact>().map_err(Error::new_err)
 }
 
-fn templates(s: &str) -> PyResult<Templates> {
+pub(crate) fn templates(s: &str) -> PyResult<Templates> {
     s.parse::<Templates>().map_err(Error::new_err)
 }
 
@@ -209,7 +209,7 @@ impl PyStatement {
 /// What `learn` found: the rules and the report.
 #[pyclass(module = "rccpack", name = "Learned", frozen)]
 pub struct PyLearned {
-    inner: rccpack_core::Learned,
+    pub(crate) inner: rccpack_core::Learned,
 }
 
 #[pymethods]
@@ -316,15 +316,28 @@ pub fn learn_py(
         templates: self::templates(templates)?,
     };
     let set = statements.map(|s| s.inner.clone());
-    let out = py.detach(|| {
-        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            learn(&demos, set.as_ref(), &params)
-        }))
-    });
+    learn_interruptible(py, &demos, set.as_ref(), &params, None)
+}
+
+/// Learn on a worker thread with the GIL released; Ctrl-C stops the null
+/// model's draws (the core's cancel flag) and raises `KeyboardInterrupt`.
+pub(crate) fn learn_interruptible(
+    py: Python<'_>,
+    demos: &[CoreScene],
+    statements: Option<&rccpack_core::RuleSet>,
+    params: &LearnParams,
+    deadline: Option<std::time::Instant>,
+) -> PyResult<PyLearned> {
+    let cancel = AtomicBool::new(false);
+    let (out, signal) = run_interruptible(py, &cancel, || {
+        learn_cancellable(demos, statements, params, deadline, Some(&cancel))
+    })?;
+    if let Some(e) = signal {
+        return Err(e);
+    }
     match out {
-        Ok(Ok(inner)) => Ok(PyLearned { inner }),
-        Ok(Err(e)) => Err(learn_error(e)),
-        Err(p) => Err(panic_error(p)),
+        Ok(inner) => Ok(PyLearned { inner }),
+        Err(e) => Err(learn_error(e)),
     }
 }
 
@@ -399,8 +412,8 @@ impl PySolveStats {
 /// The result of `synthesize`.
 #[pyclass(module = "rccpack", name = "SynthResult", frozen)]
 pub struct PySynthResult {
-    inner: rccpack_core::SynthResult,
-    interrupted: bool,
+    pub(crate) inner: rccpack_core::SynthResult,
+    pub(crate) interrupted: bool,
 }
 
 fn status_name(s: Status) -> &'static str {
@@ -477,6 +490,10 @@ impl PySynthResult {
     fn interrupted(&self) -> bool {
         self.interrupted
     }
+    /// The JSON report `rccpack synth --report` writes (byte for byte).
+    fn report_json(&self) -> String {
+        rccpack_core::synth::report::report_json(&self.inner)
+    }
     fn __repr__(&self) -> String {
         format!(
             "<SynthResult {}{}>",
@@ -489,7 +506,7 @@ impl PySynthResult {
     }
 }
 
-fn duration(seconds: Option<f64>) -> PyResult<Option<Duration>> {
+pub(crate) fn duration(seconds: Option<f64>) -> PyResult<Option<Duration>> {
     match seconds {
         None => Ok(None),
         Some(s) => rccpack_core::limits::parse_time_limit(&s.to_string())
@@ -566,17 +583,40 @@ pub fn synthesize(
         ..SynthOptions::default()
     };
     let (problem, rules) = (&problem.inner, &rules.inner);
-    // The solve runs on a worker thread (the engine is created, filled and
-    // run there); this thread waits with the GIL released and, every 50 ms,
-    // takes it back to run Python's signal handlers, so Ctrl-C stops the
-    // search even when no better layout is found for a long time.
+    let (result, signal_error) =
+        run_interruptible(py, &cancel, || core_synthesize(problem, rules, &opts))?;
+    let callback_error = callback_error.lock().ok().and_then(|mut e| e.take());
+    let mut interrupted = stopped.load(Ordering::SeqCst);
+    for e in [signal_error, callback_error].into_iter().flatten() {
+        if e.is_instance_of::<PyKeyboardInterrupt>(py) {
+            interrupted = true;
+        } else {
+            return Err(e);
+        }
+    }
+    match result {
+        Ok(inner) => Ok(PySynthResult { inner, interrupted }),
+        Err(e) => Err(SynthError::new_err(e.to_string())),
+    }
+}
+
+/// Run `work` on a worker thread (the engine is created, filled and run
+/// there) while this thread waits with the GIL released and, every 50 ms,
+/// takes it back to run Python's signal handlers, so Ctrl-C is seen even
+/// when the work reports nothing for a long time. An exception a handler
+/// raises (`KeyboardInterrupt`) sets `cancel` (the work stops soon) and is
+/// returned beside the work's result; a panic becomes `InternalError`.
+pub(crate) fn run_interruptible<T: Send>(
+    py: Python<'_>,
+    cancel: &AtomicBool,
+    work: impl FnOnce() -> T + Send,
+) -> PyResult<(T, Option<PyErr>)> {
     let done = (Mutex::new(false), Condvar::new());
+    let done = &done;
     let mut signal_error: Option<PyErr> = None;
     let outcome = std::thread::scope(|s| {
-        let worker = s.spawn(|| {
-            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                core_synthesize(problem, rules, &opts)
-            }));
+        let worker = s.spawn(move || {
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(work));
             if let Ok(mut d) = done.0.lock() {
                 *d = true;
             }
@@ -606,22 +646,9 @@ pub fn synthesize(
         }
         worker.join()
     });
-    let result = match outcome {
-        Ok(Ok(r)) => r,
-        Ok(Err(p)) | Err(p) => return Err(panic_error(p)),
-    };
-    let callback_error = callback_error.lock().ok().and_then(|mut e| e.take());
-    let mut interrupted = stopped.load(Ordering::SeqCst);
-    for e in [signal_error, callback_error].into_iter().flatten() {
-        if e.is_instance_of::<PyKeyboardInterrupt>(py) {
-            interrupted = true;
-        } else {
-            return Err(e);
-        }
-    }
-    match result {
-        Ok(inner) => Ok(PySynthResult { inner, interrupted }),
-        Err(e) => Err(SynthError::new_err(e.to_string())),
+    match outcome {
+        Ok(Ok(r)) => Ok((r, signal_error)),
+        Ok(Err(p)) | Err(p) => Err(panic_error(p)),
     }
 }
 

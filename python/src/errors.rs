@@ -47,6 +47,12 @@ create_exception!(
 );
 create_exception!(
     rccpack,
+    SampleError,
+    Error,
+    "Sampling found no layout of the quality asked for (`kind`: `infeasible`, `no_layout`)."
+);
+create_exception!(
+    rccpack,
     InternalError,
     Error,
     "A bug in rccpack (a Rust panic caught at the boundary); please report it."

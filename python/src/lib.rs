@@ -12,7 +12,9 @@ mod api;
 mod ask;
 mod errors;
 mod rules;
+mod sample;
 mod scene;
+mod task;
 
 #[pymodule]
 fn _rccpack(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -23,6 +25,7 @@ fn _rccpack(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SynthError", py.get_type::<errors::SynthError>())?;
     m.add("LearnError", py.get_type::<errors::LearnError>())?;
     m.add("AskError", py.get_type::<errors::AskError>())?;
+    m.add("SampleError", py.get_type::<errors::SampleError>())?;
     m.add("InternalError", py.get_type::<errors::InternalError>())?;
     m.add_class::<scene::PySpace>()?;
     m.add_class::<scene::PyObject>()?;
@@ -49,6 +52,11 @@ fn _rccpack(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(api::render, m)?)?;
     m.add_function(wrap_pyfunction!(api::render_png, m)?)?;
     m.add_function(wrap_pyfunction!(ask::ask, m)?)?;
+    m.add_class::<ask::PyAskSession>()?;
+    m.add_class::<task::PyTask>()?;
+    m.add_class::<task::PyRunOutcome>()?;
+    sample::add(m)?;
+    m.add_function(wrap_pyfunction!(sample::null_scene, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

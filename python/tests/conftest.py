@@ -11,6 +11,7 @@ import os
 import shutil
 import subprocess
 from pathlib import Path
+from typing import Callable
 
 import pytest
 
@@ -61,3 +62,36 @@ def problem() -> rccpack.Scene:
 @pytest.fixture(scope="session")
 def learned(demos: list[rccpack.Scene]) -> rccpack.Learned:
     return rccpack.learn(demos)
+
+
+Oracle = Callable[[rccpack.Scene], bool]
+
+
+def tree(d: Path) -> dict[str, bytes]:
+    """Every file under `d` (relative path -> bytes)."""
+    return {str(p.relative_to(d)): p.read_bytes() for p in sorted(d.rglob("*")) if p.is_file()}
+
+
+@pytest.fixture(scope="session")
+def pilot_oracle() -> Oracle:
+    pilot = rccpack.load_rules(EXAMPLE / "pilot.rcc")
+
+    def oracle(probe: rccpack.Scene) -> bool:
+        # what `rccpack score --rules pilot.rcc --require` answers
+        return all(r.satisfied >= r.subjects for r in rccpack.evaluate(probe, pilot).rules)
+
+    return oracle
+
+
+@pytest.fixture(scope="session")
+def cli_session(cli: Path, tmp_path_factory: pytest.TempPathFactory) -> tuple[dict[str, bytes], str]:
+    """The files an uninterrupted `rccpack ask --oracle` leaves on the
+    bundled example, and what it prints."""
+    d = tmp_path_factory.mktemp("cli") / "task"
+    shutil.copytree(EXAMPLE, d)
+    p = subprocess.run(
+        [str(cli), "ask", str(d), "--question-seconds", "600", "--oracle", f"{cli} score --rules {EXAMPLE / 'pilot.rcc'} --require"],
+        capture_output=True, text=True, check=False,
+    )
+    assert p.returncode == 0, p.stderr
+    return tree(d), p.stdout

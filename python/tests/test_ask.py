@@ -5,39 +5,27 @@ from __future__ import annotations
 
 import re
 import shutil
-import subprocess
 from pathlib import Path
 
 import pytest
+from conftest import Oracle
 
 import rccpack
 
 
-def test_ask_matches_cli_oracle(cli: Path, example: Path, tmp_path: Path) -> None:
-    pilot = rccpack.load_rules(example / "pilot.rcc")
-
-    def oracle(probe: rccpack.Scene) -> bool:
-        # what `rccpack score --rules pilot.rcc --require` answers
-        return all(r.satisfied >= r.subjects for r in rccpack.evaluate(probe, pilot).rules)
-
+def test_ask_matches_cli_oracle(example: Path, tmp_path: Path, pilot_oracle: Oracle,
+                                cli_session: tuple[dict[str, bytes], str]) -> None:
     task = tmp_path / "task"
     shutil.copytree(example, task)
-    result = rccpack.ask(task, oracle)
+    result = rccpack.ask(task, pilot_oracle, question_seconds=600)
     # nothing written to the folder
     assert sorted(p.name for p in task.iterdir()) == sorted(p.name for p in example.iterdir())
-
-    cli_task = tmp_path / "cli"
-    shutil.copytree(example, cli_task)
-    p = subprocess.run(
-        [str(cli), "ask", str(cli_task), "--oracle", f"{cli} score --rules {example / 'pilot.rcc'} --require"],
-        capture_output=True, text=True, check=False,
-    )
-    assert p.returncode == 0, p.stderr
-    asked = re.findall(r"^question \d+: `([^`]+)` .* -> (acceptable|not acceptable)", p.stdout, re.M)
+    files, stdout = cli_session
+    asked = re.findall(r"^question \d+: `([^`]+)` .* -> (acceptable|not acceptable)", stdout, re.M)
     assert [(q.rule, q.accepted) for q in result.questions] == [(r, a == "acceptable") for r, a in asked]
-    assert result.learned_rcc == (cli_task / "learned.rcc").read_text()
-    assert result.answers_json == (cli_task / "answers.json").read_text()
-    assert rccpack.scenes_to_json(result.demos) == (cli_task / "demos.json").read_text()
+    assert result.learned_rcc.encode() == files["learned.rcc"]
+    assert result.answers_json.encode() == files["answers.json"]
+    assert rccpack.scenes_to_json(result.demos).encode() == files["demos.json"]
     progress = result.progress
     assert progress["asked"] == len(result.questions) == len(asked) > 0
     assert progress["dropped"] + progress["confirmed"] == progress["asked"]

@@ -92,3 +92,31 @@ def test_render(problem: rccpack.Scene, learned: rccpack.Learned, demos: list[rc
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     with pytest.raises(rccpack.Error, match="scale"):
         rccpack.render(problem, scale=0.0)
+
+
+@pytest.mark.parametrize("node_limit", [200, 100000])
+def test_report_json_matches_synth_report(cli: Path, example: Path, tmp_path: Path, demos: list[rccpack.Scene],
+                                          problem: rccpack.Scene, learned: rccpack.Learned, node_limit: int) -> None:
+    import json
+
+    rules_path = tmp_path / "learned.rcc"
+    rules_path.write_text(learned.to_rcc())
+    report = tmp_path / "report.json"
+    p = run(cli, "synth", example / "problem.json", "--rules", rules_path, "--like", example / "demos.json",
+            "--node-limit", node_limit, "--seed", 1, "-o", tmp_path / "sol.json", "--report", report, "--quiet")
+    assert p.returncode == 0, p.stderr
+    r = rccpack.synthesize(problem, learned.rules, like=demos, node_limit=node_limit, seed=1)
+    timed = ("time_ms", "time_to_first_ms", "time_to_best_ms")
+
+    def untimed(text: str) -> str:
+        d = json.loads(text)
+        for k in timed:
+            if d.get(k) is not None:
+                d[k] = 0
+        return json.dumps(d, indent=2)
+
+    mine, theirs = r.report_json(), report.read_text()
+    # the same fields in the same order, the same values but the clock's
+    assert [line.split(":")[0] for line in mine.splitlines()] == [line.split(":")[0] for line in theirs.splitlines()]
+    assert untimed(mine) == untimed(theirs)
+    assert mine.endswith("}\n")

@@ -7,6 +7,7 @@ import os
 import signal
 import threading
 import time
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -170,3 +171,31 @@ def test_learn_errors(demos: list[rccpack.Scene], problem: rccpack.Scene) -> Non
         rccpack.learn(demos, templates="third")
     with pytest.raises(OverflowError):
         rccpack.learn(demos, samples=-1)
+
+
+@pytest.mark.skipif(not hasattr(signal, "SIGINT"), reason="needs SIGINT")
+def test_ctrl_c_stops_learning(demos: list[rccpack.Scene]) -> None:
+    """Ctrl-C during `learn` stops the null model's draws (the core's
+    cancel flag) and raises KeyboardInterrupt at once, not when the
+    learning would have ended (1 000 000 samples: about 20 s)."""
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    t0 = time.perf_counter()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            rccpack.learn(demos, samples=1_000_000)
+    finally:
+        timer.cancel()
+    secs = time.perf_counter() - t0
+    assert secs < 5, secs
+    # the same through a task folder
+    task = rccpack.Task.load(Path(__file__).resolve().parents[2] / "examples" / "box-packing")
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    t0 = time.perf_counter()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            task.learn(samples=1_000_000)
+    finally:
+        timer.cancel()
+    assert time.perf_counter() - t0 < 5

@@ -6,15 +6,13 @@
 //! short summary on stdout. `OUT` defaults to `DIR`.
 
 use super::learn::learn_files;
-use super::{outln, read_scene, read_scenes, write_file, Reported};
+use super::{outln, read_scene, read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
-use rccpack::render::{render_to_path, RenderOptions};
-use rccpack::rules::missing_classes_note;
-use rccpack::synth::{Status, SynthOptions};
-use rccpack::task::{self, files, Like};
+use rccpack::synth::SynthOptions;
+use rccpack::task::{self, files, folder, Like};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
@@ -50,10 +48,6 @@ pub struct RunArgs {
     /// `second` (SPEC §11.5) or `first` (exactly SPEC §8).
     #[arg(long, default_value = "second", value_name = "first|second")]
     templates: Templates,
-}
-
-fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
-    write_file(path, bytes, "file")
 }
 
 pub fn run(a: RunArgs) -> Result<ExitCode> {
@@ -111,99 +105,20 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
             super::task_error_text(&e)
         ))
     })?;
-    // A curated learned.rcc (confirmed by `ask` or the studio, or edited)
-    // is never lost: confirmed marks carry over to the rules learned again
-    // unchanged, and a file that would still change is kept as a backup.
-    let learned_path = out.join(files::LEARNED);
-    let old = files::read_optional(&out, files::LEARNED).map_err(|e| {
-        Reported(format!(
-            "error: {}: cannot read file: {e}",
-            learned_path.display()
-        ))
-    })?;
-    let (rcc, backup) = files::carry_confirmed(old.as_deref(), &learned.rcc_header(), &rules);
-    if backup {
-        let bak = out.join(files::LEARNED_BACKUP);
-        write(&bak, old.unwrap_or_default())?;
-        outln(format!(
-            "note: {} was not what this run learned; kept as {}",
-            learned_path.display(),
-            bak.display()
-        ))?;
+    // The files and the summary are the library's (`rccpack::task::folder`,
+    // also behind Python's `Task.run`): a curated learned.rcc (confirmed by
+    // `ask` or the studio, or edited) is never lost — confirmed marks carry
+    // over to the rules learned again unchanged, and a file that would
+    // still change is kept as a backup.
+    let written = folder::write_outcome(
+        &a.dir, &out, &problem, &learned, &rules, placement, a.contact,
+    )
+    .map_err(|e| Reported(format!("error: {e}")))?;
+    for line in &written.stdout {
+        outln(line)?;
     }
-    write(&learned_path, rcc)?;
-    write(&out.join(files::LEARN_REPORT), learned.report_json())?;
-    let result = placement.result;
-    let like = placement.like;
-    // Learned rules about a class today's problem lacks hold as SPEC §4
-    // says (SPEC §15): a note, then a layout.
-    let absent = missing_classes_note(&placement.missing_classes);
-    if let Some(note) = &absent {
-        outln(note)?;
+    if let Some(line) = &written.stderr {
+        ewriteln!("{line}");
     }
-    let candidates = learned.statements.iter().filter(|s| s.candidate).count();
-    outln(format!(
-        "learned {} rules ({} candidates of {} statements) from {} demonstrations -> {}",
-        rules.rules.len(),
-        candidates,
-        learned.statements.len(),
-        learned.demos,
-        out.join(files::LEARNED).display()
-    ))?;
-    let code = match (&result.scene, &result.evaluation) {
-        (Some(scene), Some(ev)) => {
-            write(&out.join(files::SOLUTION), scene.to_json())?;
-            let png = out.join(files::SOLUTION_PNG);
-            let ropts = RenderOptions {
-                contact: a.contact,
-                scale: 1.0,
-                title: Some(format!("{} — synthesised", a.dir.display())),
-                like,
-                ..RenderOptions::default()
-            };
-            render_to_path(scene, Some(&rules), &ropts, &png)
-                .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;
-            let broken: Vec<String> = ev
-                .rules
-                .iter()
-                .filter(|r| r.satisfied < r.subjects)
-                .map(|r| format!("{} {}/{}", r.name, r.satisfied, r.subjects))
-                .collect();
-            outln(format!(
-                "placed {} objects: {} score {:.6} (weight {:.3} / {:.3}){}{} in {:.1} ms -> {}, {}",
-                problem.objects.iter().filter(|o| !o.is_placed()).count(),
-                match result.status {
-                    Status::Optimal => "optimal,",
-                    _ => "feasible (time limit),",
-                },
-                ev.score,
-                ev.satisfied_weight,
-                ev.total_weight,
-                super::synth::bound_text(&result),
-                super::synth::resemblance_text(result.resemblance),
-                result.stats.time_ms,
-                out.join(files::SOLUTION).display(),
-                png.display()
-            ))?;
-            if broken.is_empty() {
-                outln("every placed object keeps every learned rule")?;
-            } else {
-                outln(format!(
-                    "rules not kept by every object: {}",
-                    broken.join(", ")
-                ))?;
-            }
-            ExitCode::SUCCESS
-        }
-        _ if result.status == Status::Infeasible => {
-            let c = result.conflict.clone().unwrap_or_default();
-            ewriteln!("infeasible: {}", super::synth::conflict_text(&c));
-            ExitCode::from(2)
-        }
-        _ => {
-            ewriteln!("unknown: the time limit stopped the search before any layout was found");
-            ExitCode::from(3)
-        }
-    };
-    Ok(code)
+    Ok(ExitCode::from(written.exit_code))
 }

@@ -72,6 +72,7 @@ mod lns;
 pub mod model;
 #[cfg(not(feature = "fuzzing"))]
 pub(crate) mod model;
+pub mod report;
 mod verify;
 mod warm;
 mod weights;

@@ -23,8 +23,10 @@
 //! The folder's file names are the constants of [`files`].
 
 pub mod files;
+pub mod folder;
+pub mod session;
 
-use crate::infer::{learn_until, InferError, LearnParams, Learned};
+use crate::infer::{InferError, LearnParams, Learned};
 use crate::resemblance::Likeness;
 use crate::rules::{check_landmarks, missing_classes, parse_rules, RuleSet, RulesError};
 use crate::scene::{scenes_from_json, Scene, SceneError};
@@ -283,11 +285,24 @@ pub fn learn(
     params: &LearnParams,
     deadline: Option<Instant>,
 ) -> Result<Learned, TaskError> {
-    Ok(learn_until(
+    learn_cancellable(task, params, deadline, None)
+}
+
+/// [`learn`] that also stops ([`InferError::Cancelled`]) once `cancel` is
+/// set; [`run`] passes the synthesis cancel flag
+/// ([`SynthOptions::cancel`]), so one flag stops the whole pipeline.
+pub fn learn_cancellable(
+    task: &Task,
+    params: &LearnParams,
+    deadline: Option<Instant>,
+    cancel: Option<&std::sync::atomic::AtomicBool>,
+) -> Result<Learned, TaskError> {
+    Ok(crate::infer::learn_cancellable(
         &task.demos,
         task.statements.as_ref(),
         params,
         deadline,
+        cancel,
     )?)
 }
 
@@ -299,7 +314,7 @@ pub fn run(task: &Task, opts: &RunOptions) -> Result<Outcome, TaskError> {
         .synth
         .time_limit
         .and_then(|limit| start.checked_add(limit));
-    let learned = learn(task, &opts.learn, deadline)?;
+    let learned = learn_cancellable(task, &opts.learn, deadline, opts.synth.cancel.as_deref())?;
     let rules = learned.rules();
     let synth = SynthOptions {
         contact: opts.learn.contact,
