@@ -76,7 +76,7 @@ pub enum FolderError {
     Task(#[from] TaskError),
 }
 
-/// What [`place_and_write`] did.
+/// What [`write_outcome`] wrote.
 #[derive(Debug, Clone)]
 pub struct Written {
     /// The placed problem.
