@@ -163,6 +163,7 @@ pub mod fsutil;
 pub mod fuzzing;
 pub mod infer;
 pub mod limits;
+pub mod priors;
 pub mod relations;
 pub mod render;
 pub mod resemblance;

@@ -285,6 +285,9 @@ pub struct StatementResult {
     pub implied_by: Option<String>,
     /// One-line English reading.
     pub english: String,
+    /// With priors ([`learn_with_priors`]): the statement's prior and
+    /// where it came from; `None` without.
+    pub prior: Option<crate::priors::StatementPrior>,
 }
 
 /// Where the statements came from.
@@ -315,6 +318,8 @@ pub struct Learned {
     /// Indices into `statements` of the learned rules, strongest first
     /// (smallest posterior; ties by statement order).
     pub order: Vec<usize>,
+    /// With priors: the library's summary and the statements left out.
+    pub priors: Option<crate::priors::PriorsUsed>,
 }
 
 /// Learn rules from `demos`. `statements`: the statement set, or `None` for
@@ -350,6 +355,48 @@ pub fn learn_cancellable(
     deadline: Option<std::time::Instant>,
     cancel: Option<&std::sync::atomic::AtomicBool>,
 ) -> Result<Learned, InferError> {
+    learn_with_priors(demos, statements, params, None, deadline, cancel)
+}
+
+/// Which of `set`'s statements every demonstration satisfies (the
+/// candidates, as [`learn`] finds them), without the null model.
+pub fn candidate_flags(
+    demos: &[Scene],
+    set: &RuleSet,
+    contact: Contact,
+) -> Result<Vec<bool>, InferError> {
+    check_demos(demos)?;
+    let mut classes = ClassIndex::default();
+    for (c, _) in &templates::demo_classes(demos) {
+        classes.intern(c);
+    }
+    for id in set.landmarks() {
+        classes.intern_landmark(&id);
+    }
+    let compiled: Vec<CompiledRule> = set
+        .rules
+        .iter()
+        .map(|r| CompiledRule::compile(r, &mut classes.clone()))
+        .collect();
+    Ok(find_candidates(demos, &classes, &compiled, contact)
+        .into_iter()
+        .map(|b| b.is_none())
+        .collect())
+}
+
+/// [`learn_cancellable`] with priors learned across tasks
+/// ([`crate::priors`]): a generated statement gets the prior of its kind
+/// (`π = 1 − prior`), a statement of a ruled-out kind is left out of the
+/// statements, and given statements keep `params.prior`. `None`: exactly
+/// [`learn_cancellable`].
+pub fn learn_with_priors(
+    demos: &[Scene],
+    statements: Option<&RuleSet>,
+    params: &LearnParams,
+    priors: Option<&crate::priors::Priors>,
+    deadline: Option<std::time::Instant>,
+    cancel: Option<&std::sync::atomic::AtomicBool>,
+) -> Result<Learned, InferError> {
     params.validate()?;
     check_demos(demos)?;
     let class_list = templates::demo_classes(demos);
@@ -358,10 +405,15 @@ pub fn learn_cancellable(
         classes.intern(c);
     }
     let generated;
+    let mut statement_priors: Option<Vec<crate::priors::StatementPrior>> = None;
+    let mut ruled_out: Vec<crate::priors::RuledOut> = Vec::new();
     let (set, source) = match statements {
         Some(s) => {
             check_statements(s, &classes)?;
             check_demo_landmarks(s, demos)?;
+            if priors.is_some() {
+                statement_priors = Some(crate::priors::apply::given(s, params.prior));
+            }
             (s, StatementSource::Given)
         }
         None => {
@@ -372,7 +424,16 @@ pub fn learn_cancellable(
                     classes: class_list.len(),
                 });
             }
-            generated = templates::generate_set(demos, params.templates);
+            let (set, origins) = templates::generate_with_origins(demos, params.templates);
+            generated = match priors {
+                Some(p) => {
+                    let (set, used, out) = crate::priors::apply::generated(p, demos, set, &origins);
+                    statement_priors = Some(used);
+                    ruled_out = out;
+                    set
+                }
+                None => set,
+            };
             (&generated, StatementSource::Templates)
         }
     };
@@ -467,12 +528,16 @@ pub fn learn_cancellable(
             learned: false,
             implied_by: None,
             english: english::statement_reading(rule.scope, &rule.formula),
+            prior: statement_priors.as_ref().map(|p| p[k].clone()),
         };
         if r.candidate {
             let sat = counts[ci];
             ci += 1;
             let q = sat as f64 / trials.max(1) as f64;
-            let post = Posterior::new(q, epsilon, r.n, params.prior);
+            let prior = statement_priors
+                .as_ref()
+                .map_or(params.prior, |p| 1.0 - p[k].prior);
+            let post = Posterior::new(q, epsilon, r.n, prior);
             r.satisfied = Some(sat);
             r.q = Some(q);
             r.learned = post.learned(params.cutoff);
@@ -511,6 +576,7 @@ pub fn learn_cancellable(
         scene_epsilon,
         statements: results,
         order,
+        priors: priors.map(|p| crate::priors::apply::summary(p, ruled_out)),
     })
 }
 
@@ -736,6 +802,9 @@ impl Learned {
             eps.push(format!("scene-level {}", short(self.scene_epsilon)));
         }
         let _ = writeln!(s, "# epsilon: {}", eps.join(", "));
+        if let Some(line) = self.priors_header() {
+            let _ = writeln!(s, "{line}");
+        }
         s.push('\n');
         s
     }
@@ -763,6 +832,7 @@ impl Learned {
                 .iter()
                 .any(|s| s.scope.is_scene())
                 .then_some(self.scene_epsilon),
+            priors: self.priors.clone(),
             statements: self
                 .statements
                 .iter()
@@ -787,6 +857,7 @@ impl Learned {
                     learned: s.learned,
                     rank: self.order.iter().position(|&k| k == s.index),
                     implied_by: s.implied_by.clone(),
+                    prior: s.prior.clone(),
                 })
                 .collect(),
         }
@@ -815,6 +886,9 @@ pub struct Report {
     /// none.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub scene_epsilon: Option<f64>,
+    /// With priors: the library's summary and the statements left out.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub priors: Option<crate::priors::PriorsUsed>,
     /// Every statement, in statement order.
     pub statements: Vec<ReportStatement>,
 }
@@ -882,4 +956,7 @@ pub struct ReportStatement {
     pub rank: Option<usize>,
     /// A stronger learned rule implying this one.
     pub implied_by: Option<String>,
+    /// With priors: the statement's prior and its source.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub prior: Option<crate::priors::StatementPrior>,
 }

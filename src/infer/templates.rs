@@ -363,6 +363,28 @@ pub const LANDMARK_TEMPLATES: &[Template] = &[
     },
 ];
 
+/// Every template table, for the names `crate::priors` accepts as a kind's
+/// template. A new table is added here too (a test checks that every
+/// generated statement's template is listed).
+pub const TABLES: &[&[Template]] = &[
+    PAIR_TEMPLATES,
+    FLUSH_PAIR_TEMPLATES,
+    SELF_TEMPLATES,
+    SUBJECT_TEMPLATES,
+    LANDMARK_TEMPLATES,
+];
+
+/// The template named `name` in [`TABLES`].
+pub fn template_named(name: &str) -> Option<&'static Template> {
+    TABLES.iter().flat_map(|t| t.iter()).find(|t| t.name == name)
+}
+
+/// Whether the template's name contains `{d}` (it is expanded over the
+/// four directions).
+pub fn is_per_direction(t: &Template) -> bool {
+    t.per_direction()
+}
+
 /// The classes of the demonstrations in order of first appearance, and
 /// whether each is movable (has at least one object that is not fixed).
 pub fn demo_classes(demos: &[Scene]) -> Vec<(String, bool)> {
@@ -417,6 +439,28 @@ pub fn generate(demos: &[Scene]) -> RuleSet {
 /// edition, the landmarks) of `demos`: every rule has the default weight and
 /// no comments.
 pub fn generate_set(demos: &[Scene], which: Templates) -> RuleSet {
+    generate_with_origins(demos, which).0
+}
+
+/// Where a generated statement came from: its template (the entry's name
+/// pattern, e.g. `{A}_dr_{d}_{B}`), the target it was instantiated with and
+/// the direction of a `{d}` template. `crate::priors` derives a statement's
+/// *kind* from it, so a new table needs no change there.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct TemplateOrigin {
+    /// The template's name pattern ([`Template::name`]).
+    pub template: &'static str,
+    /// The subject class.
+    pub subject: String,
+    /// The target the template was instantiated with.
+    pub target: Target,
+    /// The direction, for a template whose name contains `{d}`.
+    pub dir: Option<Dir>,
+}
+
+/// [`generate_set`] and, per generated rule (same order), its
+/// [`TemplateOrigin`].
+pub fn generate_with_origins(demos: &[Scene], which: Templates) -> (RuleSet, Vec<TemplateOrigin>) {
     let second = which == Templates::Second;
     let classes = demo_classes(demos);
     let mut targets: Vec<Target> = classes
@@ -462,7 +506,7 @@ pub fn generate_set(demos: &[Scene], which: Templates) -> RuleSet {
             }
         }
     }
-    RuleSet::new(out.rules)
+    (RuleSet::new(out.rules), out.origins)
 }
 
 /// An upper bound on the number of statements [`generate_set`] makes for
@@ -498,10 +542,12 @@ struct Generated {
     rules: Vec<Rule>,
     names: HashSet<String>,
     statements: HashSet<(Scope, Formula)>,
+    origins: Vec<TemplateOrigin>,
 }
 
 impl Generated {
     fn expand(&mut self, t: &Template, subject: &str, target: &Target) {
+        let per_direction = t.per_direction();
         let dirs: &[Dir] = if t.per_direction() {
             &Dir::ALL
         } else {
@@ -535,6 +581,12 @@ impl Generated {
             self.names.insert(name.clone());
             self.rules
                 .push(Rule::new(name, formula).with_scope(t.scope));
+            self.origins.push(TemplateOrigin {
+                template: t.name,
+                subject: subject.to_string(),
+                target: target.clone(),
+                dir: per_direction.then_some(dir),
+            });
         }
     }
 }
