@@ -65,7 +65,7 @@ use super::budget::{Meter, QuestionBudget};
 use super::edit::{Edit, EditSearch};
 use super::probe::{search_probe, Checked, Probe, ProbeChecker, ProbeOptions, ProbeOutcome};
 use crate::infer::english::rule_implies;
-use crate::infer::{learn, InferError, LearnParams, Learned};
+use crate::infer::{InferError, LearnParams, Learned};
 use crate::resemblance::Likeness;
 use crate::rules::{print_rule, RuleSet};
 use crate::scene::Scene;
@@ -245,6 +245,9 @@ pub struct AskOptions {
     /// Look for probes that are a demonstration with one or two objects
     /// moved before searching the problem (on by default).
     pub edits: bool,
+    /// Priors learned across tasks ([`crate::priors`]) for every learning
+    /// run of the session; `None`: the uniform prior.
+    pub priors: Option<std::sync::Arc<crate::priors::Priors>>,
 }
 
 impl Default for AskOptions {
@@ -256,6 +259,7 @@ impl Default for AskOptions {
             reuse: true,
             budget: QuestionBudget::default(),
             edits: true,
+            priors: None,
         }
     }
 }
@@ -462,7 +466,14 @@ impl Asker {
         answers: Vec<Answer>,
         opts: AskOptions,
     ) -> Result<Asker, AskError> {
-        let learned = learn(&demos, statements.as_ref(), &opts.learn)?;
+        let learned = crate::infer::learn_with_priors(
+            &demos,
+            statements.as_ref(),
+            &opts.learn,
+            opts.priors.as_deref(),
+            None,
+            None,
+        )?;
         let like = opts.resemble.then(|| Likeness::new(&demos));
         let mut asker = Asker {
             problem,
@@ -1262,7 +1273,14 @@ impl Asker {
         if accepted {
             let mut demos = self.demos.clone();
             demos.push(q.probe.scene.clone());
-            let learned = learn(&demos, self.statements.as_ref(), &self.opts.learn)?;
+            let learned = crate::infer::learn_with_priors(
+                &demos,
+                self.statements.as_ref(),
+                &self.opts.learn,
+                self.opts.priors.as_deref(),
+                None,
+                None,
+            )?;
             self.like = self.opts.resemble.then(|| Likeness::new(&demos));
             self.demos = demos;
             self.learned = learned;

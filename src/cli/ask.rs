@@ -90,6 +90,10 @@ pub struct AskArgs {
     /// Which templates to learn with when there is no `statements.rcc`.
     #[arg(long, default_value = "second", value_name = "first|second")]
     templates: Templates,
+    /// Priors learned across tasks (`rccpack priors`) for every learning
+    /// run of the session.
+    #[arg(long, value_name = "PRIORS.json")]
+    priors: Option<PathBuf>,
 }
 
 fn write(path: &Path, contents: &str) -> Result<()> {
@@ -381,6 +385,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
             wall: Some(a.question_seconds),
         },
         edits: !a.no_edits,
+        priors: super::priors::read_priors_opt(a.priors.as_deref())?.map(std::sync::Arc::new),
         ..AskOptions::default()
     };
     let n_demos = demos.len();

@@ -4,7 +4,7 @@ use super::io::{parse_rules_text, read_text};
 use super::{out, read_scenes, write_file, LimitStruck, Reported};
 use anyhow::Result;
 use clap::Args;
-use rccpack::infer::{learn_until, InferError, LearnParams, Learned, Templates};
+use rccpack::infer::{learn_with_priors, InferError, LearnParams, Learned, Templates};
 use rccpack::relations::Contact;
 use rccpack::rules::{Diagnostic, DiagnosticKind, RulesError};
 use std::io::IsTerminal;
@@ -50,11 +50,16 @@ pub struct LearnArgs {
     /// Write a JSON report of every statement here.
     #[arg(long)]
     report: Option<PathBuf>,
+    /// Priors learned across tasks (`rccpack priors`): each generated
+    /// statement gets its kind's prior; ruled-out kinds are left out.
+    #[arg(long, value_name = "PRIORS.json")]
+    priors: Option<PathBuf>,
 }
 
 pub fn run(a: LearnArgs) -> Result<ExitCode> {
     let mut inputs = vec![a.demos.as_path()];
     inputs.extend(a.statements.as_deref());
+    inputs.extend(a.priors.as_deref());
     super::guard_outputs(
         &inputs,
         &[
@@ -73,7 +78,15 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
         templates: a.templates,
     };
     let progress = std::io::stderr().is_terminal();
-    let learned = learn_files(&a.demos, a.statements.as_deref(), &params, progress, None)?;
+    let priors = super::priors::read_priors_opt(a.priors.as_deref())?;
+    let learned = learn_files(
+        &a.demos,
+        a.statements.as_deref(),
+        &params,
+        priors.as_ref(),
+        progress,
+        None,
+    )?;
     let rcc = learned.to_rcc();
     match &a.output {
         Some(p) => {
@@ -100,6 +113,7 @@ pub fn learn_files(
     demos_path: &Path,
     statements_path: Option<&Path>,
     params: &LearnParams,
+    priors: Option<&rccpack::priors::Priors>,
     progress: bool,
     deadline: Option<Instant>,
 ) -> Result<Learned> {
@@ -132,42 +146,44 @@ pub fn learn_files(
         );
     }
     let start = Instant::now();
-    let learned = learn_until(&demos, statements.as_ref(), params, deadline).map_err(|e| {
-        if let InferError::TimeLimit { .. } = e {
-            return anyhow::Error::new(LimitStruck(format!("unknown: {e}")));
-        }
-        match (&e, statements_path) {
-            (
-                InferError::UnknownClass {
-                    span: Some(span), ..
+    let learned = learn_with_priors(&demos, statements.as_ref(), params, priors, deadline, None)
+        .map_err(|e| {
+            if let InferError::TimeLimit { .. } = e {
+                return anyhow::Error::new(LimitStruck(format!("unknown: {e}")));
+            }
+            match (&e, statements_path) {
+                (
+                    InferError::UnknownClass {
+                        span: Some(span), ..
+                    }
+                    | InferError::UnknownLandmark {
+                        span: Some(span), ..
+                    },
+                    Some(path),
+                ) => {
+                    let kind = match e {
+                        InferError::UnknownClass { .. } => DiagnosticKind::UnknownClass,
+                        _ => DiagnosticKind::UnknownLandmark,
+                    };
+                    let diag = RulesError::new(vec![Diagnostic::new(kind, *span, e.to_string())]);
+                    Reported(diag.render(
+                        &path.display().to_string(),
+                        &text,
+                        std::io::stderr().is_terminal(),
+                    ))
                 }
-                | InferError::UnknownLandmark {
-                    span: Some(span), ..
-                },
-                Some(path),
-            ) => {
-                let kind = match e {
-                    InferError::UnknownClass { .. } => DiagnosticKind::UnknownClass,
-                    _ => DiagnosticKind::UnknownLandmark,
-                };
-                let diag = RulesError::new(vec![Diagnostic::new(kind, *span, e.to_string())]);
-                Reported(diag.render(
-                    &path.display().to_string(),
-                    &text,
-                    std::io::stderr().is_terminal(),
-                ))
+                (
+                    InferError::UnknownClass { .. } | InferError::UnknownLandmark { .. },
+                    Some(path),
+                ) => Reported(format!("error: {}: {e}", path.display())),
+                _ => Reported(format!(
+                    "error: {}: {}",
+                    demos_path.display(),
+                    super::learn_error_text(&e)
+                )),
             }
-            (InferError::UnknownClass { .. } | InferError::UnknownLandmark { .. }, Some(path)) => {
-                Reported(format!("error: {}: {e}", path.display()))
-            }
-            _ => Reported(format!(
-                "error: {}: {}",
-                demos_path.display(),
-                super::learn_error_text(&e)
-            )),
-        }
-        .into()
-    })?;
+            .into()
+        })?;
     if progress {
         let candidates = learned.statements.iter().filter(|s| s.candidate).count();
         ewriteln!(

@@ -26,6 +26,7 @@ mod bench;
 mod check;
 mod io;
 mod learn;
+mod priors;
 mod render;
 mod run;
 mod sample;
@@ -65,6 +66,8 @@ enum Command {
     Score(score::ScoreArgs),
     /// Learn rules from demonstrations (SPEC §7).
     Learn(learn::LearnArgs),
+    /// Priors per kind of statement from a library of finished task folders.
+    Priors(priors::PriorsArgs),
     /// Serve the studio page: record demonstrations, learn, synthesise.
     Studio(studio::StudioArgs),
     /// Draw a scene as SVG or PNG, optionally marking rule violations.
@@ -132,6 +135,7 @@ pub fn main() -> ExitCode {
         Command::Score(a) => score::run(a),
         Command::Render(a) => render::run(a),
         Command::Learn(a) => learn::run(a),
+        Command::Priors(a) => priors::run(a),
         Command::Synth(a) => synth::run(a),
         Command::Run(a) => run::run(a),
         Command::Sample(a) => sample::run(a),

@@ -48,6 +48,9 @@ pub struct RunArgs {
     /// `second` (SPEC §11.5) or `first` (exactly SPEC §8).
     #[arg(long, default_value = "second", value_name = "first|second")]
     templates: Templates,
+    /// Priors learned across tasks (`rccpack priors`).
+    #[arg(long, value_name = "PRIORS.json")]
+    priors: Option<PathBuf>,
 }
 
 pub fn run(a: RunArgs) -> Result<ExitCode> {
@@ -70,6 +73,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         None => Like::Demos,
     };
     let demos = read_scenes(&a.dir.join(files::DEMOS))?.0;
+    let priors = super::priors::read_priors_opt(a.priors.as_deref())?;
     let statements = a.dir.join(files::STATEMENTS);
     let statements = statements.exists().then_some(statements);
     let params = LearnParams {
@@ -88,6 +92,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         &a.dir.join(files::DEMOS),
         statements.as_deref(),
         &params,
+        priors.as_ref(),
         false,
         deadline,
     )?;

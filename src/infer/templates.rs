@@ -376,7 +376,10 @@ pub const TABLES: &[&[Template]] = &[
 
 /// The template named `name` in [`TABLES`].
 pub fn template_named(name: &str) -> Option<&'static Template> {
-    TABLES.iter().flat_map(|t| t.iter()).find(|t| t.name == name)
+    TABLES
+        .iter()
+        .flat_map(|t| t.iter())
+        .find(|t| t.name == name)
 }
 
 /// Whether the template's name contains `{d}` (it is expanded over the

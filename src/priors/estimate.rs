@@ -206,7 +206,12 @@ pub fn estimate(
     let m = f64::from(strength.max(1));
     let mut out: BTreeMap<String, (f64, bool)> = BTreeMap::new();
     let mut keys: Vec<&String> = nodes.keys().collect();
-    keys.sort_by_key(|k| (k.matches('/').count() + usize::from(k.as_str() != kind::ROOT), *k));
+    keys.sort_by_key(|k| {
+        (
+            k.matches('/').count() + usize::from(k.as_str() != kind::ROOT),
+            *k,
+        )
+    });
     for key in keys {
         let n = &nodes[key];
         let (parent_prior, parent_out) = kind::parent_key(key)

@@ -88,7 +88,15 @@ fn unhex(field: &str, s: &str) -> Result<u64, PriorsError> {
     s.strip_prefix("fnv1a64:")
         .filter(|h| h.len() == 16)
         .and_then(|h| u64::from_str_radix(h, 16).ok())
-        .ok_or_else(|| PriorsError::field(field, format!("is `{}`; expected `fnv1a64:` and 16 hexadecimal digits", crate::limits::cut(s))))
+        .ok_or_else(|| {
+            PriorsError::field(
+                field,
+                format!(
+                    "is `{}`; expected `fnv1a64:` and 16 hexadecimal digits",
+                    crate::limits::cut(s)
+                ),
+            )
+        })
 }
 
 impl Priors {
@@ -173,12 +181,11 @@ impl Priors {
     /// Read a priors file's text. Every error names the field.
     pub fn from_json(text: &str) -> Result<Priors, PriorsError> {
         let mut de = serde_json::Deserializer::from_str(text);
-        let form: FileForm = serde_path_to_error::deserialize(&mut de).map_err(|e| {
-            PriorsError::Json {
+        let form: FileForm =
+            serde_path_to_error::deserialize(&mut de).map_err(|e| PriorsError::Json {
                 field: e.path().to_string(),
                 message: e.inner().to_string(),
-            }
-        })?;
+            })?;
         if form.version != VERSION {
             return Err(PriorsError::field(
                 "version",
@@ -263,10 +270,7 @@ impl Priors {
             }
         }
         if !nodes.contains_key(kind::ROOT) {
-            return Err(PriorsError::field(
-                "kinds",
-                "has no root kind `*`".into(),
-            ));
+            return Err(PriorsError::field("kinds", "has no root kind `*`".into()));
         }
         let params = PriorParams {
             strength: form.parameters.strength,

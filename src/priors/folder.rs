@@ -46,10 +46,8 @@ pub fn task_counts(dir: &Path, params: &PriorParams) -> Result<TaskCounts, Prior
 /// result does not depend on the number of threads nor on the order of
 /// `dirs`.
 pub fn library(dirs: &[PathBuf], params: &PriorParams) -> Result<Priors, PriorsError> {
-    let counts: Vec<Result<TaskCounts, PriorsError>> = dirs
-        .par_iter()
-        .map(|d| task_counts(d, params))
-        .collect();
+    let counts: Vec<Result<TaskCounts, PriorsError>> =
+        dirs.par_iter().map(|d| task_counts(d, params)).collect();
     let counts: Vec<TaskCounts> = counts.into_iter().collect::<Result<_, _>>()?;
     Ok(estimate::combine(&counts, params))
 }

@@ -170,7 +170,9 @@ pub fn check_key(key: &str) -> Result<usize, UnknownKind> {
         )));
     }
     if let Some(extra) = parts.next() {
-        return Err(UnknownKind(format!("unexpected part `{extra}` after the direction")));
+        return Err(UnknownKind(format!(
+            "unexpected part `{extra}` after the direction"
+        )));
     }
     Ok(3)
 }
@@ -199,10 +201,18 @@ mod tests {
         };
         assert_eq!(
             k.path(),
-            ["*", "{A}_dr_{d}_{B}", "{A}_dr_{d}_{B}/fixed", "{A}_dr_{d}_{B}/fixed/s"]
+            [
+                "*",
+                "{A}_dr_{d}_{B}",
+                "{A}_dr_{d}_{B}/fixed",
+                "{A}_dr_{d}_{B}/fixed/s"
+            ]
         );
         assert_eq!(check_key(&k.key()), Ok(3));
-        assert_eq!(parent_key("{A}_dr_{d}_{B}/fixed").as_deref(), Some("{A}_dr_{d}_{B}"));
+        assert_eq!(
+            parent_key("{A}_dr_{d}_{B}/fixed").as_deref(),
+            Some("{A}_dr_{d}_{B}")
+        );
         assert_eq!(parent_key("{A}_dr_{d}_{B}").as_deref(), Some("*"));
         assert!(check_key("{A}_corner/any/n").is_err());
         assert!(check_key("{A}_nope").is_err());

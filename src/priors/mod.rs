@@ -31,8 +31,8 @@ pub mod file;
 pub mod folder;
 pub mod kind;
 
-pub use estimate::{combine, task_counts, Count, PriorParams, TaskCounts};
 pub use apply::{PriorsUsed, RuledOut};
+pub use estimate::{combine, task_counts, Count, PriorParams, TaskCounts};
 pub use file::KindEntry;
 pub use kind::{Kind, Role};
 

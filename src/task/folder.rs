@@ -10,7 +10,7 @@
 //! `solution.png`, and says what the command prints. [`run_folder`] is
 //! the whole of it on a folder already read ([`super::Task::load`]).
 
-use super::{files, learn_cancellable, place, Outcome, Placement, RunOptions, Task, TaskError};
+use super::{files, learn_with_priors, place, Outcome, Placement, RunOptions, Task, TaskError};
 use crate::fsutil::DirLock;
 use crate::infer::Learned;
 use crate::render::{render_to_path, RenderError, RenderOptions};
@@ -265,7 +265,13 @@ pub fn run_folder(
         .synth
         .time_limit
         .and_then(|limit| start.checked_add(limit));
-    let learned = learn_cancellable(task, &opts.learn, deadline, opts.synth.cancel.as_deref())?;
+    let learned = learn_with_priors(
+        task,
+        &opts.learn,
+        opts.priors.as_deref(),
+        deadline,
+        opts.synth.cancel.as_deref(),
+    )?;
     let rules = learned.rules();
     let synth = SynthOptions {
         contact: opts.learn.contact,

@@ -221,6 +221,9 @@ pub struct RunOptions {
     pub synth: SynthOptions,
     /// What the layout should resemble.
     pub like: Like,
+    /// Priors learned across tasks ([`crate::priors`]); `None`: the
+    /// uniform prior of [`LearnParams::prior`].
+    pub priors: Option<std::sync::Arc<crate::priors::Priors>>,
 }
 
 /// A placed problem.
@@ -297,10 +300,23 @@ pub fn learn_cancellable(
     deadline: Option<Instant>,
     cancel: Option<&std::sync::atomic::AtomicBool>,
 ) -> Result<Learned, TaskError> {
-    Ok(crate::infer::learn_cancellable(
+    learn_with_priors(task, params, None, deadline, cancel)
+}
+
+/// [`learn_cancellable`] with priors learned across tasks
+/// ([`crate::infer::learn_with_priors`]).
+pub fn learn_with_priors(
+    task: &Task,
+    params: &LearnParams,
+    priors: Option<&crate::priors::Priors>,
+    deadline: Option<Instant>,
+    cancel: Option<&std::sync::atomic::AtomicBool>,
+) -> Result<Learned, TaskError> {
+    Ok(crate::infer::learn_with_priors(
         &task.demos,
         task.statements.as_ref(),
         params,
+        priors,
         deadline,
         cancel,
     )?)
@@ -314,7 +330,13 @@ pub fn run(task: &Task, opts: &RunOptions) -> Result<Outcome, TaskError> {
         .synth
         .time_limit
         .and_then(|limit| start.checked_add(limit));
-    let learned = learn_cancellable(task, &opts.learn, deadline, opts.synth.cancel.as_deref())?;
+    let learned = learn_with_priors(
+        task,
+        &opts.learn,
+        opts.priors.as_deref(),
+        deadline,
+        opts.synth.cancel.as_deref(),
+    )?;
     let rules = learned.rules();
     let synth = SynthOptions {
         contact: opts.learn.contact,

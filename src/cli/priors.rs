@@ -1,0 +1,131 @@
+//! `rccpack priors TASK_DIR... -o PRIORS.json`: priors per kind of
+//! statement from a library of finished task folders (issue 30), and the
+//! `--priors FILE` reader of `learn`, `run`, `ask` and the studio.
+
+use super::{read_text, write_file, Reported};
+use anyhow::Result;
+use clap::Args;
+use rccpack::infer::Templates;
+use rccpack::priors::{folder, PriorParams, Priors, PriorsError};
+use rccpack::relations::Contact;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// `rccpack priors DIR... [-o PRIORS.json] [--threads N]`
+#[derive(Args, Debug)]
+pub struct PriorsArgs {
+    /// Task folders, each with `demos.json` and `learned.rcc` (the rules
+    /// the person kept; `# confirmed` marks count twice). A single file
+    /// `@LIST` names one folder per line.
+    #[arg(required = true)]
+    dirs: Vec<PathBuf>,
+    /// Write the priors here (default: standard output).
+    #[arg(short = 'o', long = "output")]
+    output: Option<PathBuf>,
+    /// Shrinkage strength: pseudo-candidates of the parent kind, at least 1.
+    #[arg(long, default_value_t = 4)]
+    strength: u32,
+    /// Rule a kind out after this many tasks in which it was a candidate
+    /// and never kept (0: never).
+    #[arg(long, default_value_t = 10)]
+    rule_out_after: u64,
+    /// The template set whose candidates are counted.
+    #[arg(long, default_value = "second", value_name = "first|second")]
+    templates: Templates,
+    /// How EC decides that two sides touch: `point` or `edge`.
+    #[arg(long, default_value = "point")]
+    contact: Contact,
+    /// Threads (default: every core). The output is the same for any number.
+    #[arg(long)]
+    threads: Option<usize>,
+}
+
+fn expand(dirs: &[PathBuf]) -> Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    for d in dirs {
+        match d.to_str().and_then(|s| s.strip_prefix('@')) {
+            Some(list) => {
+                let text = read_text(Path::new(list))?;
+                out.extend(
+                    text.lines()
+                        .map(str::trim)
+                        .filter(|l| !l.is_empty())
+                        .map(PathBuf::from),
+                );
+            }
+            None => out.push(d.clone()),
+        }
+    }
+    Ok(out)
+}
+
+pub fn run(a: PriorsArgs) -> Result<ExitCode> {
+    if a.strength == 0 {
+        return Err(Reported(
+            "error: --strength is 0; expected a whole number of at least 1".into(),
+        )
+        .into());
+    }
+    if a.threads == Some(0) {
+        return Err(Reported(
+            "error: --threads is 0; expected a whole number of at least 1".into(),
+        )
+        .into());
+    }
+    let dirs = expand(&a.dirs)?;
+    let params = PriorParams {
+        strength: a.strength,
+        rule_out_after: a.rule_out_after,
+        templates: a.templates,
+        contact: a.contact,
+    };
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = a.threads {
+        pool = pool.num_threads(n);
+    }
+    let pool = pool
+        .build()
+        .map_err(|e| Reported(format!("error: cannot start the threads: {e}")))?;
+    let priors = pool
+        .install(|| folder::library(&dirs, &params))
+        .map_err(|e| Reported(priors_error_text(&e)))?;
+    let text = priors.to_json();
+    match &a.output {
+        Some(p) => {
+            write_file(p, &text, "priors")?;
+            if std::io::stderr().is_terminal() {
+                ewriteln!(
+                    "wrote {} ({} tasks, {} kinds)",
+                    p.display(),
+                    priors.tasks,
+                    priors.kinds.len()
+                );
+            }
+        }
+        None => super::out(&text)?,
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn priors_error_text(e: &PriorsError) -> String {
+    match e {
+        PriorsError::Task { dir, source } => format!(
+            "error: task {}: {}",
+            dir.display(),
+            super::task_error_text(source)
+        ),
+        other => format!("error: {other}"),
+    }
+}
+
+/// Read `--priors FILE`; errors name the file and the field.
+pub fn read_priors(path: &Path) -> Result<Priors> {
+    let text = read_text(path)?;
+    Priors::from_json(&text).map_err(|e| Reported(format!("error: {}: {e}", path.display())).into())
+}
+
+/// Read an optional `--priors FILE`.
+pub fn read_priors_opt(path: Option<&Path>) -> Result<Option<Priors>> {
+    path.map(read_priors).transpose()
+}
