@@ -22,6 +22,7 @@ mod learn;
 mod learn_cli;
 mod learn_props;
 mod parser;
+mod priors;
 mod relations;
 mod render;
 mod resemblance;

@@ -626,6 +626,27 @@ mod tests {
     }
 
     #[test]
+    fn every_generated_template_is_in_tables() {
+        let demos = crate::scene::scenes_from_json(
+            r#"[{"space":{"width":40,"height":40},"objects":[
+              {"class":"B","x":0,"y":0,"width":5,"height":5},
+              {"class":"B","x":10,"y":0,"width":5,"height":5},
+              {"class":"R","x":20,"y":0,"width":5,"height":5},
+              {"class":"W","x":0,"y":35,"width":40,"height":5,"fixed":true,"id":"w"}]}]"#,
+        )
+        .unwrap();
+        let (set, origins) = generate_with_origins(&demos, Templates::Second);
+        assert_eq!(set.rules.len(), origins.len());
+        for o in &origins {
+            assert!(
+                template_named(o.template).is_some(),
+                "{} not in TABLES",
+                o.template
+            );
+        }
+    }
+
+    #[test]
     fn identifiers() {
         assert!(is_identifier("w_west") && is_identifier("_a1"));
         assert!(!is_identifier("1w") && !is_identifier("w-west") && !is_identifier(""));

@@ -220,7 +220,12 @@ pub fn estimate(
         let kw = n.count.kept.saturating_add(n.count.confirmed) as f64;
         let cw = n.count.candidates.saturating_add(n.count.confirmed) as f64;
         let prior = (kw + m * parent_prior) / (cw + m);
-        let own_out = rule_out_after > 0 && n.tasks >= rule_out_after && n.count.kept == 0;
+        // The root is never ruled out: a library that kept nothing says
+        // nothing about which kinds are rules.
+        let own_out = key != kind::ROOT
+            && rule_out_after > 0
+            && n.tasks >= rule_out_after
+            && n.count.kept == 0;
         out.insert(key.clone(), (prior, parent_out || own_out));
     }
     out
