@@ -127,6 +127,8 @@
 //!   `grammar/rcc.pest`), checks, printer, diagnostics.
 //! - [`eval`]: the one evaluator and the §6 score.
 //! - [`infer`]: learning (SPEC §7–§8, §11.5).
+//! - [`priors`]: priors per kind of statement learned across a library of
+//!   tasks (`rccpack priors`, `--priors`).
 //! - [`synth`]: synthesis of layouts; [`synth::emit`] writes the same model
 //!   for other solvers.
 //! - [`resemblance`]: SPEC §12, the second objective.

@@ -311,6 +311,7 @@ impl PyTask {
                 ..SynthOptions::default()
             },
             like,
+            priors: None,
         };
         let out = out.unwrap_or_else(|| self.dir.clone());
         let (t, dir, o) = (&self.inner, &self.dir, &out);

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 pub fn task_counts(dir: &Path, params: &PriorParams) -> Result<TaskCounts, PriorsError> {
     let wrap = |source: TaskError| PriorsError::Task {
         dir: dir.to_path_buf(),
-        source,
+        source: Box::new(source),
     };
     let demos_path = files::file(dir, files::DEMOS);
     let learned_path = files::file(dir, files::LEARNED);

@@ -23,7 +23,7 @@
 //! bytes on any number of threads) or [`combine`] on counts gathered
 //! elsewhere (Python's `task_counts` / `combine_counts`, a Dask cluster).
 //! [`Priors::to_json`] / [`Priors::from_json`] write and read the file
-//! ([`file`]).
+//! ([`mod@file`]).
 
 pub mod apply;
 pub mod estimate;
@@ -77,7 +77,7 @@ pub enum PriorsError {
         /// The folder.
         dir: std::path::PathBuf,
         /// Why.
-        source: crate::task::TaskError,
+        source: Box<crate::task::TaskError>,
     },
 }
 
