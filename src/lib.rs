@@ -169,6 +169,7 @@ pub mod resemblance;
 pub mod rules;
 pub mod sample;
 pub mod scene;
+pub mod shapes;
 #[cfg(feature = "studio")]
 pub mod studio;
 pub mod synth;

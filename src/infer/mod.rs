@@ -450,7 +450,7 @@ pub fn learn_cancellable(
         let st = &stats[subjects[k]];
         let (n, trials, epsilon) = match rule.scope {
             Scope::Each => (st.demo_objects, st.sample_objects, st.epsilon),
-            Scope::Scene(_) => (d as u64, params.samples as u64, scene_epsilon),
+            Scope::Scene(_) | Scope::Group => (d as u64, params.samples as u64, scene_epsilon),
         };
         let mut r = StatementResult {
             index: k,
@@ -551,6 +551,16 @@ pub fn check_statements(set: &RuleSet, classes: &ClassIndex) -> Result<(), Infer
             });
         }
         let subject = rule.subject();
+        if let Some((shape, _)) = rule.formula.shape() {
+            if classes.get(&shape.class).is_none() {
+                return Err(InferError::UnknownClass {
+                    rule: rule.name.clone(),
+                    class: shape.class.clone(),
+                    known: classes.names().join(", "),
+                    span: rule.origin.as_ref().and_then(|o| o.atoms.first().copied()),
+                });
+            }
+        }
         for (i, a) in rule.formula.atoms().into_iter().enumerate() {
             if a.subject != subject {
                 return Err(InferError::MixedSubjects {
@@ -608,7 +618,7 @@ pub(crate) fn check_demo_landmarks(set: &RuleSet, demos: &[Scene]) -> Result<(),
 /// `Q A: ` for a scene-level rule about `subject`, `""` for a per-object one.
 pub fn scope_prefix(scope: Scope, subject: &str) -> String {
     match scope {
-        Scope::Each => String::new(),
+        Scope::Each | Scope::Group => String::new(),
         Scope::Scene(q) => format!("{q} {subject}: "),
     }
 }
@@ -667,7 +677,7 @@ impl Learned {
                             s.n,
                             short(post.log10_likelihood)
                         ),
-                        Scope::Scene(_) => format!(
+                        Scope::Scene(_) | Scope::Group => format!(
                             "q = {} (holds in {} of {} random scenes), n = {} demonstrations, log10 L = {}",
                             short(s.q.unwrap_or(0.0)),
                             s.satisfied.unwrap_or(0),
@@ -772,6 +782,7 @@ impl Learned {
                     scope: match s.scope {
                         Scope::Each => None,
                         Scope::Scene(q) => Some(q.to_string()),
+                        Scope::Group => Some("group".to_string()),
                     },
                     subject: s.subject.clone(),
                     english: s.english.clone(),
