@@ -11,8 +11,8 @@
 
 use crate::relations::{ClassAtoms, ClassIndex, Contact, Quant, Relation};
 use crate::rules::{Formula, Rule, RuleSet, Scope, ShapeKind, Target};
-use crate::shapes::{self, ShapeCheck};
 use crate::scene::Scene;
+use crate::shapes::{self, ShapeCheck};
 use serde::Serialize;
 
 /// A compiled atom's target.

@@ -124,7 +124,9 @@ impl ShapeKind {
             ShapeKind::Column => {
                 "form one column, each flush against the next, west edges on one line"
             }
-            ShapeKind::Block => "form one compact block (2×2 for 4, 3×2 for 5 or 6, 3×3 for 7 to 9)",
+            ShapeKind::Block => {
+                "form one compact block (2×2 for 4, 3×2 for 5 or 6, 3×3 for 7 to 9)"
+            }
         }
     }
 }

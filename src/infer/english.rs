@@ -355,7 +355,7 @@ pub fn statement_reading(scope: Scope, f: &Formula) -> String {
     }
     let pred = predicate(f);
     match scope {
-        Scope::Each | Scope::Scene(Quant::Every) => match pred {
+        Scope::Each | Scope::Group | Scope::Scene(Quant::Every) => match pred {
             Pred::Pos(p) => format!("every {s} {p}"),
             Pred::Neg { no, .. } => format!("no {s} {no}"),
         },

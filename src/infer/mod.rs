@@ -194,7 +194,7 @@ impl Default for LearnParams {
             epsilon: None,
             seed: 0,
             contact: Contact::Point,
-            templates: Templates::Second,
+            templates: Templates::Third,
         }
     }
 }
@@ -730,6 +730,7 @@ impl Learned {
                 (StatementSource::Given, _) => "given",
                 (StatementSource::Templates, Templates::First) => "templates",
                 (StatementSource::Templates, Templates::Second) => "templates, second edition",
+                (StatementSource::Templates, Templates::Third) => "templates, third edition",
             }
         );
         let _ = writeln!(
@@ -762,6 +763,7 @@ impl Learned {
                 contact: self.params.contact.to_string(),
                 templates: match (self.source, self.params.templates) {
                     (StatementSource::Templates, Templates::Second) => Some("second".into()),
+                    (StatementSource::Templates, Templates::Third) => Some("third".into()),
                     _ => None,
                 },
             },

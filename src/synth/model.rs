@@ -494,10 +494,8 @@ impl Model {
     /// Whether two constant objects' interiors overlap (false when either
     /// is a variable).
     fn const_overlap(&self, a: usize, b: usize) -> bool {
-        let (
-            (Coord::Const(ax), Coord::Const(ay)),
-            (Coord::Const(bx), Coord::Const(by)),
-        ) = (self.coords[a], self.coords[b])
+        let ((Coord::Const(ax), Coord::Const(ay)), (Coord::Const(bx), Coord::Const(by))) =
+            (self.coords[a], self.coords[b])
         else {
             return false;
         };

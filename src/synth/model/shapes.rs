@@ -144,7 +144,13 @@ impl Model {
 
     /// Clauses implied by the shape's definition (or by non-overlap),
     /// stated so the engine need not learn them.
-    fn shape_redundancy(&mut self, kind: ShapeKind, shape: Lit, objects: &[usize], adj: &[Vec<Lit>]) {
+    fn shape_redundancy(
+        &mut self,
+        kind: ShapeKind,
+        shape: Lit,
+        objects: &[usize],
+        adj: &[Vec<Lit>],
+    ) {
         if shape == Lit::FALSE || shape == Lit::TRUE {
             return;
         }
