@@ -286,3 +286,46 @@ fn five_blocks_keep_the_block_shape() {
         assert!((w, h) == (30, 20) || (w, h) == (20, 30), "{w}×{h}");
     }
 }
+
+/// `ask` can probe a group statement: a layout that breaks the column and
+/// keeps the other held rules; and a column implied by the others is
+/// reported as implied.
+#[test]
+fn ask_probes_a_group_statement() {
+    use rccpack::ask::{find_probe, ProbeOptions, ProbeOutcome};
+    let objects = (0..4)
+        .map(|i| Object::movable(&format!("r{i}"), "R", 10, 10))
+        .collect();
+    let problem = Scene {
+        space: space(50, 50),
+        grid: 10,
+        objects,
+    };
+    let held = parse_rules(
+        "rule c: column(R)\nrule n: FL_N(R, R) | FL_S(R, R)\nrule a: AL_W(R, every R)\n",
+    )
+    .unwrap();
+    let opts = ProbeOptions::default();
+    // Breaking `c` alone: a split column keeps `n` (each has a partner
+    // above or below) and `a` (one line).
+    match find_probe(&problem, &held, 0, &opts).unwrap() {
+        ProbeOutcome::Probe(p) => {
+            let one = RuleSet::new(vec![held.rules[0].clone()]);
+            let e = Evaluator::new(&p.scene, &one, Contact::Point).evaluate(&one);
+            assert_eq!(e.rules[0].satisfied, 0, "{:?}", p.scene);
+            let rest = RuleSet::new(held.rules[1..].to_vec());
+            let e = Evaluator::new(&p.scene, &rest, Contact::Point).evaluate(&rest);
+            assert!(e.rules.iter().all(|r| r.satisfied == r.subjects));
+            assert!(!p.broken.is_empty(), "the objects off the main column");
+        }
+        o => panic!("expected a probe, got {o:?}"),
+    }
+    // With three objects a split column cannot keep `n`: implied.
+    let mut three = problem.clone();
+    three.objects.truncate(3);
+    match find_probe(&three, &held, 0, &opts).unwrap() {
+        // (`by` is filled only when the options ask for an explanation.)
+        ProbeOutcome::Implied { .. } => {}
+        o => panic!("expected implied, got {o:?}"),
+    }
+}
