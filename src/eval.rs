@@ -10,8 +10,9 @@
 //! compiled formula with one table lookup per atom.
 
 use crate::relations::{ClassAtoms, ClassIndex, Contact, Quant, Relation};
-use crate::rules::{Formula, Rule, RuleSet, Scope, Target};
+use crate::rules::{Formula, Rule, RuleSet, Scope, ShapeKind, Target};
 use crate::scene::Scene;
+use crate::shapes::{self, ShapeCheck};
 use serde::Serialize;
 
 /// A compiled atom's target.
@@ -37,6 +38,9 @@ pub enum CompiledFormula {
         /// The target.
         target: CompiledTarget,
     },
+    /// A group statement's shape (decided for the whole class by
+    /// [`CompiledRule::group_check`]; false read per object).
+    Shape(ShapeKind),
     /// Negation.
     Not(Box<CompiledFormula>),
     /// Conjunction.
@@ -61,6 +65,10 @@ impl CompiledFormula {
                     Target::Landmark(id) => CompiledTarget::Landmark(classes.intern_landmark(id)),
                 },
             },
+            Formula::Shape(sh) => {
+                classes.intern(&sh.class);
+                CompiledFormula::Shape(sh.kind)
+            }
             Formula::Not(g) => CompiledFormula::Not(Box::new(Self::compile(g, classes))),
             Formula::And(v) => {
                 CompiledFormula::And(v.iter().map(|g| Self::compile(g, classes)).collect())
@@ -84,6 +92,7 @@ impl CompiledFormula {
                 };
                 count.is_some_and(|c| c.holds(*rel, *quant))
             }
+            CompiledFormula::Shape(_) => false,
             CompiledFormula::Not(g) => atoms.is_placed(obj) && !g.eval(atoms, obj),
             CompiledFormula::And(v) => atoms.is_placed(obj) && v.iter().all(|g| g.eval(atoms, obj)),
             CompiledFormula::Or(v) => v.iter().any(|g| g.eval(atoms, obj)),
@@ -137,11 +146,49 @@ impl CompiledRule {
     /// (which has `objects` objects); for a per-object rule, whether every
     /// placed subject satisfies it.
     pub fn scene_holds(&self, atoms: &ClassAtoms, objects: usize) -> bool {
+        if let Some((check, neg)) = self.group_check(atoms, objects) {
+            return check.holds != neg;
+        }
         let (c, m) = self.count(atoms, objects);
         match self.scope {
             Scope::Each => c == m,
             Scope::Scene(q) => q.holds(c, m),
+            Scope::Group => false,
         }
+    }
+
+    /// The shape of a group rule and whether it is negated.
+    pub fn group_shape(&self) -> Option<(ShapeKind, bool)> {
+        let mut f = &self.formula;
+        let mut neg = false;
+        loop {
+            match f {
+                CompiledFormula::Shape(k) => return Some((*k, neg)),
+                CompiledFormula::Not(g) => {
+                    neg = !neg;
+                    f = g;
+                }
+                _ => return None,
+            }
+        }
+    }
+
+    /// For a group rule: the verdict of [`shapes::check`] on the placed
+    /// subject objects (indices into the scene's objects), and whether the
+    /// rule is the shape's negation.
+    pub fn group_check(&self, atoms: &ClassAtoms, objects: usize) -> Option<(ShapeCheck, bool)> {
+        let (kind, neg) = self.group_shape()?;
+        let (ids, rects): (Vec<usize>, Vec<_>) = (0..objects)
+            .filter(|&o| atoms.is_placed(o) && atoms.class_of(o) == self.subject)
+            .filter_map(|o| atoms.rect(o).map(|r| (o, r)))
+            .unzip();
+        let mut check = shapes::check(kind, &rects, atoms.contact());
+        for c in &mut check.components {
+            for i in c.iter_mut() {
+                *i = ids[*i];
+            }
+        }
+        Some((check, neg))
     }
 }
 
@@ -168,6 +215,38 @@ pub struct RuleReport {
     /// Only for a scene-level rule: its quantifier and counts.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub scene: Option<SceneRuleReport>,
+    /// Only for a group statement: the shape and the groups found.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub group: Option<GroupRuleReport>,
+}
+
+/// The group part of a [`RuleReport`]; serialised as `{shape, negated,
+/// objects, groups, bbox?}`.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct GroupRuleReport {
+    /// `group`, `row`, `column` or `block`.
+    pub shape: String,
+    /// Whether the rule is the shape's negation (`!column(R)`).
+    pub negated: bool,
+    /// Placed subject objects.
+    pub objects: usize,
+    /// The groups under the shape's adjacency, largest first, as object
+    /// ids in scene order.
+    pub groups: Vec<Vec<String>>,
+    /// For a block: the bounding box `[width, height]` and whether it fits.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bbox: Option<BlockBox>,
+}
+
+/// A block's bounding box in a [`GroupRuleReport`].
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct BlockBox {
+    /// Width of the class's bounding box.
+    pub width: i64,
+    /// Height of the class's bounding box.
+    pub height: i64,
+    /// Whether it fits one of the block's boxes (see [`shapes::block_boxes`]).
+    pub fits: bool,
 }
 
 /// The scene-level part of a [`RuleReport`] (§11.4); serialised as
@@ -264,6 +343,9 @@ impl<'s> Evaluator<'s> {
     /// Evaluate one rule: its report, its §6 numerator and denominator
     /// terms, and its number of hard violations.
     pub fn evaluate_rule(&self, rule: &Rule) -> RuleReport {
+        if rule.is_group() {
+            return self.evaluate_group(rule);
+        }
         let f = self.compile(&rule.formula);
         let subject = rule.subject();
         let mut subjects = 0;
@@ -293,7 +375,9 @@ impl<'s> Evaluator<'s> {
                 satisfied,
                 violators,
                 scene: None,
+                group: None,
             },
+            Scope::Group => self.evaluate_group(rule),
             Scope::Scene(q) => {
                 let c = u32::try_from(satisfied).unwrap_or(u32::MAX);
                 let m = u32::try_from(subjects).unwrap_or(u32::MAX);
@@ -315,8 +399,63 @@ impl<'s> Evaluator<'s> {
                         satisfying: satisfied,
                         objects: subjects,
                     }),
+                    group: None,
                 }
             }
+        }
+    }
+
+    /// A group statement's report: one term; the violators are the
+    /// objects off the largest group when the shape is asked and fails.
+    fn evaluate_group(&self, rule: &Rule) -> RuleReport {
+        let compiled = CompiledRule::compile(rule, &mut self.classes.clone());
+        let name = rule.name.clone();
+        let (weight, hard) = (rule.strength.weight(), rule.strength.is_hard());
+        let Some((check, neg)) = compiled.group_check(&self.atoms, self.scene.objects.len()) else {
+            // Not a shape formula (a group scope built in code around
+            // something else): it never holds.
+            return RuleReport {
+                name,
+                weight,
+                hard,
+                subjects: 1,
+                satisfied: 0,
+                violators: Vec::new(),
+                scene: None,
+                group: None,
+            };
+        };
+        let holds = check.holds != neg;
+        let id = |i: usize| self.scene.objects[i].id.clone();
+        let violators = if holds || neg {
+            Vec::new()
+        } else {
+            check.off_main().into_iter().map(id).collect()
+        };
+        let (kind, _) = compiled.group_shape().expect("a group rule");
+        RuleReport {
+            name,
+            weight,
+            hard,
+            subjects: 1,
+            satisfied: usize::from(holds),
+            violators,
+            scene: None,
+            group: Some(GroupRuleReport {
+                shape: kind.name().to_string(),
+                negated: neg,
+                objects: check.components.iter().map(Vec::len).sum(),
+                groups: check
+                    .components
+                    .iter()
+                    .map(|c| c.iter().map(|&i| id(i)).collect())
+                    .collect(),
+                bbox: check.bbox.map(|((width, height), fits)| BlockBox {
+                    width,
+                    height,
+                    fits,
+                }),
+            }),
         }
     }
 

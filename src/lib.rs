@@ -125,6 +125,8 @@
 //!   per ordered pair, class atoms.
 //! - [`rules`]: the `.rcc` language — AST, parser (grammar in
 //!   `grammar/rcc.pest`), checks, printer, diagnostics.
+//! - [`shapes`]: group statements (`row(R)`, `column(R)`, `block(G)`,
+//!   `group(B)`): the semantics the evaluator, learning and tests share.
 //! - [`eval`]: the one evaluator and the §6 score.
 //! - [`infer`]: learning (SPEC §7–§8, §11.5).
 //! - [`priors`]: priors per kind of statement learned across a library of
@@ -172,6 +174,7 @@ pub mod resemblance;
 pub mod rules;
 pub mod sample;
 pub mod scene;
+pub mod shapes;
 #[cfg(feature = "studio")]
 pub mod studio;
 pub mod synth;

@@ -932,4 +932,14 @@ impl ClassAtoms {
     pub fn is_placed(&self, obj: usize) -> bool {
         self.row.get(obj).is_some_and(|&r| r != usize::MAX)
     }
+
+    /// The rectangle of object `obj` (`None` when unplaced).
+    pub fn rect(&self, obj: usize) -> Option<Rect> {
+        self.rects.get(obj).copied().flatten()
+    }
+
+    /// The contact mode the table was built with.
+    pub fn contact(&self) -> Contact {
+        self.contact
+    }
 }

@@ -70,7 +70,7 @@ impl Case {
 
 fn rule_text(r: &Rule) -> String {
     let scope = match r.scope {
-        Scope::Each => String::new(),
+        Scope::Each | Scope::Group => String::new(),
         Scope::Scene(q) => format!("{q} {}: ", r.subject()),
     };
     format!("{scope}{}", formula_text(&r.formula))

@@ -188,7 +188,7 @@ fn random_case(index: u64) -> Case {
         grid: 10,
         objects,
     };
-    let rules = (0..rng.random_range(1..=4))
+    let rules: Vec<Rule> = (0..rng.random_range(1..=4))
         .map(|i| {
             let subject = pick(&mut rng, &["A", "B"]);
             let f = match rng.random_range(0..8) {
@@ -233,6 +233,20 @@ fn random_case(index: u64) -> Case {
         explain: false,
         ..SynthOptions::default()
     };
+    let mut rules: Vec<Rule> = rules;
+    // From GROUP_CASES on, one group statement more, drawn last (the cases
+    // before it are those of earlier editions, unchanged).
+    if index >= GROUP_CASES {
+        let kind = pick(&mut rng, &rccpack::shapes::ShapeKind::ALL);
+        let class = pick(&mut rng, &["A", "A", "B"]);
+        let strength = match rng.random_range(0..3) {
+            0 => Strength::Hard,
+            _ => Strength::Weight(pick(&mut rng, &[0.5, 1.0, 2.5])),
+        };
+        let negated = rng.random_range(0..5) == 0;
+        let shape = rccpack::rules::Shape::new(kind, class);
+        rules.push(Rule::group("g", shape, negated).with_strength(strength));
+    }
     Case {
         index,
         scene,
@@ -240,6 +254,9 @@ fn random_case(index: u64) -> Case {
         opts,
     }
 }
+
+/// The first case index whose rules include a group statement.
+const GROUP_CASES: u64 = 5000;
 
 /// Problems every peer must find infeasible: an object larger than the
 /// space (the trivially infeasible emitted model), and contradicting hard
@@ -439,6 +456,7 @@ fn json_form_holds_on_rccpack_solutions() {
     // cumulative, a scene-level soft term, a constant-true soft term.
     let mut seen = [0usize; 7];
     let mut cases: Vec<Case> = (0..120).map(random_case).collect();
+    cases.extend((GROUP_CASES..GROUP_CASES + 60).map(random_case));
     cases.extend(infeasible_cases());
     for case in &cases {
         let e = emitted(&case.scene, &case.rules, &case.opts).expect("usable problem");
@@ -686,6 +704,7 @@ fn definitions_agree(peer: Peer, from: u64, n: usize) {
 #[test]
 fn gecode_agrees_with_rccpack() {
     let mut cases: Vec<Case> = (0..55).map(random_case).collect();
+    cases.extend((GROUP_CASES..GROUP_CASES + 15).map(random_case));
     cases.extend(infeasible_cases());
     against_peer(Peer::Gecode, &cases, Duration::from_secs(10));
     definitions_agree(Peer::Gecode, 1000, 30);
@@ -694,6 +713,7 @@ fn gecode_agrees_with_rccpack() {
 #[test]
 fn cpsat_agrees_with_rccpack() {
     let mut cases: Vec<Case> = (200..222).map(random_case).collect();
+    cases.extend((GROUP_CASES + 100..GROUP_CASES + 108).map(random_case));
     cases.extend(infeasible_cases());
     against_peer(Peer::CpSat, &cases, Duration::from_secs(10));
     definitions_agree(Peer::CpSat, 2000, 12);

@@ -30,6 +30,7 @@ mod robust;
 mod sample;
 mod sample_cli;
 mod scene;
+mod shapes;
 mod shelf_example;
 mod studio_api;
 mod studio_browser;

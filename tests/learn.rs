@@ -559,7 +559,7 @@ fn learned_file_parses_back() {
 #[test]
 fn template_names_are_readable() {
     let demos = synthetic_demos();
-    for which in [Templates::First, Templates::Second] {
+    for which in [Templates::First, Templates::Second, Templates::Third] {
         let set = generate_set(&demos, which);
         let names: Vec<&str> = set.rules.iter().map(|r| r.name.as_str()).collect();
         for n in [
@@ -607,6 +607,31 @@ fn template_names_are_readable() {
                 for n in second {
                     assert!(names.contains(&n), "{n} missing");
                 }
+            }
+            // … + 2 × (one group, row, column, block), at the end of each
+            // subject's statements.
+            Templates::Third => {
+                assert_eq!(
+                    names.len(),
+                    2 * 4 * 14 + 2 + 2 * 4 * 7 + 2 * 4 + 2 * 4 * 2 + 2 * 4
+                );
+                for n in second.iter().chain(&[
+                    "B_one_group",
+                    "B_one_row",
+                    "R_one_column",
+                    "R_one_block",
+                ]) {
+                    assert!(names.contains(n), "{n} missing");
+                }
+                let old = generate_set(&demos, Templates::Second);
+                let kept: Vec<&str> = set
+                    .rules
+                    .iter()
+                    .filter(|r| !r.is_group())
+                    .map(|r| r.name.as_str())
+                    .collect();
+                let old: Vec<&str> = old.rules.iter().map(|r| r.name.as_str()).collect();
+                assert_eq!(kept, old, "the third edition keeps the second, in order");
             }
         }
     }

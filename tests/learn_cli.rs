@@ -226,13 +226,14 @@ fn run_accepts_templates_first() {
     );
 }
 
-/// The default is the second edition (`--templates second` says so
-/// explicitly); an unknown set is refused.
+/// The default is the third edition (`--templates third` says so
+/// explicitly); `second` is the second edition's set without group
+/// statements; an unknown set is refused.
 #[test]
-fn templates_second_is_the_default() {
+fn templates_third_is_the_default() {
     let d = demos();
     let a = rccpack(&["learn", &d, "--samples", "100"]);
-    let b = rccpack(&["learn", &d, "--samples", "100", "--templates", "second"]);
+    let b = rccpack(&["learn", &d, "--samples", "100", "--templates", "third"]);
     assert!(a.status.success() && b.status.success(), "{}", stderr(&a));
     assert_eq!(a.stdout, b.stdout);
     let text = String::from_utf8(a.stdout).unwrap();
@@ -240,11 +241,19 @@ fn templates_second_is_the_default() {
         text.lines()
             .next()
             .unwrap()
-            .ends_with("(templates, second edition)"),
+            .ends_with("(templates, third edition)"),
         "{text}"
     );
     assert!(text.contains(", scene-level 0.005\n"), "{text}");
-    let o = rccpack(&["learn", &d, "--templates", "third"]);
+    let s = rccpack(&["learn", &d, "--samples", "100", "--templates", "second"]);
+    let s = String::from_utf8(s.stdout).unwrap();
+    assert!(s
+        .lines()
+        .next()
+        .unwrap()
+        .ends_with("(templates, second edition)"));
+    assert!(!s.contains("group(") && !s.contains("column(") && !s.contains("row("));
+    let o = rccpack(&["learn", &d, "--templates", "fourth"]);
     assert!(!o.status.success());
-    assert!(stderr(&o).contains("third"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("fourth"), "{}", stderr(&o));
 }

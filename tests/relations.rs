@@ -428,6 +428,7 @@ proptest! {
         let holds_q = q.holds(k, m);
         match Scope::of(q) {
             Scope::Each => prop_assert_eq!(scene_r, &rccpack::eval::RuleReport { name: "scene".into(), weight: f64::from(w), ..each_r.clone() }),
+            Scope::Group => prop_assert!(false, "Scope::of never gives a group scope"),
             Scope::Scene(_) => {
                 prop_assert_eq!(scene_r.subjects, 1);
                 prop_assert_eq!(scene_r.satisfied, usize::from(holds_q));

@@ -119,3 +119,51 @@ fn generated_files_are_up_to_date() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// With five greens (the demonstrations show four, always as a 2×2
+/// square), `run` learns `block(G)` and the layout keeps one compact block
+/// (a 3×2 block minus one cell); the second edition's per-object rules
+/// alone cannot say it.
+#[test]
+fn five_greens_keep_the_block() {
+    use rccpack::shapes::{check, ShapeKind};
+    let demos = demos();
+    let learned = learn(&demos, None, &LearnParams::default()).unwrap();
+    let rules = learned.rules();
+    assert!(
+        rules.rules.iter().any(|r| r.name == "G_one_block"),
+        "{}",
+        learned.to_rcc()
+    );
+    let mut problem = Scene::from_json(&file("problem.json")).unwrap();
+    let mut g5 = problem
+        .objects
+        .iter()
+        .find(|o| o.class == "G")
+        .unwrap()
+        .clone();
+    g5.id = "g5".into();
+    problem.objects.push(g5);
+    let r = synthesize(
+        &problem,
+        &rules,
+        &SynthOptions {
+            like: Some(Likeness::new(&demos)),
+            time_limit: Some(std::time::Duration::from_secs(120)),
+            ..SynthOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(matches!(r.status, Status::Optimal | Status::Feasible));
+    let sol = r.scene.unwrap();
+    rccpack::synth::verify_solution(&problem, &sol, &rules, Contact::Point).unwrap();
+    let greens: Vec<_> = sol
+        .objects
+        .iter()
+        .filter(|o| o.class == "G")
+        .filter_map(|o| o.rect())
+        .collect();
+    assert_eq!(greens.len(), 5);
+    let c = check(ShapeKind::Block, &greens, Contact::Point);
+    assert!(c.holds, "{}", sol.to_json());
+}

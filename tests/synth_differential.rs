@@ -88,7 +88,7 @@ impl Case {
                 _ => String::new(),
             };
             let scope = match r.scope {
-                Scope::Each => String::new(),
+                Scope::Each | Scope::Group => String::new(),
                 Scope::Scene(q) => format!("{q} {}: ", r.subject()),
             };
             s.push_str(&format!(
@@ -110,6 +110,10 @@ enum Language {
     First,
     /// Everything of SPEC §11 too.
     Second,
+    /// The second edition's cases with 3–4 movable blocks, most of class A,
+    /// and one or two group statements (`group`, `row`, `column`, `block`,
+    /// negated now and then, hard or soft) added after the other rules.
+    Third,
 }
 
 /// What a run draws.
@@ -134,6 +138,10 @@ const SMALL2: Sizes = Sizes {
 const LARGE2: Sizes = Sizes {
     language: Language::Second,
     ..LARGE
+};
+const SMALL3: Sizes = Sizes {
+    spaces: &[(30, 30), (40, 30), (30, 40), (40, 40), (50, 30)],
+    language: Language::Third,
 };
 
 fn random_formula(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
@@ -242,7 +250,8 @@ const SIDES2: [(i64, i64); 4] = [(10, 10), (20, 10), (10, 20), (20, 20)];
 fn random_case(index: u64, sizes: Sizes) -> Case {
     let mut rng = ChaCha8Rng::seed_from_u64(BASE_SEED);
     rng.set_stream(index);
-    let second = sizes.language == Language::Second;
+    let second = sizes.language != Language::First;
+    let third = sizes.language == Language::Third;
     let (w, h) = pick(&mut rng, sizes.spaces);
     let mut objects: Vec<Object> = Vec::new();
     let n_fixed = if second {
@@ -275,7 +284,9 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
             objects.push(o);
         }
     }
-    let movable = if second && w * h <= 1200 && rng.random_range(0..4) == 0 {
+    let movable = if third {
+        rng.random_range(3..=4)
+    } else if second && w * h <= 1200 && rng.random_range(0..4) == 0 {
         // Four blocks only in the smallest spaces (brute force grows as
         // the product of the domains).
         4
@@ -283,7 +294,11 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
         rng.random_range(2..=3)
     };
     for i in 0..movable {
-        let class = pick(&mut rng, &["A", "B"]);
+        let class = if third {
+            pick(&mut rng, &["A", "A", "A", "B"])
+        } else {
+            pick(&mut rng, &["A", "B"])
+        };
         // Large blocks only now and then: they shrink the domains a lot.
         let (bw, bh) = if second {
             match rng.random_range(0..8) {
@@ -335,8 +350,12 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
         grid: 10,
         objects,
     };
-    let n_rules = rng.random_range(1..=4);
-    let rules = (0..n_rules)
+    let n_rules = if third {
+        rng.random_range(0..=2)
+    } else {
+        rng.random_range(1..=4)
+    };
+    let mut rules: Vec<Rule> = (0..n_rules)
         .map(|i| {
             let subject = pick(&mut rng, &["A", "B"]);
             let strength = match rng.random_range(0..8) {
@@ -364,6 +383,25 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
                 .with_scope(scope)
         })
         .collect();
+    if third {
+        for i in 0..rng.random_range(1..=2) {
+            let kind = pick(&mut rng, &rccpack::shapes::ShapeKind::ALL);
+            let class = pick(&mut rng, &["A", "A", "B"]);
+            let negated = rng.random_range(0..5) == 0;
+            let strength = match rng.random_range(0..3) {
+                0 => Strength::Hard,
+                _ => Strength::Weight(pick(&mut rng, &[0.5, 1.0, 2.5])),
+            };
+            rules.push(
+                Rule::group(
+                    format!("g{i}"),
+                    rccpack::rules::Shape::new(kind, class),
+                    negated,
+                )
+                .with_strength(strength),
+            );
+        }
+    }
     let contact = if rng.random_range(0..2) == 0 {
         Contact::Point
     } else {
@@ -580,7 +618,11 @@ fn check_search(
         ));
     }
     for (rule, rep) in case.rules.rules.iter().zip(&ev.rules) {
-        if rule.scope.is_scene() && (rep.subjects != 1 || rep.scene.is_none()) {
+        if rule.is_group() {
+            if rep.subjects != 1 || rep.group.is_none() || rep.scene.is_some() {
+                return Err(format!("group rule `{}` reported as {rep:?}", rule.name));
+            }
+        } else if rule.scope.is_scene() && (rep.subjects != 1 || rep.scene.is_none()) {
             return Err(format!(
                 "scene-level rule `{}` reported with {} subjects",
                 rule.name, rep.subjects
@@ -1079,6 +1121,25 @@ fn engine_matches_brute_force_with_like_scenes_first_edition_rules() {
 #[ignore = "slow: run with `cargo test --release --test integration synth_differential:: -- --ignored`"]
 fn engine_matches_brute_force_with_like_scenes_large() {
     assert_clean(run_with(500_000..503_000, LARGE2, true, true, check_like));
+}
+
+/// Group statements (third edition): the circuit of `synth::model::shapes`
+/// against the evaluator's `shapes::check`, through brute force.
+#[test]
+fn engine_matches_brute_force_group_shapes() {
+    let t = run(0..1500, SMALL3, true, true);
+    assert!(t.infeasible > 30 && t.infeasible < 1000, "{}", t.infeasible);
+    assert_clean(t);
+}
+
+#[test]
+fn engine_matches_brute_force_group_shapes_without_symmetry_breaking_or_redundancy() {
+    assert_clean(run(0..600, SMALL3, false, false));
+}
+
+#[test]
+fn engine_matches_brute_force_group_shapes_with_lns_and_warm_starts() {
+    assert_clean(run_with(700_000..700_400, SMALL3, true, true, check_warm));
 }
 
 #[test]

@@ -289,7 +289,7 @@ pub(crate) fn learn_error(e: InferError) -> PyErr {
 /// Learn rules from demonstrations (SPEC §7). The GIL is released while
 /// learning; the same seed gives the same rules.
 #[pyfunction]
-#[pyo3(signature = (demos, samples = 1000, cutoff = 0.01, seed = 0, templates = "second",
+#[pyo3(signature = (demos, samples = 1000, cutoff = 0.01, seed = 0, templates = "third",
                     statements = None, prior = 0.5, epsilon = None, contact = "point"))]
 #[allow(clippy::too_many_arguments)]
 #[pyo3(name = "learn")]

@@ -231,7 +231,7 @@ impl PyAskSession {
     #[pyo3(signature = (task_dir, max_questions = None, save = true, samples = 1000,
                         cutoff = 0.01, seed = 0, time_limit = 10.0,
                         node_limit = DEFAULT_PROBE_NODES, check_nodes = DEFAULT_CHECK_NODES,
-                        contact = "point", templates = "second",
+                        contact = "point", templates = "third",
                         question_nodes = DEFAULT_QUESTION_NODES, question_seconds = 3.0,
                         edits = true))]
     #[allow(clippy::too_many_arguments)]
@@ -502,7 +502,7 @@ impl PyAskSession {
 #[pyo3(signature = (task_dir, oracle, max_questions = None, save = false, samples = 1000,
                     cutoff = 0.01, seed = 0, time_limit = 10.0,
                     node_limit = DEFAULT_PROBE_NODES, check_nodes = DEFAULT_CHECK_NODES,
-                    contact = "point", templates = "second",
+                    contact = "point", templates = "third",
                     question_nodes = DEFAULT_QUESTION_NODES, question_seconds = 3.0,
                     edits = true))]
 #[allow(clippy::too_many_arguments)]

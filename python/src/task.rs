@@ -194,7 +194,7 @@ impl PyTask {
     /// Learn from the demonstrations (and `statements.rcc`) as `rccpack
     /// run` does; nothing is written. `time_limit`: `LearnError` after it.
     /// Ctrl-C stops it (`KeyboardInterrupt`).
-    #[pyo3(signature = (samples = 1000, cutoff = 0.01, seed = 0, templates = "second",
+    #[pyo3(signature = (samples = 1000, cutoff = 0.01, seed = 0, templates = "third",
                         prior = 0.5, epsilon = None, contact = "point", time_limit = None))]
     #[allow(clippy::too_many_arguments)]
     fn learn(
@@ -275,7 +275,7 @@ impl PyTask {
     /// learned, the layout and what the command prints; an infeasible or
     /// unknown result is an outcome (`exit_code` 2 or 3), not an exception.
     #[pyo3(signature = (out = None, samples = 1000, cutoff = 0.01, seed = 0, time_limit = 60.0,
-                        contact = "point", like = DEMOS, templates = "second", node_limit = None))]
+                        contact = "point", like = DEMOS, templates = "third", node_limit = None))]
     #[allow(clippy::too_many_arguments)]
     fn run(
         &self,

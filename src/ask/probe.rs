@@ -74,6 +74,14 @@ pub fn negation(rule: &Rule) -> Option<Rule> {
             };
             (Scope::Scene(nq), rule.formula.clone())
         }
+        // A group statement's negation is the negated shape: `!column(R)`.
+        Scope::Group => match rule.formula.shape() {
+            Some((shape, neg)) => {
+                let f = Formula::Shape(shape.clone());
+                (Scope::Group, if neg { f } else { Formula::not(f) })
+            }
+            None => return None,
+        },
     };
     Some(Rule {
         name: format!("{NEGATION_PREFIX}{}", rule.name),

@@ -308,6 +308,9 @@ struct Pool {
 /// is about any object (`*`) or a landmark.
 fn classes(r: &crate::rules::Rule) -> Option<BTreeSet<&str>> {
     let mut out = BTreeSet::new();
+    if let Some((shape, _)) = r.formula.shape() {
+        out.insert(shape.class.as_str());
+    }
     for a in r.formula.atoms() {
         out.insert(a.subject.as_str());
         match &a.target {

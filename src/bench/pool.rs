@@ -107,6 +107,7 @@ pub fn formula_text(f: &Formula) -> String {
     fn go(f: &Formula, prec: u8, out: &mut String) {
         match f {
             Formula::Atom(a) => out.push_str(&a.to_string()),
+            Formula::Shape(s) => out.push_str(&s.to_string()),
             Formula::Not(g) => {
                 out.push('!');
                 go(g, 3, out);

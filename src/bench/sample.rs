@@ -615,7 +615,7 @@ pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
         }
     }
     let mut problems: Vec<(String, Scene, RuleSet, Quality, bool)> = Vec::new();
-    if let Ok(t) = super::tasks::example_task(&[3, 5]) {
+    if let Ok(t) = super::tasks::example_task(&[3, 5], Default::default()) {
         for p in &t.problems {
             for (q, what) in [
                 (Quality::AllRules, "all-rules"),

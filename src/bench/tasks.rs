@@ -48,7 +48,7 @@
 
 use super::peers::{self, Peer, PeerStatus};
 use super::thesis::{median, PeerRow};
-use crate::infer::{learn, InferError, LearnParams};
+use crate::infer::{learn, InferError, LearnParams, Templates};
 use crate::relations::Contact;
 use crate::resemblance::Likeness;
 use crate::rules::RuleSet;
@@ -58,6 +58,8 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 use std::time::{Duration, Instant};
+
+pub mod groups;
 
 /// The block classes of generated tasks, in order (a task with `k` classes
 /// uses the first `k`).
@@ -146,6 +148,15 @@ pub enum Habit {
         /// Index of the other class.
         class: usize,
     },
+    /// Group tasks ([`groups`]): one row anywhere in the box.
+    Row,
+    /// Group tasks: one column, against a wall (`W` or `E`) or anywhere.
+    Column {
+        /// The wall it stands against, if any.
+        wall: Option<Side>,
+    },
+    /// Group tasks: one compact block, `⌈√n⌉` columns filled row by row.
+    Block,
 }
 
 impl Habit {
@@ -157,6 +168,10 @@ impl Habit {
             Habit::Stack => "stack on the floor".into(),
             Habit::Cluster => "cluster".into(),
             Habit::NorthOf { class } => format!("north of {}", classes[*class].class),
+            Habit::Row => "one row".into(),
+            Habit::Column { wall: None } => "one column".into(),
+            Habit::Column { wall: Some(w) } => format!("one column on the {w:?} wall"),
+            Habit::Block => "one block".into(),
         }
     }
 }
@@ -184,6 +199,8 @@ pub enum TaskSeries {
     Tasks,
     /// The bundled example, scaled.
     Example,
+    /// Group-style tasks ([`groups`]).
+    Groups,
 }
 
 impl TaskSeries {
@@ -192,6 +209,7 @@ impl TaskSeries {
         match self {
             TaskSeries::Tasks => "tasks",
             TaskSeries::Example => "example",
+            TaskSeries::Groups => "groups",
         }
     }
 }
@@ -280,6 +298,15 @@ pub struct TasksConfig {
     /// Peer solvers on the score-only model.
     #[serde(serialize_with = "super::thesis::ser_peers")]
     pub peers: Vec<Peer>,
+    /// Group-style tasks ([`groups`]), after the others.
+    pub groups: usize,
+    /// The templates rules are learned with.
+    #[serde(serialize_with = "ser_templates")]
+    pub templates: Templates,
+}
+
+fn ser_templates<S: serde::Serializer>(t: &Templates, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&t.to_string())
 }
 
 impl TasksConfig {
@@ -296,6 +323,8 @@ impl TasksConfig {
             warm_start: true,
             lns: true,
             peers: Vec::new(),
+            groups: 0,
+            templates: Templates::default(),
         }
     }
 
@@ -535,6 +564,7 @@ fn place_class(
             }
             None
         }
+        Habit::Row | Habit::Column { .. } | Habit::Block => groups::place_group(p, spec, n, rng),
         Habit::NorthOf { class } => {
             let other = placed.get(class)?;
             let top = other.iter().map(|r| r.y + r.h).max()?;
@@ -741,10 +771,18 @@ fn task_rng(seed: u64, task: usize) -> ChaCha8Rng {
     rng
 }
 
-/// Learn with the default parameters; the rules and their `.rcc` text.
-fn learn_default(demos: &[Scene], task: usize) -> Result<(RuleSet, String), TaskError> {
-    let learned = learn(demos, None, &LearnParams::default())
-        .map_err(|error| TaskError::Learn { task, error })?;
+/// Learn with the default parameters and `templates`; the rules and their
+/// `.rcc` text.
+fn learn_with(
+    demos: &[Scene],
+    task: usize,
+    templates: Templates,
+) -> Result<(RuleSet, String), TaskError> {
+    let params = LearnParams {
+        templates,
+        ..LearnParams::default()
+    };
+    let learned = learn(demos, None, &params).map_err(|error| TaskError::Learn { task, error })?;
     Ok((learned.rules(), learned.to_rcc()))
 }
 
@@ -787,7 +825,7 @@ pub fn generate_task(cfg: &TasksConfig, index: usize) -> Result<Task, TaskError>
         let Some(demos) = make_demos(&geom, &classes, &mut rng) else {
             continue;
         };
-        let (rules, rcc) = learn_default(&demos, index)?;
+        let (rules, rcc) = learn_with(&demos, index, cfg.templates)?;
         let style = classes
             .iter()
             .map(|c| {
@@ -844,10 +882,10 @@ pub fn generate_task(cfg: &TasksConfig, index: usize) -> Result<Task, TaskError>
 /// The bundled example with `counts` blocks per class (same classes and
 /// sizes as its `problem.json`, in its box), rules learned from its
 /// `demos.json`.
-pub fn example_task(counts: &[usize]) -> Result<Task, TaskError> {
+pub fn example_task(counts: &[usize], templates: Templates) -> Result<Task, TaskError> {
     let demos = scenes_from_json(EXAMPLE_DEMOS).map_err(|e| TaskError::Example(e.to_string()))?;
     let base = Scene::from_json(EXAMPLE_PROBLEM).map_err(|e| TaskError::Example(e.to_string()))?;
-    let (rules, rcc) = learn_default(&demos, 0)?;
+    let (rules, rcc) = learn_with(&demos, 0, templates)?;
     // Classes and sizes in order of first appearance.
     let mut kinds: Vec<(String, i64, i64)> = Vec::new();
     for o in base.objects.iter().filter(|o| !o.fixed) {
@@ -895,7 +933,10 @@ pub fn all_tasks(cfg: &TasksConfig) -> Result<Vec<Task>, TaskError> {
         .map(|i| generate_task(cfg, i))
         .collect::<Result<Vec<_>, _>>()?;
     if !cfg.example_counts.is_empty() {
-        out.push(example_task(&cfg.example_counts)?);
+        out.push(example_task(&cfg.example_counts, cfg.templates)?);
+    }
+    for i in 0..cfg.groups {
+        out.push(groups::generate_group_task(cfg, i)?);
     }
     Ok(out)
 }
@@ -940,6 +981,12 @@ pub struct SolveRow {
     pub verified: Option<bool>,
     /// The checker's complaint or the engine's error.
     pub error: Option<String>,
+    /// Group tasks: of the classes demonstrated with a group shape, how
+    /// many keep it in the layout, `[kept, classes]`.
+    pub shapes_kept: Option<[usize; 2]>,
+    /// The layout (not written to `tasks.json`).
+    #[serde(skip)]
+    pub layout: Option<Scene>,
 }
 
 /// Solve `scene` once with `opts` and check the layout.
@@ -961,6 +1008,8 @@ pub fn solve_once(
         cost_proven: None,
         verified: None,
         error: None,
+        shapes_kept: None,
+        layout: None,
     };
     match res {
         Err(e) => row.error = Some(e.to_string()),
@@ -981,6 +1030,7 @@ pub fn solve_once(
                     }
                 }
             }
+            row.layout = r.scene;
         }
     }
     row
@@ -1132,11 +1182,27 @@ pub fn run_tasks(
                 total,
                 label: format!("{} {what}", p.name),
             };
+            let kept = |mut row: SolveRow, opts: &SynthOptions| {
+                if t.series == TaskSeries::Groups {
+                    row.shapes_kept = row.layout.as_ref().map(|l| {
+                        let (k, n) = groups::shapes_kept(t, l, opts.contact);
+                        [k, n]
+                    });
+                }
+                row.layout = None;
+                row
+            };
             progress(&label("score-only"));
-            let score_only = solve_once(engine, &p.scene, &t.rules, &score_opts);
+            let score_only = kept(
+                solve_once(engine, &p.scene, &t.rules, &score_opts),
+                &score_opts,
+            );
             let like = cfg.like.then(|| {
                 progress(&label("like"));
-                solve_once(engine, &p.scene, &t.rules, &like_opts)
+                kept(
+                    solve_once(engine, &p.scene, &t.rules, &like_opts),
+                    &like_opts,
+                )
             });
             let peers = cfg
                 .peers
@@ -1294,6 +1360,10 @@ pub struct TasksSummary {
     pub check_failures: usize,
     /// Per peer.
     pub peers: Vec<PeerCell>,
+    /// Group tasks: demonstrated shapes kept over shapes, score-only.
+    pub shapes_kept: Option<[usize; 2]>,
+    /// Group tasks: demonstrated shapes kept over shapes, with `like`.
+    pub like_shapes_kept: Option<[usize; 2]>,
 }
 
 /// One [`TasksSummary`] per (series, size), in series then size order.
@@ -1355,6 +1425,10 @@ pub fn summarize(rows: &[TaskRow]) -> Vec<TasksSummary> {
                 })
                 .collect();
             let so_median = median(&times);
+            let sum_kept = |rows: &mut dyn Iterator<Item = &SolveRow>| {
+                rows.filter_map(|s| s.shapes_kept)
+                    .reduce(|a, b| [a[0] + b[0], a[1] + b[1]])
+            };
             let like_median = (!likes.is_empty()).then(|| median(&like_times));
             TasksSummary {
                 series,
@@ -1386,6 +1460,8 @@ pub fn summarize(rows: &[TaskRow]) -> Vec<TasksSummary> {
                 errors: solves().filter(|s| s.status.is_none()).count(),
                 check_failures: solves().filter(|s| s.verified == Some(false)).count(),
                 peers,
+                shapes_kept: sum_kept(&mut cell.iter().map(|r| &r.score_only)),
+                like_shapes_kept: sum_kept(&mut likes.iter().copied()),
             }
         })
         .collect()
@@ -1461,6 +1537,28 @@ pub fn table_text(summary: &[TasksSummary]) -> String {
                 String::new()
             }
         );
+    }
+    if summary.iter().any(|r| r.shapes_kept.is_some()) {
+        let _ = writeln!(
+            s,
+            "\n{:<8} {:<8} {:>5} {:>14} {:>14}",
+            "series", "size", "probs", "shapes_so", "shapes_like"
+        );
+        let share = |v: Option<[usize; 2]>| match v {
+            Some([k, n]) if n > 0 => format!("{k}/{n} {:.0}%", 100.0 * k as f64 / n as f64),
+            _ => "-".into(),
+        };
+        for r in summary.iter().filter(|r| r.shapes_kept.is_some()) {
+            let _ = writeln!(
+                s,
+                "{:<8} {:<8} {:>5} {:>14} {:>14}",
+                r.series.name(),
+                r.size,
+                r.problems,
+                share(r.shapes_kept),
+                share(r.like_shapes_kept)
+            );
+        }
     }
     if summary.iter().any(|r| !r.peers.is_empty()) {
         let _ = writeln!(

@@ -88,7 +88,7 @@ pub struct AskArgs {
     #[arg(long, default_value = "point")]
     contact: Contact,
     /// Which templates to learn with when there is no `statements.rcc`.
-    #[arg(long, default_value = "second", value_name = "first|second")]
+    #[arg(long, default_value = "third", value_name = "first|second|third")]
     templates: Templates,
     /// Priors learned across tasks (`rccpack priors`) for every learning
     /// run of the session.

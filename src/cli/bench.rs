@@ -109,6 +109,14 @@ struct TasksArgs {
     /// reruns it.
     #[arg(long = "problems-out", value_name = "DIR")]
     problems_out: Option<PathBuf>,
+    /// Group-style tasks (each class one row, column or block in every
+    /// demonstration), after the others (default 0; 0 to 1000). Their
+    /// table says how many layouts keep the demonstrated shapes.
+    #[arg(long, value_parser = clap::value_parser!(u16).range(0..=1000))]
+    groups: Option<u16>,
+    /// Templates to learn with (default third: with the group statements).
+    #[arg(long, default_value = "third", value_name = "first|second|third")]
+    templates: rccpack::infer::Templates,
     /// Output directory for `tasks.json`.
     #[arg(long, default_value = "bench-out")]
     out: PathBuf,
@@ -211,6 +219,10 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
     if a.no_example {
         cfg.example_counts.clear();
     }
+    if let Some(n) = a.groups {
+        cfg.groups = usize::from(n);
+    }
+    cfg.templates = a.templates;
     cfg.like = !a.no_like;
     cfg.warm_start = !a.no_warm_start;
     cfg.lns = !a.no_lns;

@@ -21,10 +21,11 @@ pub struct LearnArgs {
     /// the demonstrations' classes and fixed objects.
     #[arg(long)]
     statements: Option<PathBuf>,
-    /// Which templates to generate without `--statements`: `second` (SPEC
-    /// §11.5, flush contact, alignment, landmarks) or `first` (exactly the
-    /// first edition's SPEC §8 set).
-    #[arg(long, default_value = "second", value_name = "first|second")]
+    /// Which templates to generate without `--statements`: `third` (the
+    /// second edition's and the group shapes: one row, column, block),
+    /// `second` (flush contact, alignment, landmarks) or `first` (exactly
+    /// the first edition's set).
+    #[arg(long, default_value = "third", value_name = "first|second|third")]
     templates: Templates,
     /// Random scenes in the null model (at least 1).
     #[arg(long, default_value_t = 1000)]

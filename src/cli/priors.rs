@@ -31,7 +31,7 @@ pub struct PriorsArgs {
     #[arg(long, default_value_t = 10)]
     rule_out_after: u64,
     /// The template set whose candidates are counted.
-    #[arg(long, default_value = "second", value_name = "first|second")]
+    #[arg(long, default_value = "third", value_name = "first|second|third")]
     templates: Templates,
     /// How EC decides that two sides touch: `point` or `edge`.
     #[arg(long, default_value = "point")]

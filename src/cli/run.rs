@@ -45,8 +45,8 @@ pub struct RunArgs {
     #[arg(long, value_name = "SCENES.json|none")]
     like: Option<PathBuf>,
     /// Which templates to learn with when there is no `statements.rcc`:
-    /// `second` (SPEC §11.5) or `first` (exactly SPEC §8).
-    #[arg(long, default_value = "second", value_name = "first|second")]
+    /// `third` (with group shapes), `second` or `first` (see `learn`).
+    #[arg(long, default_value = "third", value_name = "first|second|third")]
     templates: Templates,
     /// Priors learned across tasks (`rccpack priors`).
     #[arg(long, value_name = "PRIORS.json")]

@@ -58,6 +58,16 @@ pub fn find_candidates(
                         });
                     }
                 }
+                Scope::Group => {
+                    if !r.scene_holds(&atoms, scene.objects.len()) {
+                        // The first object off the largest group, if any.
+                        let object = r
+                            .group_check(&atoms, scene.objects.len())
+                            .and_then(|(c, neg)| (!neg).then(|| c.off_main()))
+                            .and_then(|off| off.first().map(|&i| scene.objects[i].id.clone()));
+                        out[k] = Some(Provenance { demo: d, object });
+                    }
+                }
                 Scope::Scene(q) => {
                     let (c, m) = r.count(&atoms, scene.objects.len());
                     if !q.holds(c, m) {

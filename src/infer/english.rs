@@ -214,6 +214,7 @@ fn predicate(f: &Formula) -> Pred {
     let pos = Pred::Pos;
     match f {
         Formula::Atom(a) => pos(atom_phrase(a)),
+        Formula::Shape(sh) => pos(format!("{} (with the others)", sh.kind.verb())),
         Formula::Not(g) => match atom_of(g) {
             Some(a) if a.has_default_quant() => {
                 let d = a.rel.dir.word();
@@ -292,6 +293,7 @@ fn generic_inner(f: &Formula, top: bool) -> String {
     let wrap = |t: String| if top { t } else { format!("({t})") };
     match f {
         Formula::Atom(a) => atom_phrase(a),
+        Formula::Shape(sh) => sh.to_string(),
         Formula::Not(g) => format!("not {}", generic_inner(g, false)),
         Formula::And(v) => wrap(
             v.iter()
@@ -347,9 +349,13 @@ pub fn reading(f: &Formula) -> String {
 /// some other G".
 pub fn statement_reading(scope: Scope, f: &Formula) -> String {
     let s = f.subject();
+    if let Some((sh, neg)) = f.shape() {
+        let not = if neg { "do not " } else { "" };
+        return format!("the {}s {not}{}", sh.class, sh.kind.verb());
+    }
     let pred = predicate(f);
     match scope {
-        Scope::Each | Scope::Scene(Quant::Every) => match pred {
+        Scope::Each | Scope::Group | Scope::Scene(Quant::Every) => match pred {
             Pred::Pos(p) => format!("every {s} {p}"),
             Pred::Neg { no, .. } => format!("no {s} {no}"),
         },
@@ -485,6 +491,17 @@ pub fn rule_implies(f: (Scope, &Formula), g: (Scope, &Formula), contact: Contact
                 false
             }
         }
+        (Scope::Group, Scope::Group) => match (f.1.shape(), g.1.shape()) {
+            (Some((a, false)), Some((b, false))) => {
+                use crate::shapes::ShapeKind as K;
+                a.class == b.class && (a.kind == b.kind || b.kind == K::Group)
+            }
+            (Some((a, true)), Some((b, true))) => {
+                use crate::shapes::ShapeKind as K;
+                a.class == b.class && (a.kind == b.kind || a.kind == K::Group)
+            }
+            _ => false,
+        },
         _ => false,
     }
 }

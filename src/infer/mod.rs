@@ -194,7 +194,7 @@ impl Default for LearnParams {
             epsilon: None,
             seed: 0,
             contact: Contact::Point,
-            templates: Templates::Second,
+            templates: Templates::Third,
         }
     }
 }
@@ -511,7 +511,7 @@ pub fn learn_with_priors(
         let st = &stats[subjects[k]];
         let (n, trials, epsilon) = match rule.scope {
             Scope::Each => (st.demo_objects, st.sample_objects, st.epsilon),
-            Scope::Scene(_) => (d as u64, params.samples as u64, scene_epsilon),
+            Scope::Scene(_) | Scope::Group => (d as u64, params.samples as u64, scene_epsilon),
         };
         let mut r = StatementResult {
             index: k,
@@ -617,6 +617,16 @@ pub fn check_statements(set: &RuleSet, classes: &ClassIndex) -> Result<(), Infer
             });
         }
         let subject = rule.subject();
+        if let Some((shape, _)) = rule.formula.shape() {
+            if classes.get(&shape.class).is_none() {
+                return Err(InferError::UnknownClass {
+                    rule: rule.name.clone(),
+                    class: shape.class.clone(),
+                    known: classes.names().join(", "),
+                    span: rule.origin.as_ref().and_then(|o| o.atoms.first().copied()),
+                });
+            }
+        }
         for (i, a) in rule.formula.atoms().into_iter().enumerate() {
             if a.subject != subject {
                 return Err(InferError::MixedSubjects {
@@ -674,7 +684,7 @@ pub(crate) fn check_demo_landmarks(set: &RuleSet, demos: &[Scene]) -> Result<(),
 /// `Q A: ` for a scene-level rule about `subject`, `""` for a per-object one.
 pub fn scope_prefix(scope: Scope, subject: &str) -> String {
     match scope {
-        Scope::Each => String::new(),
+        Scope::Each | Scope::Group => String::new(),
         Scope::Scene(q) => format!("{q} {subject}: "),
     }
 }
@@ -733,7 +743,7 @@ impl Learned {
                             s.n,
                             short(post.log10_likelihood)
                         ),
-                        Scope::Scene(_) => format!(
+                        Scope::Scene(_) | Scope::Group => format!(
                             "q = {} (holds in {} of {} random scenes), n = {} demonstrations, log10 L = {}",
                             short(s.q.unwrap_or(0.0)),
                             s.satisfied.unwrap_or(0),
@@ -786,6 +796,7 @@ impl Learned {
                 (StatementSource::Given, _) => "given",
                 (StatementSource::Templates, Templates::First) => "templates",
                 (StatementSource::Templates, Templates::Second) => "templates, second edition",
+                (StatementSource::Templates, Templates::Third) => "templates, third edition",
             }
         );
         let _ = writeln!(
@@ -821,6 +832,7 @@ impl Learned {
                 contact: self.params.contact.to_string(),
                 templates: match (self.source, self.params.templates) {
                     (StatementSource::Templates, Templates::Second) => Some("second".into()),
+                    (StatementSource::Templates, Templates::Third) => Some("third".into()),
                     _ => None,
                 },
             },
@@ -842,6 +854,7 @@ impl Learned {
                     scope: match s.scope {
                         Scope::Each => None,
                         Scope::Scene(q) => Some(q.to_string()),
+                        Scope::Group => Some("group".to_string()),
                     },
                     subject: s.subject.clone(),
                     english: s.english.clone(),

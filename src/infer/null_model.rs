@@ -377,6 +377,11 @@ impl<'a> NullModel<'a> {
                     }
                     let atoms = ClassAtoms::new(scene, classes, contact);
                     for (k, r) in rules.iter().enumerate() {
+                        if r.scope == Scope::Group {
+                            let n = scene.objects.len();
+                            counts[k] += u64::from(r.scene_holds(&atoms, n));
+                            continue;
+                        }
                         let objects = subjects_of(d, r);
                         let c = objects
                             .iter()
@@ -385,6 +390,7 @@ impl<'a> NullModel<'a> {
                         counts[k] += match r.scope {
                             Scope::Each => c,
                             Scope::Scene(q) => u64::from(q.holds(c as u32, objects.len() as u32)),
+                            Scope::Group => 0,
                         };
                     }
                     (scratch, counts, err)

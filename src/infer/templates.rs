@@ -21,7 +21,9 @@
 //! 2. (second edition) [`SELF_TEMPLATES`] with target `A`;
 //! 3. [`SUBJECT_TEMPLATES`];
 //! 4. (second edition) [`LANDMARK_TEMPLATES`] for every landmark of
-//!    [`demo_landmarks`], in the order of the first demonstration.
+//!    [`demo_landmarks`], in the order of the first demonstration;
+//! 5. (third edition, the default) [`GROUP_TEMPLATES`]: the class forms one
+//!    group, row, column or block.
 //!
 //! A template whose name contains `{d}` is expanded over the four
 //! directions. Generated statements with the same scope and formula as an
@@ -42,8 +44,9 @@
 //! the order of the generated statements.
 
 use crate::relations::{Dir, Kind, Quant, Relation};
-use crate::rules::{Atom, Formula, Rule, RuleSet, Scope, Target};
+use crate::rules::{Atom, Formula, Rule, RuleSet, Scope, Shape, Target};
 use crate::scene::Scene;
+use crate::shapes::ShapeKind;
 use std::collections::HashSet;
 use std::fmt;
 
@@ -52,9 +55,12 @@ use std::fmt;
 pub enum Templates {
     /// The first edition's set (SPEC §8), exactly.
     First,
-    /// The second edition's set (SPEC §11.5): the first edition's and more.
-    #[default]
+    /// The second edition's set: the first edition's and more.
     Second,
+    /// The third edition's set, the default: the second edition's and the
+    /// group statements ([`GROUP_TEMPLATES`]) per movable class.
+    #[default]
+    Third,
 }
 
 impl Templates {
@@ -70,8 +76,9 @@ impl std::str::FromStr for Templates {
         match s {
             "first" => Ok(Templates::First),
             "second" => Ok(Templates::Second),
+            "third" => Ok(Templates::Third),
             _ => Err(format!(
-                "unknown template set `{s}`; expected `first` or `second`"
+                "unknown template set `{s}`; expected `first`, `second` or `third`"
             )),
         }
     }
@@ -82,6 +89,7 @@ impl fmt::Display for Templates {
         f.write_str(match self {
             Templates::First => "first",
             Templates::Second => "second",
+            Templates::Third => "third",
         })
     }
 }
@@ -363,6 +371,36 @@ pub const LANDMARK_TEMPLATES: &[Template] = &[
     },
 ];
 
+/// Third-edition group templates over a subject class as a whole: "the
+/// `A`s form one group / row / column / block" (see [`crate::shapes`]).
+pub const GROUP_TEMPLATES: &[Template] = &[
+    Template {
+        name: "{A}_one_group",
+        scope: Scope::Group,
+        build: |t| group_shape(ShapeKind::Group, t.subject),
+    },
+    Template {
+        name: "{A}_one_row",
+        scope: Scope::Group,
+        build: |t| group_shape(ShapeKind::Row, t.subject),
+    },
+    Template {
+        name: "{A}_one_column",
+        scope: Scope::Group,
+        build: |t| group_shape(ShapeKind::Column, t.subject),
+    },
+    Template {
+        name: "{A}_one_block",
+        scope: Scope::Group,
+        build: |t| group_shape(ShapeKind::Block, t.subject),
+    },
+];
+
+/// `column(A)` and its kin: the statement that all `A`s form one shape.
+pub fn group_shape(kind: ShapeKind, subject: &str) -> Formula {
+    Formula::Shape(Shape::new(kind, subject))
+}
+
 /// Every template table, for the names `crate::priors` accepts as a kind's
 /// template. A new table is added here too (a test checks that every
 /// generated statement's template is listed).
@@ -372,6 +410,7 @@ pub const TABLES: &[&[Template]] = &[
     SELF_TEMPLATES,
     SUBJECT_TEMPLATES,
     LANDMARK_TEMPLATES,
+    GROUP_TEMPLATES,
 ];
 
 /// The template named `name` in [`TABLES`].
@@ -433,9 +472,9 @@ pub fn demo_landmarks(demos: &[Scene]) -> Vec<String> {
         .collect()
 }
 
-/// Generate the default (second-edition) statement set for `demos`.
+/// Generate the default (third-edition) statement set for `demos`.
 pub fn generate(demos: &[Scene]) -> RuleSet {
-    generate_set(demos, Templates::Second)
+    generate_set(demos, Templates::Third)
 }
 
 /// Generate the statement set `which` for the classes (and, for the second
@@ -464,7 +503,8 @@ pub struct TemplateOrigin {
 /// [`generate_set`] and, per generated rule (same order), its
 /// [`TemplateOrigin`].
 pub fn generate_with_origins(demos: &[Scene], which: Templates) -> (RuleSet, Vec<TemplateOrigin>) {
-    let second = which == Templates::Second;
+    let second = which != Templates::First;
+    let third = which == Templates::Third;
     let classes = demo_classes(demos);
     let mut targets: Vec<Target> = classes
         .iter()
@@ -508,6 +548,11 @@ pub fn generate_with_origins(demos: &[Scene], which: Templates) -> (RuleSet, Vec
                 out.expand(t, subject, f);
             }
         }
+        if third {
+            for t in GROUP_TEMPLATES {
+                out.expand(t, subject, &Target::Any);
+            }
+        }
     }
     (RuleSet::new(out.rules), out.origins)
 }
@@ -517,7 +562,7 @@ pub fn generate_with_origins(demos: &[Scene], which: Templates) -> (RuleSet, Vec
 /// learning refuses demonstrations past [`crate::limits::MAX_STATEMENTS`]
 /// before spending memory on them.
 pub fn estimate_set(demos: &[Scene], which: Templates) -> usize {
-    let second = which == Templates::Second;
+    let second = which != Templates::First;
     let classes = demo_classes(demos);
     let per = |ts: &[Template]| -> usize {
         ts.iter()
@@ -536,6 +581,9 @@ pub fn estimate_set(demos: &[Scene], which: Templates) -> usize {
         + landmarks * per(LANDMARK_TEMPLATES);
     if second {
         each += targets * per(FLUSH_PAIR_TEMPLATES) + per(SELF_TEMPLATES);
+    }
+    if which == Templates::Third {
+        each += per(GROUP_TEMPLATES);
     }
     movable.saturating_mul(each)
 }

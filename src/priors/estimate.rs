@@ -63,7 +63,7 @@ pub struct PriorParams {
     /// Rule a kind out after this many tasks in which it was a candidate
     /// and never kept; 0: never rule out (default 10).
     pub rule_out_after: u64,
-    /// The template set whose statements are counted (default second).
+    /// The template set whose statements are counted (default third, as learning).
     pub templates: Templates,
     /// The contact mode candidates are found with (default point).
     pub contact: Contact,
@@ -74,7 +74,7 @@ impl Default for PriorParams {
         PriorParams {
             strength: 4,
             rule_out_after: 10,
-            templates: Templates::Second,
+            templates: Templates::Third,
             contact: Contact::Point,
         }
     }

@@ -4,7 +4,7 @@
 //! ```json
 //! {
 //!   "version": "rccpack-priors/1",
-//!   "templates": "second",
+//!   "templates": "third",
 //!   "contact": "point",
 //!   "library": { "tasks": 40, "inputs": "fnv1a64:…" },
 //!   "parameters": { "strength": 4, "rule_out_after": 10 },

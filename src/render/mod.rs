@@ -351,7 +351,9 @@ fn rule_lines(ev: &Evaluation) -> (Vec<Line>, HashMap<&str, bool>) {
             let hard = hard_of.entry(v.as_str()).or_insert(false);
             *hard |= r.hard;
         }
-        let ok = r.violators.is_empty();
+        // A scene-level or group rule can fail with no object to blame
+        // (`some R: …` with none, `not column(R)` with one column).
+        let ok = r.violators.is_empty() && r.satisfied == r.subjects;
         let mut name = truncate(&r.name, 34);
         if r.hard {
             name.push_str("  [hard]");
@@ -385,18 +387,15 @@ fn rule_lines(ev: &Evaluation) -> (Vec<Line>, HashMap<&str, bool>) {
                 ),
             ],
         });
-        if !ok {
+        if !r.violators.is_empty() {
             let ids = truncate(&r.violators.join(", "), 40);
+            let what = match &r.group {
+                Some(g) => format!("off the main {}: {ids}", g.shape),
+                None => format!("broken by {ids}"),
+            };
             lines.push(Line {
                 dy: 14.0,
-                parts: vec![text(
-                    16.0,
-                    10.5,
-                    false,
-                    "#8a8a8a",
-                    false,
-                    format!("broken by {ids}"),
-                )],
+                parts: vec![text(16.0, 10.5, false, "#8a8a8a", false, what)],
             });
         }
     }

@@ -7,6 +7,7 @@
 
 pub use crate::relations::Quant;
 use crate::relations::Relation;
+pub use crate::shapes::ShapeKind;
 use std::fmt;
 
 /// A byte range in the source text.
@@ -109,12 +110,44 @@ impl fmt::Display for Atom {
     }
 }
 
+/// A group statement's shape and class: `column(R)` (fourth edition; see
+/// [`crate::shapes`] for what each shape means).
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Shape {
+    /// Which shape.
+    pub kind: ShapeKind,
+    /// The class that forms it.
+    pub class: String,
+}
+
+impl Shape {
+    /// A shape of a class.
+    pub fn new(kind: ShapeKind, class: impl Into<String>) -> Self {
+        Shape {
+            kind,
+            class: class.into(),
+        }
+    }
+}
+
+impl fmt::Display for Shape {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}({})", self.kind, self.class)
+    }
+}
+
 /// A Boolean formula over atoms. `And`/`Or` are n-ary (at least two
 /// operands when produced by the parser, which flattens `a & (b & c)`).
+///
+/// A [`Formula::Shape`] is about a class as a whole: it appears only as
+/// the whole formula of a group rule ([`Scope::Group`]), possibly under one
+/// `Not` (checked by `rules::check`).
 #[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Formula {
     /// An atom.
     Atom(Atom),
+    /// A group statement's shape (only as a group rule's whole formula).
+    Shape(Shape),
     /// Negation.
     Not(Box<Formula>),
     /// Conjunction.
@@ -137,6 +170,7 @@ impl Formula {
         while let Some(f) = stack.pop() {
             match f {
                 Formula::Atom(a) => out.push(a),
+                Formula::Shape(_) => {}
                 Formula::Not(g) => stack.push(g),
                 Formula::And(v) | Formula::Or(v) => stack.extend(v.iter().rev()),
             }
@@ -152,6 +186,7 @@ impl Formula {
         loop {
             match f {
                 Formula::Atom(a) => return &a.subject,
+                Formula::Shape(s) => return &s.class,
                 Formula::Not(g) => f = g,
                 Formula::And(v) | Formula::Or(v) => match v.first() {
                     Some(g) => f = g,
@@ -164,16 +199,37 @@ impl Formula {
     /// Nesting depth (an atom has depth 1).
     pub fn depth(&self) -> usize {
         match self {
-            Formula::Atom(_) => 1,
+            Formula::Atom(_) | Formula::Shape(_) => 1,
             Formula::Not(g) => 1 + g.depth(),
             Formula::And(v) | Formula::Or(v) => 1 + v.iter().map(Formula::depth).max().unwrap_or(0),
         }
     }
 
-    /// Evaluate with a function giving each atom's value.
+    /// The shape of a group rule's formula and whether it is negated:
+    /// `Some((shape, false))` for `column(R)`, `Some((shape, true))` for
+    /// `!column(R)`; `None` for every other formula.
+    pub fn shape(&self) -> Option<(&Shape, bool)> {
+        let mut f = self;
+        let mut neg = false;
+        loop {
+            match f {
+                Formula::Shape(s) => return Some((s, neg)),
+                Formula::Not(g) => {
+                    neg = !neg;
+                    f = g;
+                }
+                _ => return None,
+            }
+        }
+    }
+
+    /// Evaluate with a function giving each atom's value (a per-object
+    /// formula; a [`Formula::Shape`], which is about the whole class, reads
+    /// as false here — group rules are decided by [`crate::shapes::check`]).
     pub fn eval(&self, atom: &mut impl FnMut(&Atom) -> bool) -> bool {
         match self {
             Formula::Atom(a) => atom(a),
+            Formula::Shape(_) => false,
             Formula::Not(g) => !g.eval(atom),
             Formula::And(v) => v.iter().all(|g| g.eval(atom)),
             Formula::Or(v) => v.iter().any(|g| g.eval(atom)),
@@ -226,6 +282,10 @@ pub enum Scope {
     /// subject objects satisfying the formula meets `Q` (never
     /// [`Quant::Every`], which is [`Scope::Each`]).
     Scene(Quant),
+    /// A group statement (fourth edition): the formula is a
+    /// [`Formula::Shape`], possibly negated, about the subject class as a
+    /// whole; scored like a scene-level rule (one term).
+    Group,
 }
 
 impl Scope {
@@ -236,9 +296,10 @@ impl Scope {
             q => Scope::Scene(q),
         }
     }
-    /// Whether this is a scene-level rule.
+    /// Whether this is a scene-level rule (one term in the score): a
+    /// quantified scope or a group statement.
     pub fn is_scene(&self) -> bool {
-        matches!(self, Scope::Scene(_))
+        matches!(self, Scope::Scene(_) | Scope::Group)
     }
 }
 
@@ -251,7 +312,8 @@ pub struct RuleOrigin {
     pub name: Span,
     /// The modifier, if any.
     pub modifier: Option<Span>,
-    /// Each atom's span, in [`Formula::atoms`] order.
+    /// Each atom's span, in [`Formula::atoms`] order; for a group
+    /// statement, the one span of its shape.
     pub atoms: Vec<Span>,
     /// The scene quantifier `Q A:`, if written.
     pub scope: Option<Span>,
@@ -300,6 +362,16 @@ impl Rule {
     /// The subject class.
     pub fn subject(&self) -> &str {
         self.formula.subject()
+    }
+    /// A group rule `rule NAME: column(R)` (or its negation).
+    pub fn group(name: impl Into<String>, shape: Shape, negated: bool) -> Self {
+        let f = Formula::Shape(shape);
+        let formula = if negated { Formula::not(f) } else { f };
+        Rule::new(name, formula).with_scope(Scope::Group)
+    }
+    /// Whether this is a group statement.
+    pub fn is_group(&self) -> bool {
+        self.scope == Scope::Group
     }
     /// Name, strength and formula equal (ignores spans and comments).
     pub fn same_rule(&self, other: &Rule) -> bool {
@@ -350,6 +422,9 @@ impl RuleSet {
     pub fn classes(&self) -> Vec<String> {
         let mut out: Vec<String> = Vec::new();
         for r in &self.rules {
+            if let Some((s, _)) = r.formula.shape() {
+                out.push(s.class.clone());
+            }
             for a in r.formula.atoms() {
                 out.push(a.subject.clone());
                 if let Target::Class(c) = &a.target {

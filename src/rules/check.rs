@@ -67,6 +67,20 @@ fn unknown_classes(
 ) -> Result<(), RulesError> {
     let mut diags = Vec::new();
     for rule in &rules.rules {
+        if let Some((shape, _)) = rule.formula.shape() {
+            if !classes.contains(&shape.class.as_str()) {
+                let span = rule
+                    .origin
+                    .as_ref()
+                    .and_then(|o| o.atoms.first().copied())
+                    .unwrap_or(Span::new(0, 0));
+                diags.push(Diagnostic::new(
+                    DiagnosticKind::UnknownClass,
+                    span,
+                    message(&shape.class, &rule.name),
+                ));
+            }
+        }
         for (i, atom) in rule.formula.atoms().into_iter().enumerate() {
             let span = rule
                 .origin

@@ -11,7 +11,10 @@ mod diagnostic;
 mod parser;
 mod printer;
 
-pub use ast::{Atom, Formula, Quant, Rule, RuleOrigin, RuleSet, Scope, Span, Strength, Target};
+pub use ast::{
+    Atom, Formula, Quant, Rule, RuleOrigin, RuleSet, Scope, Shape, ShapeKind, Span, Strength,
+    Target,
+};
 pub use check::{
     check_classes, check_classes_across, check_landmarks, missing_classes, missing_classes_note,
 };

@@ -15,7 +15,8 @@
 
 use super::diagnostic::{Diagnostic, DiagnosticKind, LineIndex};
 use super::{
-    Atom, Formula, Quant, Rule, RuleOrigin, RuleSet, RulesError, Scope, Span, Strength, Target,
+    Atom, Formula, Quant, Rule, RuleOrigin, RuleSet, RulesError, Scope, Shape, ShapeKind, Span,
+    Strength, Target,
 };
 use crate::relations::{Relation, MAX_COUNT};
 use pest::error::{ErrorVariant, InputLocation};
@@ -218,6 +219,13 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
                                 }
                             }
                         }
+                        R::shape_stmt => {
+                            scope = Scope::Group;
+                            // A group statement has no atoms; its span
+                            // stands where the atoms' would.
+                            atom_spans.push(span_of(&b));
+                            formula = shape_stmt(b, &mut subjects, diags);
+                        }
                         R::formula => {
                             let mut builder = Builder {
                                 atoms: &mut atom_spans,
@@ -273,6 +281,52 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
     // A rule with errors still takes part in the duplicate-name check; the
     // caller drops it since diagnostics were recorded.
     Some(rule)
+}
+
+/// A group statement `[!]SHAPE(CLASS)`: its formula (a shape under as many
+/// `Not`s as written). The class is recorded in `subjects`; `*` and `@ID`
+/// are reported.
+fn shape_stmt(
+    p: Pair<'_, R>,
+    subjects: &mut Vec<(String, Span)>,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<Formula> {
+    let mut nots = 0usize;
+    let mut kind = None;
+    let mut class = None;
+    for c in p.into_inner() {
+        match c.as_rule() {
+            R::not_op => nots += 1,
+            R::shape_kw => kind = ShapeKind::from_name(c.as_str()),
+            R::subject => {
+                let span = span_of(&c);
+                match subject_kind(c) {
+                    Subject::Class(name) => {
+                        subjects.push((name.clone(), span));
+                        class = Some(name);
+                    }
+                    Subject::Other(text, _, landmark) => {
+                        let why = if landmark {
+                            "a group statement is about the objects of one class, not a landmark"
+                        } else {
+                            "a group statement is about the objects of one class"
+                        };
+                        diags.push(Diagnostic::new(
+                            DiagnosticKind::Syntax,
+                            span,
+                            format!("expected a class name in the group statement, found `{text}`: {why}"),
+                        ));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut f = Formula::Shape(Shape::new(kind?, class?));
+    for _ in 0..nots {
+        f = Formula::not(f);
+    }
+    Some(f)
 }
 
 /// A scene scope `Q A:`: the quantifier (when valid), how it was written and
@@ -667,6 +721,7 @@ fn describe(r: R) -> &'static str {
         R::subject | R::class => "a class name",
         R::target | R::object => "a class name or `*`",
         R::body | R::scope => "a formula",
+        R::shape_stmt | R::shape_kw => "a group statement such as column(R)",
         R::scope_colon => "`:`",
         R::any => "`*`",
         R::landmark => "a landmark `@ID`",

@@ -35,6 +35,7 @@ fn prec(f: &Formula) -> u8 {
 fn write_formula(f: &Formula, out: &mut String) {
     match f {
         Formula::Atom(a) => out.push_str(&a.to_string()),
+        Formula::Shape(sh) => out.push_str(&sh.to_string()),
         Formula::Not(g) => {
             out.push('!');
             write_operand(g, 3, out);

@@ -192,7 +192,7 @@ pub fn atom_strategy(subject: &'static str) -> impl Strategy<Value = Formula> {
 /// Flatten nested same-operator chains the way the parser does.
 fn normalize(f: Formula) -> Formula {
     match f {
-        Formula::Atom(_) => f,
+        Formula::Atom(_) | Formula::Shape(_) => f,
         Formula::Not(g) => Formula::not(normalize(*g)),
         Formula::And(v) => {
             let mut out = Vec::new();
@@ -263,6 +263,17 @@ pub fn ruleset_strategy() -> impl Strategy<Value = RuleSet> {
             )
         })
         .prop_map(|(f, s, q)| Rule::new("x", f).with_strength(s).with_scope(q));
+    // Group statements: `column(R)`, `not block(G)`, ….
+    let group = (
+        prop::sample::select(crate::shapes::ShapeKind::ALL.to_vec()),
+        prop::sample::select(CLASSES.to_vec()),
+        any::<bool>(),
+        strength_strategy(),
+    )
+        .prop_map(|(kind, class, negated, s)| {
+            Rule::group("x", crate::rules::Shape::new(kind, class), negated).with_strength(s)
+        });
+    let rule = prop_oneof![5 => rule, 1 => group];
     (
         prop::collection::vec(rule, 0..6),
         prop::collection::vec("[a-z ]{0,20}", 0..6),

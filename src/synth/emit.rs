@@ -28,6 +28,12 @@
 //!   empty clause (`[]`, false), the MiniZinc form `constraint false;` (with
 //!   a comment saying why), and both list the objects in `too_large`.
 //!
+//! - **Group statements** (`column(R)`, …) need no new operator: the
+//!   model's circuit for them (layered reachability over contact literals,
+//!   the block's box as `diff_ge` literals) is made of `and` Booleans,
+//!   negations and clauses, and is written like every other definition;
+//!   a group rule contributes one literal, as a scene-level rule does.
+//!
 //! # The JSON form ([`to_json`])
 //!
 //! One JSON object (compact, one line, then a newline):
@@ -43,7 +49,7 @@
 //! | `bools` | per Boolean `j` (children before parents), its exact definition `b_j ⇔ …`: `{"op": "ge", var, k}` is `vars[var] ≥ k`; `{"op": "diff_ge", a, b, k}` is `vars[a] − vars[b] ≥ k`; `{"op": "and", lits}` the conjunction; `{"op": "at_least", lits, k}` at least `k` of `lits` true, repeated literals counted with their multiplicity |
 //! | literal | `{"var": j, "neg": bool}` (Boolean `j`, negated when `neg`) or `{"const": true/false}` |
 //! | `clauses` | lists of literals, each clause a disjunction that must hold (non-overlap, symmetry fallback, `[]` for a too-large object) |
-//! | `hard` | per hard rule: `{rule (index in the rule file), name, lits}`; every literal must hold (one per subject object, or one for a scene-level rule) |
+//! | `hard` | per hard rule: `{rule (index in the rule file), name, lits}`; every literal must hold (one per subject object, or one for a scene-level or group rule) |
 //! | `soft` | per objective term: `{rule, name, object (index or null for a scene-level rule), object_id, lit, coef (integer), weight (the real weight)}` |
 //! | `objective` | `{"sense": "maximize", "constant": c}`: maximise `Σ coef·[lit]` over `soft` (constant literals included: the constant-`true` ones sum to `c`) |
 //! | `symmetry` | linear `{terms: [[coef, var], …], rhs}`: `Σ coef·vars[var] ≤ rhs` must hold |

@@ -62,6 +62,8 @@ use crate::rules::{Formula, RuleSet, Scope, Target};
 use crate::scene::Scene;
 use std::collections::HashMap;
 
+mod shapes;
+
 /// A literal: a constant or a (possibly negated) model Boolean.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Lit {
@@ -489,6 +491,18 @@ impl Model {
         matches!(self.coords[o].0, Coord::Const(_))
     }
 
+    /// Whether two constant objects' interiors overlap (false when either
+    /// is a variable).
+    fn const_overlap(&self, a: usize, b: usize) -> bool {
+        let ((Coord::Const(ax), Coord::Const(ay)), (Coord::Const(bx), Coord::Const(by))) =
+            (self.coords[a], self.coords[b])
+        else {
+            return false;
+        };
+        let ((aw, ah), (bw, bh)) = (self.sizes[a], self.sizes[b]);
+        ax < bx + bw && bx < ax + aw && ay < by + bh && by < ay + ah
+    }
+
     fn coord(&self, o: usize, axis: Axis) -> Coord {
         match axis {
             Axis::X => self.coords[o].0,
@@ -850,6 +864,38 @@ impl Model {
                 return false;
             }
             let subject = rule.subject();
+            let hard = rule.strength.is_hard();
+            if rule.scope == Scope::Group {
+                let lit = match rule.formula.shape() {
+                    Some((shape, neg)) => {
+                        let objects: Vec<usize> = (0..problem.objects.len())
+                            .filter(|&o| problem.objects[o].class == shape.class)
+                            .collect();
+                        let l = self.shape(shape.kind, &objects, contact);
+                        if neg {
+                            !l
+                        } else {
+                            l
+                        }
+                    }
+                    // Not a shape formula: the evaluator reads it as false.
+                    None => Lit::FALSE,
+                };
+                if hard {
+                    self.hard.push(HardRule {
+                        rule: ri,
+                        lits: vec![lit],
+                    });
+                } else {
+                    self.soft.push(SoftTerm {
+                        rule: ri,
+                        object: None,
+                        lit,
+                        weight: rule.strength.weight(),
+                    });
+                }
+                continue;
+            }
             let mut lits = Vec::new();
             let mut objects = Vec::new();
             for (o, obj) in problem.objects.iter().enumerate() {
@@ -862,7 +908,6 @@ impl Model {
                 lits.push(self.formula(&rule.formula, o, problem, contact, &mut cache));
                 objects.push(o);
             }
-            let hard = rule.strength.is_hard();
             let weight = rule.strength.weight();
             match rule.scope {
                 Scope::Each if hard => self.hard.push(HardRule { rule: ri, lits }),
@@ -876,6 +921,8 @@ impl Model {
                         });
                     }
                 }
+                // Posted above.
+                Scope::Group => {}
                 Scope::Scene(q) => {
                     let lit = self.quantify(q, lits);
                     if hard {
@@ -957,6 +1004,9 @@ impl Model {
                 cache.insert(key, l);
                 l
             }
+            // Only a group rule's whole formula (posted by `post_rules`);
+            // read per object it is false, as in the evaluator.
+            Formula::Shape(_) => Lit::FALSE,
             Formula::Not(g) => !self.formula(g, o, problem, contact, cache),
             Formula::And(v) => {
                 let ls = v

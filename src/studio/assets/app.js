@@ -456,7 +456,10 @@ function showResult(r, cancelled) {
   if (ev) {
     for (const rule of ev.rules) {
       const okAll = rule.satisfied === rule.subjects;
-      rows += `<tr class="${okAll ? 'good' : 'bad'}"><td>${okAll ? '✓' : '✗'}</td><td>${esc(rule.name)}${rule.hard ? ' <span class="pill hard">hard</span>' : ''}</td>
+      // A broken group statement names the objects off the main group.
+      const off = rule.group && !okAll && rule.violators.length
+        ? `<div class="muted small">off the main ${esc(rule.group.shape)}: ${rule.violators.map(esc).join(', ')}</div>` : '';
+      rows += `<tr class="${okAll ? 'good' : 'bad'}"><td>${okAll ? '✓' : '✗'}</td><td>${esc(rule.name)}${rule.hard ? ' <span class="pill hard">hard</span>' : ''}${off}</td>
         <td class="num">${rule.satisfied} / ${rule.subjects}</td></tr>`;
     }
   }

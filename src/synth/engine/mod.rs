@@ -205,7 +205,13 @@ struct Phased {
     first: StaticBrancher,
     main: Box<dyn Brancher>,
     use_first: Rc<Cell<bool>>,
+    /// Conflicts met while the greedy phase was on.
+    first_conflicts: u64,
 }
+
+/// The greedy first phase gives up after this many conflicts without a
+/// first solution (see `Phased::on_conflict`).
+const FIRST_PHASE_CONFLICTS: u64 = 1000;
 
 impl Brancher for Phased {
     fn next_decision(&mut self, context: &mut SelectionContext) -> Option<Predicate> {
@@ -222,6 +228,18 @@ impl Brancher for Phased {
         self.main.next_decision(context)
     }
     fn on_conflict(&mut self) {
+        // A greedy packing finds a first layout without backtracking in
+        // practice; when it keeps failing, the problem is hard or
+        // infeasible (an `ask` implication check, contradicting hard
+        // rules), and the learning brancher — which also branches on the
+        // rules' Booleans — proves it far sooner than coordinate
+        // enumeration.
+        if self.use_first.get() {
+            self.first_conflicts += 1;
+            if self.first_conflicts >= FIRST_PHASE_CONFLICTS {
+                self.use_first.set(false);
+            }
+        }
         self.main.on_conflict()
     }
     fn on_backtrack(&mut self) {
@@ -767,6 +785,7 @@ impl<'m> Builder<'m> {
             first: IndependentVariableValueBrancher::new(FirstFail::new(&self.vars), InDomainMin),
             main,
             use_first: first_phase.clone(),
+            first_conflicts: 0,
         };
         let brancher = Counting {
             inner,

@@ -1,0 +1,203 @@
+//! Group statements in the model: one literal, defined exactly (both
+//! directions) by And/Or over the pair literals of [`crate::shapes`]'s
+//! adjacency and bounds on coordinate differences, so every model
+//! Boolean stays a function of the grid values and the engine, the brute
+//! force check, `eval_bools` and the emitted models need nothing new.
+//!
+//! # Background
+//!
+//! Connectivity is the hard part of a group statement for a CP engine: it
+//! is a property of the whole contact graph. We build it as a layered
+//! reachability circuit from the class's first object: `r⁰ᵢ` is true for
+//! the root only, `rᵏᵢ = rᵏ⁻¹ᵢ ∨ ⋁ⱼ (rᵏ⁻¹ⱼ ∧ adjᵢⱼ)`, and the class is
+//! connected when every `rᵐ⁻¹ᵢ` holds. Each layer is an exact definition,
+//! so the literal is true exactly when the objects form one component,
+//! and its negation exactly when they do not: a probe can ask for a
+//! broken shape as easily as a layout can ask for a kept one.
+//!
+//! # Practical
+//!
+//! The circuit has `O(m³)` And nodes for `m` objects of the class (a few
+//! hundred for the 4–9 objects shapes are about; hash-consing folds the
+//! constant parts of fixed objects). Redundant clauses, each implied by
+//! the definitions or by non-overlap, give the engine shortcuts it would
+//! otherwise have to learn:
+//!
+//! - a shape that holds gives every object an adjacent one;
+//! - a row (column) that holds puts every south (west) edge on the first
+//!   object's line, and its objects span exactly the sum of their widths
+//!   (heights) — implied by non-overlap, so only stated when no two fixed
+//!   objects of the class overlap;
+//! - a block's box is a conjunction of bounds `x₂ᵢ − xⱼ ≤ a·cell` over the
+//!   ordered pairs, one disjunct per box of [`crate::shapes::block_boxes`].
+//!
+//! # How to extend
+//!
+//! A new shape is its adjacency in [`crate::shapes::ShapeKind::adjacency`]
+//! (read here as pair literals) and, when it bounds the extent, a
+//! conjunction of difference bounds like the block's.
+
+use super::{Axis, Lit, Model};
+use crate::relations::Contact;
+use crate::shapes::{block_boxes, ShapeKind};
+
+impl Model {
+    /// The literal "the `objects` (indices into the problem's objects, all
+    /// of one class) form `kind`", exactly as [`crate::shapes::check`]
+    /// decides it.
+    pub(super) fn shape(&mut self, kind: ShapeKind, objects: &[usize], contact: Contact) -> Lit {
+        let m = objects.len();
+        if m < 2 {
+            return Lit::TRUE;
+        }
+        let (contacts, align) = kind.adjacency();
+        // adj[i][j], symmetric.
+        let mut adj = vec![vec![Lit::FALSE; m]; m];
+        for i in 0..m {
+            for j in i + 1..m {
+                let (a, b) = (objects[i], objects[j]);
+                let touch: Vec<Lit> = contacts
+                    .iter()
+                    .map(|&r| self.pair(r, a, b, contact))
+                    .collect();
+                let mut l = self.or(touch);
+                if let Some(al) = align {
+                    let al = self.pair(al, a, b, contact);
+                    l = self.and(vec![l, al]);
+                }
+                adj[i][j] = l;
+                adj[j][i] = l;
+            }
+        }
+        let connected = self.connected(&adj);
+        let mut parts = vec![connected];
+        if kind == ShapeKind::Block {
+            let b = self.block_box(objects);
+            parts.push(b);
+        }
+        let shape = self.and(parts);
+        self.shape_redundancy(kind, shape, objects, &adj);
+        shape
+    }
+
+    /// Layered reachability from object 0 over `adj`: true exactly when
+    /// the graph is connected.
+    fn connected(&mut self, adj: &[Vec<Lit>]) -> Lit {
+        let m = adj.len();
+        let mut reach: Vec<Lit> = (0..m).map(|i| Lit::Const(i == 0)).collect();
+        for _ in 1..m {
+            let mut next = Vec::with_capacity(m);
+            for i in 0..m {
+                let mut ways = vec![reach[i]];
+                for j in 0..m {
+                    if j != i {
+                        let w = self.and(vec![reach[j], adj[i][j]]);
+                        ways.push(w);
+                    }
+                }
+                next.push(self.or(ways));
+            }
+            if next == reach {
+                break;
+            }
+            reach = next;
+        }
+        self.and(reach)
+    }
+
+    /// The class's bounding box fits one of the block's boxes.
+    fn block_box(&mut self, objects: &[usize]) -> Lit {
+        let cw = objects.iter().map(|&o| self.sizes[o].0).max().unwrap_or(0);
+        let ch = objects.iter().map(|&o| self.sizes[o].1).max().unwrap_or(0);
+        let mut boxes = Vec::new();
+        for (a, b) in block_boxes(objects.len()) {
+            let (Some(kx), Some(ky)) = (
+                i64::try_from(a).ok().and_then(|a| a.checked_mul(cw)),
+                i64::try_from(b).ok().and_then(|b| b.checked_mul(ch)),
+            ) else {
+                // A box wider than any coordinate: it always fits.
+                boxes.push(Lit::TRUE);
+                continue;
+            };
+            let mut fit = Vec::new();
+            fit.push(self.extent_at_most(Axis::X, objects, kx));
+            fit.push(self.extent_at_most(Axis::Y, objects, ky));
+            boxes.push(self.and(fit));
+        }
+        self.or(boxes)
+    }
+
+    /// `max(c + size) − min(c) ≤ k` over `objects` on `axis`: for every
+    /// ordered pair, `c_j − c_i ≥ size_i − k`.
+    fn extent_at_most(&mut self, axis: Axis, objects: &[usize], k: i64) -> Lit {
+        let mut lits = Vec::new();
+        for &i in objects {
+            let si = self.size(i, axis);
+            for &j in objects {
+                if i != j {
+                    lits.push(self.diff_ge(axis, j, i, si.saturating_sub(k)));
+                }
+            }
+        }
+        self.and(lits)
+    }
+
+    /// Clauses implied by the shape's definition (or by non-overlap),
+    /// stated so the engine need not learn them.
+    fn shape_redundancy(
+        &mut self,
+        kind: ShapeKind,
+        shape: Lit,
+        objects: &[usize],
+        adj: &[Vec<Lit>],
+    ) {
+        if shape == Lit::FALSE || shape == Lit::TRUE {
+            return;
+        }
+        let m = objects.len();
+        for (i, row) in adj.iter().enumerate() {
+            let mut c = vec![!shape];
+            c.extend((0..m).filter(|&j| j != i).map(|j| row[j]));
+            self.clauses.push(c);
+        }
+        let axis = match kind {
+            ShapeKind::Row => Axis::Y,
+            ShapeKind::Column => Axis::X,
+            _ => return,
+        };
+        // Every object on the first one's line.
+        let first = objects[0];
+        for &o in &objects[1..] {
+            let ge = self.diff_ge(axis, o, first, 0);
+            let le = self.diff_ge(axis, first, o, 0);
+            self.clauses.push(vec![!shape, ge]);
+            self.clauses.push(vec![!shape, le]);
+        }
+        // The run spans the sum of the sizes along it (non-overlap).
+        let along = match axis {
+            Axis::Y => Axis::X,
+            Axis::X => Axis::Y,
+        };
+        let fixed_overlap = objects.iter().enumerate().any(|(n, &a)| {
+            objects[n + 1..]
+                .iter()
+                .any(|&b| self.is_const(a) && self.is_const(b) && self.const_overlap(a, b))
+        });
+        if fixed_overlap {
+            return;
+        }
+        let total = objects
+            .iter()
+            .map(|&o| self.size(o, along))
+            .fold(0i64, |s, v| s.saturating_add(v));
+        for &i in objects {
+            let si = self.size(i, along);
+            for &j in objects {
+                if i != j {
+                    let l = self.diff_ge(along, j, i, si.saturating_sub(total));
+                    self.clauses.push(vec![!shape, l]);
+                }
+            }
+        }
+    }
+}
