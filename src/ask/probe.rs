@@ -329,7 +329,10 @@ impl ProbeChecker {
         // Every rule is hard, so `model.hard[i]` is rule `i`.
         debug_assert!(model.hard.iter().enumerate().all(|(i, h)| h.rule == i));
         let engine = if model.too_large.is_empty() {
-            Some(Engine::new(&model, opts.seed, true, None)?)
+            let mut e = Engine::new(&model, opts.seed, true, None)?;
+            // Checks are mostly proofs that no layout breaks a rule.
+            e.leave_greedy_after(CHECK_GREEDY_CONFLICTS);
+            Some(e)
         } else {
             None
         };
@@ -497,6 +500,14 @@ fn check_limits(
         cancel: opts.cancel.clone(),
     }
 }
+
+/// A checker's engine leaves its greedy first phase after this many
+/// conflicts without a layout (see `Engine::leave_greedy_after`). On the
+/// bundled example, "`group(B)` implies every B touches something flush"
+/// was undecided after 20 000 nodes (10 s) with the greedy phase kept, and
+/// is proven in under 0.1 s this way; the pilot session's 27 questions
+/// take 20 s instead of 28.
+const CHECK_GREEDY_CONFLICTS: u64 = 1000;
 
 /// Search a probe for `held.rules[target]` on `problem`.
 pub fn find_probe(

@@ -207,11 +207,11 @@ struct Phased {
     use_first: Rc<Cell<bool>>,
     /// Conflicts met while the greedy phase was on.
     first_conflicts: u64,
+    /// Leave the greedy phase after this many conflicts without a first
+    /// solution ([`Engine::leave_greedy_after`]; `None`: only at a
+    /// solution).
+    first_cap: Option<u64>,
 }
-
-/// The greedy first phase gives up after this many conflicts without a
-/// first solution (see `Phased::on_conflict`).
-const FIRST_PHASE_CONFLICTS: u64 = 1000;
 
 impl Brancher for Phased {
     fn next_decision(&mut self, context: &mut SelectionContext) -> Option<Predicate> {
@@ -234,9 +234,9 @@ impl Brancher for Phased {
         // rules), and the learning brancher — which also branches on the
         // rules' Booleans — proves it far sooner than coordinate
         // enumeration.
-        if self.use_first.get() {
+        if let (true, Some(cap)) = (self.use_first.get(), self.first_cap) {
             self.first_conflicts += 1;
-            if self.first_conflicts >= FIRST_PHASE_CONFLICTS {
+            if self.first_conflicts >= cap {
                 self.use_first.set(false);
             }
         }
@@ -786,6 +786,7 @@ impl<'m> Builder<'m> {
             main,
             use_first: first_phase.clone(),
             first_conflicts: 0,
+            first_cap: None,
         };
         let brancher = Counting {
             inner,
@@ -1025,6 +1026,17 @@ impl Engine {
             .map(|(&v, &x)| predicate![v != clamp_i32(x)])
             .collect();
         self.solver.add_clause(clause, self.tag);
+    }
+
+    /// Leave the greedy first phase after `conflicts` conflicts without a
+    /// solution, for the learning brancher (which branches on the rules'
+    /// Booleans too). For engines that mostly prove infeasibility — `ask`'s
+    /// implication checks —, where enumerating coordinates greedily can
+    /// take thousands of times longer; synthesis keeps the greedy phase
+    /// until its first layout (it finds one sooner on hard feasible
+    /// problems).
+    pub(crate) fn leave_greedy_after(&mut self, conflicts: u64) {
+        self.brancher.inner.first_cap = Some(conflicts);
     }
 
     /// After the hint, search at random instead of by activity: a random

@@ -15,6 +15,13 @@
 //! and its negation exactly when they do not: a probe can ask for a
 //! broken shape as easily as a layout can ask for a kept one.
 //!
+//! A row or a column needs no circuit: on one line, with interiors that
+//! do not overlap, "the objects span exactly the sum of their sizes" is
+//! one contiguous run, so it is a conjunction of difference literals
+//! (`run_shape`), which the engine propagates on the coordinates' bounds.
+//! The circuit is kept for `group` and `block` (and for a row or column
+//! whose class has two fixed objects that overlap).
+//!
 //! # Practical
 //!
 //! The circuit has `O(m³)` And nodes for `m` objects of the class (a few
@@ -50,6 +57,9 @@ impl Model {
         if m < 2 {
             return Lit::TRUE;
         }
+        if let Some(run) = self.run_shape(kind, objects) {
+            return run;
+        }
         let (contacts, align) = kind.adjacency();
         // adj[i][j], symmetric.
         let mut adj = vec![vec![Lit::FALSE; m]; m];
@@ -78,6 +88,46 @@ impl Model {
         let shape = self.and(parts);
         self.shape_redundancy(kind, shape, objects, &adj);
         shape
+    }
+
+    /// A row (column) without a circuit: every object on the first one's
+    /// south (west) line, and the objects spanning no more than the sum of
+    /// their widths (heights) along it. With interiors that do not overlap
+    /// (the model's non-overlap; not stated when two fixed objects of the
+    /// class overlap, `None` then) that is exactly one contiguous run: on
+    /// one line, a span equal to the sum of the sizes leaves no gap, and
+    /// neighbours on the line share an edge of positive length. `O(m²)`
+    /// difference literals, which the engine propagates on the bounds.
+    fn run_shape(&mut self, kind: ShapeKind, objects: &[usize]) -> Option<Lit> {
+        let (line, along) = match kind {
+            ShapeKind::Row => (Axis::Y, Axis::X),
+            ShapeKind::Column => (Axis::X, Axis::Y),
+            _ => return None,
+        };
+        if self.fixed_pair_overlaps(objects) {
+            return None;
+        }
+        let first = objects[0];
+        let mut parts = Vec::new();
+        for &o in &objects[1..] {
+            parts.push(self.diff_ge(line, o, first, 0));
+            parts.push(self.diff_ge(line, first, o, 0));
+        }
+        let total = objects
+            .iter()
+            .map(|&o| self.size(o, along))
+            .fold(0i64, |s, v| s.saturating_add(v));
+        parts.push(self.extent_at_most(along, objects, total));
+        Some(self.and(parts))
+    }
+
+    /// Whether two fixed (constant) objects of `objects` overlap.
+    fn fixed_pair_overlaps(&self, objects: &[usize]) -> bool {
+        objects.iter().enumerate().any(|(n, &a)| {
+            objects[n + 1..]
+                .iter()
+                .any(|&b| self.is_const(a) && self.is_const(b) && self.const_overlap(a, b))
+        })
     }
 
     /// Layered reachability from object 0 over `adj`: true exactly when
@@ -178,12 +228,7 @@ impl Model {
             Axis::Y => Axis::X,
             Axis::X => Axis::Y,
         };
-        let fixed_overlap = objects.iter().enumerate().any(|(n, &a)| {
-            objects[n + 1..]
-                .iter()
-                .any(|&b| self.is_const(a) && self.is_const(b) && self.const_overlap(a, b))
-        });
-        if fixed_overlap {
+        if self.fixed_pair_overlaps(objects) {
             return;
         }
         let total = objects
