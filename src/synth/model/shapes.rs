@@ -169,9 +169,10 @@ impl Model {
                 boxes.push(Lit::TRUE);
                 continue;
             };
-            let mut fit = Vec::new();
-            fit.push(self.extent_at_most(Axis::X, objects, kx));
-            fit.push(self.extent_at_most(Axis::Y, objects, ky));
+            let fit = vec![
+                self.extent_at_most(Axis::X, objects, kx),
+                self.extent_at_most(Axis::Y, objects, ky),
+            ];
             boxes.push(self.and(fit));
         }
         self.or(boxes)
