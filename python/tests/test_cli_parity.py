@@ -23,9 +23,11 @@ def test_learn_matches_cli(cli: Path, example: Path, tmp_path: Path, learned: rc
     assert learned.to_rcc() == out.read_text()
     assert learned.report_json() == report.read_text()
     assert learned.rules == rccpack.RuleSet.parse(out.read_text())
-    assert len(learned) == len(learned.rules) == 54
-    assert learned.demonstrations == 8 and learned.candidates == 80
-    assert len(learned.statements) == 354
+    assert len(learned) == len(learned.rules) == 57
+    assert learned.demonstrations == 8 and learned.candidates == 83
+    assert len(learned.statements) == 366
+    # The third edition's group statements are learned and read as such.
+    assert "B_one_group" in learned.rules
     top = learned.rules[0]
     assert top.posterior is not None and top.posterior < 0.01 and top.reading
 

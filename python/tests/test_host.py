@@ -167,8 +167,8 @@ def test_learn_errors(demos: list[rccpack.Scene], problem: rccpack.Scene) -> Non
         rccpack.learn([])
     with pytest.raises(rccpack.LearnError, match="incomplete"):
         rccpack.learn([problem])
-    with pytest.raises(rccpack.Error, match="third"):
-        rccpack.learn(demos, templates="third")
+    with pytest.raises(rccpack.Error, match="fourth"):
+        rccpack.learn(demos, templates="fourth")
     with pytest.raises(OverflowError):
         rccpack.learn(demos, samples=-1)
 
