@@ -46,7 +46,7 @@
 //! | `grid` | the grid step |
 //! | `objects` | per object of the problem, in order: `{id, class, width, height, x, y, x_var, y_var}`; `x`/`y` are the fixed coordinates (or `null`), `x_var`/`y_var` the grid variables (or `null`): the object's coordinate is `origin + grid·value` |
 //! | `vars` | per grid variable `i`: `{object, object_id, axis ("x"/"y"), lb (always 0), ub}`, domain `lb..=ub` |
-//! | `bools` | per Boolean `j` (children before parents), its exact definition `b_j ⇔ …`: `{"op": "ge", var, k}` is `vars[var] ≥ k`; `{"op": "diff_ge", a, b, k}` is `vars[a] − vars[b] ≥ k`; `{"op": "and", lits}` the conjunction; `{"op": "at_least", lits, k}` at least `k` of `lits` true, repeated literals counted with their multiplicity |
+//! | `bools` | per Boolean `j` (children before parents), its exact definition `b_j ⇔ …`: `{"op": "ge", var, k}` is `vars[var] ≥ k`; `{"op": "diff_ge", a, b, k}` is `vars[a] − vars[b] ≥ k`; `{"op": "and", lits}` the conjunction; `{"op": "at_least", lits, k}` at least `k` of `lits` true, repeated literals counted with their multiplicity. Group statements' connectivity is written as `and` nodes (a layered reachability circuit), so these four ops are all a reader needs; `{"op": "connected", nodes, edges: [[a, b, lit], …]}` (the graph is connected over the edges whose literal holds) appears only in an [`Emitted`] built by hand from an engine model, never in what [`emitted`] returns |
 //! | literal | `{"var": j, "neg": bool}` (Boolean `j`, negated when `neg`) or `{"const": true/false}` |
 //! | `clauses` | lists of literals, each clause a disjunction that must hold (non-overlap, symmetry fallback, `[]` for a too-large object) |
 //! | `hard` | per hard rule: `{rule (index in the rule file), name, lits}`; every literal must hold (one per subject object, or one for a scene-level or group rule) |
@@ -130,7 +130,14 @@ pub fn emitted(
     rules: &RuleSet,
     opts: &SynthOptions,
 ) -> Result<Emitted, SynthError> {
-    let (mut model, coefs, _) = super::objective_model(problem, rules, opts)?;
+    // Group statements as circuits: a peer has no connectivity propagator.
+    let encoding = super::model::Encoding {
+        connectivity: super::model::Connectivity::Circuit,
+        ..super::model::Encoding::from_env()
+    };
+    let (mut model, coefs, _) =
+        super::objective_model_encoded(problem, rules, opts, &|| false, encoding)?
+            .expect("never stopped");
     // The engine keeps non-overlap in one propagator; a peer gets it as
     // one clause per pair.
     model.add_pairwise_no_overlap(opts.contact);
@@ -196,10 +203,26 @@ struct JVar<'a> {
 #[derive(Serialize)]
 #[serde(tag = "op", rename_all = "snake_case")]
 enum JBool {
-    Ge { var: usize, k: i64 },
-    DiffGe { a: usize, b: usize, k: i64 },
-    And { lits: Vec<JLit> },
-    AtLeast { lits: Vec<JLit>, k: u32 },
+    Ge {
+        var: usize,
+        k: i64,
+    },
+    DiffGe {
+        a: usize,
+        b: usize,
+        k: i64,
+    },
+    And {
+        lits: Vec<JLit>,
+    },
+    AtLeast {
+        lits: Vec<JLit>,
+        k: u32,
+    },
+    Connected {
+        nodes: u32,
+        edges: Vec<(u32, u32, JLit)>,
+    },
 }
 
 #[derive(Serialize)]
@@ -373,6 +396,10 @@ pub fn to_json(e: &Emitted) -> String {
                 lits: jlits(lits),
                 k: *k,
             },
+            BoolDef::Connected { nodes, edges } => JBool::Connected {
+                nodes: *nodes,
+                edges: edges.iter().map(|&(a, b, l)| (a, b, jlit(l))).collect(),
+            },
         })
         .collect();
     let mut clauses: Vec<Vec<JLit>> = m.clauses.iter().map(|c| jlits(c)).collect();
@@ -471,6 +498,36 @@ fn comment(s: &str) -> String {
     s.chars()
         .map(|c| if c.is_control() { '?' } else { c })
         .collect()
+}
+
+/// A [`BoolDef::Connected`] as a MiniZinc `let` with a layered
+/// reachability array from node 0 (only for an [`Emitted`] built by hand:
+/// [`emitted`] writes group statements as circuits).
+fn mzn_connected(nodes: u32, edges: &[(u32, u32, Lit)]) -> String {
+    let n = nodes.max(1) - 1;
+    let mut s = format!(
+        "let {{ array[0..{n}, 0..{n}] of var bool: r; constraint forall(i in 0..{n})(r[0, i] = (i = 0));"
+    );
+    for i in 0..nodes {
+        let mut ways = vec![format!("r[t - 1, {i}]")];
+        for &(a, b, l) in edges {
+            let other = if a == i {
+                b
+            } else if b == i {
+                a
+            } else {
+                continue;
+            };
+            ways.push(format!("(r[t - 1, {other}] /\\ {})", mzn_lit(l)));
+        }
+        let _ = write!(
+            s,
+            " constraint forall(t in 1..{n})(r[t, {i}] = ({}));",
+            ways.join(" \\/ ")
+        );
+    }
+    let _ = write!(s, " }} in forall(i in 0..{n})(r[{n}, i])");
+    s
 }
 
 fn mzn_lit(l: Lit) -> String {
@@ -584,6 +641,7 @@ pub fn to_minizinc(e: &Emitted) -> String {
                     .collect();
                 format!("{} >= {k}", mzn_sum(&terms))
             }
+            BoolDef::Connected { nodes, edges } => mzn_connected(*nodes, edges),
         };
         let _ = writeln!(s, "constraint b{j} <-> ({def});");
     }

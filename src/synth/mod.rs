@@ -423,6 +423,17 @@ pub(crate) fn objective_model_until(
     opts: &SynthOptions,
     stop: &dyn Fn() -> bool,
 ) -> Result<Option<(model::Model, Vec<i64>, model::BuildOptions)>, SynthError> {
+    objective_model_encoded(problem, rules, opts, stop, model::Encoding::from_env())
+}
+
+/// [`objective_model_until`] with the encoding chosen by the caller.
+pub(crate) fn objective_model_encoded(
+    problem: &Scene,
+    rules: &RuleSet,
+    opts: &SynthOptions,
+    stop: &dyn Fn() -> bool,
+    encoding: model::Encoding,
+) -> Result<Option<(model::Model, Vec<i64>, model::BuildOptions)>, SynthError> {
     check_problem(problem)?;
     let pairs = model::Model::pair_literals(problem, rules);
     if pairs > model::MAX_PAIR_LITERALS {
@@ -438,7 +449,7 @@ pub(crate) fn objective_model_until(
         symmetry_breaking: opts.symmetry_breaking,
         redundant: opts.redundant,
     };
-    let Some(model) = model::Model::build_until(problem, rules, build, stop) else {
+    let Some(model) = model::Model::build_encoded(problem, rules, build, stop, encoding) else {
         return Ok(None);
     };
     // Weights from the parser are finite and positive; a rule built in code

@@ -139,6 +139,29 @@ pub enum BoolDef {
         /// The threshold.
         k: u32,
     },
+    /// The graph on `nodes` nodes whose edges are `edges` (two node
+    /// indices and a literal each) is connected when only the edges whose
+    /// literal holds count. `nodes ≥ 2`, every node on some edge; the
+    /// literals are non-constant, of Booleans defined earlier. Built only
+    /// with [`Connectivity::Propagator`]; the engine posts it as one
+    /// propagator, the emitted models as a circuit (see `model/shapes.rs`).
+    Connected {
+        /// Number of nodes.
+        nodes: u32,
+        /// `(a, b, literal)`, `a < b < nodes`, sorted.
+        edges: Vec<(u32, u32, Lit)>,
+    },
+}
+
+/// How a group statement's connectivity enters the model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Connectivity {
+    /// One [`BoolDef::Connected`] per statement: the engine's connectivity
+    /// propagator (the default).
+    Propagator,
+    /// A layered reachability circuit of `And` nodes: what `--emit` writes,
+    /// so peers solve the same model without a propagator of their own.
+    Circuit,
 }
 
 /// An integer grid-index variable with domain `0..=ub`.
@@ -251,6 +274,8 @@ pub struct Model {
     /// Whether `clauses` state non-overlap pairwise; otherwise the engine
     /// posts it as one propagator ([`PAIRWISE_NO_OVERLAP_PAIRS`]).
     pub pairwise_no_overlap: bool,
+    /// How group statements' connectivity is encoded.
+    pub connectivity: Connectivity,
     interned: HashMap<BoolDef, u32>,
 }
 
@@ -270,6 +295,39 @@ fn forced_encoding() -> Option<bool> {
         Ok("propagator") => Some(false),
         _ => None,
     })
+}
+
+/// `RCCPACK_CONNECTIVITY=circuit` builds every model's group statements
+/// as circuits (to compare the encodings in `bench tasks` and to run the
+/// differential tests through both); otherwise the propagator.
+pub(crate) fn default_connectivity() -> Connectivity {
+    static FORCED: std::sync::OnceLock<Connectivity> = std::sync::OnceLock::new();
+    *FORCED.get_or_init(|| match std::env::var("RCCPACK_CONNECTIVITY").as_deref() {
+        Ok("circuit") => Connectivity::Circuit,
+        _ => Connectivity::Propagator,
+    })
+}
+
+/// How a model is encoded, beyond [`BuildOptions`]: choices that change
+/// the model's Booleans but never what it means.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Encoding {
+    /// Non-overlap: `Some(true)` pairwise clauses, `Some(false)` the
+    /// engine's propagator, `None` by the number of pairs.
+    pub(crate) pairwise: Option<bool>,
+    /// Group statements' connectivity.
+    pub(crate) connectivity: Connectivity,
+}
+
+impl Encoding {
+    /// The encoding chosen by the environment (`RCCPACK_NO_OVERLAP`,
+    /// `RCCPACK_CONNECTIVITY`), else the defaults.
+    pub(crate) fn from_env() -> Encoding {
+        Encoding {
+            pairwise: forced_encoding(),
+            connectivity: default_connectivity(),
+        }
+    }
 }
 
 /// Most pairwise relation literals the rules may ask for in one model
@@ -324,24 +382,24 @@ impl Model {
         Self::build_until(problem, rules, opts, &|| false).expect("never stopped")
     }
 
-    /// [`Model::build_until`] with the non-overlap encoding chosen by the
-    /// caller: `Some(true)` pairwise clauses, `Some(false)` the engine's
-    /// propagator, `None` by the number of pairs (see
+    /// [`Model::build_until`] with the encoding chosen by the caller (for
+    /// non-overlap, `None` decides by the number of pairs, see
     /// [`PAIRWISE_NO_OVERLAP_PAIRS`]).
     pub(crate) fn build_encoded(
         problem: &Scene,
         rules: &RuleSet,
         opts: BuildOptions,
         stop: &dyn Fn() -> bool,
-        pairwise: Option<bool>,
+        encoding: Encoding,
     ) -> Option<Model> {
+        let pairwise = encoding.pairwise;
         let movable = problem.objects.iter().filter(|o| !o.is_placed()).count();
         let n = problem.objects.len();
         // Pairs with at least one movable object.
         let pairs =
             n * (n.saturating_sub(1)) / 2 - (n - movable) * (n - movable).saturating_sub(1) / 2;
         let pairwise = pairwise.unwrap_or(pairs <= PAIRWISE_NO_OVERLAP_PAIRS);
-        let mut m = Self::build_core(problem, rules, opts, stop, pairwise)?;
+        let mut m = Self::build_core(problem, rules, opts, stop, pairwise, encoding.connectivity)?;
         m.pairwise_no_overlap = pairwise || !m.too_large.is_empty();
         Some(m)
     }
@@ -355,7 +413,7 @@ impl Model {
         opts: BuildOptions,
         stop: &dyn Fn() -> bool,
     ) -> Option<Model> {
-        Self::build_encoded(problem, rules, opts, stop, forced_encoding())
+        Self::build_encoded(problem, rules, opts, stop, Encoding::from_env())
     }
 
     fn build_core(
@@ -364,6 +422,7 @@ impl Model {
         opts: BuildOptions,
         stop: &dyn Fn() -> bool,
         pairwise: bool,
+        connectivity: Connectivity,
     ) -> Option<Model> {
         let sp = problem.space;
         let g = problem.grid;
@@ -381,6 +440,7 @@ impl Model {
             cumulative: Vec::new(),
             too_large: Vec::new(),
             pairwise_no_overlap: false,
+            connectivity,
             interned: HashMap::new(),
         };
         for (i, o) in problem.objects.iter().enumerate() {
@@ -1037,6 +1097,9 @@ impl Model {
                 BoolDef::AtLeast { lits, k } => {
                     lits.iter().filter(|l| l.value(&out)).count() >= *k as usize
                 }
+                BoolDef::Connected { nodes, edges } => {
+                    shapes::connected_under(*nodes as usize, edges, |l| l.value(&out))
+                }
             };
             out.push(v);
         }
@@ -1148,6 +1211,88 @@ mod tests {
             }
         });
         seen
+    }
+
+    /// The two encodings of a group statement's connectivity (the
+    /// engine's [`BoolDef::Connected`] and the emitted circuit) give every
+    /// group rule the same value on every assignment, overlapping layouts
+    /// included, in both contact modes, and agree with the evaluator's
+    /// `shapes::check` on the layouts without overlap: a fixed object of
+    /// the class (merged by a constant edge) and three movable ones.
+    #[test]
+    fn connectivity_encodings_agree_on_every_assignment() {
+        let mut scene = Scene {
+            space: Space {
+                x: 0,
+                y: 0,
+                width: 30,
+                height: 30,
+            },
+            grid: 10,
+            objects: vec![
+                obj("a0", "A", 10, 10, None),
+                obj("a1", "A", 10, 10, None),
+                obj("a2", "A", 10, 10, None),
+                obj("a3", "A", 10, 10, Some((0, 0))),
+                obj("a4", "A", 10, 10, Some((10, 0))),
+            ],
+        };
+        scene.objects[3].fixed = true;
+        scene.objects[4].fixed = true;
+        let rules = crate::rules::parse_rules(
+            "rule g: group(A)\nrule b: block(A)\nrule n: not group(A)\nrule r: row(A)\n",
+        )
+        .expect("rules parse");
+        for contact in [Contact::Point, Contact::Edge] {
+            let enc = |connectivity| Encoding {
+                pairwise: Some(true),
+                connectivity,
+            };
+            let build = |connectivity| {
+                Model::build_encoded(
+                    &scene,
+                    &rules,
+                    opts(contact, true),
+                    &|| false,
+                    enc(connectivity),
+                )
+                .expect("never stopped")
+            };
+            let prop = build(Connectivity::Propagator);
+            let circ = build(Connectivity::Circuit);
+            assert!(prop
+                .bools
+                .iter()
+                .any(|b| matches!(b, BoolDef::Connected { .. })));
+            assert!(!circ
+                .bools
+                .iter()
+                .any(|b| matches!(b, BoolDef::Connected { .. })));
+            assert_eq!(prop.soft.len(), circ.soft.len());
+            let (mut held, mut broken) = (0, 0);
+            each_assignment(&prop, |vals| {
+                let (bp, bc) = (prop.eval_bools(vals), circ.eval_bools(vals));
+                let overlap_free = prop.non_overlapping(vals);
+                let ev = crate::eval::evaluate(&prop.scene(&scene, vals), &rules, contact);
+                for (i, (sp, sc)) in prop.soft.iter().zip(&circ.soft).enumerate() {
+                    assert_eq!(sp.rule, sc.rule);
+                    let v = sp.lit.value(&bp);
+                    assert_eq!(v, sc.lit.value(&bc), "term {i} {contact} at {vals:?}");
+                    if overlap_free {
+                        let want = ev.rules[sp.rule].satisfied == 1;
+                        assert_eq!(v, want, "term {i} vs the evaluator at {vals:?}");
+                        if sp.rule == 0 {
+                            if v {
+                                held += 1;
+                            } else {
+                                broken += 1;
+                            }
+                        }
+                    }
+                }
+            });
+            assert!(held > 0 && broken > 0, "{held} {broken}");
+        }
     }
 
     /// Every pairwise literal of all sixteen relations is exactly the

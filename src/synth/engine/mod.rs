@@ -40,6 +40,7 @@ use super::like::LikeTerm;
 use super::model::{BoolDef, Coord, Lit, Model};
 use super::SynthError;
 
+mod connected;
 mod like_map;
 mod no_overlap;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
@@ -451,9 +452,10 @@ impl<'m> Builder<'m> {
                     self.solver
                         .new_literal_for_predicate(predicate![x >= k], self.tag)
                 }
-                BoolDef::DiffGe { .. } | BoolDef::And(_) | BoolDef::AtLeast { .. } => {
-                    self.solver.new_literal()
-                }
+                BoolDef::DiffGe { .. }
+                | BoolDef::And(_)
+                | BoolDef::AtLeast { .. }
+                | BoolDef::Connected { .. } => self.solver.new_literal(),
             };
             self.lits.push(l);
         }
@@ -590,6 +592,20 @@ impl<'m> Builder<'m> {
                     self.solver
                         .add_constraint(less_than_or_equals(terms, rhs, tag))
                         .reify(l);
+                }
+                BoolDef::Connected { nodes, edges } => {
+                    let args = connected::ConnectedArgs {
+                        out: l,
+                        nodes: *nodes as usize,
+                        edges: edges
+                            .iter()
+                            .map(|&(a, b, e)| (a as usize, b as usize, self.lit(e)))
+                            .collect(),
+                        tag,
+                    };
+                    // A root failure surfaces as "infeasible" at the first
+                    // solve, as for the other propagators.
+                    let _ = self.solver.add_propagator(args);
                 }
             }
         }
@@ -1425,7 +1441,10 @@ mod tests {
                 redundant: false,
             },
             &|| false,
-            Some(pairwise),
+            crate::synth::model::Encoding {
+                pairwise: Some(pairwise),
+                connectivity: crate::synth::model::Connectivity::Propagator,
+            },
         )
         .expect("never stopped");
         assert_eq!(m.pairwise_no_overlap, pairwise);

@@ -44,7 +44,7 @@
 //! (read here as pair literals) and, when it bounds the extent, a
 //! conjunction of difference bounds like the block's.
 
-use super::{Axis, Lit, Model};
+use super::{Axis, BoolDef, Connectivity, Lit, Model};
 use crate::relations::Contact;
 use crate::shapes::{block_boxes, ShapeKind};
 
@@ -130,9 +130,71 @@ impl Model {
         })
     }
 
+    /// True exactly when the graph over `adj` (symmetric) is connected, in
+    /// the model's [`Connectivity`].
+    fn connected(&mut self, adj: &[Vec<Lit>]) -> Lit {
+        match self.connectivity {
+            Connectivity::Circuit => self.connected_circuit(adj),
+            Connectivity::Propagator => self.connected_def(adj),
+        }
+    }
+
+    /// One [`BoolDef::Connected`]: nodes joined by a constant-true edge
+    /// are merged first, constant-false edges dropped, so its edges are
+    /// variable literals between distinct nodes. Folds to a constant when
+    /// everything is merged (true) or a node has no edge left (false).
+    fn connected_def(&mut self, adj: &[Vec<Lit>]) -> Lit {
+        let m = adj.len();
+        let mut parent: Vec<usize> = (0..m).collect();
+        for (i, row) in adj.iter().enumerate() {
+            for (j, &l) in row.iter().enumerate().skip(i + 1) {
+                if l == Lit::TRUE {
+                    let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+                    parent[a] = b;
+                }
+            }
+        }
+        let mut label = vec![usize::MAX; m];
+        let mut nodes = 0usize;
+        for i in 0..m {
+            let r = find(&mut parent, i);
+            if label[r] == usize::MAX {
+                label[r] = nodes;
+                nodes += 1;
+            }
+        }
+        if nodes == 1 {
+            return Lit::TRUE;
+        }
+        let mut edges = Vec::new();
+        let mut touched = vec![false; nodes];
+        for (i, row) in adj.iter().enumerate() {
+            for (j, &l) in row.iter().enumerate().skip(i + 1) {
+                if let Lit::Var { .. } = l {
+                    let a = label[find(&mut parent, i)];
+                    let b = label[find(&mut parent, j)];
+                    if a != b {
+                        touched[a] = true;
+                        touched[b] = true;
+                        edges.push((a.min(b) as u32, a.max(b) as u32, l));
+                    }
+                }
+            }
+        }
+        if touched.contains(&false) {
+            return Lit::FALSE;
+        }
+        edges.sort_unstable();
+        edges.dedup();
+        self.intern(BoolDef::Connected {
+            nodes: nodes as u32,
+            edges,
+        })
+    }
+
     /// Layered reachability from object 0 over `adj`: true exactly when
     /// the graph is connected.
-    fn connected(&mut self, adj: &[Vec<Lit>]) -> Lit {
+    fn connected_circuit(&mut self, adj: &[Vec<Lit>]) -> Lit {
         let m = adj.len();
         let mut reach: Vec<Lit> = (0..m).map(|i| Lit::Const(i == 0)).collect();
         for _ in 1..m {
@@ -246,4 +308,34 @@ impl Model {
             }
         }
     }
+}
+
+/// The root of `i` in a union-find forest (path halving).
+fn find(p: &mut [usize], mut i: usize) -> usize {
+    while p[i] != i {
+        p[i] = p[p[i]];
+        i = p[i];
+    }
+    i
+}
+
+/// Whether the graph on `nodes` nodes is connected over the `edges` whose
+/// literal `holds` (the meaning of [`BoolDef::Connected`]).
+pub(crate) fn connected_under(
+    nodes: usize,
+    edges: &[(u32, u32, Lit)],
+    holds: impl Fn(Lit) -> bool,
+) -> bool {
+    let mut parent: Vec<usize> = (0..nodes).collect();
+    let mut parts = nodes;
+    for &(a, b, l) in edges {
+        if holds(l) {
+            let (ra, rb) = (find(&mut parent, a as usize), find(&mut parent, b as usize));
+            if ra != rb {
+                parent[ra] = rb;
+                parts -= 1;
+            }
+        }
+    }
+    parts <= 1
 }
