@@ -609,6 +609,7 @@ __all__ = [
     "Learned",
     "LearnError",
     "Object",
+    "PriorsError",
     "Question",
     "Resemblance",
     "Rule",
@@ -629,6 +630,7 @@ __all__ = [
     "Task",
     "__version__",
     "ask",
+    "combine_priors",
     "evaluate",
     "learn",
     "load_rules",
@@ -639,4 +641,5 @@ __all__ = [
     "sample",
     "scenes_to_json",
     "synthesize",
+    "task_counts",
 ]
