@@ -1343,6 +1343,14 @@ async fn method_not_allowed_and_non_utf8_files() {
     );
 }
 
+/// `POST /api/learn` with 200 samples, answered 200.
+async fn learn_200(app: &axum::Router) -> Value {
+    let body = json!({"samples": 200}).to_string();
+    let (s, v) = call(app, Method::POST, "/api/learn", body).await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    v
+}
+
 /// Priors from a small library: the two bundled examples, each with its
 /// intended rules as learned.rcc.
 fn library_priors(tag: &str) -> rccpack::priors::Priors {
@@ -1373,14 +1381,7 @@ async fn studio_learns_and_asks_with_priors() {
     assert_eq!(t["priors"]["hash"], priors.hash_text().as_str());
 
     // POST /api/learn learns what `learn_with_priors` learns.
-    let (s, v) = call(
-        &app,
-        Method::POST,
-        "/api/learn",
-        json!({"samples": 200}).to_string(),
-    )
-    .await;
-    assert_eq!(s, StatusCode::OK, "{v}");
+    let v = learn_200(&app).await;
     let demos =
         scenes_from_json(&std::fs::read_to_string(dir.join("demos.json")).unwrap()).unwrap();
     let params = rccpack::infer::LearnParams {
@@ -1400,8 +1401,8 @@ async fn studio_learns_and_asks_with_priors() {
         .iter()
         .map(|r| r["name"].as_str().unwrap())
         .collect();
-    let expected_names: Vec<&str> = expected
-        .rules()
+    let expected_rules = expected.rules();
+    let expected_names: Vec<&str> = expected_rules
         .rules
         .iter()
         .map(|r| r.name.as_str())
@@ -1419,13 +1420,7 @@ async fn studio_learns_and_asks_with_priors() {
     let plain = rccpack::studio::router(&plain_dir).unwrap();
     let (_, t) = call(&plain, Method::GET, "/api/task", Body::empty()).await;
     assert_eq!(t["priors"], Value::Null);
-    let (_, v) = call(
-        &plain,
-        Method::POST,
-        "/api/learn",
-        json!({"samples": 200}).to_string(),
-    )
-    .await;
+    let v = learn_200(&plain).await;
     assert!(!v["header"].as_str().unwrap().contains("# priors"), "{v}");
 }
 

@@ -102,6 +102,24 @@ pub fn counts_from_json_list(
         .collect()
 }
 
+/// The counts' `what` must be the combine's.
+fn same<T: PartialEq + std::fmt::Display>(
+    field: String,
+    got: T,
+    want: T,
+    what: &str,
+) -> Result<(), PriorsError> {
+    if got == want {
+        return Ok(());
+    }
+    Err(field_error(
+        field,
+        format!(
+            "is `{got}`, but the priors are combined for `{want}`: count every task with the same {what}"
+        ),
+    ))
+}
+
 fn checked(
     form: CountsForm,
     params: &PriorParams,
@@ -118,28 +136,12 @@ fn checked(
         .templates
         .parse()
         .map_err(|e: String| field_error(at("templates"), e))?;
-    if templates != params.templates {
-        return Err(field_error(
-            at("templates"),
-            format!(
-                "is `{templates}`, but the priors are combined for templates `{}`: count every task with the same templates",
-                params.templates
-            ),
-        ));
-    }
+    same(at("templates"), templates, params.templates, "templates")?;
     let contact: Contact = form
         .contact
         .parse()
         .map_err(|e: String| field_error(at("contact"), e))?;
-    if contact != params.contact {
-        return Err(field_error(
-            at("contact"),
-            format!(
-                "is `{contact}`, but the priors are combined for contact `{}`: count every task with the same contact mode",
-                params.contact
-            ),
-        ));
-    }
+    same(at("contact"), contact, params.contact, "contact mode")?;
     let hash = unhex(&at("hash"), &form.hash).map_err(|e| match e {
         PriorsError::Field { field, message } => field_error(field, message),
         other => other,
