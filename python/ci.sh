@@ -11,7 +11,7 @@
 # `maturin develop`, and the same artifacts the root `cargo test` makes,
 # so CI compiles nothing twice; `maturin build --release` makes the
 # distribution wheel, see the README), then installed into a new
-# python/.venv-wheel with pytest, Hypothesis and mypy. The tests run from
+# python/.venv-wheel with pytest, Hypothesis, mypy and Dask. The tests run from
 # outside the source tree, so `import rccpack` is the installed wheel:
 # pytest, `mypy --strict` on the tests, the examples and the bench, and
 # stubtest of the stubs against the installed module. Last, the sdist is
@@ -60,7 +60,8 @@ esac
 echo "== python: a fresh virtual environment with the wheel ($wvenv)"
 rm -rf "$wvenv"
 python3 -m venv "$wvenv"
-"$wvenv/bin/python" -m pip install "${pip_quiet[@]}" "$wheel" pytest hypothesis mypy
+"$wvenv/bin/python" -m pip install "${pip_quiet[@]}" "$wheel" pytest hypothesis mypy \
+  "dask[distributed]"  # the cluster recipe's test (examples/dask_priors.py)
 # From outside the source tree: the installed package, not python/rccpack.
 cd /
 "$wvenv/bin/python" - "$wvenv" <<'EOF'

@@ -448,3 +448,86 @@ fn tempfile_dir(tag: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&d).unwrap();
     d
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    /// Counts carried as plain data (Python's `task_counts`, a cluster)
+    /// come back equal, so they combine into the same bytes.
+    #[test]
+    fn task_counts_round_trip_as_plain_data(tasks in prop::collection::vec(task_strategy(), 0..6)) {
+        let p = PriorParams::default();
+        let texts: Vec<String> = tasks.iter().map(|t| t.to_json(&p)).collect();
+        let back = rccpack::priors::counts_from_json_list(&format!("[{}]", texts.join(",")), &p).unwrap();
+        prop_assert_eq!(&back, &tasks);
+        for (t, text) in tasks.iter().zip(&texts) {
+            prop_assert_eq!(&TaskCounts::from_json(text, &p).unwrap(), t);
+        }
+        prop_assert_eq!(combine(&back, &p).to_json(), combine(&tasks, &p).to_json());
+    }
+}
+
+#[test]
+fn bad_plain_counts_name_the_field() {
+    let p = PriorParams::default();
+    let t = TaskCounts {
+        hash: 1,
+        kinds: BTreeMap::from([(
+            "{A}_corner/any".to_string(),
+            Count {
+                candidates: 2,
+                kept: 1,
+                confirmed: 0,
+            },
+        )]),
+    };
+    let good = t.to_json(&p);
+    let field = |text: &str| match rccpack::priors::counts_from_json_list(text, &p) {
+        Err(PriorsError::Counts { field, .. } | PriorsError::CountsJson { field, .. }) => field,
+        other => panic!("{other:?}"),
+    };
+    let second = PriorParams {
+        templates: rccpack::infer::Templates::Second,
+        ..p
+    };
+    assert_eq!(
+        field(&format!("[{good},{}]", t.to_json(&second))),
+        "counts[1].templates"
+    );
+    let edge = PriorParams {
+        contact: rccpack::relations::Contact::Edge,
+        ..p
+    };
+    assert_eq!(
+        field(&format!("[{}]", t.to_json(&edge))),
+        "counts[0].contact"
+    );
+    let bad = good.replace("\"kept\":1", "\"kept\":3");
+    assert_eq!(
+        field(&format!("[{bad}]")),
+        "counts[0].kinds.{A}_corner/any.kept"
+    );
+    let bad = good.replace("\"candidates\":2", "\"candidates\":0");
+    assert_eq!(
+        field(&format!("[{bad}]")),
+        "counts[0].kinds.{A}_corner/any.candidates"
+    );
+    let bad = good.replace("{A}_corner/any", "{A}_corner");
+    assert_eq!(field(&format!("[{bad}]")), "counts[0].kinds.{A}_corner");
+    let bad = good.replace("\"kept\":1", "\"kept\":-1");
+    assert_eq!(
+        field(&format!("[{bad}]")),
+        "counts[0].kinds.{A}_corner/any.kept"
+    );
+    let bad = good.replace("task-counts/1", "task-counts/2");
+    assert_eq!(field(&format!("[{bad}]")), "counts[0].version");
+    assert_eq!(field(&good), "counts");
+    // One task alone: the field without the list's index.
+    match TaskCounts::from_json(&t.to_json(&second), &p) {
+        Err(PriorsError::Counts { field, message }) => {
+            assert_eq!(field, "templates");
+            assert!(message.contains("second"), "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -1342,3 +1342,115 @@ async fn method_not_allowed_and_non_utf8_files() {
         "{e}"
     );
 }
+
+/// `POST /api/learn` with 200 samples, answered 200.
+async fn learn_200(app: &axum::Router) -> Value {
+    let body = json!({"samples": 200}).to_string();
+    let (s, v) = call(app, Method::POST, "/api/learn", body).await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    v
+}
+
+/// Priors from a small library: the two bundled examples, each with its
+/// intended rules as learned.rcc.
+fn library_priors(tag: &str) -> rccpack::priors::Priors {
+    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let lib = std::env::temp_dir().join(format!("rccpack-studio-lib-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&lib);
+    let mut dirs = Vec::new();
+    for (name, learned) in [("box-packing", "pilot.rcc"), ("shelf", "intended.rcc")] {
+        let d = lib.join(name);
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::copy(examples.join(name).join("demos.json"), d.join("demos.json")).unwrap();
+        std::fs::copy(examples.join(name).join(learned), d.join("learned.rcc")).unwrap();
+        dirs.push(d);
+    }
+    rccpack::priors::folder::library(&dirs, &rccpack::priors::PriorParams::default()).unwrap()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn studio_learns_and_asks_with_priors() {
+    let priors = std::sync::Arc::new(library_priors("learn"));
+    let dir = task_dir("priors", true);
+    let opts = rccpack::studio::StudioOptions {
+        priors: Some(priors.clone()),
+    };
+    let app = rccpack::studio::router_with(&dir, opts).unwrap();
+    let (_, t) = call(&app, Method::GET, "/api/task", Body::empty()).await;
+    assert_eq!(t["priors"]["tasks"], 2, "{t}");
+    assert_eq!(t["priors"]["hash"], priors.hash_text().as_str());
+
+    // POST /api/learn learns what `learn_with_priors` learns.
+    let v = learn_200(&app).await;
+    let demos =
+        scenes_from_json(&std::fs::read_to_string(dir.join("demos.json")).unwrap()).unwrap();
+    let params = rccpack::infer::LearnParams {
+        samples: 200,
+        ..Default::default()
+    };
+    let expected =
+        rccpack::infer::learn_with_priors(&demos, None, &params, Some(&priors), None, None)
+            .unwrap();
+    let rcc = expected.to_rcc();
+    let header = rcc.split("\n\n").next().unwrap().to_string() + "\n";
+    assert!(header.contains("\n# priors fnv1a64:"), "{header}");
+    assert_eq!(v["header"], header.as_str());
+    let names: Vec<&str> = v["rules"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["name"].as_str().unwrap())
+        .collect();
+    let expected_rules = expected.rules();
+    let expected_names: Vec<&str> = expected_rules
+        .rules
+        .iter()
+        .map(|r| r.name.as_str())
+        .collect();
+    assert_eq!(names, expected_names);
+    assert_eq!(v["statements"], expected.statements.len());
+
+    // The questions learn with them too: learned.rcc at the session's start.
+    let q = next_question(&app).await;
+    let text = q["learned"]["text"].as_str().unwrap();
+    assert!(text.contains("\n# priors fnv1a64:"), "{text}");
+
+    // Without priors: none in the task, none in the header.
+    let plain_dir = task_dir("no-priors", true);
+    let plain = rccpack::studio::router(&plain_dir).unwrap();
+    let (_, t) = call(&plain, Method::GET, "/api/task", Body::empty()).await;
+    assert_eq!(t["priors"], Value::Null);
+    let v = learn_200(&plain).await;
+    assert!(!v["header"].as_str().unwrap().contains("# priors"), "{v}");
+}
+
+#[test]
+fn studio_refuses_a_bad_priors_file_naming_the_field() {
+    let dir = task_dir("bad-priors", true);
+    let text = library_priors("bad").to_json();
+    let bad = dir.join("priors.json");
+    std::fs::write(&bad, text.replacen("\"tasks\": 2", "\"tasks\": 3", 1)).unwrap();
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rccpack"))
+        .arg("studio")
+        .arg(&dir)
+        .arg("--priors")
+        .arg(&bad)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // A studio that took the file would serve until stopped: stop it.
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > std::time::Duration::from_secs(60) {
+            let _ = child.kill();
+            panic!("rccpack studio started with a damaged priors file");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("priors.json"), "{stderr}");
+    assert!(stderr.contains("field `hash`"), "{stderr}");
+}

@@ -25,6 +25,7 @@ from ._rccpack import (
     Learned,
     LearnError,
     Object,
+    PriorsError,
     Question,
     Resemblance,
     Rule,
@@ -45,6 +46,7 @@ from ._rccpack import (
     __version__,
     _null_scene,
     ask,
+    combine_priors,
     evaluate,
     learn,
     load_rules,
@@ -55,6 +57,7 @@ from ._rccpack import (
     sample,
     scenes_to_json,
     synthesize,
+    task_counts,
 )
 
 
@@ -82,6 +85,7 @@ __all__ = [
     "Learned",
     "LearnError",
     "Object",
+    "PriorsError",
     "Question",
     "Resemblance",
     "Rule",
@@ -102,6 +106,7 @@ __all__ = [
     "Task",
     "__version__",
     "ask",
+    "combine_priors",
     "evaluate",
     "learn",
     "load_rules",
@@ -112,4 +117,5 @@ __all__ = [
     "sample",
     "scenes_to_json",
     "synthesize",
+    "task_counts",
 ]

@@ -3,7 +3,7 @@ pure-Python `Status`)."""
 
 import enum
 import os
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from typing import Any, Literal, Optional, Union, final
 
 __version__: str
@@ -51,6 +51,13 @@ class SampleError(Error):
 
     kind: str
     """`infeasible`, `no_layout`, `synth`, …"""
+
+class PriorsError(Error):
+    """A priors file or task counts are damaged or do not fit; `field` names
+    the field (`version`, `kinds[3].prior`, `hash`, `counts[2].templates`)."""
+
+    field: str
+    file: Optional[str]
 
 class InternalError(Error):
     """A bug in rccpack (a Rust panic caught at the boundary)."""
@@ -266,7 +273,21 @@ def learn(
     prior: float = 0.5,
     epsilon: Optional[float] = None,
     contact: str = "point",
+    priors: Optional[_Path] = None,
 ) -> Learned: ...
+
+# ---- priors learned across tasks -----------------------------------------------
+
+def task_counts(
+    folder: _Path, templates: str = "third", contact: str = "point"
+) -> dict[str, Any]: ...
+def combine_priors(
+    counts: Iterable[Mapping[str, Any]],
+    strength: int = 4,
+    rule_out_after: int = 10,
+    templates: str = "third",
+    contact: str = "point",
+) -> str: ...
 
 # ---- synthesize --------------------------------------------------------------
 
@@ -420,6 +441,7 @@ class AskSession:
         question_nodes: int = ...,
         question_seconds: Optional[float] = 3.0,
         edits: bool = True,
+        priors: Optional[_Path] = None,
     ) -> AskSession: ...
     def next_question(self) -> Optional[Question]: ...
     def answer(self, question: Question, accepted: bool) -> Question: ...
@@ -467,6 +489,7 @@ def ask(
     question_nodes: int = ...,
     question_seconds: Optional[float] = 3.0,
     edits: bool = True,
+    priors: Optional[_Path] = None,
 ) -> AskResult: ...
 
 # ---- task folders ------------------------------------------------------------
@@ -516,6 +539,7 @@ class Task:
         epsilon: Optional[float] = None,
         contact: str = "point",
         time_limit: Optional[float] = None,
+        priors: Optional[_Path] = None,
     ) -> Learned: ...
     def place(
         self,
@@ -537,6 +561,7 @@ class Task:
         like: _Like = ...,
         templates: str = "third",
         node_limit: Optional[int] = None,
+        priors: Optional[_Path] = None,
     ) -> RunOutcome: ...
 
 # ---- sample ------------------------------------------------------------------
@@ -584,6 +609,7 @@ __all__ = [
     "Learned",
     "LearnError",
     "Object",
+    "PriorsError",
     "Question",
     "Resemblance",
     "Rule",
@@ -604,6 +630,7 @@ __all__ = [
     "Task",
     "__version__",
     "ask",
+    "combine_priors",
     "evaluate",
     "learn",
     "load_rules",
@@ -614,4 +641,5 @@ __all__ = [
     "sample",
     "scenes_to_json",
     "synthesize",
+    "task_counts",
 ]

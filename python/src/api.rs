@@ -8,7 +8,7 @@ use pyo3::exceptions::PyKeyboardInterrupt;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyBytes, PyTuple};
-use rccpack_core::infer::{learn_cancellable, InferError, LearnParams, Templates};
+use rccpack_core::infer::{learn_with_priors, InferError, LearnParams, Templates};
 use rccpack_core::render::render_png as core_render_png;
 use rccpack_core::resemblance::Likeness;
 use rccpack_core::synth::{Progress, ProgressFn};
@@ -29,7 +29,7 @@ pub(crate) fn templates(s: &str) -> PyResult<Templates> {
     s.parse::<Templates>().map_err(Error::new_err)
 }
 
-fn json_loads<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
+pub(crate) fn json_loads<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
     static LOADS: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
     LOADS.import(py, "json", "loads")?.call1((text,))
 }
@@ -290,7 +290,8 @@ pub(crate) fn learn_error(e: InferError) -> PyErr {
 /// learning; the same seed gives the same rules.
 #[pyfunction]
 #[pyo3(signature = (demos, samples = 1000, cutoff = 0.01, seed = 0, templates = "third",
-                    statements = None, prior = 0.5, epsilon = None, contact = "point"))]
+                    statements = None, prior = 0.5, epsilon = None, contact = "point",
+                    priors = None))]
 #[allow(clippy::too_many_arguments)]
 #[pyo3(name = "learn")]
 pub fn learn_py(
@@ -304,8 +305,10 @@ pub fn learn_py(
     prior: f64,
     epsilon: Option<f64>,
     contact: &str,
+    priors: Option<std::path::PathBuf>,
 ) -> PyResult<PyLearned> {
     let demos = scenes_arg(demos, "demos")?;
+    let priors = crate::priors::read_priors(py, priors)?;
     let params = LearnParams {
         samples,
         cutoff,
@@ -316,7 +319,7 @@ pub fn learn_py(
         templates: self::templates(templates)?,
     };
     let set = statements.map(|s| s.inner.clone());
-    learn_interruptible(py, &demos, set.as_ref(), &params, None)
+    learn_interruptible(py, &demos, set.as_ref(), &params, priors.as_deref(), None)
 }
 
 /// Learn on a worker thread with the GIL released; Ctrl-C stops the null
@@ -326,11 +329,12 @@ pub(crate) fn learn_interruptible(
     demos: &[CoreScene],
     statements: Option<&rccpack_core::RuleSet>,
     params: &LearnParams,
+    priors: Option<&rccpack_core::priors::Priors>,
     deadline: Option<std::time::Instant>,
 ) -> PyResult<PyLearned> {
     let cancel = AtomicBool::new(false);
     let (out, signal) = run_interruptible(py, &cancel, || {
-        learn_cancellable(demos, statements, params, deadline, Some(&cancel))
+        learn_with_priors(demos, statements, params, priors, deadline, Some(&cancel))
     })?;
     if let Some(e) = signal {
         return Err(e);

@@ -233,7 +233,7 @@ impl PyAskSession {
                         node_limit = DEFAULT_PROBE_NODES, check_nodes = DEFAULT_CHECK_NODES,
                         contact = "point", templates = "third",
                         question_nodes = DEFAULT_QUESTION_NODES, question_seconds = 3.0,
-                        edits = true))]
+                        edits = true, priors = None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -251,7 +251,9 @@ impl PyAskSession {
         question_nodes: u64,
         question_seconds: Option<f64>,
         edits: bool,
+        priors: Option<PathBuf>,
     ) -> PyResult<PyAskSession> {
+        let priors = crate::priors::read_priors(py, priors)?;
         let contact = self::contact(contact)?;
         let templates: Templates = templates.parse().map_err(Error::new_err)?;
         let time_limit = crate::api::duration(time_limit)?;
@@ -279,6 +281,7 @@ impl PyAskSession {
                     wall: crate::api::duration(question_seconds)?,
                 },
                 edits,
+                priors,
                 ..AskOptions::default()
             },
             max_questions,
@@ -504,7 +507,7 @@ impl PyAskSession {
                     node_limit = DEFAULT_PROBE_NODES, check_nodes = DEFAULT_CHECK_NODES,
                     contact = "point", templates = "third",
                     question_nodes = DEFAULT_QUESTION_NODES, question_seconds = 3.0,
-                    edits = true))]
+                    edits = true, priors = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn ask(
     py: Python<'_>,
@@ -523,6 +526,7 @@ pub fn ask(
     question_nodes: u64,
     question_seconds: Option<f64>,
     edits: bool,
+    priors: Option<PathBuf>,
 ) -> PyResult<PyAskResult> {
     let session = PyAskSession::new(
         py,
@@ -540,6 +544,7 @@ pub fn ask(
         question_nodes,
         question_seconds,
         edits,
+        priors,
     )?;
     let run = || -> PyResult<PyAskResult> {
         while let Some(q) = session.next_question(py)? {

@@ -53,6 +53,12 @@ create_exception!(
 );
 create_exception!(
     rccpack,
+    PriorsError,
+    Error,
+    "A priors file or task counts are damaged or do not fit; `field` names the field."
+);
+create_exception!(
+    rccpack,
     InternalError,
     Error,
     "A bug in rccpack (a Rust panic caught at the boundary); please report it."

@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 mod api;
 mod ask;
 mod errors;
+mod priors;
 mod rules;
 mod sample;
 mod scene;
@@ -26,6 +27,7 @@ fn _rccpack(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("LearnError", py.get_type::<errors::LearnError>())?;
     m.add("AskError", py.get_type::<errors::AskError>())?;
     m.add("SampleError", py.get_type::<errors::SampleError>())?;
+    m.add("PriorsError", py.get_type::<errors::PriorsError>())?;
     m.add("InternalError", py.get_type::<errors::InternalError>())?;
     m.add_class::<scene::PySpace>()?;
     m.add_class::<scene::PyObject>()?;
@@ -52,6 +54,8 @@ fn _rccpack(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(api::render, m)?)?;
     m.add_function(wrap_pyfunction!(api::render_png, m)?)?;
     m.add_function(wrap_pyfunction!(ask::ask, m)?)?;
+    m.add_function(wrap_pyfunction!(priors::task_counts, m)?)?;
+    m.add_function(wrap_pyfunction!(priors::combine_priors, m)?)?;
     m.add_class::<ask::PyAskSession>()?;
     m.add_class::<task::PyTask>()?;
     m.add_class::<task::PyRunOutcome>()?;

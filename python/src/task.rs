@@ -195,7 +195,8 @@ impl PyTask {
     /// run` does; nothing is written. `time_limit`: `LearnError` after it.
     /// Ctrl-C stops it (`KeyboardInterrupt`).
     #[pyo3(signature = (samples = 1000, cutoff = 0.01, seed = 0, templates = "third",
-                        prior = 0.5, epsilon = None, contact = "point", time_limit = None))]
+                        prior = 0.5, epsilon = None, contact = "point", time_limit = None,
+                        priors = None))]
     #[allow(clippy::too_many_arguments)]
     fn learn(
         &self,
@@ -208,7 +209,9 @@ impl PyTask {
         epsilon: Option<f64>,
         contact: &str,
         time_limit: Option<f64>,
+        priors: Option<PathBuf>,
     ) -> PyResult<PyLearned> {
+        let priors = crate::priors::read_priors(py, priors)?;
         let params = LearnParams {
             samples,
             cutoff,
@@ -224,6 +227,7 @@ impl PyTask {
             &self.inner.demos,
             self.inner.statements.as_ref(),
             &params,
+            priors.as_deref(),
             deadline,
         )
     }
@@ -275,7 +279,8 @@ impl PyTask {
     /// learned, the layout and what the command prints; an infeasible or
     /// unknown result is an outcome (`exit_code` 2 or 3), not an exception.
     #[pyo3(signature = (out = None, samples = 1000, cutoff = 0.01, seed = 0, time_limit = 60.0,
-                        contact = "point", like = DEMOS, templates = "third", node_limit = None))]
+                        contact = "point", like = DEMOS, templates = "third", node_limit = None,
+                        priors = None))]
     #[allow(clippy::too_many_arguments)]
     fn run(
         &self,
@@ -289,7 +294,9 @@ impl PyTask {
         like: LikeArg,
         templates: &str,
         node_limit: Option<u64>,
+        priors: Option<PathBuf>,
     ) -> PyResult<PyRunOutcome> {
+        let priors = crate::priors::read_priors(py, priors)?;
         let like = like.0;
         let contact = self::contact(contact)?;
         let cancel = Arc::new(AtomicBool::new(false));
@@ -311,7 +318,7 @@ impl PyTask {
                 ..SynthOptions::default()
             },
             like,
-            priors: None,
+            priors,
         };
         let out = out.unwrap_or_else(|| self.dir.clone());
         let (t, dir, o) = (&self.inner, &self.dir, &out);

@@ -3,7 +3,7 @@ use clap::Args;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-/// `rccpack studio DIR [--port P] [--open]`
+/// `rccpack studio DIR [--port P] [--open] [--priors PRIORS.json]`
 ///
 /// Serve the studio page for the task folder DIR on 127.0.0.1 only.
 #[derive(Args, Debug)]
@@ -17,11 +17,16 @@ pub struct StudioArgs {
     /// Open the page in the default browser.
     #[arg(long)]
     open: bool,
+    /// Priors learned across tasks (`rccpack priors`) for every learning
+    /// run of the studio (Learn and Check rules).
+    #[arg(long, value_name = "PRIORS.json")]
+    priors: Option<PathBuf>,
 }
 
 pub fn run(a: StudioArgs) -> Result<ExitCode> {
-    let app =
-        rccpack::studio::router(&a.dir).map_err(|e| super::Reported(format!("error: {e}")))?;
+    let priors = super::priors::read_priors_opt(a.priors.as_deref())?.map(std::sync::Arc::new);
+    let app = rccpack::studio::router_with(&a.dir, rccpack::studio::StudioOptions { priors })
+        .map_err(|e| super::Reported(format!("error: {e}")))?;
     let rt = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()

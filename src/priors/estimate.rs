@@ -35,7 +35,8 @@ use crate::scene::Scene;
 use std::collections::{BTreeMap, HashSet};
 
 /// One kind's evidence in one task (or summed over tasks).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Count {
     /// Candidates of the kind (statements every demonstration satisfies).
     pub candidates: u64,

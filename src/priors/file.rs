@@ -80,11 +80,11 @@ struct FileForm {
     hash: String,
 }
 
-fn hex(h: u64) -> String {
+pub(super) fn hex(h: u64) -> String {
     format!("fnv1a64:{h:016x}")
 }
 
-fn unhex(field: &str, s: &str) -> Result<u64, PriorsError> {
+pub(super) fn unhex(field: &str, s: &str) -> Result<u64, PriorsError> {
     s.strip_prefix("fnv1a64:")
         .filter(|h| h.len() == 16)
         .and_then(|h| u64::from_str_radix(h, 16).ok())

@@ -177,6 +177,29 @@ pub fn check_key(key: &str) -> Result<usize, UnknownKind> {
     Ok(3)
 }
 
+/// Check that `key` is a most specific kind (`TEMPLATE/ROLE`, and
+/// `TEMPLATE/ROLE/DIR` for a `{d}` template), the keys a task's counts hold.
+pub fn check_most_specific(key: &str) -> Result<(), UnknownKind> {
+    let depth = check_key(key)?;
+    let per_direction = key
+        .split('/')
+        .next()
+        .and_then(templates::template_named)
+        .is_some_and(templates::is_per_direction);
+    let expected = if per_direction { 3 } else { 2 };
+    if depth == expected {
+        return Ok(());
+    }
+    Err(UnknownKind(format!(
+        "a task counts most specific kinds only: expected {}",
+        if per_direction {
+            "TEMPLATE/ROLE/DIRECTION"
+        } else {
+            "TEMPLATE/ROLE"
+        }
+    )))
+}
+
 /// The key of the parent of a node (`None` for the root).
 pub fn parent_key(key: &str) -> Option<String> {
     if key == ROOT {
@@ -217,5 +240,10 @@ mod tests {
         assert!(check_key("{A}_corner/any/n").is_err());
         assert!(check_key("{A}_nope").is_err());
         assert!(check_key("{A}_row/robot").is_err());
+        assert_eq!(check_most_specific("{A}_dr_{d}_{B}/fixed/s"), Ok(()));
+        assert_eq!(check_most_specific("{A}_corner/any"), Ok(()));
+        assert!(check_most_specific("{A}_dr_{d}_{B}/fixed").is_err());
+        assert!(check_most_specific("{A}_dr_{d}_{B}").is_err());
+        assert!(check_most_specific("*").is_err());
     }
 }

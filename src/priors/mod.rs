@@ -21,17 +21,21 @@
 //! or the pure [`estimate::task_counts`]. For a library:
 //! [`folder::library`] (streams the folders over rayon's threads; the same
 //! bytes on any number of threads) or [`combine`] on counts gathered
-//! elsewhere (Python's `task_counts` / `combine_counts`, a Dask cluster).
+//! elsewhere: [`TaskCounts::to_json`] / [`TaskCounts::from_json`] carry one
+//! task's counts as plain data ([`counts`]; Python's `task_counts` /
+//! `combine_priors`, a Dask cluster).
 //! [`Priors::to_json`] / [`Priors::from_json`] write and read the file
 //! ([`mod@file`]).
 
 pub mod apply;
+pub mod counts;
 pub mod estimate;
 pub mod file;
 pub mod folder;
 pub mod kind;
 
 pub use apply::{PriorsUsed, RuledOut};
+pub use counts::{counts_from_json_list, COUNTS_VERSION};
 pub use estimate::{combine, task_counts, Count, PriorParams, TaskCounts};
 pub use file::KindEntry;
 pub use kind::{Kind, Role};
@@ -66,6 +70,23 @@ pub enum PriorsError {
     /// The priors file is not valid JSON of the expected shape.
     #[error("priors file: {}{message}", if field.is_empty() || field == "." { String::new() } else { format!("field `{field}`: ") })]
     Json {
+        /// The field's path, where known.
+        field: String,
+        /// The parser's message.
+        message: String,
+    },
+    /// A field of a task's counts as plain data ([`counts`]) has a bad
+    /// value.
+    #[error("task counts: field `{field}` {message}")]
+    Counts {
+        /// The field's path (`counts[2].templates`, `kinds.….kept`, …).
+        field: String,
+        /// What is wrong, naming the value.
+        message: String,
+    },
+    /// A task's counts are not valid JSON of the expected shape.
+    #[error("task counts: {}{message}", if field.is_empty() { String::new() } else { format!("field `{field}`: ") })]
+    CountsJson {
         /// The field's path, where known.
         field: String,
         /// The parser's message.

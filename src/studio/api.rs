@@ -4,7 +4,7 @@
 use super::storage::{self, ANSWERS, DEMOS, LEARNED, LEARNED_BACKUP, STATEMENTS};
 use super::AppState;
 use crate::ask::{Answer, AnswersFile, AskError, AskOptions, Asker, ProbeOptions, Question};
-use crate::infer::{learn_cancellable, statement_text, LearnParams, StatementSource};
+use crate::infer::{learn_with_priors, statement_text, LearnParams, StatementSource};
 use crate::limits::cut;
 use crate::rules::{
     check_classes, check_landmarks, missing_classes, missing_classes_note, parse_rules, RuleSet,
@@ -308,6 +308,7 @@ pub(crate) async fn task(State(st): St) -> ApiResult {
         "fixed_colour": "#4a4a4a",
         "statements": statements,
         "learning_jobs": st.learning_jobs.load(Ordering::SeqCst),
+        "priors": st.priors.as_ref().map(|p| json!({"tasks": p.tasks, "hash": p.hash_text()})),
     }))
 }
 
@@ -657,9 +658,17 @@ pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
     let _leave = CancelOnDrop(cancel.clone());
     let jobs = st.learning_jobs.clone();
     jobs.fetch_add(1, Ordering::SeqCst);
+    let priors = st.priors.clone();
     let learned = tokio::task::spawn_blocking(move || {
         let _done = CountDown(jobs);
-        learn_cancellable(&demos, statements.as_ref(), &params, None, Some(&cancel))
+        learn_with_priors(
+            &demos,
+            statements.as_ref(),
+            &params,
+            priors.as_deref(),
+            None,
+            Some(&cancel),
+        )
     })
     .await
     .map_err(|e| {
@@ -939,6 +948,7 @@ async fn start_session(
             ..ProbeOptions::default()
         },
         resemble: true,
+        priors: st.priors.clone(),
         ..AskOptions::default()
     };
     let problem = st.problem.clone();

@@ -44,9 +44,20 @@ pub enum StudioError {
     },
 }
 
+/// How the studio learns (`rccpack studio --priors FILE`).
+#[derive(Debug, Clone, Default)]
+pub struct StudioOptions {
+    /// Priors learned across tasks ([`crate::priors`]) for every learning
+    /// run of the studio (`POST /api/learn` and the "Check rules"
+    /// questions); `None`: the uniform prior.
+    pub priors: Option<Arc<crate::priors::Priors>>,
+}
+
 /// Shared server state.
 pub(crate) struct AppState {
     pub dir: PathBuf,
+    /// Priors for every learning run.
+    pub priors: Option<Arc<crate::priors::Priors>>,
     pub problem: Scene,
     pub problem_json: serde_json::Value,
     /// Serialises every read-modify-write of the folder's files.
@@ -73,6 +84,11 @@ pub(crate) struct AppState {
 /// Build the studio's router over the task folder `dir`: reads and checks
 /// `problem.json` and creates an empty `demos.json` when there is none.
 pub fn router(dir: &Path) -> Result<Router, StudioError> {
+    router_with(dir, StudioOptions::default())
+}
+
+/// [`router`] with options (priors for learning).
+pub fn router_with(dir: &Path, opts: StudioOptions) -> Result<Router, StudioError> {
     let io = |name: &'static str, e: std::io::Error| StudioError::Io {
         path: dir.join(name),
         message: e.to_string(),
@@ -117,6 +133,7 @@ pub fn router(dir: &Path) -> Result<Router, StudioError> {
     let problem_json = serde_json::from_str(&problem.to_json()).expect("scene JSON re-parses");
     let state = Arc::new(AppState {
         dir: dir.to_path_buf(),
+        priors: opts.priors,
         problem,
         problem_json,
         write_lock: tokio::sync::Mutex::new(()),
