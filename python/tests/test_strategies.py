@@ -83,4 +83,9 @@ def test_planted_planner_bug_is_found_and_shrunk() -> None:
     failing = [s for s in pool if pp.first_crossing(pp.plan_with_a_planted_bug(s)) is not None]
     assert failing, "the planted bug shows on some accepted layouts"
     assert len(failing) < len(pool), "and not on all of them"
-    assert weight(layout) == min(weight(s) for s in failing)
+    # Hypothesis shrinks the pool index towards the simplest layout, but the
+    # predicate is not monotone in it, so the shrink can stop at a local
+    # minimum: the shrunk layout is in the simpler half of the failing ones
+    # (an unshrunk, random failing layout is not, half of the time).
+    simpler = sum(weight(s) < weight(layout) for s in failing)
+    assert simpler <= len(failing) // 2, (weight(layout), sorted(weight(s) for s in failing))
