@@ -34,7 +34,7 @@
 //! # How to extend
 //!
 //! A new shape habit needs a [`Habit`] variant, a placement in
-//! [`place_group`] and the [`ShapeKind`] it shows in [`habit_shape`].
+//! `place_group` and the [`ShapeKind`] it shows in [`habit_shape`].
 
 use super::{
     block, box_for, learn_with, rotated, scaled, size_label, ClassSpec, Habit, Placer, Side, Task,
