@@ -352,15 +352,17 @@ pub(crate) fn learn_interruptible(
 pub struct PyResemblance {
     cost: u64,
     proven: bool,
+    bound: u64,
 }
 
 #[pymethods]
 impl PyResemblance {
     fn __repr__(&self) -> String {
         format!(
-            "Resemblance(cost={}, proven={})",
+            "Resemblance(cost={}, proven={}, bound={})",
             self.cost,
-            py_bool(self.proven)
+            py_bool(self.proven),
+            self.bound
         )
     }
 }
@@ -467,6 +469,7 @@ impl PySynthResult {
         self.inner.resemblance.map(|r| PyResemblance {
             cost: r.cost,
             proven: r.proven,
+            bound: r.bound,
         })
     }
     #[getter]

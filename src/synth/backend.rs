@@ -119,6 +119,9 @@ pub trait Backend {
     fn cost_bound(&self) -> Option<u64>;
     /// Told once a first solution exists (a backend may change its search).
     fn found_first(&mut self) {}
+    /// Told when the second phase (minimising the resemblance cost)
+    /// starts: a backend may post reasoning that only the cost needs.
+    fn start_cost_phase(&mut self) {}
 
     /// Try these values first (one per model variable, `None`: no
     /// preference) until the next solution: a warm start or the incumbent

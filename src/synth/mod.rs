@@ -256,6 +256,11 @@ pub struct Resemblance {
     /// Whether the cost is proven minimal among the layouts whose §6
     /// numerator equals the returned layout's.
     pub proven: bool,
+    /// A proven lower bound on the resemblance cost of every layout whose
+    /// numerator is at least the returned layout's: `cost` when `proven`;
+    /// otherwise how far the layout returned may be from the cheapest
+    /// (the gap is `cost − bound`).
+    pub bound: u64,
 }
 
 /// Why synthesis refused to start (infeasibility is a [`Status`], not an
@@ -641,6 +646,7 @@ pub fn synthesize(
             resemblance = Some(Resemblance {
                 cost,
                 proven: r.proven,
+                bound: r.bound,
             });
         }
     }

@@ -94,18 +94,16 @@ pub fn conflict_text(c: &Conflict) -> String {
     parts.join("; ")
 }
 
-/// `, resemblance cost N (proven minimal)` for the summary lines.
+/// `, resemblance cost N (proven minimal)` for the summary lines; when
+/// not proven, with the proven lower bound: `(not proven minimal; none
+/// scoring as high costs below B)`.
 pub fn resemblance_text(r: Option<Resemblance>) -> String {
     match r {
         None => String::new(),
+        Some(r) if r.proven => format!(", resemblance cost {} (proven minimal)", r.cost),
         Some(r) => format!(
-            ", resemblance cost {} ({})",
-            r.cost,
-            if r.proven {
-                "proven minimal"
-            } else {
-                "not proven minimal"
-            }
+            ", resemblance cost {} (not proven minimal; none scoring as high costs below {})",
+            r.cost, r.bound
         ),
     }
 }

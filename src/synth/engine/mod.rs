@@ -39,8 +39,10 @@ use super::backend::{Assumption, Backend, Core, Fact, Verdict};
 use super::like::LikeTerm;
 use super::model::{BoolDef, Coord, Lit, Model};
 use super::SynthError;
+use like_group::CostGroups;
 
 mod connected;
+mod like_group;
 mod like_map;
 mod no_overlap;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
@@ -325,6 +327,8 @@ pub struct Engine {
     first_phase: Rc<Cell<bool>>,
     /// The resemblance total-cost variable (SPEC §12).
     like_total: Option<DomainId>,
+    /// The group bounds of the second phase, until it starts.
+    cost_groups: Option<CostGroups>,
     /// Proved infeasible whatever the assumptions: Pumpkin's solver must not
     /// be called again (it asserts), and every later call is infeasible
     /// with an empty core.
@@ -748,10 +752,13 @@ impl<'m> Builder<'m> {
 
     /// Each resemblance cost bounded below by its distance map, and the
     /// total their sum.
-    fn post_like(&mut self, like: &[LikeTerm], costs: &[DomainId], total: Option<DomainId>) {
-        let Some(total) = total else {
-            return;
-        };
+    fn post_like(
+        &mut self,
+        like: &[LikeTerm],
+        costs: &[DomainId],
+        total: Option<DomainId>,
+    ) -> Option<CostGroups> {
+        let total = total?;
         let mut sum: Vec<AffineView<DomainId>> = Vec::with_capacity(like.len() + 1);
         let encoding = like_encoding();
         for (t, &c) in like.iter().zip(costs) {
@@ -779,10 +786,94 @@ impl<'m> Builder<'m> {
                     tag: self.tag,
                 });
             }
+        }
+        for &c in costs {
             sum.push(c.scaled(1));
         }
         sum.push(total.scaled(-1));
         self.solver.add_constraint(equals(sum, 0, self.tag)).post();
+        // Objects of one class and size share a map and compete for its
+        // cells: the group bounds of `like_group`, posted when the second
+        // phase starts (`Backend::start_cost_phase`).
+        let mut groups = Vec::new();
+        let mut singles = Vec::new();
+        for members in self.like_groups(like) {
+            if members.len() < 2 {
+                singles.push(costs[members[0]]);
+                continue;
+            }
+            groups.push(like_group::GroupVars {
+                xs: members.iter().map(|&i| self.vars[like[i].x]).collect(),
+                ys: members.iter().map(|&i| self.vars[like[i].y]).collect(),
+                costs: members.iter().map(|&i| costs[i]).collect(),
+                map: Rc::new(self.group_map(&like[members[0]])),
+            });
+        }
+        Some(CostGroups {
+            groups,
+            singles,
+            total,
+        })
+    }
+
+    /// The resemblance terms in groups of one class and size (same size,
+    /// same map), in order of first appearance; every term alone when
+    /// `RCCPACK_LIKE_GROUPS=off`.
+    fn like_groups(&self, like: &[LikeTerm]) -> Vec<Vec<usize>> {
+        let mut groups: Vec<Vec<usize>> = Vec::new();
+        let off = std::env::var("RCCPACK_LIKE_GROUPS").is_ok_and(|v| v == "off");
+        for (i, t) in like.iter().enumerate() {
+            let size = self.model.sizes[t.object];
+            let same = |g: &Vec<usize>| {
+                let u = &like[g[0]];
+                self.model.sizes[u.object] == size && u.map == t.map
+            };
+            match groups.iter_mut().find(|g| !off && same(g)) {
+                Some(g) => g.push(i),
+                None => groups.push(vec![i]),
+            }
+        }
+        groups
+    }
+
+    /// The group map of term `t`'s object: its distance map with the cells
+    /// where it would overlap a fixed (or already placed) object blocked.
+    fn group_map(&self, t: &LikeTerm) -> like_group::GroupMap {
+        let m = self.model;
+        let (w, h) = m.sizes[t.object];
+        let fixed: Vec<(i64, i64, i64, i64)> = m
+            .coords
+            .iter()
+            .zip(&m.sizes)
+            .filter_map(|(c, &(fw, fh))| match *c {
+                (Coord::Const(x), Coord::Const(y)) => Some((x, y, fw, fh)),
+                _ => None,
+            })
+            .collect();
+        let (nx, ny) = (t.map.nx as usize, t.map.ny as usize);
+        let mut cost = Vec::with_capacity(nx * ny);
+        for gy in 0..ny {
+            for gx in 0..nx {
+                let x = m.origin.0 + m.grid * gx as i64;
+                let y = m.origin.1 + m.grid * gy as i64;
+                let blocked = fixed.iter().any(|&(fx, fy, fw, fh)| {
+                    x < fx + fw && fx < x + w && y < fy + fh && fy < y + h
+                });
+                cost.push((!blocked).then(|| clamp_i32(t.map.cost[gy * nx + gx] as i64)));
+            }
+        }
+        let cells = |v: i64| {
+            usize::try_from((v + m.grid - 1) / m.grid)
+                .unwrap_or(1)
+                .max(1)
+        };
+        like_group::GroupMap {
+            nx,
+            ny,
+            tw: cells(w),
+            th: cells(h),
+            cost,
+        }
     }
 
     /// The engine, with its two-phase brancher (created only now that every
@@ -821,6 +912,7 @@ impl<'m> Builder<'m> {
             tag: self.tag,
             first_phase,
             like_total,
+            cost_groups: None,
             dead: false,
         }
     }
@@ -918,11 +1010,13 @@ impl Engine {
             return Ok(None);
         }
         let objective = b.post_objective(coefs, obj)?;
-        b.post_like(like, &like_costs, like_total);
+        let cost_groups = b.post_like(like, &like_costs, like_total);
         if b.late() {
             return Ok(None);
         }
-        Ok(Some(b.finish(guards, objective, like_total)))
+        let mut engine = b.finish(guards, objective, like_total);
+        engine.cost_groups = cost_groups;
+        Ok(Some(engine))
     }
 
     /// The objective's coefficients, variable terms only, in
@@ -1139,6 +1233,15 @@ impl Backend for Engine {
         self.objective
             .as_ref()
             .map(|(obj, _)| i64::from(self.solver.upper_bound(obj)))
+    }
+
+    fn start_cost_phase(&mut self) {
+        if let Some(groups) = self.cost_groups.take() {
+            if self.dead {
+                return;
+            }
+            groups.post(&mut self.solver, self.tag);
+        }
     }
 
     fn cost_bound(&self) -> Option<u64> {
