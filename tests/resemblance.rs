@@ -116,6 +116,10 @@ fn limits_in_the_second_phase_keep_the_score_and_are_deterministic() {
     let full = synthesize(&problem, &rules, &with_like(None)).unwrap();
     let first_phase_nodes = full.stats.nodes;
     let like = Likeness::new(&demos);
+    let cheapest = synthesize(&problem, &rules, &with_like(Some(like.clone()))).unwrap();
+    let cheapest = cheapest.resemblance.unwrap();
+    assert!(cheapest.proven);
+    assert_eq!(cheapest.bound, cheapest.cost);
     let mut stopped_in_phase_two = false;
     for extra in [1, 5, 20, 60] {
         let opts = SynthOptions {
@@ -133,6 +137,10 @@ fn limits_in_the_second_phase_keep_the_score_and_are_deterministic() {
             let res = a.resemblance.unwrap();
             assert_eq!(res.cost, like.cost(&problem, sol));
             stopped_in_phase_two |= !res.proven;
+            // The reported bound is a lower bound of the proven minimum,
+            // and equals the cost exactly when the cost is proven.
+            assert!(res.bound <= cheapest.cost, "{res:?} against {cheapest:?}");
+            assert_eq!(res.proven, res.bound == res.cost, "{res:?}");
         }
     }
     assert!(

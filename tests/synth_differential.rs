@@ -753,11 +753,12 @@ fn check_like_with(
     }
     let res = r.resemblance.ok_or("engine: no resemblance with like")?;
     let cost = like.cost(&case.scene, sol);
-    if res.cost != cost || cost != bf.best_cost || !res.proven {
+    if res.cost != cost || cost != bf.best_cost || !res.proven || res.bound != cost {
         return Err(format!(
-            "cost: engine reports {} (proven {}), resemblance function {cost}, brute force {}\nengine:\n{}brute force:\n{}",
+            "cost: engine reports {} (proven {}, bound {}), resemblance function {cost}, brute force {}\nengine:\n{}brute force:\n{}",
             res.cost,
             res.proven,
+            res.bound,
             bf.best_cost,
             sol.to_json(),
             bf.best.as_ref().map(Scene::to_json).unwrap_or_default()
