@@ -76,6 +76,7 @@ def test_pipeline_result(demos: list[rccpack.Scene], problem: rccpack.Scene, lea
     assert r.status is rccpack.Status.OPTIMAL
     assert r.score == 1.0 and not r.interrupted
     assert r.resemblance is not None and r.resemblance.cost == 0 and r.resemblance.proven
+    assert r.resemblance.bound == r.resemblance.cost
     assert r.conflict is None
     assert r.stats.nodes > 0 and r.stats.time_ms > 0
     assert r.scene is not None and r.scene.complete
