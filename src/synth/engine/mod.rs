@@ -39,14 +39,17 @@ use super::backend::{Assumption, Backend, Core, Fact, Verdict};
 use super::like::LikeTerm;
 use super::model::{BoolDef, Coord, Lit, Model};
 use super::SynthError;
-use like_group::CostGroups;
+use like::PendingLike;
+#[cfg(test)]
+use like::{LikeEncoding, LIKE_ENCODING};
 
 mod connected;
+mod like;
 mod like_group;
 mod like_map;
 mod no_overlap;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
-use pumpkin_constraints::{boolean_equals, cumulative, equals, less_than_or_equals};
+use pumpkin_constraints::{boolean_equals, cumulative, less_than_or_equals};
 use pumpkin_core::branching::branchers::independent_variable_value_brancher::IndependentVariableValueBrancher;
 use pumpkin_core::branching::branchers::warm_start::WarmStart;
 use pumpkin_core::branching::tie_breaking::InOrderTieBreaker;
@@ -214,6 +217,25 @@ struct Phased {
     /// solution ([`Engine::leave_greedy_after`]; `None`: only at a
     /// solution).
     first_cap: Option<u64>,
+    /// Variables created after the engine (the second objective's), which
+    /// the main brancher does not know: each takes its smallest value once
+    /// `main` has nothing left to decide.
+    late: Option<StaticBrancher>,
+    late_vars: Vec<DomainId>,
+}
+
+impl Phased {
+    /// Hand variables created after the engine to the brancher.
+    fn add_late(&mut self, vars: &[DomainId]) {
+        if vars.is_empty() {
+            return;
+        }
+        self.late_vars.extend_from_slice(vars);
+        self.late = Some(IndependentVariableValueBrancher::new(
+            FirstFail::new(&self.late_vars),
+            InDomainMin,
+        ));
+    }
 }
 
 impl Brancher for Phased {
@@ -228,7 +250,10 @@ impl Brancher for Phased {
                 return Some(d);
             }
         }
-        self.main.next_decision(context)
+        if let Some(d) = self.main.next_decision(context) {
+            return Some(d);
+        }
+        self.late.as_mut()?.next_decision(context)
     }
     fn on_conflict(&mut self) {
         // A greedy packing finds a first layout without backtracking in
@@ -255,6 +280,9 @@ impl Brancher for Phased {
     }
     fn on_unassign_integer(&mut self, variable: DomainId, value: i32) {
         self.first.on_unassign_integer(variable, value);
+        if let Some(l) = &mut self.late {
+            l.on_unassign_integer(variable, value);
+        }
         self.main.on_unassign_integer(variable, value)
     }
     fn on_appearance_in_conflict_predicate(&mut self, predicate: Predicate) {
@@ -268,6 +296,9 @@ impl Brancher for Phased {
             h.synchronise(context);
         }
         self.first.synchronise(context);
+        if let Some(l) = &mut self.late {
+            l.synchronise(context);
+        }
         self.main.synchronise(context)
     }
     fn is_restart_pointless(&mut self) -> bool {
@@ -327,8 +358,8 @@ pub struct Engine {
     first_phase: Rc<Cell<bool>>,
     /// The resemblance total-cost variable (SPEC §12).
     like_total: Option<DomainId>,
-    /// The group bounds of the second phase, until it starts.
-    cost_groups: Option<CostGroups>,
+    /// The second objective until the second phase starts ([`like`]).
+    pending_like: Option<PendingLike>,
     /// Proved infeasible whatever the assumptions: Pumpkin's solver must not
     /// be called again (it asserts), and every later call is infeasible
     /// with an empty core.
@@ -510,26 +541,6 @@ impl<'m> Builder<'m> {
             all.push(starts);
         }
         Ok(all)
-    }
-
-    /// Per resemblance term a cost variable, and the total (none without
-    /// terms). The ranges were checked by [`like_fits`].
-    fn create_like(&mut self, like: &[LikeTerm]) -> (Vec<DomainId>, Option<DomainId>) {
-        let hi_of = |t: &LikeTerm| t.map.cost.iter().copied().max().unwrap_or(0);
-        let costs = like
-            .iter()
-            .map(|t| {
-                self.solver
-                    .new_bounded_integer(clamp_i32(t.map.min() as i64), clamp_i32(hi_of(t) as i64))
-            })
-            .collect();
-        let total = (!like.is_empty()).then(|| {
-            let lo: u64 = like.iter().map(|t| t.map.min()).sum();
-            let hi: u64 = like.iter().map(hi_of).sum();
-            self.solver
-                .new_bounded_integer(clamp_i32(lo as i64), clamp_i32(hi as i64))
-        });
-        (costs, total)
     }
 
     /// The objective variable `0..=Σ coefs` over the variable soft terms.
@@ -750,132 +761,6 @@ impl<'m> Builder<'m> {
         Ok(Some((obj, ws)))
     }
 
-    /// Each resemblance cost bounded below by its distance map, and the
-    /// total their sum.
-    fn post_like(
-        &mut self,
-        like: &[LikeTerm],
-        costs: &[DomainId],
-        total: Option<DomainId>,
-    ) -> Option<CostGroups> {
-        let total = total?;
-        let mut sum: Vec<AffineView<DomainId>> = Vec::with_capacity(like.len() + 1);
-        let encoding = like_encoding();
-        for (t, &c) in like.iter().zip(costs) {
-            if encoding != LikeEncoding::Propagator {
-                post_like(
-                    &mut self.solver,
-                    t,
-                    self.vars[t.x],
-                    self.vars[t.y],
-                    c,
-                    self.tag,
-                );
-            }
-            if encoding != LikeEncoding::Clauses {
-                let cells: Vec<i32> = t.map.cost.iter().map(|&v| clamp_i32(v as i64)).collect();
-                let _ = self.solver.add_propagator(like_map::LikeMapArgs {
-                    gx: self.vars[t.x],
-                    gy: self.vars[t.y],
-                    cost: c,
-                    map: Rc::new(like_map::MapIndex::new(
-                        t.map.nx as usize,
-                        t.map.ny as usize,
-                        &cells,
-                    )),
-                    tag: self.tag,
-                });
-            }
-        }
-        for &c in costs {
-            sum.push(c.scaled(1));
-        }
-        sum.push(total.scaled(-1));
-        self.solver.add_constraint(equals(sum, 0, self.tag)).post();
-        // Objects of one class and size share a map and compete for its
-        // cells: the group bounds of `like_group`, posted when the second
-        // phase starts (`Backend::start_cost_phase`).
-        let mut groups = Vec::new();
-        let mut singles = Vec::new();
-        for members in self.like_groups(like) {
-            if members.len() < 2 {
-                singles.push(costs[members[0]]);
-                continue;
-            }
-            groups.push(like_group::GroupVars {
-                xs: members.iter().map(|&i| self.vars[like[i].x]).collect(),
-                ys: members.iter().map(|&i| self.vars[like[i].y]).collect(),
-                costs: members.iter().map(|&i| costs[i]).collect(),
-                map: Rc::new(self.group_map(&like[members[0]])),
-            });
-        }
-        Some(CostGroups {
-            groups,
-            singles,
-            total,
-        })
-    }
-
-    /// The resemblance terms in groups of one class and size (same size,
-    /// same map), in order of first appearance; every term alone when
-    /// `RCCPACK_LIKE_GROUPS=off`.
-    fn like_groups(&self, like: &[LikeTerm]) -> Vec<Vec<usize>> {
-        let mut groups: Vec<Vec<usize>> = Vec::new();
-        let off = std::env::var("RCCPACK_LIKE_GROUPS").is_ok_and(|v| v == "off");
-        for (i, t) in like.iter().enumerate() {
-            let size = self.model.sizes[t.object];
-            let same = |g: &Vec<usize>| {
-                let u = &like[g[0]];
-                self.model.sizes[u.object] == size && u.map == t.map
-            };
-            match groups.iter_mut().find(|g| !off && same(g)) {
-                Some(g) => g.push(i),
-                None => groups.push(vec![i]),
-            }
-        }
-        groups
-    }
-
-    /// The group map of term `t`'s object: its distance map with the cells
-    /// where it would overlap a fixed (or already placed) object blocked.
-    fn group_map(&self, t: &LikeTerm) -> like_group::GroupMap {
-        let m = self.model;
-        let (w, h) = m.sizes[t.object];
-        let fixed: Vec<(i64, i64, i64, i64)> = m
-            .coords
-            .iter()
-            .zip(&m.sizes)
-            .filter_map(|(c, &(fw, fh))| match *c {
-                (Coord::Const(x), Coord::Const(y)) => Some((x, y, fw, fh)),
-                _ => None,
-            })
-            .collect();
-        let (nx, ny) = (t.map.nx as usize, t.map.ny as usize);
-        let mut cost = Vec::with_capacity(nx * ny);
-        for gy in 0..ny {
-            for gx in 0..nx {
-                let x = m.origin.0 + m.grid * gx as i64;
-                let y = m.origin.1 + m.grid * gy as i64;
-                let blocked = fixed.iter().any(|&(fx, fy, fw, fh)| {
-                    x < fx + fw && fx < x + w && y < fy + fh && fy < y + h
-                });
-                cost.push((!blocked).then(|| clamp_i32(t.map.cost[gy * nx + gx] as i64)));
-            }
-        }
-        let cells = |v: i64| {
-            usize::try_from((v + m.grid - 1) / m.grid)
-                .unwrap_or(1)
-                .max(1)
-        };
-        like_group::GroupMap {
-            nx,
-            ny,
-            tw: cells(w),
-            th: cells(h),
-            cost,
-        }
-    }
-
     /// The engine, with its two-phase brancher (created only now that every
     /// variable exists).
     fn finish(
@@ -894,6 +779,8 @@ impl<'m> Builder<'m> {
             use_first: first_phase.clone(),
             first_conflicts: 0,
             first_cap: None,
+            late: None,
+            late_vars: Vec::new(),
         };
         let brancher = Counting {
             inner,
@@ -912,7 +799,7 @@ impl<'m> Builder<'m> {
             tag: self.tag,
             first_phase,
             like_total,
-            cost_groups: None,
+            pending_like: None,
             dead: false,
         }
     }
@@ -991,7 +878,6 @@ impl Engine {
         b.create_literals()?;
         let guards = b.create_guards(guarded);
         let starts = b.create_cumulative_starts()?;
-        let (like_costs, like_total) = b.create_like(like);
         let obj = b.create_objective(coefs)?;
         if b.late() {
             return Ok(None);
@@ -1010,12 +896,10 @@ impl Engine {
             return Ok(None);
         }
         let objective = b.post_objective(coefs, obj)?;
-        let cost_groups = b.post_like(like, &like_costs, like_total);
-        if b.late() {
-            return Ok(None);
-        }
-        let mut engine = b.finish(guards, objective, like_total);
-        engine.cost_groups = cost_groups;
+        // The second objective waits for the second phase (see `like`).
+        let pending = PendingLike::new(model, like);
+        let mut engine = b.finish(guards, objective, None);
+        engine.pending_like = pending;
         Ok(Some(engine))
     }
 
@@ -1180,6 +1064,12 @@ impl Backend for Engine {
     /// posted as units); `ObjectiveAtLeast(k)` without an objective holds
     /// iff `k ≤ 0`, `CostAtMost` without a second objective always holds.
     fn solve(&mut self, assumptions: &[Assumption], limits: &Limits) -> Verdict {
+        if assumptions
+            .iter()
+            .any(|a| matches!(a, Assumption::CostAtMost(_)))
+        {
+            self.start_cost_phase();
+        }
         let mut preds: Vec<Predicate> = Vec::with_capacity(assumptions.len());
         for a in assumptions {
             match *a {
@@ -1211,6 +1101,9 @@ impl Backend for Engine {
         if self.dead {
             return;
         }
+        if let Fact::CostAtLeast(_) = fact {
+            self.start_cost_phase();
+        }
         let p = match fact {
             Fact::ObjectiveAtMost(k) => self
                 .objective
@@ -1236,17 +1129,22 @@ impl Backend for Engine {
     }
 
     fn start_cost_phase(&mut self) {
-        if let Some(groups) = self.cost_groups.take() {
-            if self.dead {
-                return;
-            }
-            groups.post(&mut self.solver, self.tag);
+        if self.dead {
+            return;
+        }
+        if let Some(pending) = self.pending_like.take() {
+            let posted = pending.post(&mut self.solver, &self.vars, self.tag);
+            self.brancher.inner.add_late(&posted.created);
+            self.like_total = Some(posted.total);
         }
     }
 
     fn cost_bound(&self) -> Option<u64> {
-        self.like_total
-            .map(|t| u64::try_from(self.solver.lower_bound(&t)).unwrap_or(0))
+        match (&self.pending_like, self.like_total) {
+            (Some(p), _) => Some(p.min_total()),
+            (None, Some(t)) => Some(u64::try_from(self.solver.lower_bound(&t)).unwrap_or(0)),
+            (None, None) => None,
+        }
     }
 
     fn found_first(&mut self) {
@@ -1265,98 +1163,6 @@ impl Backend for Engine {
 
     fn nodes(&self) -> u64 {
         self.counters.nodes.get()
-    }
-}
-
-/// How a resemblance term is posted: the clauses of [`post_like`] (exact
-/// once a coordinate is fixed, value-level pruning under `c ≤ u`), the
-/// bounds propagator of [`like_map`] (raises `c` from the bounds of both
-/// coordinates), or both (the default: strictly stronger than either).
-///
-/// Measured on the realistic tasks' `--like` solves that both prove
-/// (`bench tasks --problems-out`, `synth … --like`): both together needed
-/// fewer nodes than the clauses alone on every one of five problems
-/// (29 412 → 14 284, 15 153 → 11 644, 7 160 → 5 998, 1 853 → 1 675,
-/// 470 → 460); the propagator alone builds faster (engine 383 → 84 ms on
-/// a 20-object task) but found worse layouts when the limit struck on
-/// 31-object tasks (cost 28 against 15), so the clauses stay.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum LikeEncoding {
-    /// Clauses only.
-    Clauses,
-    /// The bounds propagator only.
-    Propagator,
-    /// Both.
-    Both,
-}
-
-#[cfg(test)]
-thread_local! {
-    /// The encoding engines built on this thread use (tests compare them).
-    pub(crate) static LIKE_ENCODING: std::cell::Cell<LikeEncoding> =
-        const { std::cell::Cell::new(LikeEncoding::Both) };
-}
-
-fn like_encoding() -> LikeEncoding {
-    #[cfg(test)]
-    return LIKE_ENCODING.with(|e| e.get());
-    #[cfg(not(test))]
-    LikeEncoding::Both
-}
-
-/// Bound one object's resemblance cost `c` from below by its distance map:
-/// `gx = a ∧ gy = b → c ≥ map(a, b)` for every cell above the map's
-/// minimum, plus `gx = a → c ≥ min_b map(a, b)` and the same per row, so
-/// that one fixed coordinate already raises the bound. Only the lower bound
-/// is needed: the cost is minimised.
-///
-/// Measured on `examples/box-packing` (9 objects, 46 learned rules): an
-/// `element` constraint over the map indexed by `nx·gy + gx` took 4.8 s for
-/// the first `cost ≤ 9` call (463 nodes in all: the time is propagation);
-/// these clauses take a few milliseconds.
-fn post_like(
-    solver: &mut Solver,
-    t: &LikeTerm,
-    gx: DomainId,
-    gy: DomainId,
-    c: DomainId,
-    tag: ConstraintTag,
-) {
-    let (nx, ny) = (t.map.nx as usize, t.map.ny as usize);
-    let lo = t.map.min();
-    let at = |a: usize, b: usize| t.map.cost[b * nx + a];
-    let col: Vec<u64> = (0..nx)
-        .map(|a| (0..ny).map(|b| at(a, b)).min().unwrap_or(lo))
-        .collect();
-    let row: Vec<u64> = (0..ny)
-        .map(|b| (0..nx).map(|a| at(a, b)).min().unwrap_or(lo))
-        .collect();
-    for (a, &m) in col.iter().enumerate() {
-        if m > lo {
-            solver.add_clause([predicate![gx != a as i32], predicate![c >= m as i32]], tag);
-        }
-    }
-    for (b, &m) in row.iter().enumerate() {
-        if m > lo {
-            solver.add_clause([predicate![gy != b as i32], predicate![c >= m as i32]], tag);
-        }
-    }
-    for (b, &rb) in row.iter().enumerate() {
-        for (a, &ca) in col.iter().enumerate() {
-            let v = at(a, b);
-            // Cells whose cost the column or row clause already gives need
-            // no clause of their own.
-            if v > ca.max(rb) {
-                solver.add_clause(
-                    [
-                        predicate![gx != a as i32],
-                        predicate![gy != b as i32],
-                        predicate![c >= v as i32],
-                    ],
-                    tag,
-                );
-            }
-        }
     }
 }
 
