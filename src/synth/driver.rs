@@ -227,6 +227,17 @@ pub fn minimise_cost(
         };
     };
     backend.found_first();
+    let mut best_cost = cost(&best);
+    if best_cost <= lo {
+        // Already at the root bound (typically cost 0: every object on a
+        // shown position): nothing to post or search.
+        return CostOutcome {
+            values: best,
+            cost: best_cost,
+            proven: true,
+            bound: best_cost,
+        };
+    }
     backend.start_cost_phase();
     lo = lo.max(backend.cost_bound().unwrap_or(lo));
     let num = |v: &[i64]| objective.map_or(0, |o| (o.value)(v));
@@ -234,7 +245,6 @@ pub fn minimise_cost(
     if objective.is_some() {
         backend.add(Fact::ObjectiveAtLeast(best_num));
     }
-    let mut best_cost = cost(&best);
     let mut best = best;
     // Bisection: measured against stepping down from the incumbent and
     // against asking for the bound first, on the ten 1.5× tasks of `bench

@@ -44,11 +44,23 @@ pub fn like_terms(
     like: &Likeness,
 ) -> Result<Vec<LikeTerm>, LikenessError> {
     let mut out = Vec::new();
+    // One map per class and size (objects of one class and size share it).
+    let mut maps: std::collections::HashMap<(&str, i64, i64), Option<DistanceMap>> =
+        std::collections::HashMap::new();
     for (i, o) in problem.objects.iter().enumerate() {
         let (Coord::Var(x), Coord::Var(y)) = model.coords[i] else {
             continue;
         };
-        if let Some(map) = like.distance_map(problem, o)? {
+        let key = (o.class.as_str(), o.width, o.height);
+        let map = match maps.get(&key) {
+            Some(m) => m.clone(),
+            None => {
+                let m = like.distance_map(problem, o)?;
+                maps.insert(key, m.clone());
+                m
+            }
+        };
+        if let Some(map) = map {
             debug_assert_eq!(map.nx, model.vars[x].ub as u64 + 1);
             debug_assert_eq!(map.ny, model.vars[y].ub as u64 + 1);
             out.push(LikeTerm {
