@@ -238,6 +238,16 @@ pub fn minimise_cost(
             bound: best_cost,
         };
     }
+    if limits.expired() {
+        // The first phase used the whole limit: posting the second
+        // objective (a second or so at 40 objects) would overrun it.
+        return CostOutcome {
+            values: best,
+            cost: best_cost,
+            proven: false,
+            bound: lo,
+        };
+    }
     backend.start_cost_phase();
     lo = lo.max(backend.cost_bound().unwrap_or(lo));
     let num = |v: &[i64]| objective.map_or(0, |o| (o.value)(v));
