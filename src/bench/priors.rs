@@ -71,10 +71,10 @@
 //! * **truth ruled out** — truth rules whose kind the priors ruled out (left
 //!   out of the statements, so they cannot be learned);
 //! * **questions** (unless `--no-ask`; uniform and the largest learned
-//!   library only, on the first [`PriorsBenchConfig::ask_tasks`] held-out
-//!   tasks, default 6, because a loop takes one to two minutes) — the
-//!   question loop ([`crate::ask::Asker`]) on the
-//!   task's problem (its box with each class's largest count, unplaced),
+//!   library only, because a loop takes half a minute to two minutes; on
+//!   every held-out task unless [`PriorsBenchConfig::ask_tasks`] says
+//!   fewer) — the question loop ([`crate::ask::Asker`]) on the task's
+//!   problem (its box with each class's largest count, unplaced),
 //!   with the truth as the oracle: a probe is accepted iff every truth rule
 //!   holds for every object. It stops when no question is left or after
 //!   [`PriorsBenchConfig::max_questions`] (a capped task counts the cap).
@@ -170,8 +170,8 @@ pub struct PriorsBenchConfig {
     /// Stop the question loop after this many questions (default 40).
     pub max_questions: usize,
     /// Run the question loop on the first this many held-out tasks
-    /// (default 6: a loop takes one to two minutes here).
-    pub ask_tasks: usize,
+    /// (`None`, the default: on all of them).
+    pub ask_tasks: Option<usize>,
     /// A truth rule is *rare* when its kind was kept in fewer than this
     /// percentage of the true library's tasks (default 15).
     pub rare_percent: u64,
@@ -205,7 +205,7 @@ impl PriorsBenchConfig {
             true_library: 200,
             ask: true,
             max_questions: 40,
-            ask_tasks: 6,
+            ask_tasks: None,
             rare_percent: 15,
             params: PriorParams::default(),
         }
@@ -1125,7 +1125,7 @@ pub fn run(
         let asked: Vec<_> = std::iter::once(conditions[0].clone())
             .chain(largest)
             .collect();
-        let n = cfg.ask_tasks.min(held.len());
+        let n = cfg.ask_tasks.unwrap_or(held.len()).min(held.len());
         ask_rows(cfg, &held[..n], &asked, progress)?
     } else {
         Vec::new()
@@ -1373,7 +1373,7 @@ pub fn table_markdown(r: &PriorsBenchReport) -> String {
     if !r.ask.is_empty() {
         let _ = writeln!(
             s,
-            "\nQuestions with a truth oracle on the first {} held-out tasks (at most {} per task; a capped task counts the cap):\n",
+            "\nQuestions with a truth oracle on {} held-out tasks (at most {} per task; a capped task counts the cap):\n",
             r.ask.first().map_or(0, |a| a.per_task.len()),
             c.max_questions
         );

@@ -91,10 +91,10 @@ struct PriorsBenchArgs {
     /// 1000).
     #[arg(long = "max-questions", default_value_t = 40, value_parser = clap::value_parser!(u16).range(1..=1000))]
     max_questions: u16,
-    /// Run the question loop on the first N held-out tasks (0 to 1000; a
-    /// loop takes one to two minutes).
-    #[arg(long = "ask-tasks", default_value_t = 6, value_parser = clap::value_parser!(u16).range(0..=1000))]
-    ask_tasks: u16,
+    /// Run the question loop on the first N held-out tasks only (default:
+    /// all; a loop takes half a minute to two minutes).
+    #[arg(long = "ask-tasks", value_parser = clap::value_parser!(u16).range(0..=1000))]
+    ask_tasks: Option<u16>,
     /// A truth rule is rare when its kind was kept in fewer than this
     /// percentage of the true library's tasks (0 to 100).
     #[arg(long = "rare-percent", default_value_t = 15, value_parser = clap::value_parser!(u64).range(0..=100))]
@@ -250,7 +250,7 @@ fn run_priors(a: PriorsBenchArgs) -> Result<ExitCode> {
     cfg.truth_demos = usize::from(a.truth_demos);
     cfg.ask = !a.no_ask;
     cfg.max_questions = usize::from(a.max_questions);
-    cfg.ask_tasks = usize::from(a.ask_tasks);
+    cfg.ask_tasks = a.ask_tasks.map(usize::from);
     cfg.params.rule_out_after = a.rule_out_after;
     cfg.rare_percent = a.rare_percent;
     cfg.params.strength = a.strength;
