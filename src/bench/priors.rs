@@ -61,7 +61,7 @@
 //! * **truth** — truth rules that are candidates of the held-out
 //!   demonstrations (all of them, by construction);
 //! * **recall** — of these, the ones learned, or implied
-//!   ([`crate::infer::english::rule_implies`]) by a learned truth rule;
+//!   (`rule_implies`, syntactically) by a learned truth rule;
 //! * **rare** — truth rules whose most specific kind is *rare in the
 //!   population*: kept in fewer than [`PriorsBenchConfig::rare_percent`] %
 //!   (default 15) of the tasks of the true library; **rare recall** as
@@ -496,7 +496,8 @@ fn kept_rules(task: &PopTask, params: &PriorParams) -> Result<RuleSet, PriorsBen
             .rules
             .iter()
             .zip(flags)
-            .filter_map(|(r, c)| c.then(|| r.clone()))
+            .filter(|(_, c)| *c)
+            .map(|(r, _)| r.clone())
             .collect(),
     ))
 }
