@@ -651,10 +651,13 @@ impl HeldOut {
                 || held_truth
                     .iter()
                     .any(|h| rule_implies((h.scope, &h.formula), (t.scope, &t.formula), contact));
-            o.truth += 1;
-            o.recalled += usize::from(recalled);
-            o.rare += usize::from(*rare);
-            o.rare_recalled += usize::from(*rare && recalled);
+            o.add(&Outcome {
+                truth: 1,
+                recalled: usize::from(recalled),
+                rare: usize::from(*rare),
+                rare_recalled: usize::from(*rare && recalled),
+                ..Outcome::default()
+            });
         }
         o.spurious = self.spurious(rules, contact).count();
         o
@@ -997,7 +1000,9 @@ fn make_tasks(
         .par_iter()
         .map(|&(stream, shown)| {
             let t = population_task(cfg, stream, shown);
-            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            let k = done
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+                .saturating_add(1);
             if k % 10 == 0 || k == jobs.len() {
                 progress(&format!("{what}: {k}/{} tasks", jobs.len()));
             }
@@ -1091,7 +1096,8 @@ pub fn run(
     let mut habits: BTreeMap<String, usize> = BTreeMap::new();
     for t in tasks.iter().chain(&library) {
         for c in &t.classes {
-            *habits.entry(habit_name(&c.habit)).or_default() += 1;
+            let n = habits.entry(habit_name(&c.habit)).or_default();
+            *n = n.saturating_add(1);
         }
     }
     let held_lines: Vec<TaskLine> = tasks
@@ -1101,7 +1107,7 @@ pub fn run(
     let lib_lines: Vec<TaskLine> = library
         .iter()
         .enumerate()
-        .map(|(i, t)| task_line(t, format!("library {}", i + 1)))
+        .map(|(i, t)| task_line(t, format!("library {}", i.saturating_add(1))))
         .collect();
     let held: Vec<HeldOut> = tasks
         .into_iter()
@@ -1165,7 +1171,9 @@ fn learn_rows(
         .par_iter()
         .map(|&(c, t)| {
             let o = learn_outcome(&held[t], conditions[c].2.as_deref(), cfg);
-            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            let k = done
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+                .saturating_add(1);
             if k % 10 == 0 || k == pairs.len() {
                 progress(&format!("learning: {k}/{} (task, condition)", pairs.len()));
             }
@@ -1182,7 +1190,8 @@ fn learn_rows(
             for (o, kinds) in per_task {
                 total.add(o);
                 for k in kinds {
-                    *spurious_kinds.entry(k.clone()).or_default() += 1;
+                    let n = spurious_kinds.entry(k.clone()).or_default();
+                    *n = n.saturating_add(1);
                 }
             }
             Row {
@@ -1212,7 +1221,9 @@ fn ask_rows(
         .map(|&(c, t)| {
             let started = std::time::Instant::now();
             let o = ask_outcome(&held[t], conditions[c].2.clone(), cfg);
-            let k = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            let k = done
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+                .saturating_add(1);
             let asked = o.as_ref().map_or(0, |o| o.questions);
             progress(&format!(
                 "asking: {k}/{} — task {} {}: {asked} questions, {:.1} s",
@@ -1324,12 +1335,28 @@ fn per_task(v: usize, tasks: usize) -> String {
 }
 
 /// The report as markdown: the population, the learning table, the
-/// question table and the targets.
+/// question table, the spurious rules by kind and the targets.
 pub fn table_markdown(r: &PriorsBenchReport) -> String {
+    let mut s = String::new();
+    population_text(&mut s, r);
+    learning_table(&mut s, r);
+    ask_table(&mut s, r);
+    spurious_kinds_table(&mut s, r);
+    targets_text(&mut s, r);
+    s
+}
+
+fn library_cell(condition: Condition, library: usize) -> String {
+    if condition == Condition::Uniform {
+        "–".to_string()
+    } else {
+        library.to_string()
+    }
+}
+
+fn population_text(s: &mut String, r: &PriorsBenchReport) {
     use std::fmt::Write;
     let c = &r.config;
-    let tasks = r.held_out.len();
-    let mut s = String::new();
     let habits = r
         .habits
         .iter()
@@ -1341,11 +1368,16 @@ pub fn table_markdown(r: &PriorsBenchReport) -> String {
         "Population (seed {}): {} library + {} held-out tasks ({} demonstrations each; library 3–5), truth from {} demonstrations, true library {} tasks. Habits of their classes: {habits}.\n",
         c.seed,
         r.library.len(),
-        tasks,
+        r.held_out.len(),
         c.held_out_demos,
         c.truth_demos,
         c.true_library
     );
+}
+
+fn learning_table(s: &mut String, r: &PriorsBenchReport) {
+    use std::fmt::Write;
+    let tasks = r.held_out.len();
     let _ = writeln!(
         s,
         "| library | condition | recall | rare recall | spurious | spurious/task | learned/task | truth ruled out | left out/task |"
@@ -1356,11 +1388,7 @@ pub fn table_markdown(r: &PriorsBenchReport) -> String {
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            if row.condition == Condition::Uniform {
-                "–".to_string()
-            } else {
-                row.library.to_string()
-            },
+            library_cell(row.condition, row.library),
             row.condition.name(),
             frac(t.recalled, t.truth),
             frac(t.rare_recalled, t.rare),
@@ -1371,77 +1399,87 @@ pub fn table_markdown(r: &PriorsBenchReport) -> String {
             per_task(t.left_out, tasks),
         );
     }
-    if !r.ask.is_empty() {
-        let _ = writeln!(
-            s,
-            "\nQuestions with a truth oracle on {} held-out tasks (at most {} per task; a capped task counts the cap):\n",
-            r.ask.first().map_or(0, |a| a.per_task.len()),
-            c.max_questions
-        );
-        let _ = writeln!(
-            s,
-            "| library | condition | median questions | questions per task | capped | spurious before → after | recall before → after |"
-        );
-        let _ = writeln!(s, "|---:|---|---:|---|---:|---|---|");
-        for a in &r.ask {
-            let qs = a
-                .per_task
-                .iter()
-                .map(|o| o.questions.to_string())
-                .collect::<Vec<_>>()
-                .join(" ");
-            let _ = writeln!(
-                s,
-                "| {} | {} | {} | {qs} | {} | {} → {} | {} → {} |",
-                if a.condition == Condition::Uniform {
-                    "–".to_string()
-                } else {
-                    a.library.to_string()
-                },
-                a.condition.name(),
-                a.median_questions,
-                a.capped,
-                a.before.spurious,
-                a.after.spurious,
-                frac(a.before.recalled, a.before.truth),
-                frac(a.after.recalled, a.after.truth),
-            );
-        }
+}
+
+fn ask_table(s: &mut String, r: &PriorsBenchReport) {
+    use std::fmt::Write;
+    if r.ask.is_empty() {
+        return;
     }
-    if !r.spurious_kinds.is_empty() {
-        let n = r
-            .rows
+    let _ = writeln!(
+        s,
+        "\nQuestions with a truth oracle on {} held-out tasks (at most {} per task; a capped task counts the cap):\n",
+        r.ask.first().map_or(0, |a| a.per_task.len()),
+        r.config.max_questions
+    );
+    let _ = writeln!(
+        s,
+        "| library | condition | median questions | questions per task | capped | spurious before → after | recall before → after |"
+    );
+    let _ = writeln!(s, "|---:|---|---:|---|---:|---|---|");
+    for a in &r.ask {
+        let qs = a
+            .per_task
             .iter()
-            .rfind(|x| x.condition == Condition::Learned)
-            .map_or(0, |x| x.library);
+            .map(|o| o.questions.to_string())
+            .collect::<Vec<_>>()
+            .join(" ");
         let _ = writeln!(
             s,
-            "\nSpurious rules by kind (the {SPURIOUS_SHOWN} largest; all in the JSON report), with what the {n}-task library says about the kind:\n"
+            "| {} | {} | {} | {qs} | {} | {} → {} | {} → {} |",
+            library_cell(a.condition, a.library),
+            a.condition.name(),
+            a.median_questions,
+            a.capped,
+            a.before.spurious,
+            a.after.spurious,
+            frac(a.before.recalled, a.before.truth),
+            frac(a.after.recalled, a.after.truth),
         );
+    }
+}
+
+fn spurious_kinds_table(s: &mut String, r: &PriorsBenchReport) {
+    use std::fmt::Write;
+    if r.spurious_kinds.is_empty() {
+        return;
+    }
+    let n = r
+        .rows
+        .iter()
+        .rfind(|x| x.condition == Condition::Learned)
+        .map_or(0, |x| x.library);
+    let _ = writeln!(
+        s,
+        "\nSpurious rules by kind (the {SPURIOUS_SHOWN} largest; all in the JSON report), with what the {n}-task library says about the kind:\n"
+    );
+    let _ = writeln!(
+        s,
+        "| kind | uniform | learned ({n}) | tasks kept / tasks with a candidate | prior |"
+    );
+    let _ = writeln!(s, "|---|---:|---:|---:|---:|");
+    for k in r.spurious_kinds.iter().take(SPURIOUS_SHOWN) {
         let _ = writeln!(
             s,
-            "| kind | uniform | learned ({n}) | tasks kept / tasks with a candidate | prior |"
+            "| `{}` | {} | {} | {}/{} | {:.2} |",
+            k.kind, k.uniform, k.learned, k.tasks_kept, k.tasks, k.prior
         );
-        let _ = writeln!(s, "|---|---:|---:|---:|---:|");
-        for k in r.spurious_kinds.iter().take(SPURIOUS_SHOWN) {
-            let _ = writeln!(
-                s,
-                "| `{}` | {} | {} | {}/{} | {:.2} |",
-                k.kind, k.uniform, k.learned, k.tasks_kept, k.tasks, k.prior
-            );
-        }
     }
-    if !r.targets.is_empty() {
-        let _ = writeln!(s, "\nTargets:\n");
-        for t in &r.targets {
-            let _ = writeln!(
-                s,
-                "- {}: {} ({})",
-                t.target,
-                if t.holds { "holds" } else { "MISSES" },
-                t.measured
-            );
-        }
+}
+
+fn targets_text(s: &mut String, r: &PriorsBenchReport) {
+    use std::fmt::Write;
+    if r.targets.is_empty() {
+        return;
     }
-    s
+    let _ = writeln!(s, "\nTargets:\n");
+    for t in &r.targets {
+        let _ = writeln!(
+            s,
+            "- {}: {} ({})",
+            t.target,
+            if t.holds { "holds" } else { "MISSES" },
+            t.measured
+        );
+    }
 }

@@ -492,7 +492,9 @@ fn write_population(
     use rccpack::scene::scenes_to_json;
     let (held, library) = priors::population(cfg, progress)?;
     for (i, t) in library.iter().enumerate() {
-        let d = dir.join("library").join(format!("{:02}", i + 1));
+        let d = dir
+            .join("library")
+            .join(format!("{:02}", i.saturating_add(1)));
         std::fs::create_dir_all(&d)
             .with_context(|| format!("{}: cannot create directory", d.display()))?;
         write_file(
@@ -504,7 +506,9 @@ fn write_population(
         write_file(&d.join("learned.rcc"), print_rules(&kept), "the kept rules")?;
     }
     for (i, t) in held.iter().enumerate() {
-        let d = dir.join("held-out").join(format!("{:02}", i + 1));
+        let d = dir
+            .join("held-out")
+            .join(format!("{:02}", i.saturating_add(1)));
         std::fs::create_dir_all(&d)
             .with_context(|| format!("{}: cannot create directory", d.display()))?;
         write_file(
