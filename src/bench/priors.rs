@@ -1124,16 +1124,14 @@ pub fn run(
     let true_arc = Arc::new(true_priors);
     conditions.push((Condition::True, cfg.true_library, Some(true_arc)));
     let rows = learn_rows(cfg, &held, &conditions, progress)?;
-    let ask = if cfg.ask {
+    let asked_tasks = cfg.ask_tasks.unwrap_or(held.len()).min(held.len());
+    let ask = if cfg.ask && asked_tasks > 0 {
         let largest = conditions
             .iter()
             .rfind(|c| c.0 == Condition::Learned)
             .cloned();
-        let asked: Vec<_> = std::iter::once(conditions[0].clone())
-            .chain(largest)
-            .collect();
-        let n = cfg.ask_tasks.unwrap_or(held.len()).min(held.len());
-        ask_rows(cfg, &held[..n], &asked, progress)?
+        let asked: Vec<_> = conditions.iter().take(1).cloned().chain(largest).collect();
+        ask_rows(cfg, &held[..asked_tasks], &asked, progress)?
     } else {
         Vec::new()
     };
