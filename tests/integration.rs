@@ -23,6 +23,7 @@ mod learn_cli;
 mod learn_props;
 mod parser;
 mod priors;
+mod priors_bench;
 mod relations;
 mod render;
 mod resemblance;

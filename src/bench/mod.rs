@@ -10,11 +10,15 @@
 //!   the emitted model, for side-by-side measurement;
 //! * [`tasks`] — realistic tasks: demonstrations that follow a hidden
 //!   style, rules learned from them, problems larger than the
-//!   demonstrations, and the bundled example scaled.
+//!   demonstrations, and the bundled example scaled;
+//! * [`priors`] — priors learned across tasks on a seeded population of
+//!   demonstrators (`rccpack bench priors`): uniform, learned, shuffled and
+//!   true-frequency priors on held-out tasks.
 
 pub mod chart;
 pub mod peers;
 pub mod pool;
+pub mod priors;
 pub mod sample;
 pub mod tasks;
 pub mod thesis;

@@ -69,7 +69,7 @@ pub const GRID: i64 = 10;
 /// Thickness of the walls.
 pub const WALL: i64 = 10;
 /// The sizes a class's blocks may have (20×20 three times as likely).
-const BLOCK_SIZES: [(i64, i64); 7] = [
+pub(crate) const BLOCK_SIZES: [(i64, i64); 7] = [
     (20, 20),
     (20, 20),
     (20, 20),
@@ -403,7 +403,7 @@ fn round_up(v: f64) -> i64 {
 }
 
 /// The box for `classes` (see the module doc, step 3).
-fn box_for(classes: &[ClassSpec], largest: f64, rng: &mut ChaCha8Rng) -> BoxGeom {
+pub(crate) fn box_for(classes: &[ClassSpec], largest: f64, rng: &mut ChaCha8Rng) -> BoxGeom {
     let area: i64 = classes
         .iter()
         .map(|c| scaled(c.max_count, largest) as i64 * c.width * c.height)
@@ -643,7 +643,7 @@ fn grow(p: &Placer, start: Rect, n: usize, floor: i64, rng: &mut ChaCha8Rng) -> 
     Some(rs)
 }
 
-fn block(class: &str, k: usize, w: i64, h: i64, at: Option<Rect>) -> Object {
+pub(crate) fn block(class: &str, k: usize, w: i64, h: i64, at: Option<Rect>) -> Object {
     Object {
         id: format!("{}{}", class.to_ascii_lowercase(), k + 1),
         class: class.to_string(),
@@ -710,6 +710,21 @@ fn draw_habits(k: usize, rng: &mut ChaCha8Rng) -> Vec<Habit> {
 /// The demonstrations of a task, or `None` when a placement failed.
 fn make_demos(geom: &BoxGeom, classes: &[ClassSpec], rng: &mut ChaCha8Rng) -> Option<Vec<Scene>> {
     let d = rng.random_range(3..=5usize);
+    make_demos_n(geom, classes, d, rng)
+}
+
+/// `d` demonstrations of `classes` in `geom`'s box, each class placed by
+/// its habit (one demonstration per class shows its largest count), or
+/// `None` when a placement failed.
+pub(crate) fn make_demos_n(
+    geom: &BoxGeom,
+    classes: &[ClassSpec],
+    d: usize,
+    rng: &mut ChaCha8Rng,
+) -> Option<Vec<Scene>> {
+    if d == 0 {
+        return None;
+    }
     // Per demonstration and class, the count; one demonstration per class
     // shows the largest.
     let mut counts: Vec<Vec<usize>> = (0..d)
@@ -765,7 +780,7 @@ fn make_demos(geom: &BoxGeom, classes: &[ClassSpec], rng: &mut ChaCha8Rng) -> Op
     Some(demos)
 }
 
-fn task_rng(seed: u64, task: usize) -> ChaCha8Rng {
+pub(crate) fn task_rng(seed: u64, task: usize) -> ChaCha8Rng {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     rng.set_stream(task as u64 + 1);
     rng
@@ -786,6 +801,27 @@ fn learn_with(
     Ok((learned.rules(), learned.to_rcc()))
 }
 
+/// Per class of `k`, the largest count a demonstration shows: 2–6 each,
+/// adjusted so that the sum is between 10 and 20 (see the module doc,
+/// step 1).
+pub(crate) fn draw_maxes(k: usize, rng: &mut ChaCha8Rng) -> Vec<usize> {
+    let mut maxes: Vec<usize> = (0..k).map(|_| rng.random_range(2..=6usize)).collect();
+    while maxes.iter().sum::<usize>() < 10 {
+        let i = (0..k).filter(|&i| maxes[i] < 6).min_by_key(|&i| maxes[i]);
+        match i {
+            Some(i) => maxes[i] += 1,
+            None => break,
+        }
+    }
+    while maxes.iter().sum::<usize>() > 20 {
+        let i = (0..k)
+            .max_by_key(|&i| (maxes[i], usize::MAX - i))
+            .unwrap_or(0);
+        maxes[i] -= 1;
+    }
+    maxes
+}
+
 /// Generated task `index` of `cfg` (deterministic in `cfg.seed`, `index`,
 /// and `cfg.sizes`' values).
 pub fn generate_task(cfg: &TasksConfig, index: usize) -> Result<Task, TaskError> {
@@ -794,20 +830,7 @@ pub fn generate_task(cfg: &TasksConfig, index: usize) -> Result<Task, TaskError>
     const TRIES: usize = 20;
     for _ in 0..TRIES {
         let k = rng.random_range(2..=4usize);
-        let mut maxes: Vec<usize> = (0..k).map(|_| rng.random_range(2..=6usize)).collect();
-        while maxes.iter().sum::<usize>() < 10 {
-            let i = (0..k).filter(|&i| maxes[i] < 6).min_by_key(|&i| maxes[i]);
-            match i {
-                Some(i) => maxes[i] += 1,
-                None => break,
-            }
-        }
-        while maxes.iter().sum::<usize>() > 20 {
-            let i = (0..k)
-                .max_by_key(|&i| (maxes[i], usize::MAX - i))
-                .unwrap_or(0);
-            maxes[i] -= 1;
-        }
+        let maxes = draw_maxes(k, &mut rng);
         let habits = draw_habits(k, &mut rng);
         let classes: Vec<ClassSpec> = (0..k)
             .map(|i| {
