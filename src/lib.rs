@@ -151,7 +151,7 @@
 //! writes `rccpack = { version = "0.1", default-features = false }` and gets
 //! the core above (learning, evaluation, synthesis, SVG, the task pipeline)
 //! with no web server, image or CLI crates; `png`, `studio`, `bench` and
-//! `cli` add the rest (see README "Use as a library").
+//! `cli` add the rest (see the README, "As a library").
 //!
 //! The command-line tool `rccpack` wraps these (`check`, `score`, `render`,
 //! …); see the README.
@@ -192,3 +192,10 @@ pub use synth::{
     synthesize, Conflict, Resemblance, SolveStats, Status, SynthError, SynthOptions, SynthResult,
 };
 pub use task::{Task, TaskError};
+
+/// The Rust examples of the README and the docs, compiled and run as
+/// doctests so that a page cannot drift from the crate (the shell examples
+/// run in `tests/docs.rs`).
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -12,6 +12,7 @@ mod ask_tasks;
 mod bench_tasks;
 mod bench_thesis;
 mod cli;
+mod docs;
 mod emit;
 mod example;
 mod first_edition;

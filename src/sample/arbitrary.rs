@@ -1,5 +1,5 @@
 //! `Arbitrary` scenes and rule sets for cargo-fuzz users (`--features
-//! arbitrary`, issue 24): every value is a valid input, so a fuzzer spends
+//! arbitrary`): every value is a valid input, so a fuzzer spends
 //! its time past the input checks.
 //!
 //! * [`Scene`]: a space of 1 to 16 grid steps a side (grid 1 to 20), up to

@@ -41,8 +41,8 @@
 //! closer to uniform than activity-based repair, and 1.5 to 3 times slower.
 //! Because found layouts are
 //! excluded, the first `k` samples are `k` distinct layouts, and drawing
-//! until the end enumerates every layout exactly once. The README reports
-//! a chi-square test against uniform on tiny problems enumerated by brute
+//! until the end enumerates every layout exactly once. docs/performance.md#sampling
+//! reports a chi-square test against uniform on tiny problems enumerated by brute
 //! force (`rccpack bench sample`).
 //!
 //! # Determinism
@@ -115,7 +115,7 @@ pub struct SampleOptions {
 }
 
 /// How the engine completes a random hint into a layout (see the module
-/// documentation; measured in the README, "Sampling layouts").
+/// documentation; measured in docs/performance.md#sampling).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Repair {
     /// A random grid variable and a random value at each decision: closer

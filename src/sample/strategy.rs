@@ -1,4 +1,4 @@
-//! Strategies for property tests (`--features proptest`, issue 24).
+//! Strategies for property tests (`--features proptest`).
 //!
 //! * [`demo_scenes`] — (a) scenes from the demonstrations' distribution:
 //!   the learner's null model (SPEC §7.2) re-places the movable objects of
