@@ -1,7 +1,8 @@
 //! Every shell example in the documentation runs, and prints what the page
 //! says it prints.
 //!
-//! The pages are `README.md`, `CONTRIBUTING.md` and `docs/*.md`. A fenced
+//! The pages are `README.md`, `CONTRIBUTING.md`, `docs/*.md` and the
+//! bundled examples' `examples/*/README.md`. A fenced
 //! block whose language is `console` is a session, in the syntax of
 //! `trycmd` (which cargo and clap use for the same purpose):
 //!
@@ -55,6 +56,9 @@ fn pages() -> Vec<PathBuf> {
         .collect();
     docs.sort();
     pages.extend(docs);
+    for example in ["box-packing", "shelf"] {
+        pages.push(support::path(&format!("examples/{example}/README.md")));
+    }
     pages
 }
 
