@@ -2,22 +2,14 @@
 //! enumeration, determinism across thread counts, the box-packing example
 //! and typed errors for bad input.
 
+use crate::support::formulas::atom;
 use rccpack::eval::Evaluator;
 use rccpack::infer::templates::generate_set;
 use rccpack::infer::Posterior;
 use rccpack::infer::{learn, InferError, LearnParams, NullModel, Templates};
 use rccpack::relations::{Contact, Dir, Kind, Relation};
-use rccpack::rules::{parse_rules, Atom, Formula, Rule, RuleSet, Scope, Target};
+use rccpack::rules::{parse_rules, Formula, Rule, RuleSet, Scope, Target};
 use rccpack::scene::{scenes_from_json, Object, Scene, Space};
-
-fn atom(kind: Kind, dir: Dir, s: &str, t: &str) -> Formula {
-    let target = if t == "*" {
-        Target::Any
-    } else {
-        Target::Class(t.into())
-    };
-    Formula::Atom(Atom::new(Relation::new(kind, dir), s, target))
-}
 
 fn obj(id: &str, class: &str, x: i64, y: i64, w: i64, h: i64, fixed: bool) -> Object {
     Object {
@@ -111,12 +103,12 @@ fn exact_fraction(demo: &Scene, f: &Formula) -> f64 {
 fn check_null_model(fixed_x: i64, fixed_y: i64) {
     let demo = small_demo(fixed_x, fixed_y);
     let statements = [
-        atom(Kind::DR, Dir::N, "M", "F"),
-        atom(Kind::EC, Dir::N, "M", "F"),
+        atom("DR_N", "M", "F"),
+        atom("EC_N", "M", "F"),
         Formula::Or(
             Dir::ALL
                 .iter()
-                .map(|&d| atom(Kind::EC, d, "M", "F"))
+                .map(|&d| atom(Relation::new(Kind::EC, d), "M", "F"))
                 .collect(),
         ),
     ];
@@ -179,10 +171,7 @@ fn learn_chance_rate_matches_exact_enumeration() {
     let mut demo = small_demo(20, 10);
     demo.objects[1].x = Some(20);
     demo.objects[1].y = Some(20); // on top of F: DR_N and EC_N hold
-    let statements = [
-        atom(Kind::DR, Dir::N, "M", "F"),
-        atom(Kind::EC, Dir::N, "M", "F"),
-    ];
+    let statements = [atom("DR_N", "M", "F"), atom("EC_N", "M", "F")];
     let set = RuleSet::new(vec![
         Rule::new("m_north", statements[0].clone()),
         Rule::new("m_on_top", statements[1].clone()),
@@ -825,7 +814,7 @@ fn demonstrations_with_different_spaces_are_an_error() {
 #[test]
 fn statement_naming_an_absent_class_is_an_error() {
     let demos = synthetic_demos();
-    let set = RuleSet::new(vec![Rule::new("q_north", atom(Kind::DR, Dir::N, "B", "Q"))]);
+    let set = RuleSet::new(vec![Rule::new("q_north", atom("DR_N", "B", "Q"))]);
     let e = err(&demos, Some(&set));
     assert_eq!(
         e.to_string(),
@@ -933,10 +922,7 @@ fn learned_scene_level_rules_are_written_with_their_quantifier() {
         rccpack::rules::print_rule(&rule.with_scope(Scope::Each))
     );
     assert_eq!(
-        statement_text(
-            Scope::Scene(Quant::AtLeast(2)),
-            &atom(Kind::FL, Dir::N, "G", "G")
-        ),
+        statement_text(Scope::Scene(Quant::AtLeast(2)), &atom("FL_N", "G", "G")),
         "at least 2 G: FL_N(G, G)"
     );
 }

@@ -150,7 +150,7 @@ fn huge_library_time_limit_is_no_deadline() {
 /// a message naming the value and the range.
 #[test]
 fn bad_time_limits_exit_1_everywhere() {
-    let out = std::env::temp_dir().join(format!("rccpack-robust-{}", std::process::id()));
+    let out = crate::support::scratch("robust-time-limits").join("out");
     let out = out.to_str().unwrap();
     let problem = "examples/box-packing/problem.json";
     let rules = "examples/box-packing/pilot.rcc";
@@ -231,7 +231,7 @@ fn usage_errors_exit_1_help_exits_0() {
 /// once (exit 1, naming the flag and the value), before drawing anything.
 #[test]
 fn bench_flags_out_of_range_are_refused() {
-    let out = std::env::temp_dir().join(format!("rccpack-bench-refuse-{}", std::process::id()));
+    let out = crate::support::scratch("robust-bench-refuse").join("out");
     for (args, names) in [
         (vec!["--scale-ns", "0"], "invalid value '0' for '--scale-ns"),
         (
@@ -303,8 +303,7 @@ fn absurd_sample_counts_are_refused() {
 /// exit 0 (it used to panic inside Pumpkin).
 #[test]
 fn huge_space_through_the_command_line() {
-    let dir = std::env::temp_dir().join(format!("rccpack-robust-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::support::scratch("robust-huge-space");
     let p = dir.join("huge.json");
     std::fs::write(
         &p,

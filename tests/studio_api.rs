@@ -11,15 +11,12 @@ use tower::ServiceExt;
 /// A fresh copy of the bundled example in a temporary folder (no demos.json
 /// unless `with_demos`).
 fn task_dir(tag: &str, with_demos: bool) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("rccpack-studio-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing");
-    std::fs::copy(src.join("problem.json"), dir.join("problem.json")).unwrap();
-    if with_demos {
-        std::fs::copy(src.join("demos.json"), dir.join("demos.json")).unwrap();
-    }
-    dir
+    let files: &[&str] = if with_demos {
+        &["problem.json", "demos.json"]
+    } else {
+        &["problem.json"]
+    };
+    crate::support::example_copy(&format!("studio-{tag}"), "box-packing", files)
 }
 
 async fn call(
@@ -1355,8 +1352,7 @@ async fn learn_200(app: &axum::Router) -> Value {
 /// intended rules as learned.rcc.
 fn library_priors(tag: &str) -> rccpack::priors::Priors {
     let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let lib = std::env::temp_dir().join(format!("rccpack-studio-lib-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&lib);
+    let lib = crate::support::scratch(&format!("studio-lib-{tag}"));
     let mut dirs = Vec::new();
     for (name, learned) in [("box-packing", "pilot.rcc"), ("shelf", "intended.rcc")] {
         let d = lib.join(name);
@@ -1430,7 +1426,7 @@ fn studio_refuses_a_bad_priors_file_naming_the_field() {
     let text = library_priors("bad").to_json();
     let bad = dir.join("priors.json");
     std::fs::write(&bad, text.replacen("\"tasks\": 2", "\"tasks\": 3", 1)).unwrap();
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rccpack"))
+    let mut child = crate::support::command()
         .arg("studio")
         .arg(&dir)
         .arg("--priors")
