@@ -423,7 +423,7 @@ fn main() {
                 TASKS - 1,
                 if budget == 1 { "budget" } else { "plain" },
                 ready.len(),
-                median(&ready),
+                median(ready),
                 max(ready)
             );
         }
