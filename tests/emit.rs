@@ -71,13 +71,6 @@ fn flush_shape(subject: &str) -> Formula {
     )
 }
 
-fn overlaps(objects: &[Object], o: &Object) -> bool {
-    objects.iter().any(|p| match (p.rect(), o.rect()) {
-        (Some(a), Some(b)) => a.interiors_overlap(&b),
-        _ => false,
-    })
-}
-
 fn random_case(index: u64) -> Case {
     let mut rng = ChaCha8Rng::seed_from_u64(SEED);
     rng.set_stream(index);
@@ -110,7 +103,7 @@ fn random_case(index: u64) -> Case {
             10,
             10,
         );
-        if !overlaps(&objects, &o) {
+        if !crate::support::overlaps_any(&objects, &o) {
             objects.push(o);
         }
     }

@@ -3,13 +3,14 @@
 //! and typed errors for bad input.
 
 use crate::support::formulas::atom;
+use crate::support::table;
 use rccpack::eval::Evaluator;
 use rccpack::infer::templates::generate_set;
 use rccpack::infer::Posterior;
 use rccpack::infer::{learn, InferError, LearnParams, NullModel, Templates};
 use rccpack::relations::{Contact, Dir, Kind, Relation};
 use rccpack::rules::{parse_rules, Formula, Rule, RuleSet, Scope, Target};
-use rccpack::scene::{scenes_from_json, Object, Scene, Space};
+use rccpack::scene::{scenes_from_json, Object, Scene};
 
 fn obj(id: &str, class: &str, x: i64, y: i64, w: i64, h: i64, fixed: bool) -> Object {
     Object {
@@ -20,19 +21,6 @@ fn obj(id: &str, class: &str, x: i64, y: i64, w: i64, h: i64, fixed: bool) -> Ob
         width: w,
         height: h,
         fixed,
-    }
-}
-
-fn scene(w: i64, h: i64, objects: Vec<Object>) -> Scene {
-    Scene {
-        space: Space {
-            x: 0,
-            y: 0,
-            width: w,
-            height: h,
-        },
-        grid: 10,
-        objects,
     }
 }
 
@@ -67,7 +55,7 @@ fn worked_check_of_spec_section_7() {
 
 /// One movable 10×10 `M` and one fixed 10×10 `F` in a 60×40 space.
 fn small_demo(fixed_x: i64, fixed_y: i64) -> Scene {
-    scene(
+    table(
         60,
         40,
         vec![
@@ -198,7 +186,7 @@ fn learn_chance_rate_matches_exact_enumeration() {
 /// A fixed 10×10 `f` and two movable `M` of different sizes (10×10 and
 /// 20×10) in a 70×40 space: the two placement orders differ.
 fn scene_level_demo() -> Scene {
-    scene(
+    table(
         70,
         40,
         vec![
@@ -441,7 +429,7 @@ fn synthetic_demos() -> Vec<Scene> {
             for (i, &(c, x, y)) in l.iter().enumerate() {
                 v.push(obj(&format!("{c}{i}"), c, x, y, 20, 20, false));
             }
-            scene(160, 160, v)
+            table(160, 160, v)
         })
         .collect()
 }
@@ -826,7 +814,7 @@ fn statement_naming_an_absent_class_is_an_error() {
 /// two 15-wide objects in a 30-wide space have only grid x ∈ {0, 10}.
 #[test]
 fn unplaceable_objects_are_an_error() {
-    let demo = scene(
+    let demo = table(
         30,
         10,
         vec![

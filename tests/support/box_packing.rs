@@ -4,7 +4,7 @@
 
 use super::formulas::{and, atom, not, or};
 use rccpack::rules::{Formula, Rule, RuleSet};
-use rccpack::scene::{Object, Scene, Space};
+use rccpack::scene::{Object, Scene};
 
 /// `x` touches another `x` on some side.
 pub fn touches(x: &str) -> Formula {
@@ -86,14 +86,5 @@ pub fn box_problem(per_class: usize) -> Scene {
             ));
         }
     }
-    Scene {
-        space: Space {
-            x: 0,
-            y: 0,
-            width: 600,
-            height: 600,
-        },
-        grid: 10,
-        objects,
-    }
+    super::table(600, 600, objects)
 }

@@ -1,7 +1,8 @@
 //! What the integration tests (and the benchmarks, through `#[path]`)
 //! share: running the built binary, reading its output, fresh folders and
 //! files, the bundled examples, a median; `formulas` builds atoms and random
-//! formulas, `box_packing` the box-packing problem and its pilot rules.
+//! formulas, `cases` the random problems of the differential tests,
+//! `box_packing` the box-packing problem and its pilot rules.
 
 #![allow(dead_code)] // each test module uses part of it
 
@@ -84,6 +85,28 @@ pub fn example_copy(tag: &str, name: &str, files: &[&str]) -> PathBuf {
     dir
 }
 
+/// A `w`×`h` table at the origin, grid 10, holding `objects`.
+pub fn table(w: i64, h: i64, objects: Vec<rccpack::scene::Object>) -> rccpack::scene::Scene {
+    rccpack::scene::Scene {
+        space: rccpack::scene::Space {
+            x: 0,
+            y: 0,
+            width: w,
+            height: h,
+        },
+        grid: 10,
+        objects,
+    }
+}
+
+/// Whether `o` overlaps (interiors) a placed object of `objects`.
+pub fn overlaps_any(objects: &[rccpack::scene::Object], o: &rccpack::scene::Object) -> bool {
+    objects.iter().any(|p| match (p.rect(), o.rect()) {
+        (Some(a), Some(b)) => a.interiors_overlap(&b),
+        _ => false,
+    })
+}
+
 /// Fails, naming what is missing, unless `peer` can run: a peer test is
 /// `#[ignore]`d, and one that is run must run.
 pub fn require_peer(peer: rccpack::bench::peers::Peer) {
@@ -101,4 +124,5 @@ pub fn median<T: Copy + PartialOrd + Default>(v: &[T]) -> T {
 }
 
 pub mod box_packing;
+pub mod cases;
 pub mod formulas;
