@@ -1,5 +1,5 @@
-//! Issue 21 (hardening), through the built binary: what a hostile but fair
-//! user tried, and what the tool must answer.
+//! Hardening, through the built binary: what a hostile but fair user
+//! tries, and what the tool must answer.
 
 use crate::support::{rccpack, scratch, stderr, stdout, write_file};
 use std::path::Path;

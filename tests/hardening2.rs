@@ -1,6 +1,5 @@
-//! Issue 35 (hardening, second pass), through the built binary: what a
-//! hostile but fair user tried the second time, and what the tool must
-//! answer. Each test names its item.
+//! More hardening, through the built binary: what a hostile but fair user
+//! tries, and what the tool must answer.
 
 use crate::support::{example_copy, rccpack, scratch, stderr, stdout, write_file};
 use std::path::{Path, PathBuf};

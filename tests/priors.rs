@@ -1,4 +1,4 @@
-//! Priors learned across tasks (issue 30): the estimator's laws, the file's
+//! Priors learned across tasks: the estimator's laws, the file's
 //! errors, and learning with a uniform priors file equal to learning
 //! without one.
 

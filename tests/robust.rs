@@ -1,4 +1,4 @@
-//! Issue 11: inputs that used to panic or wrap, and every documented limit
+//! Inputs that must not panic or wrap, and every documented limit
 //! at and just past its bound (accepted and solved correctly at the limit,
 //! refused with a clear message just past it).
 
@@ -366,7 +366,7 @@ fn non_finite_weights_are_refused() {
     }
 }
 
-/// Found by the first probes (issue 13): on this infeasible problem (the
+/// Found by the first probes: on this infeasible problem (the
 /// bundled example with 54 learned rules hard and one negated) Pumpkin's
 /// `extract_core` panicked or ran for minutes past the time limit. The
 /// conflict is now shrunk by deletion, every solve under the limits.
@@ -471,7 +471,7 @@ rule r2 weight 2: !AL_E(B, no B) & (DR_W(B, W) | DR_W(B, W) | DR_W(B, A))
     assert_eq!(c.hard_rules, vec!["r1".to_string()]);
 }
 
-/// Issue 21's limits, at and just past their bounds: the rule text size,
+/// More documented limits, at and just past their bounds: the rule text size,
 /// the statements one learning run weighs, values echoed in messages,
 /// `--oracle-timeout`.
 #[test]

@@ -1,4 +1,4 @@
-//! `rccpack::sample` (issue 24): every layout valid (evaluator and the
+//! `rccpack::sample`: every layout valid (evaluator and the
 //! independent verifier), distinct, of the quality asked for; determinism;
 //! exhaustion agrees with brute force; "no layout" is reported.
 

@@ -1,4 +1,4 @@
-//! `rccpack sample` as a user meets it (issue 24): the JSON array written,
+//! `rccpack sample` as a user meets it: the JSON array written,
 //! exit codes and messages.
 
 use crate::support::{rccpack, scratch, stderr, write_file};

@@ -568,8 +568,8 @@ async fn synth_can_be_cancelled() {
     assert_eq!(done["state"], "done", "{done}");
 }
 
-/// Issue 11: the studio's `samples` has the documented upper bound (it had
-/// none: a huge value ran until killed), and `time_limit` goes through the
+/// The studio's `samples` has the documented upper bound (a huge value
+/// would run until killed), and `time_limit` goes through the
 /// shared parser; both answer 400 naming the field.
 #[tokio::test]
 async fn learn_samples_and_synth_time_limit_are_bounded() {
@@ -945,7 +945,7 @@ async fn call_with(
     (status, v)
 }
 
-/// Issue 21, item 1: a page elsewhere cannot change a file or start work
+/// A page elsewhere cannot change a file or start work
 /// (SPEC §15, trust of the studio).
 #[tokio::test]
 async fn foreign_origins_and_simple_requests_are_refused() {
@@ -1021,7 +1021,7 @@ async fn foreign_origins_and_simple_requests_are_refused() {
     assert_eq!(s, StatusCode::OK);
 }
 
-/// Issue 21, item 6: with a question open, a demonstration added to
+/// With a question open, a demonstration added to
 /// demos.json and a rule added to learned.rcc by hand are never lost when
 /// the question is answered.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -1061,7 +1061,7 @@ async fn answering_never_overwrites_hand_edits() {
     assert!(v["question"].is_object() || v["question"].is_null(), "{v}");
 }
 
-/// Issue 35, item 4: an outside edit to answers.json (a hand fix, a
+/// An outside edit to answers.json (a hand fix, a
 /// `rccpack ask` run between two questions) is never overwritten by an
 /// answer given in the studio.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -1090,7 +1090,7 @@ async fn answering_never_overwrites_an_edited_answers_file() {
     );
 }
 
-/// Issue 21, item 7 (studio side): while `rccpack ask` holds the task
+/// The studio side of the lock: while `rccpack ask` holds the task
 /// folder's lock, the studio writes nothing and says why.
 #[tokio::test]
 async fn studio_writes_wait_for_the_folder_lock() {
@@ -1119,7 +1119,7 @@ async fn studio_writes_wait_for_the_folder_lock() {
     assert_eq!(s, StatusCode::CREATED);
 }
 
-/// Issue 21, item 8: many errors in one rule text are reported in linear
+/// Many errors in one rule text are reported in linear
 /// time (timed as a ratio against a text ten times smaller), at most 20 of
 /// them and the count of the rest.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -1168,7 +1168,7 @@ async fn many_rule_errors_are_reported_in_linear_time() {
     }
 }
 
-/// Issue 21, items 11 and 14: learned rules about a class the problem
+/// Learned rules about a class the problem
 /// lacks are noted, not refused; `cutoff` is named as the body's field.
 #[tokio::test]
 async fn absent_classes_are_noted_and_fields_named() {
@@ -1219,7 +1219,7 @@ async fn absent_classes_are_noted_and_fields_named() {
     assert_eq!(v["path"], "cutoff");
 }
 
-/// "Another layout like this" (issue 24): `POST /api/sample` draws a layout
+/// "Another layout like this": `POST /api/sample` draws a layout
 /// of at least the given score; each seed another one; every one verified.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn another_layout_like_this() {
@@ -1266,7 +1266,7 @@ async fn another_layout_like_this() {
     assert!(v["error"].as_str().unwrap().contains("min_score"), "{v}");
 }
 
-/// Issue 35, item 11: a learning request whose client leaves is cancelled
+/// A learning request whose client leaves is cancelled
 /// (no core kept busy), and a newer request cancels an older one.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn left_learning_requests_are_cancelled() {
@@ -1313,7 +1313,7 @@ async fn left_learning_requests_are_cancelled() {
     assert_eq!(v["kind"], "cancelled", "{v}");
 }
 
-/// Issue 35, the smaller findings: a 405 is JSON; a demos.json that is not
+/// Smaller cases: a 405 is JSON; a demos.json that is not
 /// UTF-8 is 409 (corrupt, with the byte offset), not 500; a problem.json
 /// that is not UTF-8 names the byte offset.
 #[tokio::test]

@@ -681,7 +681,7 @@ fn synth_report_keeps_first_edition_format() {
 }
 
 // ---------------------------------------------------------------------------
-// Warm starts (issue 20): the bundled example with more blocks per class.
+// Warm starts: the bundled example with more blocks per class.
 
 /// The bundled example's problem with `n` blocks of each class (same sizes).
 fn bundled_with(n: usize) -> Scene {
