@@ -30,6 +30,9 @@
 //! check and probe search runs to its own limits) and `budget` (the
 //! defaults). `--no-probes` skips the probe-search columns.
 
+#[path = "../tests/support/mod.rs"]
+mod support;
+
 use rccpack::ask::{find_probe, AskOptions, Asker, ProbeOptions, ProbeOutcome, QuestionBudget};
 use rccpack::bench::tasks::{generate_task, TasksConfig};
 use rccpack::eval::evaluate;
@@ -41,6 +44,7 @@ use rccpack::sample::{sample, Quality, SampleOptions};
 use rccpack::scene::{scenes_from_json, Scene};
 use std::path::Path;
 use std::time::{Duration, Instant};
+use support::median;
 
 /// CPU seconds of this process so far (every thread): what a question
 /// costs on a machine shared with other work.
@@ -54,14 +58,6 @@ fn cpu_seconds() -> f64 {
         libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut t);
     }
     t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    if v.is_empty() {
-        return 0.0;
-    }
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 fn max(v: &[f64]) -> f64 {
@@ -279,7 +275,7 @@ fn probe_times(problem: &Scene, demos: &[Scene], held: &RuleSet) -> (usize, f64,
         probe_ms.push(t.elapsed().as_secs_f64() * 1e3);
         found += usize::from(matches!(o, ProbeOutcome::Probe(_)));
     }
-    (found, median(probe_ms.clone()), max(&probe_ms))
+    (found, median(&probe_ms), max(&probe_ms))
 }
 
 fn main() {
@@ -393,9 +389,9 @@ fn main() {
                     s.dropped,
                     s.edits,
                     s.deferred,
-                    median(s.ready.clone()),
+                    median(&s.ready),
                     max(&s.ready),
-                    median(s.cpu.clone()),
+                    median(&s.cpu),
                     max(&s.cpu),
                     s.total,
                     format!("{recall}/{}", oracle.rules.len()),
@@ -427,7 +423,7 @@ fn main() {
                 TASKS - 1,
                 if budget == 1 { "budget" } else { "plain" },
                 ready.len(),
-                median(ready.clone()),
+                median(ready),
                 max(ready)
             );
         }

@@ -9,17 +9,16 @@
 //! solves, score-only and with `--like`, both to proven optimality; the
 //! report gives the medians over problems and the ratio.
 
+#[path = "../tests/support/mod.rs"]
+mod support;
+
 use rccpack::infer::{learn, LearnParams};
 use rccpack::resemblance::Likeness;
 use rccpack::scene::{scenes_from_json, Scene};
 use rccpack::synth::{synthesize, Status, SynthOptions};
 use std::path::Path;
 use std::time::{Duration, Instant};
-
-fn median(mut v: Vec<Duration>) -> Duration {
-    v.sort();
-    v[v.len() / 2]
-}
+use support::median;
 
 fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
@@ -78,7 +77,7 @@ fn main() {
                 );
                 cost = res.cost;
             }
-            let (a, b) = (median(plain), median(with));
+            let (a, b) = (median(&plain), median(&with));
             println!("{name:24} score-only {:8.2} ms   with --like {:8.2} ms   ratio {:5.2}   cost {cost}", ms(a), ms(b), ms(b) / ms(a));
             rows.push((a, b));
         }
@@ -89,8 +88,8 @@ fn main() {
     println!(
         "median over {} problems: score-only {:.2} ms, with --like {:.2} ms, median ratio {:.2}, max ratio {:.2}",
         rows.len(),
-        ms(median(rows.iter().map(|r| r.0).collect())),
-        ms(median(rows.iter().map(|r| r.1).collect())),
+        ms(median(&rows.iter().map(|r| r.0).collect::<Vec<_>>())),
+        ms(median(&rows.iter().map(|r| r.1).collect::<Vec<_>>())),
         r[r.len() / 2],
         r[r.len() - 1]
     );

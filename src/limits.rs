@@ -77,6 +77,7 @@ pub fn number(v: f64) -> String {
 
 /// A number outside its documented limit.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum LimitError {
     /// A time limit that is not a finite number of seconds in range.
     #[error("time limit {value} is out of range; expected a number of seconds from 0 to {MAX_TIME_LIMIT_SECS}")]

@@ -35,6 +35,7 @@ pub const MAX_MAP_CELLS: u64 = 4_000_000;
 
 /// Why a distance map cannot be built.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
 pub enum LikenessError {
     /// The object's grid domain has more cells than [`MAX_MAP_CELLS`].
     #[error(

@@ -2,7 +2,7 @@
 //! test reads files as text and fails naming the file and line that breaks
 //! a claim, so the document cannot drift from the code.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -164,7 +164,6 @@ fn processes_only_where_allowed() {
         &["std::process::Command", "Command::new", "process::exit"],
         &[
             "src/bench/peers.rs",
-            "src/bench/chart.rs",
             "src/bench/sample.rs",
             "src/cli/",
             "src/main.rs",
@@ -324,5 +323,265 @@ fn every_test_file_is_in_the_integration_binary() {
     assert!(
         missing.is_empty(),
         "test files tests/integration.rs does not declare: {missing:?}"
+    );
+}
+
+fn architecture_md() -> String {
+    fs::read_to_string(root().join("ARCHITECTURE.md")).expect("ARCHITECTURE.md")
+}
+
+/// The names in backticks in `text`.
+fn quoted(text: &str) -> Vec<&str> {
+    text.split('`').skip(1).step_by(2).collect()
+}
+
+/// The public enums named `…Error` in `src/` marked `#[non_exhaustive]`
+/// are exactly those the invariant "Library errors are typed" lists.
+#[test]
+fn the_non_exhaustive_error_enums_are_those_listed() {
+    let mut marked = BTreeSet::new();
+    for f in sources() {
+        let lines = code_lines(&f);
+        for (i, (_, line)) in lines.iter().enumerate() {
+            let Some(rest) = line.trim().strip_prefix("pub enum ") else {
+                continue;
+            };
+            let name: String = rest
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            // The attributes right above the enum.
+            let attributes = lines[..i]
+                .iter()
+                .rev()
+                .take_while(|(_, l)| l.trim().starts_with("#["));
+            if name.ends_with("Error")
+                && attributes
+                    .into_iter()
+                    .any(|(_, l)| l.trim() == "#[non_exhaustive]")
+            {
+                marked.insert(name);
+            }
+        }
+    }
+    let doc = architecture_md();
+    let claim = doc
+        .split("The error enums that are `#[non_exhaustive]`")
+        .nth(1)
+        .expect("ARCHITECTURE.md lists the #[non_exhaustive] error enums")
+        .split("(checked)")
+        .next()
+        .expect("the list ends with (checked)");
+    let listed: BTreeSet<String> = quoted(claim).into_iter().map(String::from).collect();
+    let unlisted: Vec<&String> = marked.difference(&listed).collect();
+    let unmarked: Vec<&String> = listed.difference(&marked).collect();
+    assert!(
+        unlisted.is_empty() && unmarked.is_empty(),
+        "#[non_exhaustive] in src/ but not listed in ARCHITECTURE.md: {unlisted:?}; \
+         listed but not #[non_exhaustive] in src/: {unmarked:?}"
+    );
+}
+
+/// The code map's rows for `src/` modules: module → the modules it may
+/// use (`None`: any, "library API" or "everything").
+fn may_use_table() -> BTreeMap<String, Option<BTreeSet<String>>> {
+    let doc = architecture_md();
+    let mut table = BTreeMap::new();
+    for line in doc.lines() {
+        let cells: Vec<&str> = line.split(" | ").collect();
+        if cells.len() < 3 || !line.starts_with("| `src/") {
+            continue;
+        }
+        let may = cells[cells.len() - 1].trim_end_matches('|').trim();
+        let allowed = if may.contains("library API") || may.contains("everything") {
+            None
+        } else {
+            Some(
+                quoted(may)
+                    .into_iter()
+                    .map(|m| m.split("::").next().unwrap_or(m).to_string())
+                    .collect(),
+            )
+        };
+        for path in quoted(cells[0].trim_start_matches("| ")) {
+            if let Some(module) = module_of(path) {
+                table.insert(module, allowed.clone());
+            }
+        }
+    }
+    table
+}
+
+/// The top-level module of a path under `src/` (`src/rules/check.rs` →
+/// `rules`, `src/scene.rs` → `scene`); `None` for the crate root and the
+/// binary (`lib.rs`, `main.rs`, `cli/`), which are no library module.
+fn module_of(path: &str) -> Option<String> {
+    let rest = path.strip_prefix("src/")?;
+    let first = rest.split('/').next()?.trim_end_matches(".rs");
+    (!["lib", "main", "cli", ""].contains(&first)).then(|| first.to_string())
+}
+
+/// The top-level modules a file names through `crate::` (single paths and
+/// `crate::{…}` groups, over several lines too), outside its test module,
+/// with the line of the first mention.
+fn crate_references(rel: &Path) -> BTreeMap<String, usize> {
+    let mut code = String::new();
+    let mut numbers = Vec::new();
+    for (n, line) in code_lines(rel) {
+        if line.starts_with("#[cfg(test)]") {
+            break;
+        }
+        // A trailing comment is no reference.
+        let line = line.split(" // ").next().unwrap_or_default();
+        code.push_str(line);
+        code.push('\n');
+        numbers.resize(code.len(), n);
+    }
+    let mut found = BTreeMap::new();
+    let mut note = |name: &str, at: usize| {
+        let name = name.trim();
+        if !name.is_empty() && name.chars().all(|c| c.is_alphanumeric() || c == '_') {
+            found.entry(name.to_string()).or_insert(numbers[at]);
+        }
+    };
+    for (at, _) in code.match_indices("crate::") {
+        if at > 0 && code[..at].ends_with('$') {
+            continue;
+        }
+        let rest = &code[at + "crate::".len()..];
+        if let Some(group) = rest.strip_prefix('{') {
+            // Top-level items of the group: split at commas outside braces.
+            let mut depth = 0;
+            let mut item = String::new();
+            for c in group.chars() {
+                match c {
+                    '{' => depth += 1,
+                    '}' if depth == 0 => break,
+                    '}' => depth -= 1,
+                    ',' if depth == 0 => {
+                        note(item.split("::").next().unwrap_or_default(), at);
+                        item.clear();
+                        continue;
+                    }
+                    _ => {}
+                }
+                item.push(c);
+            }
+            note(item.split("::").next().unwrap_or_default(), at);
+        } else {
+            let name: String = rest
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            note(&name, at);
+        }
+    }
+    found
+}
+
+/// Every `crate::` reference in a library module is an edge the code
+/// map's "may use" column allows; the check is per module, so new files
+/// under an existing module need no change here.
+#[test]
+fn modules_use_only_what_the_code_map_allows() {
+    let table = may_use_table();
+    assert!(table.len() >= 15, "code map rows found: {table:?}");
+    let modules: BTreeSet<String> = sources()
+        .iter()
+        .filter_map(|f| module_of(&unix(f)))
+        .collect();
+    let mut wrong = Vec::new();
+    for f in sources() {
+        let name = unix(&f);
+        let Some(module) = module_of(&name) else {
+            continue;
+        };
+        let Some(allowed) = table.get(&module) else {
+            wrong.push(format!(
+                "{name}: module `{module}` has no row in the code map"
+            ));
+            continue;
+        };
+        let Some(allowed) = allowed else {
+            continue;
+        };
+        for (other, line) in crate_references(&f) {
+            if other != module && modules.contains(&other) && !allowed.contains(&other) {
+                wrong.push(format!(
+                    "{name}:{line}: `{module}` uses `{other}`, not in its \"may use\" column"
+                ));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "ARCHITECTURE.md's code map does not allow:\n{}",
+        wrong.join("\n")
+    );
+}
+
+/// Every file of `tests/` (and of `tests/support/`) is named in the code
+/// map's `tests/` row.
+#[test]
+fn every_test_file_is_in_the_test_map() {
+    let doc = architecture_md();
+    let row = doc
+        .lines()
+        .find(|l| l.starts_with("| `tests/` |"))
+        .expect("a tests/ row in the code map");
+    let named: BTreeSet<&str> = quoted(row).into_iter().collect();
+    let mut missing = Vec::new();
+    for dir in ["tests", "tests/support"] {
+        for entry in fs::read_dir(root().join(dir)).expect("read tests/") {
+            let p = entry.expect("entry").path();
+            let file = p.file_name().expect("name").to_string_lossy().to_string();
+            if p.extension().is_some_and(|e| e == "rs")
+                && file != "integration.rs"
+                && !named.contains(file.as_str())
+            {
+                missing.push(format!("{dir}/{file}"));
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "test files missing from ARCHITECTURE.md's tests/ row: {missing:?}"
+    );
+}
+
+/// Tests ignored because they need a tool (`#[ignore = "needs …"]`) are
+/// run by `.ci/run` by their full names, so CI cannot pass without them.
+#[test]
+fn tests_that_need_a_tool_run_in_ci() {
+    let ci = fs::read_to_string(root().join(".ci/run")).expect(".ci/run");
+    let mut missing = Vec::new();
+    let mut found = 0;
+    for entry in fs::read_dir(root().join("tests")).expect("read tests/") {
+        let p = entry.expect("entry").path();
+        if p.extension().is_none_or(|e| e != "rs") {
+            continue;
+        }
+        let stem = p.file_stem().expect("stem").to_string_lossy().to_string();
+        let text = fs::read_to_string(&p).expect("read a test file");
+        let mut needs = false;
+        for line in text.lines() {
+            let t = line.trim();
+            if t.starts_with("#[ignore = \"needs ") {
+                needs = true;
+            } else if let Some(rest) = t.strip_prefix("fn ").filter(|_| needs) {
+                needs = false;
+                found += 1;
+                let name = rest.split('(').next().unwrap_or_default();
+                let full = format!("{stem}::{name}");
+                if !ci.split_whitespace().any(|w| w == full) {
+                    missing.push(full);
+                }
+            }
+        }
+    }
+    assert!(found >= 4, "found {found} tests that need a tool");
+    assert!(
+        missing.is_empty(),
+        ".ci/run does not run these ignored tests by name: {missing:?}"
     );
 }

@@ -6,35 +6,29 @@ use rccpack::rules::{parse_rules, Rule, RuleSet, Strength};
 use rccpack::scene::{scenes_from_json, Scene};
 use rccpack::synth::{synthesize, Status, SynthOptions};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 use std::time::Duration;
 
-fn bin() -> &'static str {
-    env!("CARGO_BIN_EXE_rccpack")
-}
-
 fn example() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing")
+    crate::support::example("box-packing")
 }
 
 /// A fresh copy of the bundled task folder (problem, demos, pilot rules).
 fn task(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("rccpack-ask-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    for f in ["problem.json", "demos.json", "pilot.rcc"] {
-        std::fs::copy(example().join(f), dir.join(f)).unwrap();
-    }
-    dir
+    crate::support::example_copy(
+        &format!("ask-{name}"),
+        "box-packing",
+        &["problem.json", "demos.json", "pilot.rcc"],
+    )
 }
 
 fn ask(dir: &Path, extra: &[&str]) -> Output {
     let oracle = format!(
         "'{}' score --rules '{}' --require",
-        bin(),
+        env!("CARGO_BIN_EXE_rccpack"),
         dir.join("pilot.rcc").display()
     );
-    Command::new(bin())
+    crate::support::command()
         .arg("ask")
         .arg(dir)
         // The node budgets bound every solve and make the runs
@@ -169,14 +163,14 @@ fn pilot_oracle_keeps_the_twelve_and_drops_the_habits() {
         );
     }
     // (3) `run`'s layout keeps all twelve.
-    let o = Command::new(bin())
+    let o = crate::support::command()
         .args(["run"])
         .arg(&dir)
         .args(["--time-limit", "60"])
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", text(&o));
-    let o = Command::new(bin())
+    let o = crate::support::command()
         .arg("score")
         .arg(dir.join("solution.json"))
         .arg("--rules")
@@ -200,7 +194,7 @@ fn abort_keeps_answers_and_a_second_run_resumes() {
     let demos_after_two = read(&dir, "demos.json");
 
     // An oracle that exits 2 aborts: exit 1, nothing lost.
-    let o = Command::new(bin())
+    let o = crate::support::command()
         .arg("ask")
         .arg(&dir)
         .args(["--oracle", "exit 2", "--samples", "1000"])
@@ -214,7 +208,7 @@ fn abort_keeps_answers_and_a_second_run_resumes() {
     assert_eq!(read(&dir, "demos.json"), demos_after_two);
 
     // End of input on the terminal aborts the same way.
-    let o = Command::new(bin())
+    let o = crate::support::command()
         .arg("ask")
         .arg(&dir)
         .args(["--samples", "1000"])
@@ -287,7 +281,7 @@ fn score_require_is_an_oracle() {
     let good = dir.join("good.json");
     std::fs::write(&good, demos[0].to_json()).unwrap();
     let run = |scene: &Path| {
-        Command::new(bin())
+        crate::support::command()
             .arg("score")
             .arg(scene)
             .arg("--rules")
@@ -323,7 +317,7 @@ fn bad_node_budgets_exit_1() {
         ("--check-nodes", "abc"),
         ("--node-limit", "-5"),
     ] {
-        let o = Command::new(bin())
+        let o = crate::support::command()
             .arg("ask")
             .arg(&dir)
             .args([flag, value])

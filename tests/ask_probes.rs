@@ -20,16 +20,18 @@
 //!   rules of `by` alone;
 //! - `Unknown` never happens (no limit on tiny problems).
 
+use crate::support::cases::{rule_text, Case};
+use crate::support::overlaps_any;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rccpack::ask::probe_rules;
 use rccpack::ask::{find_probe, negation, ProbeOptions, ProbeOutcome};
-use rccpack::bench::pool::{among, atom, corner, formula_text, touches};
+use rccpack::bench::pool::{among, atom, corner, touches};
 use rccpack::eval::{evaluate, Evaluator};
 use rccpack::relations::{Contact, Dir, Kind, Quant, Relation, MAX_COUNT};
 use rccpack::resemblance::Likeness;
 use rccpack::rules::{Atom, Formula, Rule, RuleSet, Scope, Target};
-use rccpack::scene::{Object, Rect, Scene, Space};
+use rccpack::scene::{Object, Rect, Scene};
 use rccpack::synth::brute_force::grid_positions;
 use rccpack::synth::verify_solution;
 
@@ -44,37 +46,6 @@ const VOC: Vocabulary = Vocabulary {
 const BASE_SEED: u64 = 0xA5C0_9B0E;
 /// Cases whose product of domain sizes exceeds this are made smaller.
 const MAX_LAYOUTS: u64 = 2500;
-
-#[derive(Debug, Clone)]
-struct Case {
-    index: u64,
-    scene: Scene,
-    rules: RuleSet,
-    contact: Contact,
-}
-
-impl Case {
-    fn describe(&self) -> String {
-        let mut s = format!(
-            "case {} (contact {}):\n{}rules:\n",
-            self.index,
-            self.contact,
-            self.scene.to_json()
-        );
-        for r in &self.rules.rules {
-            s.push_str(&format!("rule {}: {}\n", r.name, rule_text(r)));
-        }
-        s
-    }
-}
-
-fn rule_text(r: &Rule) -> String {
-    let scope = match r.scope {
-        Scope::Each | Scope::Group => String::new(),
-        Scope::Scene(q) => format!("{q} {}: ", r.subject()),
-    };
-    format!("{scope}{}", formula_text(&r.formula))
-}
 
 // ---- the generator (after tests/synth_differential.rs, with a class C) ----
 
@@ -151,13 +122,6 @@ fn random_scope(rng: &mut ChaCha8Rng) -> Scope {
     })
 }
 
-fn overlaps_any(objects: &[Object], o: &Object) -> bool {
-    objects.iter().any(|p| match (p.rect(), o.rect()) {
-        (Some(a), Some(b)) => a.interiors_overlap(&b),
-        _ => false,
-    })
-}
-
 /// Product of the domain sizes of the unplaced objects.
 fn layouts(scene: &Scene) -> u64 {
     domains(scene)
@@ -220,16 +184,7 @@ fn random_case(index: u64) -> Case {
             objects.push(o);
         }
     }
-    let mut scene = Scene {
-        space: Space {
-            x: 0,
-            y: 0,
-            width: w,
-            height: h,
-        },
-        grid: 10,
-        objects,
-    };
+    let mut scene = crate::support::table(w, h, objects);
     // Keep the enumeration small: drop unplaced blocks (never below two).
     while layouts(&scene) > MAX_LAYOUTS {
         let unplaced = scene.objects.iter().filter(|o| !o.is_placed()).count();

@@ -599,7 +599,7 @@ fn task_row() {
 /// 0.01). Questions only drop or confirm learned rules, so the loop cannot
 /// bring it back. (c) for it is luck: with the resemblance clauses alone
 /// the final layout kept it; with the bounds propagator beside them
-/// (issue 20) another layout of the same score and resemblance cost 0
+/// another layout of the same score and resemblance cost 0
 /// comes back — each object at a position some demonstration showed (the
 /// resemblance cost does not match objects one to one) — and a blue
 /// touches a red. Every other truth rule is kept. The same rule never

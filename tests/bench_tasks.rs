@@ -1,4 +1,4 @@
-//! `rccpack bench tasks` (issue 20): the realistic-task generator is
+//! `rccpack bench tasks`: the realistic-task generator is
 //! deterministic, its demonstrations are valid scenes that keep every rule
 //! learned from them, its problems have the requested counts and fit their
 //! box; and a quick CLI run exits 0 and writes problems that `synth` reruns.
@@ -7,8 +7,6 @@ use rccpack::bench::tasks::{all_tasks, scaled, TaskSeries, TasksConfig, TASK_CLA
 use rccpack::eval::evaluate;
 use rccpack::relations::Contact;
 use std::collections::BTreeMap;
-use std::path::PathBuf;
-use std::process::Command;
 use std::time::Duration;
 
 fn counts(scene: &rccpack::scene::Scene) -> BTreeMap<String, usize> {
@@ -152,18 +150,11 @@ fn generator_is_deterministic_valid_and_sized() {
     }
 }
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rccpack-bench-tasks-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
-}
-
 #[test]
 fn quick_cli_run_exits_zero_and_problems_rerun() {
-    let out = tmp("quick");
+    let out = crate::support::scratch("bench-tasks-quick").join("out");
     let problems = out.join("problems");
-    let bin = env!("CARGO_BIN_EXE_rccpack");
-    let o = Command::new(bin)
+    let o = crate::support::command()
         .args(["bench", "tasks", "--quick", "--time-limit", "0.2", "--out"])
         .arg(&out)
         .arg("--problems-out")
@@ -189,7 +180,7 @@ fn quick_cli_run_exits_zero_and_problems_rerun() {
     for f in ["task00-1x.json", "task01-1.5x.rcc", "example-5.demos.json"] {
         assert!(problems.join(f).is_file(), "{f} missing");
     }
-    let o = Command::new(bin)
+    let o = crate::support::command()
         .current_dir(&problems)
         .args([
             "synth",
@@ -218,8 +209,7 @@ fn quick_cli_run_exits_zero_and_problems_rerun() {
 /// value), before anything is generated or written.
 #[test]
 fn bad_flags_are_refused() {
-    let out = tmp("refuse");
-    let bin = env!("CARGO_BIN_EXE_rccpack");
+    let out = crate::support::scratch("bench-tasks-refuse").join("out");
     for (args, names) in [
         (vec!["--sizes", "0"], "invalid value '0' for '--sizes"),
         (vec!["--sizes", "1,11"], "invalid value '11' for '--sizes"),
@@ -235,7 +225,7 @@ fn bad_flags_are_refused() {
             "invalid value 'nan' for '--time-limit",
         ),
     ] {
-        let o = Command::new(bin)
+        let o = crate::support::command()
             .args(["bench", "tasks", "--out"])
             .arg(&out)
             .args(&args)

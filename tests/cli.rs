@@ -1,15 +1,6 @@
 //! The command line as a user meets it: exit codes, messages, JSON output.
 
-use crate::support::{rccpack, stderr};
-use std::path::PathBuf;
-
-fn tmp(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("rccpack-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
+use crate::support::{rccpack, scratch, stderr, write_file};
 
 const PILOT: &str = "examples/box-packing/pilot.rcc";
 const DEMOS: &str = "examples/box-packing/demos.json";
@@ -24,8 +15,9 @@ fn check_accepts_the_pilot_rules() {
 
 #[test]
 fn check_reports_unknown_class_with_location() {
-    let rules = tmp("unknown_class.rcc", "rule q: DR_N(B, Q)\n");
-    let o = rccpack(&["check", rules.to_str().unwrap(), "--scene", PROBLEM]);
+    let dir = scratch("cli-check_reports_unknown_class_with_location");
+    let rules = write_file(&dir, "unknown_class.rcc", "rule q: DR_N(B, Q)\n");
+    let o = rccpack(&["check", &rules, "--scene", PROBLEM]);
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
     assert!(e.contains("unknown_class.rcc:1:9"), "{e}");
@@ -34,11 +26,13 @@ fn check_reports_unknown_class_with_location() {
 
 #[test]
 fn check_reports_unknown_landmark_with_location() {
-    let rules = tmp(
+    let dir = scratch("cli-check_reports_unknown_landmark_with_location");
+    let rules = write_file(
+        &dir,
         "bad_landmark.rcc",
         "rule ok: some R: EC_E(R, @w_west)\nrule far: EC_W(R, @w_far) | DR_N(R, B)\n",
     );
-    let o = rccpack(&["check", rules.to_str().unwrap(), "--scene", PROBLEM]);
+    let o = rccpack(&["check", &rules, "--scene", PROBLEM]);
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
     assert!(e.contains("bad_landmark.rcc:2:11"), "{e}");
@@ -50,9 +44,9 @@ fn check_reports_unknown_landmark_with_location() {
     );
     // The same rules pass without a scene (landmarks need one), and other
     // commands that evaluate the rules refuse them the same way.
-    let o = rccpack(&["check", rules.to_str().unwrap()]);
+    let o = rccpack(&["check", &rules]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let o = rccpack(&["score", PROBLEM, "--rules", rules.to_str().unwrap()]);
+    let o = rccpack(&["score", PROBLEM, "--rules", &rules]);
     assert_eq!(o.status.code(), Some(1));
     assert!(
         stderr(&o).contains("bad_landmark.rcc:2:11"),
@@ -60,7 +54,7 @@ fn check_reports_unknown_landmark_with_location() {
         stderr(&o)
     );
     // `learn --statements` checks them against each demonstration.
-    let o = rccpack(&["learn", DEMOS, "--statements", rules.to_str().unwrap()]);
+    let o = rccpack(&["learn", DEMOS, "--statements", &rules]);
     assert_eq!(o.status.code(), Some(1));
     assert!(
         stderr(&o).contains("bad_landmark.rcc:2:11"),
@@ -68,8 +62,12 @@ fn check_reports_unknown_landmark_with_location() {
         stderr(&o)
     );
     // A good landmark is fine.
-    let good = tmp("good_landmark.rcc", "rule ok: some R: EC_E(R, @w_west)\n");
-    let o = rccpack(&["check", good.to_str().unwrap(), "--scene", PROBLEM]);
+    let good = write_file(
+        &dir,
+        "good_landmark.rcc",
+        "rule ok: some R: EC_E(R, @w_west)\n",
+    );
+    let o = rccpack(&["check", &good, "--scene", PROBLEM]);
     assert!(o.status.success(), "{}", stderr(&o));
 }
 
@@ -100,23 +98,20 @@ fn score_json_is_an_array_for_demonstrations() {
 
 #[test]
 fn score_json_is_an_object_for_one_scene_and_names_violators() {
-    let scene = tmp(
+    let dir = scratch("cli-score_json_is_an_object_for_one_scene_and_names_violators");
+    let scene = write_file(
+        &dir,
         "one.json",
         r#"{"space":{"width":100,"height":100},"objects":[
         {"id":"b1","class":"B","x":0,"y":0,"width":10,"height":10},
         {"id":"r1","class":"R","x":0,"y":50,"width":10,"height":10}]}"#,
     );
-    let rules = tmp(
+    let rules = write_file(
+        &dir,
         "one.rcc",
         "rule north: DR_N(B, R)\nrule south hard: DR_S(B, R)\n",
     );
-    let o = rccpack(&[
-        "score",
-        scene.to_str().unwrap(),
-        "--rules",
-        rules.to_str().unwrap(),
-        "--json",
-    ]);
+    let o = rccpack(&["score", &scene, "--rules", &rules, "--json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["score"], 0.0);
@@ -124,12 +119,7 @@ fn score_json_is_an_object_for_one_scene_and_names_violators() {
     assert_eq!(v["rules"][1]["hard"], true);
     assert_eq!(v["hard_violations"], 0);
     // The human table lists the violator too.
-    let o = rccpack(&[
-        "score",
-        scene.to_str().unwrap(),
-        "--rules",
-        rules.to_str().unwrap(),
-    ]);
+    let o = rccpack(&["score", &scene, "--rules", &rules]);
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
         out.contains("north") && out.contains("0/1") && out.contains("b1"),
@@ -139,11 +129,13 @@ fn score_json_is_an_object_for_one_scene_and_names_violators() {
 
 #[test]
 fn bad_json_names_file_and_field() {
-    let scene = tmp(
+    let dir = scratch("cli-bad_json_names_file_and_field");
+    let scene = write_file(
+        &dir,
         "float.json",
         r#"{"space":{"width":100,"height":100},"objects":[{"class":"R","x":12.5,"y":0,"width":1,"height":1}]}"#,
     );
-    let o = rccpack(&["score", scene.to_str().unwrap(), "--rules", PILOT]);
+    let o = rccpack(&["score", &scene, "--rules", PILOT]);
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
     assert!(
@@ -165,8 +157,7 @@ fn missing_file_is_a_clear_error() {
 
 #[test]
 fn render_writes_svg_and_png() {
-    let dir = std::env::temp_dir().join(format!("rccpack-cli-render-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("cli-render");
     for ext in ["svg", "png"] {
         let out = dir.join(format!("demo.{ext}"));
         let o = rccpack(&[
@@ -195,7 +186,7 @@ fn render_writes_svg_and_png() {
 #[test]
 fn debug_log_only_when_asked() {
     let args = ["synth", PROBLEM, "--rules", PILOT, "--node-limit", "2000"];
-    let with = std::process::Command::new(env!("CARGO_BIN_EXE_rccpack"))
+    let with = crate::support::command()
         .args(args)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .env("RCCPACK_DEBUG", "1")

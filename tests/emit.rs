@@ -11,9 +11,9 @@
 //!   cumulative holds, and the objective is the integer numerator implied
 //!   by the evaluator's verdict. The interpreter's Booleans also equal
 //!   `Model::eval_bools` on random assignments.
-//! - **Gecode** through MiniZinc (`bench::peers`, skipped with a message
-//!   when `minizinc` or `python3` is missing) and **CP-SAT** (skipped when
-//!   `python3` or `ortools` is missing): the peer's layout passes
+//! - **Gecode** through MiniZinc (`bench::peers`; needs `minizinc` and
+//!   `python3`) and **CP-SAT** (needs `python3` with `ortools`), ignored
+//!   tests that `.ci/run` runs after installing both: the peer's layout passes
 //!   `verify_solution`, its evaluator score equals rccpack's proven optimum,
 //!   its reported objective equals the emitted objective of its values, and
 //!   infeasible problems are infeasible for both.
@@ -30,6 +30,9 @@ use rccpack::synth::model::{BoolDef, LinLe, Lit, SoftTerm};
 use rccpack::synth::verify_solution;
 use rccpack::synth::{synthesize, Status, SynthOptions};
 use serde_json::Value;
+
+use crate::support::formulas::{pick, random_tree, Vocabulary};
+use crate::support::require_peer;
 use std::time::Duration;
 
 const SEED: u64 = 0x0E41_7ED5;
@@ -41,57 +44,11 @@ struct Case {
     opts: SynthOptions,
 }
 
-fn pick<T: Copy>(rng: &mut ChaCha8Rng, v: &[T]) -> T {
-    v[rng.random_range(0..v.len())]
-}
-
-fn quant(rng: &mut ChaCha8Rng) -> Quant {
-    let k = rng.random_range(0..=3u32);
-    match rng.random_range(0..5) {
-        0 => Quant::Every,
-        1 => Quant::Some,
-        2 => Quant::No,
-        3 => Quant::AtLeast(k),
-        _ => Quant::AtMost(k),
-    }
-}
-
-fn atom(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
-    let rel = pick(rng, &Relation::ALL);
-    let target = match rng.random_range(0..10) {
-        0..=2 => Target::Class("A".into()),
-        3 | 4 => Target::Class("B".into()),
-        5 | 6 => Target::Any,
-        7 | 8 => Target::Landmark("f".into()),
-        _ => Target::Landmark("a0".into()), // never fixed: empty target
-    };
-    let q = match target {
-        Target::Landmark(_) => rel.default_quant(),
-        _ if rng.random_range(0..2) == 0 => rel.default_quant(),
-        _ => quant(rng),
-    };
-    Formula::Atom(Atom::quantified(rel, subject, q, target))
-}
-
-fn formula(rng: &mut ChaCha8Rng, subject: &str, depth: u32) -> Formula {
-    if depth == 0 {
-        return atom(rng, subject);
-    }
-    match rng.random_range(0..6) {
-        0 | 1 => atom(rng, subject),
-        2 => Formula::not(formula(rng, subject, depth - 1)),
-        k => {
-            let v = (0..rng.random_range(2..=3))
-                .map(|_| formula(rng, subject, depth - 1))
-                .collect();
-            if k == 3 {
-                Formula::And(v)
-            } else {
-                Formula::Or(v)
-            }
-        }
-    }
-}
+/// Classes A (weight 4) and B (2); `@a0` is never a fixed object.
+const VOC: Vocabulary = Vocabulary {
+    classes: ["A", "A", "A", "A", "B", "B"],
+    absent: "a0",
+};
 
 /// Every side touched by something, flush: a §11.5-like shape with many
 /// shared literals.
@@ -112,13 +69,6 @@ fn flush_shape(subject: &str) -> Formula {
             })
             .collect(),
     )
-}
-
-fn overlaps(objects: &[Object], o: &Object) -> bool {
-    objects.iter().any(|p| match (p.rect(), o.rect()) {
-        (Some(a), Some(b)) => a.interiors_overlap(&b),
-        _ => false,
-    })
 }
 
 fn random_case(index: u64) -> Case {
@@ -153,7 +103,7 @@ fn random_case(index: u64) -> Case {
             10,
             10,
         );
-        if !overlaps(&objects, &o) {
+        if !crate::support::overlaps_any(&objects, &o) {
             objects.push(o);
         }
     }
@@ -202,7 +152,7 @@ fn random_case(index: u64) -> Case {
                 }
                 _ => {
                     let depth = rng.random_range(0..=2);
-                    formula(&mut rng, subject, depth)
+                    random_tree(&mut rng, &VOC, subject, depth + 1)
                 }
             };
             let strength = match rng.random_range(0..8) {
@@ -543,22 +493,9 @@ fn minizinc_form_is_complete() {
     }
 }
 
-/// A missing peer skips its test with a message, unless `RCCPACK_PEERS` is
-/// set (as `.ci/run` does after installing both): then it fails.
-fn skip(why: String) {
-    assert!(
-        std::env::var_os("RCCPACK_PEERS").is_none(),
-        "RCCPACK_PEERS is set but a peer is missing: {why}"
-    );
-    eprintln!("skipped: {why}");
-}
-
 /// Runs `peer` on the cases and compares with rccpack.
 fn against_peer(peer: Peer, cases: &[Case], time_limit: Duration) {
-    if let Err(m) = peers::check_available(peer) {
-        skip(m.to_string());
-        return;
-    }
+    require_peer(peer);
     let (mut optimal, mut infeasible) = (0, 0);
     for case in cases {
         let e: Emitted = emitted(&case.scene, &case.rules, &case.opts).expect("usable");
@@ -650,10 +587,7 @@ fn definitions_only(e: &Emitted, vals: &[i64]) -> Emitted {
 /// definition agrees with the model's at rccpack's layout (when there is
 /// one) and at a random assignment, preferring models with `at_least`.
 fn definitions_agree(peer: Peer, from: u64, n: usize) {
-    if let Err(m) = peers::check_available(peer) {
-        skip(m.to_string());
-        return;
-    }
+    require_peer(peer);
     let mut with_at_least = 0;
     let mut done = 0;
     let mut index = from;
@@ -702,6 +636,7 @@ fn definitions_agree(peer: Peer, from: u64, n: usize) {
 }
 
 #[test]
+#[ignore = "needs MiniZinc/Gecode and python3: run by .ci/run"]
 fn gecode_agrees_with_rccpack() {
     let mut cases: Vec<Case> = (0..55).map(random_case).collect();
     cases.extend((GROUP_CASES..GROUP_CASES + 15).map(random_case));
@@ -711,6 +646,7 @@ fn gecode_agrees_with_rccpack() {
 }
 
 #[test]
+#[ignore = "needs CP-SAT (python3 with ortools): run by .ci/run"]
 fn cpsat_agrees_with_rccpack() {
     let mut cases: Vec<Case> = (200..222).map(random_case).collect();
     cases.extend((GROUP_CASES + 100..GROUP_CASES + 108).map(random_case));
@@ -741,12 +677,10 @@ fn peer_errors_are_errors() {
 /// path is exit 1 with a message naming the file.
 #[test]
 fn cli_emit_writes_the_model() {
-    use std::process::Command;
-    let dir = std::env::temp_dir().join(format!("rccpack-emit-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
+    let dir = crate::support::scratch("emit-cli");
     let ex = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing");
     let run = |emit: &std::path::Path| {
-        Command::new(env!("CARGO_BIN_EXE_rccpack"))
+        crate::support::command()
             .args(["synth", &format!("{ex}/problem.json"), "--rules"])
             .arg(format!("{ex}/pilot.rcc"))
             .arg("--quiet")

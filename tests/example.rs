@@ -1,39 +1,27 @@
 //! The bundled box-packing example: the data is well formed and every
 //! demonstration keeps all twelve pilot rules.
 
+use crate::support::formulas::atom;
 use rccpack::eval::evaluate;
 use rccpack::relations::{Contact, Dir, Kind, Relation};
-use rccpack::rules::{Atom, Formula, Rule, RuleSet, Target};
+use rccpack::rules::{Formula, Rule, RuleSet};
 use rccpack::scene::{scenes_from_json, Scene};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 
 fn example_file(name: &str) -> String {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("examples/box-packing")
-        .join(name);
-    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    crate::support::read(format!("examples/box-packing/{name}"))
 }
 
 fn demos() -> Vec<Scene> {
     scenes_from_json(&example_file("demos.json")).expect("demos.json is valid")
 }
 
-fn atom(kind: Kind, dir: Dir, subject: &str, target: &str) -> Formula {
-    let target = if target == "*" {
-        Target::Any
-    } else {
-        Target::Class(target.into())
-    };
-    Formula::Atom(Atom::new(Relation::new(kind, dir), subject, target))
-}
-
 fn ec(dir: Dir, s: &str, t: &str) -> Formula {
-    atom(Kind::EC, dir, s, t)
+    atom(Relation::new(Kind::EC, dir), s, t)
 }
 
 fn dr(dir: Dir, s: &str, t: &str) -> Formula {
-    atom(Kind::DR, dir, s, t)
+    atom(Relation::new(Kind::DR, dir), s, t)
 }
 
 /// The twelve pilot rules of `pilot.rcc`, built through the AST.

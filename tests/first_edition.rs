@@ -83,8 +83,7 @@ fn check_is_byte_identical() {
 
 #[test]
 fn render_with_rules_is_byte_identical() {
-    let tmp = std::env::temp_dir().join(format!("rccpack-first-edition-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).unwrap();
+    let tmp = crate::support::scratch("first-edition-render");
     for (args, name) in [
         (
             vec!["demos.json", "--index", "0", "--rules", "pilot.rcc"],

@@ -1,24 +1,10 @@
-//! Issue 21 (hardening), through the built binary: what a hostile but fair
-//! user tried, and what the tool must answer.
+//! Hardening, through the built binary: what a hostile but fair user
+//! tries, and what the tool must answer.
 
-use crate::support::{rccpack, stderr, stdout};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use crate::support::{rccpack, scratch, stderr, stdout, write_file};
+use std::path::Path;
+use std::process::Stdio;
 use std::time::{Duration, Instant};
-
-/// A fresh folder for one test.
-fn dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rccpack-harden-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn write(d: &Path, name: &str, text: &str) -> String {
-    let p = d.join(name);
-    std::fs::write(&p, text).unwrap();
-    p.to_str().unwrap().to_string()
-}
 
 /// `n` unplaced `w`×`h` blocks of class R in a `size`² space.
 fn blocks(n: usize, size: i64, grid: i64, w: i64) -> String {
@@ -40,11 +26,11 @@ const PROBLEM: &str = "examples/box-packing/problem.json";
 /// not proven.
 #[test]
 fn area_decides_at_once_and_nothing_unproven_is_blamed() {
-    let d = dir("area");
-    let p101 = write(&d, "p101.json", &blocks(101, 100, 10, 10));
-    let p145 = write(&d, "p145.json", &blocks(145, 120, 10, 10));
-    let t = write(&d, "t.rcc", "rule t: EC_N(R, R) | !EC_N(R, R)\n");
-    let touch = write(
+    let d = scratch("harden-area");
+    let p101 = write_file(&d, "p101.json", &blocks(101, 100, 10, 10));
+    let p145 = write_file(&d, "p145.json", &blocks(145, 120, 10, 10));
+    let t = write_file(&d, "t.rcc", "rule t: EC_N(R, R) | !EC_N(R, R)\n");
+    let touch = write_file(
         &d,
         "touch.rcc",
         "rule touch hard: EC_N(R, *) | EC_S(R, *) | EC_E(R, *) | EC_W(R, *)\n",
@@ -77,7 +63,7 @@ fn area_decides_at_once_and_nothing_unproven_is_blamed() {
         assert_eq!(r["conflict"]["hard_rules"], serde_json::json!([]), "{r}");
     }
     // At the boundary: 100 blocks fill the space exactly and are placed.
-    let p100 = write(&d, "p100.json", &blocks(100, 100, 10, 10));
+    let p100 = write_file(&d, "p100.json", &blocks(100, 100, 10, 10));
     let o = rccpack(&["synth", &p100, "--rules", &t, "--time-limit", "60"]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }
@@ -88,9 +74,9 @@ fn area_decides_at_once_and_nothing_unproven_is_blamed() {
 /// harmless for all that was proven.
 #[test]
 fn a_limit_during_the_explanation_blames_nothing() {
-    let d = dir("explain");
-    let p = write(&d, "p36.json", &blocks(36, 60, 10, 10));
-    let x = write(&d, "x.rcc", "rule x hard: DR_N(R, R)\n");
+    let d = scratch("harden-explain");
+    let p = write_file(&d, "p36.json", &blocks(36, 60, 10, 10));
+    let x = write_file(&d, "x.rcc", "rule x hard: DR_N(R, R)\n");
     let report = d.join("report.json");
     let o = rccpack(&[
         "synth",
@@ -128,7 +114,7 @@ fn a_limit_during_the_explanation_blames_nothing() {
 #[cfg(target_os = "linux")]
 #[test]
 fn full_standard_output_is_an_error_not_a_panic() {
-    let d = dir("full");
+    let d = scratch("harden-full");
     let learned = d.join("learned.rcc");
     let learned = learned.to_str().unwrap();
     let cases: Vec<Vec<&str>> = vec![
@@ -152,7 +138,7 @@ fn full_standard_output_is_an_error_not_a_panic() {
             .write(true)
             .open("/dev/full")
             .unwrap();
-        let o = Command::new(env!("CARGO_BIN_EXE_rccpack"))
+        let o = crate::support::command()
             .args(args)
             .current_dir(env!("CARGO_MANIFEST_DIR"))
             .stdout(Stdio::from(full))
@@ -174,7 +160,7 @@ fn full_standard_output_is_an_error_not_a_panic() {
 /// replaces a read-only file (`--emit` did).
 #[test]
 fn writes_are_atomic_and_read_only_files_are_kept() {
-    let d = dir("atomic");
+    let d = scratch("harden-atomic");
     let ro = d.join("ro.out");
     std::fs::write(&ro, "keep me").unwrap();
     let mut perm = std::fs::metadata(&ro).unwrap().permissions();
@@ -259,8 +245,8 @@ fn writes_are_atomic_and_read_only_files_are_kept() {
 /// a single scene.
 #[test]
 fn duplicate_keys_are_refused_in_demonstration_arrays() {
-    let d = dir("dupkeys");
-    let rules = write(&d, "r.rcc", "rule r: DR_N(R, R)\n");
+    let d = scratch("harden-dupkeys");
+    let rules = write_file(&d, "r.rcc", "rule r: DR_N(R, R)\n");
     let scene = r#"{"space": {"width": 100, "height": 100}, "objects": [{"class": "R", "x": 0, "y": 0, "width": 10, "height": 10}], "objects": []}"#;
     let fixed = r#"{"space": {"width": 100, "height": 100}, "objects": [{"class": "R", "x": 0, "y": 0, "width": 10, "height": 10, "fixed": true, "fixed": false}]}"#;
     for (name, text) in [
@@ -268,7 +254,7 @@ fn duplicate_keys_are_refused_in_demonstration_arrays() {
         ("arr.json", format!("[{scene}]")),
         ("fixed.json", format!("[{fixed}]")),
     ] {
-        let p = write(&d, name, &text);
+        let p = write_file(&d, name, &text);
         let o = rccpack(&["score", &p, "--rules", &rules]);
         let e = stderr(&o);
         assert_eq!(o.status.code(), Some(1), "{name}: {e}");
@@ -280,10 +266,10 @@ fn duplicate_keys_are_refused_in_demonstration_arrays() {
 /// 2^64, long values, `score` on `[]`.
 #[test]
 fn small_edges_of_the_input() {
-    let d = dir("edges");
+    let d = scratch("harden-edges");
     // A BOM in .rcc and JSON is accepted.
-    let rules = write(&d, "bom.rcc", "\u{feff}rule r: DR_N(R, R)\n");
-    let scene = write(
+    let rules = write_file(&d, "bom.rcc", "\u{feff}rule r: DR_N(R, R)\n");
+    let scene = write_file(
         &d,
         "bom.json",
         "\u{feff}{\"space\": {\"width\": 100, \"height\": 100}, \"objects\": [{\"class\": \"R\", \"x\": -0, \"y\": 0, \"width\": 10, \"height\": 10}]}",
@@ -298,14 +284,14 @@ fn small_edges_of_the_input() {
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert!(e.contains("byte offset 24") && e.contains("line 2"), "{e}");
     // CR-only line ends: one line number for one error.
-    let cr = write(&d, "cr.rcc", "rule a: DR_N(R, R)\rrule b: DR_N(R, R\r");
+    let cr = write_file(&d, "cr.rcc", "rule a: DR_N(R, R)\rrule b: DR_N(R, R\r");
     let o = rccpack(&["check", &cr]);
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert!(e.contains("cr.rcc:2:"), "{e}");
     assert!(!e.contains("cr.rcc:1:"), "{e}");
     // 2^64 is out of range, not floating point.
-    let big = write(
+    let big = write_file(
         &d,
         "big.json",
         r#"{"space": {"width": 18446744073709551616, "height": 100}, "objects": []}"#,
@@ -315,7 +301,7 @@ fn small_edges_of_the_input() {
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert!(e.contains("out of range") && !e.contains("floating"), "{e}");
     // A fraction is still a floating-point error.
-    let frac = write(
+    let frac = write_file(
         &d,
         "frac.json",
         r#"{"space": {"width": 10.5, "height": 100}, "objects": []}"#,
@@ -323,7 +309,7 @@ fn small_edges_of_the_input() {
     assert!(stderr(&rccpack(&["score", &frac, "--rules", &rules])).contains("floating point"));
     // A 100 000-character id is cut in the message.
     let long = "x".repeat(100_000);
-    let dup = write(
+    let dup = write_file(
         &d,
         "long.json",
         &format!(
@@ -335,7 +321,7 @@ fn small_edges_of_the_input() {
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert!(e.len() < 1000 && e.contains("…"), "{} bytes", e.len());
     // `score` on an empty array says so.
-    let empty = write(&d, "empty.json", "[]");
+    let empty = write_file(&d, "empty.json", "[]");
     let o = rccpack(&["score", &empty, "--rules", &rules]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stdout(&o).contains("no scenes"), "{}", stdout(&o));
@@ -346,8 +332,8 @@ fn small_edges_of_the_input() {
 /// Item 14: `R`, `r` and `red` are three classes in three colours.
 #[test]
 fn similar_class_names_get_different_colours() {
-    let d = dir("colours");
-    let scene = write(
+    let d = scratch("harden-colours");
+    let scene = write_file(
         &d,
         "s.json",
         r#"{"space": {"width": 100, "height": 100}, "objects": [
@@ -372,7 +358,7 @@ fn similar_class_names_get_different_colours() {
 /// limit; at the limit it is read.
 #[test]
 fn rule_file_size_limit() {
-    let d = dir("rulesize");
+    let d = scratch("harden-rulesize");
     let line = "rule r: DR_N(R, R)\n";
     let pad = "#".repeat(1 << 20) + "\n";
     let mut at = String::from(line);
@@ -382,11 +368,11 @@ fn rule_file_size_limit() {
     at.push_str(&"#".repeat(rccpack::limits::MAX_RULES_BYTES - at.len() - 1));
     at.push('\n');
     assert_eq!(at.len(), rccpack::limits::MAX_RULES_BYTES);
-    let p = write(&d, "at.rcc", &at);
+    let p = write_file(&d, "at.rcc", &at);
     let o = rccpack(&["check", &p]);
     assert!(o.status.success(), "{}", stderr(&o));
     at.push('\n');
-    let p = write(&d, "past.rcc", &at);
+    let p = write_file(&d, "past.rcc", &at);
     let o = rccpack(&["check", &p]);
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{e}");
@@ -397,7 +383,7 @@ fn rule_file_size_limit() {
 /// anything is made, and `run --time-limit` covers learning (exit 3).
 #[test]
 fn learning_is_bounded() {
-    let d = dir("learnbound");
+    let d = scratch("harden-learnbound");
     // 120 classes, one object each, in two demonstrations.
     let objects: Vec<String> = (0..120)
         .map(|i| {
@@ -412,7 +398,7 @@ fn learning_is_bounded() {
         r#"{{"space": {{"width": 30, "height": 30}}, "grid": 1, "objects": [{}]}}"#,
         objects.join(", ")
     );
-    let demos = write(&d, "demos.json", &format!("[{scene}, {scene}]"));
+    let demos = write_file(&d, "demos.json", &format!("[{scene}, {scene}]"));
     let start = Instant::now();
     let o = rccpack(&["learn", &demos, "--samples", "10"]);
     let e = stderr(&o);
@@ -424,7 +410,7 @@ fn learning_is_bounded() {
     assert!(start.elapsed() < Duration::from_secs(10));
     // `run` on the bundled example with 10^6 samples and a 1 s limit stops
     // learning at the limit.
-    let task = dir("learnbound-task");
+    let task = scratch("harden-learnbound-task");
     for f in ["problem.json", "demos.json"] {
         std::fs::copy(
             Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -456,7 +442,7 @@ fn learning_is_bounded() {
 /// refuses an unknown class.
 #[test]
 fn a_class_the_problem_lacks_is_noted() {
-    let task = dir("absent");
+    let task = scratch("harden-absent");
     let ex = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing");
     std::fs::copy(ex.join("demos.json"), task.join("demos.json")).unwrap();
     let mut problem: serde_json::Value =
@@ -514,7 +500,7 @@ fn a_class_the_problem_lacks_is_noted() {
 #[cfg(unix)]
 #[test]
 fn ask_lock_and_oracle_timeout() {
-    let task = dir("asklock");
+    let task = scratch("harden-asklock");
     let ex = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing");
     for f in ["problem.json", "demos.json"] {
         std::fs::copy(ex.join(f), task.join(f)).unwrap();
@@ -560,7 +546,7 @@ fn ask_lock_and_oracle_timeout() {
     // Ctrl-C while the oracle hangs: exit 1 with a message, the oracle
     // ended, no temporary file.
     let _ = std::fs::remove_dir_all(task.join("probes"));
-    let child = Command::new(env!("CARGO_BIN_EXE_rccpack"))
+    let child = crate::support::command()
         .args(["ask", t, "--oracle", "sleep 60; true", "--samples", "200"])
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -595,9 +581,9 @@ fn ask_lock_and_oracle_timeout() {
 /// against the same problem without a limit.
 #[test]
 fn the_time_limit_covers_building_the_engine() {
-    let d = dir("build-limit");
-    let p = write(&d, "p144.json", &blocks(144, 120, 10, 10));
-    let touch = write(
+    let d = scratch("harden-build-limit");
+    let p = write_file(&d, "p144.json", &blocks(144, 120, 10, 10));
+    let touch = write_file(
         &d,
         "touch.rcc",
         "rule touch hard: EC_N(R, *) | EC_S(R, *) | EC_E(R, *) | EC_W(R, *)\n",

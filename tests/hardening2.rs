@@ -1,35 +1,18 @@
-//! Issue 35 (hardening, second pass), through the built binary: what a
-//! hostile but fair user tried the second time, and what the tool must
-//! answer. Each test names its item.
+//! More hardening, through the built binary: what a hostile but fair user
+//! tries, and what the tool must answer.
 
-use crate::support::{rccpack, stderr, stdout};
+use crate::support::{example_copy, rccpack, scratch, stderr, stdout, write_file};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 use std::time::{Duration, Instant};
-
-/// A fresh folder for one test.
-fn dir(tag: &str) -> PathBuf {
-    crate::support::scratch(&format!("harden2-{tag}"))
-}
-
-fn write(d: &Path, name: &str, text: &str) -> String {
-    let p = d.join(name);
-    std::fs::write(&p, text).unwrap();
-    p.to_str().unwrap().to_string()
-}
-
-fn bin() -> &'static str {
-    env!("CARGO_BIN_EXE_rccpack")
-}
 
 /// A copy of the bundled example's task folder.
 fn example_task(tag: &str) -> PathBuf {
-    let task = dir(tag);
-    let ex = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing");
-    for f in ["problem.json", "demos.json"] {
-        std::fs::copy(ex.join(f), task.join(f)).unwrap();
-    }
-    task
+    example_copy(
+        &format!("harden2-{tag}"),
+        "box-packing",
+        &["problem.json", "demos.json"],
+    )
 }
 
 /// A 100×100 scene with one 10×10 object per `(id, class, x, y)`.
@@ -58,7 +41,10 @@ fn a_failing_oracle_confirms_nothing() {
     let task = example_task("oracle-fails");
     let t = task.to_str().unwrap();
     for oracle in [
-        format!("{} score --rules no-such-rules.rcc --require", bin()),
+        format!(
+            "{} score --rules no-such-rules.rcc --require",
+            env!("CARGO_BIN_EXE_rccpack")
+        ),
         "sh -c 'echo \"Traceback: boom\" >&2; exit 1'".to_string(),
     ] {
         let o = rccpack(&["ask", t, "--oracle", &oracle, "--samples", "200"]);
@@ -96,13 +82,13 @@ fn a_failing_oracle_confirms_nothing() {
 /// class no scene has is refused, naming the closest class.
 #[test]
 fn absent_classes_are_one_rule_everywhere() {
-    let d = dir("absent2");
+    let d = scratch("harden2-absent2");
     let both = scene(&[("r0", "red", 0, 0), ("g0", "green", 0, 10)]);
     let reds = scene(&[("r0", "red", 0, 0)]);
-    let demos = write(&d, "demos.json", &format!("[{both}, {reds}]"));
-    let only_red = write(&d, "red.json", &reds);
-    let hand = write(&d, "hand.rcc", "rule g_on_r: EC_N(green, red)\n");
-    let learned = write(
+    let demos = write_file(&d, "demos.json", &format!("[{both}, {reds}]"));
+    let only_red = write_file(&d, "red.json", &reds);
+    let hand = write_file(&d, "hand.rcc", "rule g_on_r: EC_N(green, red)\n");
+    let learned = write_file(
         &d,
         "learned.rcc",
         "# learned by rccpack from 2 demonstrations: 1 of 1 candidates out of 1 statements (given)\n\nrule g_on_r: EC_N(green, red)\n",
@@ -143,7 +129,7 @@ fn absent_classes_are_one_rule_everywhere() {
         "{}",
         stderr(&o)
     );
-    let typo = write(&d, "typo.rcc", "rule g_on_r: EC_N(gren, red)\n");
+    let typo = write_file(&d, "typo.rcc", "rule g_on_r: EC_N(gren, red)\n");
     let o = rccpack(&["check", &typo, "--scene", &demos]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(
@@ -205,7 +191,7 @@ fn run_never_destroys_curated_rules() {
 fn ctrl_c_while_relearning_keeps_the_answer() {
     let task = example_task("relearn-int");
     let oracle = "setsid sh -c \"sleep 0.3; kill -INT $PPID\" >/dev/null 2>&1 & true";
-    let o = Command::new(bin())
+    let o = crate::support::command()
         .args([
             "ask",
             task.to_str().unwrap(),
@@ -233,7 +219,7 @@ fn ctrl_c_while_relearning_keeps_the_answer() {
 #[cfg(unix)]
 #[test]
 fn a_full_stderr_never_panics() {
-    let d = dir("full-stderr");
+    let d = scratch("harden2-full-stderr");
     let full = || {
         std::fs::OpenOptions::new()
             .write(true)
@@ -241,7 +227,7 @@ fn a_full_stderr_never_panics() {
             .unwrap()
     };
     let run = |args: &[&str]| {
-        Command::new(bin())
+        crate::support::command()
             .args(args)
             .current_dir(env!("CARGO_MANIFEST_DIR"))
             .stdout(Stdio::null())
@@ -252,13 +238,13 @@ fn a_full_stderr_never_panics() {
     };
     let sol = d.join("sol.json");
     let svg = d.join("p.svg");
-    let problem = write(&d, "p.json", &scene(&[("r0", "R", 0, 0)]));
-    let free = write(
+    let problem = write_file(&d, "p.json", &scene(&[("r0", "R", 0, 0)]));
+    let free = write_file(
         &d,
         "free.json",
         r#"{"space": {"width": 40, "height": 40}, "grid": 10, "objects": [{"id": "r0", "class": "R", "width": 10, "height": 10}]}"#,
     );
-    let rules = write(&d, "r.rcc", "rule t: EC_N(R, *) | !EC_N(R, *)\n");
+    let rules = write_file(&d, "r.rcc", "rule t: EC_N(R, *) | !EC_N(R, *)\n");
     assert_eq!(
         run(&[
             "synth",
@@ -278,7 +264,7 @@ fn a_full_stderr_never_panics() {
     assert_eq!(run(&["check", "no-such.rcc"]), Some(1));
     assert_eq!(run(&["score", &problem, "--rules", "no-such.rcc"]), Some(1));
     // `--help` that cannot be written is not a success.
-    let o = Command::new(bin())
+    let o = crate::support::command()
         .arg("--help")
         .stdout(full())
         .status()
@@ -304,8 +290,8 @@ fn bench_sample_time_limits_are_checked() {
 /// well-formed SVG and a PNG.
 #[test]
 fn non_characters_draw() {
-    let d = dir("fffe");
-    let p = write(
+    let d = scratch("harden2-fffe");
+    let p = write_file(
         &d,
         "s.json",
         &scene(&[("a\u{fffe}b", "R", 0, 0), ("c\u{ffff}", "G", 20, 0)]),
@@ -325,20 +311,20 @@ fn non_characters_draw() {
 /// size check; weights too large even then are blamed on the rule file.
 #[test]
 fn weights_are_reduced_before_the_size_check() {
-    let d = dir("weights");
-    let p = write(
+    let d = scratch("harden2-weights");
+    let p = write_file(
         &d,
         "p.json",
         r#"{"space": {"width": 40, "height": 40}, "grid": 10, "objects": [{"id": "r0", "class": "R", "width": 10, "height": 10}, {"id": "r1", "class": "R", "width": 10, "height": 10}]}"#,
     );
-    let big = write(
+    let big = write_file(
         &d,
         "big.rcc",
         "rule a weight 1000000000: EC_N(R, *)\nrule b weight 2000000000: DR_N(R, *) | DR_S(R, *)\n",
     );
     let o = rccpack(&["synth", &p, "--rules", &big, "--quiet"]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let odd = write(
+    let odd = write_file(
         &d,
         "odd.rcc",
         "rule a weight 1000000000: EC_N(R, *)\nrule b weight 1000000001: DR_N(R, *) | DR_S(R, *)\n",
@@ -357,14 +343,14 @@ fn weights_are_reduced_before_the_size_check() {
 /// Item 12: values echoed in errors are cut (60 characters and `…`).
 #[test]
 fn echoed_values_are_cut() {
-    let d = dir("echo");
+    let d = scratch("harden2-echo");
     let long = "x".repeat(100_000);
-    let p = write(&d, "p.json", &scene(&[("r0", "R", 0, 0)]));
+    let p = write_file(&d, "p.json", &scene(&[("r0", "R", 0, 0)]));
     let mut rules = String::new();
     for i in 0..30 {
         rules.push_str(&format!("rule r{i}: EC_N({long}, R)\n"));
     }
-    let r = write(&d, "r.rcc", &rules);
+    let r = write_file(&d, "r.rcc", &rules);
     let o = rccpack(&["score", &p, "--rules", &r]);
     assert_eq!(o.status.code(), Some(1));
     assert!(
@@ -373,7 +359,7 @@ fn echoed_values_are_cut() {
         &stderr(&o)[..200]
     );
     assert!(o.stderr.len() < 100_000, "{} bytes", o.stderr.len());
-    let dup = write(
+    let dup = write_file(
         &d,
         "dup.rcc",
         &format!("rule {long}: EC_N(R, *)\nrule {long}: EC_N(R, *)\n"),
@@ -386,11 +372,11 @@ fn echoed_values_are_cut() {
         &stderr(&o)[..200]
     );
     assert!(o.stderr.len() < 20_000, "{} bytes", o.stderr.len());
-    let rel = write(&d, "rel.rcc", &format!("rule a: {long}(R, R)\n"));
+    let rel = write_file(&d, "rel.rcc", &format!("rule a: {long}(R, R)\n"));
     let o = rccpack(&["check", &rel]);
     assert_eq!(o.status.code(), Some(1));
     assert!(o.stderr.len() < 20_000, "{} bytes", o.stderr.len());
-    let land = write(&d, "land.rcc", &format!("rule a: EC_N(R, @{long})\n"));
+    let land = write_file(&d, "land.rcc", &format!("rule a: EC_N(R, @{long})\n"));
     let o = rccpack(&["check", &land, "--scene", &p]);
     assert_eq!(o.status.code(), Some(1));
     assert!(o.stderr.len() < 20_000, "{} bytes", o.stderr.len());
@@ -404,8 +390,8 @@ fn echoed_values_are_cut() {
 /// as an editor shows them.
 #[test]
 fn cr_line_ends_are_counted() {
-    let d = dir("cr");
-    let p = write(
+    let d = scratch("harden2-cr");
+    let p = write_file(
         &d,
         "p.json",
         "{\r  \"space\": {\"width\": 100, \"height\": 100},\r  \"grid\": 10,\r  \"objects\": [\r    {\"id\": \"r0\", \"class\": \"R\", \"width\": 10, \"height\": true}\r  ]\r}\r",
@@ -429,7 +415,7 @@ fn cr_line_ends_are_counted() {
 #[cfg(unix)]
 #[test]
 fn sigterm_and_sighup_are_handled() {
-    let d = dir("sigterm");
+    let d = scratch("harden2-sigterm");
     let demos = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing/demos.json");
     let stray = || -> Vec<_> {
         std::fs::read_dir(&d)
@@ -439,7 +425,7 @@ fn sigterm_and_sighup_are_handled() {
             .collect()
     };
     for sig in [libc::SIGTERM, libc::SIGHUP] {
-        let child = Command::new(bin())
+        let child = crate::support::command()
             .arg("learn")
             .arg(&demos)
             .args(["--samples", "1000000", "-o"])
@@ -465,14 +451,14 @@ fn sigterm_and_sighup_are_handled() {
 /// anything is written.
 #[test]
 fn outputs_never_overwrite_inputs() {
-    let d = dir("same-file");
-    let p = write(&d, "p.json", &scene(&[("r0", "R", 0, 0)]));
+    let d = scratch("harden2-same-file");
+    let p = write_file(&d, "p.json", &scene(&[("r0", "R", 0, 0)]));
     let rules_text = "rule t: EC_N(R, *) | !EC_N(R, *)\n";
-    let r = write(&d, "r.rcc", rules_text);
+    let r = write_file(&d, "r.rcc", rules_text);
     let x = d.join("x.rcc");
     let x = x.to_str().unwrap();
     let y = d.join("y.json").to_str().unwrap().to_string();
-    let demos = write(
+    let demos = write_file(
         &d,
         "demos.json",
         &format!("[{}]", scene(&[("r0", "R", 0, 0)])),
@@ -543,7 +529,7 @@ fn base_problem(n: usize) -> String {
 #[cfg(target_os = "linux")]
 #[allow(clippy::zombie_processes)] // waited for by `wait4`, below
 fn peak_kib(args: &[&str]) -> (i64, Option<i32>) {
-    let child = Command::new(bin())
+    let child = crate::support::command()
         .args(args)
         .stdout(Stdio::null())
         .stderr(Stdio::null())
@@ -566,11 +552,11 @@ fn peak_kib(args: &[&str]) -> (i64, Option<i32>) {
 #[cfg(target_os = "linux")]
 #[test]
 fn synth_memory_is_near_linear_in_the_objects() {
-    let d = dir("memory");
-    let rules = write(&d, "r.rcc", "rule above: DR_N(R, @base)\n");
+    let d = scratch("harden2-memory");
+    let rules = write_file(&d, "r.rcc", "rule above: DR_N(R, @base)\n");
     let mut peaks = Vec::new();
     for n in [150, 300] {
-        let p = write(&d, &format!("p{n}.json"), &base_problem(n));
+        let p = write_file(&d, &format!("p{n}.json"), &base_problem(n));
         let (kib, code) = peak_kib(&[
             "synth",
             &p,
@@ -601,9 +587,9 @@ fn synth_memory_is_near_linear_in_the_objects() {
 /// (400 objects under `EC_N(R, *)`: 160 000 pair literals, about 2 GB).
 #[test]
 fn too_many_rule_pairs_are_refused_at_once() {
-    let d = dir("pairs");
-    let p = write(&d, "p.json", &base_problem(400));
-    let r = write(&d, "r.rcc", "rule t: EC_N(R, *)\n");
+    let d = scratch("harden2-pairs");
+    let p = write_file(&d, "p.json", &base_problem(400));
+    let r = write_file(&d, "r.rcc", "rule t: EC_N(R, *)\n");
     let start = Instant::now();
     let o = rccpack(&["synth", &p, "--rules", &r, "--quiet"]);
     let e = stderr(&o);

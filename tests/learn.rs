@@ -2,22 +2,15 @@
 //! enumeration, determinism across thread counts, the box-packing example
 //! and typed errors for bad input.
 
+use crate::support::formulas::atom;
+use crate::support::table;
 use rccpack::eval::Evaluator;
 use rccpack::infer::templates::generate_set;
 use rccpack::infer::Posterior;
 use rccpack::infer::{learn, InferError, LearnParams, NullModel, Templates};
 use rccpack::relations::{Contact, Dir, Kind, Relation};
-use rccpack::rules::{parse_rules, Atom, Formula, Rule, RuleSet, Scope, Target};
-use rccpack::scene::{scenes_from_json, Object, Scene, Space};
-
-fn atom(kind: Kind, dir: Dir, s: &str, t: &str) -> Formula {
-    let target = if t == "*" {
-        Target::Any
-    } else {
-        Target::Class(t.into())
-    };
-    Formula::Atom(Atom::new(Relation::new(kind, dir), s, target))
-}
+use rccpack::rules::{parse_rules, Formula, Rule, RuleSet, Scope, Target};
+use rccpack::scene::{scenes_from_json, Object, Scene};
 
 fn obj(id: &str, class: &str, x: i64, y: i64, w: i64, h: i64, fixed: bool) -> Object {
     Object {
@@ -28,19 +21,6 @@ fn obj(id: &str, class: &str, x: i64, y: i64, w: i64, h: i64, fixed: bool) -> Ob
         width: w,
         height: h,
         fixed,
-    }
-}
-
-fn scene(w: i64, h: i64, objects: Vec<Object>) -> Scene {
-    Scene {
-        space: Space {
-            x: 0,
-            y: 0,
-            width: w,
-            height: h,
-        },
-        grid: 10,
-        objects,
     }
 }
 
@@ -75,7 +55,7 @@ fn worked_check_of_spec_section_7() {
 
 /// One movable 10×10 `M` and one fixed 10×10 `F` in a 60×40 space.
 fn small_demo(fixed_x: i64, fixed_y: i64) -> Scene {
-    scene(
+    table(
         60,
         40,
         vec![
@@ -111,12 +91,12 @@ fn exact_fraction(demo: &Scene, f: &Formula) -> f64 {
 fn check_null_model(fixed_x: i64, fixed_y: i64) {
     let demo = small_demo(fixed_x, fixed_y);
     let statements = [
-        atom(Kind::DR, Dir::N, "M", "F"),
-        atom(Kind::EC, Dir::N, "M", "F"),
+        atom("DR_N", "M", "F"),
+        atom("EC_N", "M", "F"),
         Formula::Or(
             Dir::ALL
                 .iter()
-                .map(|&d| atom(Kind::EC, d, "M", "F"))
+                .map(|&d| atom(Relation::new(Kind::EC, d), "M", "F"))
                 .collect(),
         ),
     ];
@@ -179,10 +159,7 @@ fn learn_chance_rate_matches_exact_enumeration() {
     let mut demo = small_demo(20, 10);
     demo.objects[1].x = Some(20);
     demo.objects[1].y = Some(20); // on top of F: DR_N and EC_N hold
-    let statements = [
-        atom(Kind::DR, Dir::N, "M", "F"),
-        atom(Kind::EC, Dir::N, "M", "F"),
-    ];
+    let statements = [atom("DR_N", "M", "F"), atom("EC_N", "M", "F")];
     let set = RuleSet::new(vec![
         Rule::new("m_north", statements[0].clone()),
         Rule::new("m_on_top", statements[1].clone()),
@@ -209,7 +186,7 @@ fn learn_chance_rate_matches_exact_enumeration() {
 /// A fixed 10×10 `f` and two movable `M` of different sizes (10×10 and
 /// 20×10) in a 70×40 space: the two placement orders differ.
 fn scene_level_demo() -> Scene {
-    scene(
+    table(
         70,
         40,
         vec![
@@ -452,7 +429,7 @@ fn synthetic_demos() -> Vec<Scene> {
             for (i, &(c, x, y)) in l.iter().enumerate() {
                 v.push(obj(&format!("{c}{i}"), c, x, y, 20, 20, false));
             }
-            scene(160, 160, v)
+            table(160, 160, v)
         })
         .collect()
 }
@@ -825,7 +802,7 @@ fn demonstrations_with_different_spaces_are_an_error() {
 #[test]
 fn statement_naming_an_absent_class_is_an_error() {
     let demos = synthetic_demos();
-    let set = RuleSet::new(vec![Rule::new("q_north", atom(Kind::DR, Dir::N, "B", "Q"))]);
+    let set = RuleSet::new(vec![Rule::new("q_north", atom("DR_N", "B", "Q"))]);
     let e = err(&demos, Some(&set));
     assert_eq!(
         e.to_string(),
@@ -837,7 +814,7 @@ fn statement_naming_an_absent_class_is_an_error() {
 /// two 15-wide objects in a 30-wide space have only grid x ∈ {0, 10}.
 #[test]
 fn unplaceable_objects_are_an_error() {
-    let demo = scene(
+    let demo = table(
         30,
         10,
         vec![
@@ -933,10 +910,7 @@ fn learned_scene_level_rules_are_written_with_their_quantifier() {
         rccpack::rules::print_rule(&rule.with_scope(Scope::Each))
     );
     assert_eq!(
-        statement_text(
-            Scope::Scene(Quant::AtLeast(2)),
-            &atom(Kind::FL, Dir::N, "G", "G")
-        ),
+        statement_text(Scope::Scene(Quant::AtLeast(2)), &atom("FL_N", "G", "G")),
         "at least 2 G: FL_N(G, G)"
     );
 }

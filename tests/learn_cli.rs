@@ -1,8 +1,7 @@
 //! `rccpack learn` on the command line: output, report, exit codes and
 //! messages.
 
-use crate::support::{rccpack, stderr};
-use std::path::PathBuf;
+use crate::support::{example_copy, rccpack, read, scratch, stderr, write_file};
 
 fn demos() -> String {
     concat!(
@@ -12,16 +11,11 @@ fn demos() -> String {
     .to_string()
 }
 
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("rccpack-learn-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
 #[test]
 fn learn_writes_rules_and_report_that_score_reads() {
-    let out = tmp("learned.rcc");
-    let report = tmp("report.json");
+    let dir = scratch("learn-cli-learn_writes_rules_and_report_that_score_reads");
+    let out = dir.join("learned.rcc");
+    let report = dir.join("report.json");
     let o = rccpack(&[
         "learn",
         &demos(),
@@ -87,13 +81,13 @@ fn learn_prints_to_stdout_without_output_flag() {
 
 #[test]
 fn learn_with_a_statement_file() {
-    let st = tmp("statements.rcc");
-    std::fs::write(
-        &st,
+    let dir = scratch("learn-cli-learn_with_a_statement_file");
+    let st = write_file(
+        &dir,
+        "statements.rcc",
         "rule blue_north: DR_N(B, R)\nrule blue_south: DR_S(B, R)\n",
-    )
-    .unwrap();
-    let o = rccpack(&["learn", &demos(), "--statements", st.to_str().unwrap()]);
+    );
+    let o = rccpack(&["learn", &demos(), "--statements", &st]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8(o.stdout).unwrap();
     assert!(text.contains("rule blue_north p "), "{text}");
@@ -102,9 +96,13 @@ fn learn_with_a_statement_file() {
 
 #[test]
 fn statement_file_with_an_unknown_class_is_located() {
-    let st = tmp("unknown.rcc");
-    std::fs::write(&st, "rule ok: DR_N(B, R)\nrule bad: DR_N(B, Q)\n").unwrap();
-    let o = rccpack(&["learn", &demos(), "--statements", st.to_str().unwrap()]);
+    let dir = scratch("learn-cli-statement_file_with_an_unknown_class_is_located");
+    let st = write_file(
+        &dir,
+        "unknown.rcc",
+        "rule ok: DR_N(B, R)\nrule bad: DR_N(B, Q)\n",
+    );
+    let o = rccpack(&["learn", &demos(), "--statements", &st]);
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
     assert!(e.contains("unknown.rcc"), "{e}");
@@ -146,19 +144,15 @@ fn bad_parameters_exit_1_naming_the_flag() {
 
 #[test]
 fn empty_demonstrations_exit_1() {
-    let p = tmp("empty.json");
-    std::fs::write(&p, "[]").unwrap();
-    let o = rccpack(&["learn", p.to_str().unwrap()]);
+    let dir = scratch("learn-cli-empty_demonstrations_exit_1");
+    let p = write_file(&dir, "empty.json", "[]");
+    let o = rccpack(&["learn", &p]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("no demonstrations"), "{}", stderr(&o));
 }
 
 fn fixture(name: &str) -> String {
-    let p = format!(
-        "{}/tests/fixtures/first-edition/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{p}: {e}"))
+    read(format!("tests/fixtures/first-edition/{name}"))
 }
 
 /// `--templates first` keeps the first edition's output byte for byte: the
@@ -166,6 +160,7 @@ fn fixture(name: &str) -> String {
 /// of commit 03cf7e0 (before the second-edition templates).
 #[test]
 fn templates_first_is_byte_identical_to_the_first_edition() {
+    let dir = scratch("learn-cli-templates_first_is_byte_identical_to_the_first_edition");
     let cases: [(&[&str], &str, &str); 2] = [
         (&[], "learned.rcc", "report.json"),
         (
@@ -175,8 +170,8 @@ fn templates_first_is_byte_identical_to_the_first_edition() {
         ),
     ];
     for (i, (extra, rcc, report)) in cases.into_iter().enumerate() {
-        let out = tmp(&format!("first-{i}.rcc"));
-        let rep = tmp(&format!("first-{i}.json"));
+        let out = dir.join(format!("first-{i}.rcc"));
+        let rep = dir.join(format!("first-{i}.json"));
         let d = demos();
         let mut args = vec![
             "learn",
@@ -205,12 +200,11 @@ fn templates_first_is_byte_identical_to_the_first_edition() {
 /// `run --templates first` learns the same file as `learn --templates first`.
 #[test]
 fn run_accepts_templates_first() {
-    let dir = tmp("run-task");
-    std::fs::create_dir_all(&dir).unwrap();
-    let ex = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing");
-    for f in ["demos.json", "problem.json"] {
-        std::fs::copy(format!("{ex}/{f}"), dir.join(f)).unwrap();
-    }
+    let dir = example_copy(
+        "learn-cli-run-templates-first",
+        "box-packing",
+        &["demos.json", "problem.json"],
+    );
     let o = rccpack(&[
         "run",
         dir.to_str().unwrap(),

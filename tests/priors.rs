@@ -1,4 +1,4 @@
-//! Priors learned across tasks (issue 30): the estimator's laws, the file's
+//! Priors learned across tasks: the estimator's laws, the file's
 //! errors, and learning with a uniform priors file equal to learning
 //! without one.
 
@@ -338,13 +338,9 @@ fn a_bad_priors_file_names_the_field() {
     assert!(msg.contains("colour"), "{msg}");
 }
 
-fn bin() -> std::process::Command {
-    std::process::Command::new(env!("CARGO_BIN_EXE_rccpack"))
-}
-
 #[test]
 fn cli_priors_same_bytes_on_one_and_two_threads_and_learn_takes_them() {
-    let dir = tempfile_dir("priors-cli");
+    let dir = crate::support::scratch("priors-cli");
     // Two task folders: the bundled examples with a learned.rcc each.
     let mut tasks = Vec::new();
     for (name, rules) in [("box-packing", "pilot.rcc"), ("shelf", "intended.rcc")] {
@@ -358,7 +354,7 @@ fn cli_priors_same_bytes_on_one_and_two_threads_and_learn_takes_them() {
         tasks.push(t);
     }
     let run = |threads: &str, out: &str| {
-        let o = bin()
+        let o = crate::support::command()
             .arg("priors")
             .args(&tasks)
             .args(["--threads", threads, "-o"])
@@ -378,7 +374,7 @@ fn cli_priors_same_bytes_on_one_and_two_threads_and_learn_takes_them() {
         "the kept rules are matched to candidates"
     );
     // Reversed folder order: the same bytes.
-    let o = bin()
+    let o = crate::support::command()
         .arg("priors")
         .args(tasks.iter().rev())
         .output()
@@ -390,7 +386,7 @@ fn cli_priors_same_bytes_on_one_and_two_threads_and_learn_takes_them() {
     std::fs::write(&uniform, combine(&[], &PriorParams::default()).to_json()).unwrap();
     let demos = tasks[1].join("demos.json");
     let learn = |extra: &[&std::ffi::OsStr]| {
-        let o = bin()
+        let o = crate::support::command()
             .arg("learn")
             .arg(&demos)
             .args(["--samples", "100"])
@@ -407,7 +403,7 @@ fn cli_priors_same_bytes_on_one_and_two_threads_and_learn_takes_them() {
     // A bad file: exit 1, the file and the field named.
     let bad = dir.join("bad.json");
     std::fs::write(&bad, one.replace("rccpack-priors/1", "rccpack-priors/0")).unwrap();
-    let o = bin()
+    let o = crate::support::command()
         .arg("learn")
         .arg(&demos)
         .arg("--priors")
@@ -422,7 +418,7 @@ fn cli_priors_same_bytes_on_one_and_two_threads_and_learn_takes_them() {
     );
     // The report shows each statement's prior and its source.
     let report = dir.join("report.json");
-    let o = bin()
+    let o = crate::support::command()
         .arg("learn")
         .arg(&demos)
         .args(["--samples", "100", "--priors"])
@@ -440,13 +436,6 @@ fn cli_priors_same_bytes_on_one_and_two_threads_and_learn_takes_them() {
         "{s0}"
     );
     let _ = std::fs::remove_dir_all(&dir);
-}
-
-fn tempfile_dir(tag: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("rccpack-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 proptest! {

@@ -134,8 +134,7 @@ fn violators_are_outlined_once() {
 
 #[test]
 fn render_to_path_picks_format_by_extension() {
-    let dir = std::env::temp_dir().join(format!("rccpack-render-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::support::scratch("render-to-path");
     let s = scene();
     let opts = RenderOptions::default();
     render_to_path(&s, None, &opts, &dir.join("a.svg")).unwrap();

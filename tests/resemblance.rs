@@ -8,13 +8,8 @@ use rccpack::resemblance::Likeness;
 use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::scene::{scenes_from_json, Scene};
 use rccpack::synth::{synthesize, Status, SynthOptions};
-use std::path::{Path, PathBuf};
 
-fn example(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("examples")
-        .join(name)
-}
+use crate::support::example;
 
 fn task(name: &str) -> (Vec<Scene>, Scene) {
     let dir = example(name);
@@ -157,8 +152,7 @@ fn rccpack(args: &[&str]) -> (String, String, i32) {
 
 #[test]
 fn cli_synth_like_reports_the_cost_and_run_uses_the_demonstrations() {
-    let dir = std::env::temp_dir().join(format!("rccpack-like-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::support::scratch("like-cli");
     let ex = example("box-packing");
     let report = dir.join("report.json");
     let (_, err, code) = rccpack(&[

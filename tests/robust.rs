@@ -1,4 +1,4 @@
-//! Issue 11: inputs that used to panic or wrap, and every documented limit
+//! Inputs that must not panic or wrap, and every documented limit
 //! at and just past its bound (accepted and solved correctly at the limit,
 //! refused with a clear message just past it).
 
@@ -150,7 +150,7 @@ fn huge_library_time_limit_is_no_deadline() {
 /// a message naming the value and the range.
 #[test]
 fn bad_time_limits_exit_1_everywhere() {
-    let out = std::env::temp_dir().join(format!("rccpack-robust-{}", std::process::id()));
+    let out = crate::support::scratch("robust-time-limits").join("out");
     let out = out.to_str().unwrap();
     let problem = "examples/box-packing/problem.json";
     let rules = "examples/box-packing/pilot.rcc";
@@ -231,7 +231,7 @@ fn usage_errors_exit_1_help_exits_0() {
 /// once (exit 1, naming the flag and the value), before drawing anything.
 #[test]
 fn bench_flags_out_of_range_are_refused() {
-    let out = std::env::temp_dir().join(format!("rccpack-bench-refuse-{}", std::process::id()));
+    let out = crate::support::scratch("robust-bench-refuse").join("out");
     for (args, names) in [
         (vec!["--scale-ns", "0"], "invalid value '0' for '--scale-ns"),
         (
@@ -303,8 +303,7 @@ fn absurd_sample_counts_are_refused() {
 /// exit 0 (it used to panic inside Pumpkin).
 #[test]
 fn huge_space_through_the_command_line() {
-    let dir = std::env::temp_dir().join(format!("rccpack-robust-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::support::scratch("robust-huge-space");
     let p = dir.join("huge.json");
     std::fs::write(
         &p,
@@ -367,7 +366,7 @@ fn non_finite_weights_are_refused() {
     }
 }
 
-/// Found by the first probes (issue 13): on this infeasible problem (the
+/// Found by the first probes: on this infeasible problem (the
 /// bundled example with 54 learned rules hard and one negated) Pumpkin's
 /// `extract_core` panicked or ran for minutes past the time limit. The
 /// conflict is now shrunk by deletion, every solve under the limits.
@@ -472,7 +471,7 @@ rule r2 weight 2: !AL_E(B, no B) & (DR_W(B, W) | DR_W(B, W) | DR_W(B, A))
     assert_eq!(c.hard_rules, vec!["r1".to_string()]);
 }
 
-/// Issue 21's limits, at and just past their bounds: the rule text size,
+/// More documented limits, at and just past their bounds: the rule text size,
 /// the statements one learning run weighs, values echoed in messages,
 /// `--oracle-timeout`.
 #[test]

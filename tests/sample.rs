@@ -1,4 +1,4 @@
-//! `rccpack::sample` (issue 24): every layout valid (evaluator and the
+//! `rccpack::sample`: every layout valid (evaluator and the
 //! independent verifier), distinct, of the quality asked for; determinism;
 //! exhaustion agrees with brute force; "no layout" is reported.
 
@@ -314,16 +314,11 @@ fn like_scenes_keep_validity_and_determinism() {
     assert_eq!(a, run());
 }
 
-/// The CP-SAT baseline of `bench sample` (skipped with a message when
-/// OR-Tools is missing, unless `RCCPACK_PEERS` says the peers must run).
+/// The CP-SAT baseline of `bench sample`.
 #[test]
+#[ignore = "needs CP-SAT (python3 with ortools): run by .ci/run"]
 fn cpsat_baseline_layouts_are_valid() {
-    use rccpack::bench::peers::{check_available, Peer};
-    if let Err(why) = check_available(Peer::CpSat) {
-        assert!(std::env::var_os("RCCPACK_PEERS").is_none(), "{why}");
-        eprintln!("skipped: {why}");
-        return;
-    }
+    crate::support::require_peer(rccpack::bench::peers::Peer::CpSat);
     let (_, problem, rules) = tiny_problems().remove(0);
     let first = sample(&problem, &rules, &opts(Quality::Optimum, 0))
         .unwrap()

@@ -1,18 +1,9 @@
-//! `rccpack sample` as a user meets it (issue 24): the JSON array written,
+//! `rccpack sample` as a user meets it: the JSON array written,
 //! exit codes and messages.
 
-use crate::support::{rccpack, stderr};
+use crate::support::{rccpack, scratch, stderr, write_file};
 use rccpack::scene::{scenes_from_json, Scene};
-use std::path::PathBuf;
 use std::process::Output;
-
-fn tmp(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("rccpack-sample-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
 
 const PILOT: &str = "examples/box-packing/pilot.rcc";
 const PROBLEM: &str = "examples/box-packing/problem.json";
@@ -24,7 +15,8 @@ const TINY: &str = r#"{"space": {"width": 30, "height": 10}, "grid": 10, "object
 
 #[test]
 fn writes_n_distinct_layouts_of_score_one() {
-    let out = tmp("box.json", "");
+    let dir = scratch("sample-cli-writes_n_distinct_layouts_of_score_one");
+    let out = write_file(&dir, "box.json", "");
     let o = rccpack(&[
         "sample",
         PROBLEM,
@@ -36,7 +28,7 @@ fn writes_n_distinct_layouts_of_score_one() {
         "--seed",
         "5",
         "-o",
-        out.to_str().unwrap(),
+        &out,
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let layouts: Vec<Scene> = scenes_from_json(&std::fs::read_to_string(&out).unwrap()).unwrap();
@@ -59,16 +51,10 @@ fn writes_n_distinct_layouts_of_score_one() {
 
 /// `rccpack sample TINY --rules (rules) -n N (extra)`.
 fn sample_tiny(name: &str, rules: &str, n: &str, extra: &[&str]) -> Output {
-    let p = tmp(&format!("{name}.json"), TINY);
-    let r = tmp(&format!("{name}.rcc"), rules);
-    let mut args = vec![
-        "sample",
-        p.to_str().unwrap(),
-        "--rules",
-        r.to_str().unwrap(),
-        "-n",
-        n,
-    ];
+    let dir = scratch(&format!("sample-cli-{name}"));
+    let p = write_file(&dir, &format!("{name}.json"), TINY);
+    let r = write_file(&dir, &format!("{name}.rcc"), rules);
+    let mut args = vec!["sample", &p, "--rules", &r, "-n", n];
     args.extend_from_slice(extra);
     rccpack(&args)
 }

@@ -148,7 +148,7 @@ fn on_grid_is_relative_to_the_space_origin() {
     assert!(!s.on_grid(&s.objects[1]));
 }
 
-/// Issue 11: coordinates far out of range get a field-named error (no
+/// Coordinates far out of range get a field-named error (no
 /// overflow in `space.x + width`, no wrapping `abs()`), and the documented
 /// bound itself is accepted.
 #[test]

@@ -9,13 +9,9 @@ use rccpack::resemblance::Likeness;
 use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::scene::{scenes_from_json, Scene};
 use rccpack::synth::{synthesize, Status, SynthOptions};
-use std::path::PathBuf;
 
 fn file(name: &str) -> String {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("examples/shelf")
-        .join(name);
-    std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+    crate::support::read(format!("examples/shelf/{name}"))
 }
 
 fn demos() -> Vec<Scene> {

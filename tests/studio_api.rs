@@ -11,15 +11,12 @@ use tower::ServiceExt;
 /// A fresh copy of the bundled example in a temporary folder (no demos.json
 /// unless `with_demos`).
 fn task_dir(tag: &str, with_demos: bool) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("rccpack-studio-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box-packing");
-    std::fs::copy(src.join("problem.json"), dir.join("problem.json")).unwrap();
-    if with_demos {
-        std::fs::copy(src.join("demos.json"), dir.join("demos.json")).unwrap();
-    }
-    dir
+    let files: &[&str] = if with_demos {
+        &["problem.json", "demos.json"]
+    } else {
+        &["problem.json"]
+    };
+    crate::support::example_copy(&format!("studio-{tag}"), "box-packing", files)
 }
 
 async fn call(
@@ -571,8 +568,8 @@ async fn synth_can_be_cancelled() {
     assert_eq!(done["state"], "done", "{done}");
 }
 
-/// Issue 11: the studio's `samples` has the documented upper bound (it had
-/// none: a huge value ran until killed), and `time_limit` goes through the
+/// The studio's `samples` has the documented upper bound (a huge value
+/// would run until killed), and `time_limit` goes through the
 /// shared parser; both answer 400 naming the field.
 #[tokio::test]
 async fn learn_samples_and_synth_time_limit_are_bounded() {
@@ -948,7 +945,7 @@ async fn call_with(
     (status, v)
 }
 
-/// Issue 21, item 1: a page elsewhere cannot change a file or start work
+/// A page elsewhere cannot change a file or start work
 /// (SPEC §15, trust of the studio).
 #[tokio::test]
 async fn foreign_origins_and_simple_requests_are_refused() {
@@ -1024,7 +1021,7 @@ async fn foreign_origins_and_simple_requests_are_refused() {
     assert_eq!(s, StatusCode::OK);
 }
 
-/// Issue 21, item 6: with a question open, a demonstration added to
+/// With a question open, a demonstration added to
 /// demos.json and a rule added to learned.rcc by hand are never lost when
 /// the question is answered.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -1064,7 +1061,7 @@ async fn answering_never_overwrites_hand_edits() {
     assert!(v["question"].is_object() || v["question"].is_null(), "{v}");
 }
 
-/// Issue 35, item 4: an outside edit to answers.json (a hand fix, a
+/// An outside edit to answers.json (a hand fix, a
 /// `rccpack ask` run between two questions) is never overwritten by an
 /// answer given in the studio.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -1093,7 +1090,7 @@ async fn answering_never_overwrites_an_edited_answers_file() {
     );
 }
 
-/// Issue 21, item 7 (studio side): while `rccpack ask` holds the task
+/// The studio side of the lock: while `rccpack ask` holds the task
 /// folder's lock, the studio writes nothing and says why.
 #[tokio::test]
 async fn studio_writes_wait_for_the_folder_lock() {
@@ -1122,7 +1119,7 @@ async fn studio_writes_wait_for_the_folder_lock() {
     assert_eq!(s, StatusCode::CREATED);
 }
 
-/// Issue 21, item 8: many errors in one rule text are reported in linear
+/// Many errors in one rule text are reported in linear
 /// time (timed as a ratio against a text ten times smaller), at most 20 of
 /// them and the count of the rest.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -1171,7 +1168,7 @@ async fn many_rule_errors_are_reported_in_linear_time() {
     }
 }
 
-/// Issue 21, items 11 and 14: learned rules about a class the problem
+/// Learned rules about a class the problem
 /// lacks are noted, not refused; `cutoff` is named as the body's field.
 #[tokio::test]
 async fn absent_classes_are_noted_and_fields_named() {
@@ -1222,7 +1219,7 @@ async fn absent_classes_are_noted_and_fields_named() {
     assert_eq!(v["path"], "cutoff");
 }
 
-/// "Another layout like this" (issue 24): `POST /api/sample` draws a layout
+/// "Another layout like this": `POST /api/sample` draws a layout
 /// of at least the given score; each seed another one; every one verified.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn another_layout_like_this() {
@@ -1269,7 +1266,7 @@ async fn another_layout_like_this() {
     assert!(v["error"].as_str().unwrap().contains("min_score"), "{v}");
 }
 
-/// Issue 35, item 11: a learning request whose client leaves is cancelled
+/// A learning request whose client leaves is cancelled
 /// (no core kept busy), and a newer request cancels an older one.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn left_learning_requests_are_cancelled() {
@@ -1316,7 +1313,7 @@ async fn left_learning_requests_are_cancelled() {
     assert_eq!(v["kind"], "cancelled", "{v}");
 }
 
-/// Issue 35, the smaller findings: a 405 is JSON; a demos.json that is not
+/// Smaller cases: a 405 is JSON; a demos.json that is not
 /// UTF-8 is 409 (corrupt, with the byte offset), not 500; a problem.json
 /// that is not UTF-8 names the byte offset.
 #[tokio::test]
@@ -1355,8 +1352,7 @@ async fn learn_200(app: &axum::Router) -> Value {
 /// intended rules as learned.rcc.
 fn library_priors(tag: &str) -> rccpack::priors::Priors {
     let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
-    let lib = std::env::temp_dir().join(format!("rccpack-studio-lib-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&lib);
+    let lib = crate::support::scratch(&format!("studio-lib-{tag}"));
     let mut dirs = Vec::new();
     for (name, learned) in [("box-packing", "pilot.rcc"), ("shelf", "intended.rcc")] {
         let d = lib.join(name);
@@ -1430,7 +1426,7 @@ fn studio_refuses_a_bad_priors_file_naming_the_field() {
     let text = library_priors("bad").to_json();
     let bad = dir.join("priors.json");
     std::fs::write(&bad, text.replacen("\"tasks\": 2", "\"tasks\": 3", 1)).unwrap();
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rccpack"))
+    let mut child = crate::support::command()
         .arg("studio")
         .arg(&dir)
         .arg("--priors")

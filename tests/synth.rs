@@ -12,115 +12,8 @@ use rccpack::synth::{synthesize, Status, SynthOptions, SynthResult};
 use rccpack::synth::{verify_solution, VerifyError};
 use std::time::Duration;
 
-fn atom(rel: &str, s: &str, t: &str) -> Formula {
-    Formula::Atom(Atom::new(
-        Relation::from_name(rel).unwrap(),
-        s,
-        if t == "*" {
-            Target::Any
-        } else {
-            Target::Class(t.into())
-        },
-    ))
-}
-
-fn and(v: Vec<Formula>) -> Formula {
-    Formula::And(v)
-}
-
-fn or(v: Vec<Formula>) -> Formula {
-    Formula::Or(v)
-}
-
-fn not(f: Formula) -> Formula {
-    Formula::not(f)
-}
-
-fn touches(x: &str) -> Formula {
-    or(["EC_N", "EC_S", "EC_E", "EC_W"]
-        .iter()
-        .map(|r| atom(r, x, x))
-        .collect())
-}
-
-fn corner(x: &str) -> Formula {
-    or(vec![
-        and(vec![atom("EC_N", x, "*"), atom("EC_W", x, "*")]),
-        and(vec![atom("EC_W", x, "*"), atom("EC_S", x, "*")]),
-        and(vec![atom("EC_S", x, "*"), atom("EC_E", x, "*")]),
-        and(vec![atom("EC_E", x, "*"), atom("EC_N", x, "*")]),
-    ])
-}
-
-fn inside(x: &str) -> Formula {
-    and(["DR_N", "DR_S", "DR_E", "DR_W"]
-        .iter()
-        .map(|r| not(atom(r, x, "W")))
-        .collect())
-}
-
-/// The thesis's 12 pilot rules.
-fn pilot_rules() -> RuleSet {
-    let mut rules = vec![
-        Rule::new("blue_north_of_red", atom("DR_N", "B", "R")),
-        Rule::new("green_east_of_red", atom("DR_E", "G", "R")),
-        Rule::new("green_east_of_blue", atom("DR_E", "G", "B")),
-    ];
-    for x in ["B", "R", "G"] {
-        rules.push(Rule::new(format!("{x}_touches_{x}"), touches(x)));
-        rules.push(Rule::new(format!("{x}_corner"), corner(x)));
-        rules.push(Rule::new(format!("{x}_inside"), inside(x)));
-    }
-    RuleSet::new(rules)
-}
-
-fn obj(id: &str, class: &str, w: i64, h: i64, pos: Option<(i64, i64)>, fixed: bool) -> Object {
-    Object {
-        id: id.into(),
-        class: class.into(),
-        x: pos.map(|p| p.0),
-        y: pos.map(|p| p.1),
-        width: w,
-        height: h,
-        fixed,
-    }
-}
-
-fn walls() -> Vec<Object> {
-    vec![
-        obj("w_south", "W", 220, 10, Some((190, 190)), true),
-        obj("w_north", "W", 220, 10, Some((190, 400)), true),
-        obj("w_west", "W", 10, 200, Some((190, 200)), true),
-        obj("w_east", "W", 10, 200, Some((400, 200)), true),
-    ]
-}
-
-/// The bundled box-packing problem: 3 R, 3 G, 3 B unplaced 20×20 blocks.
-fn box_problem(per_class: usize) -> Scene {
-    let mut objects = walls();
-    for c in ["R", "G", "B"] {
-        for i in 0..per_class {
-            objects.push(obj(
-                &format!("{}{}", c.to_lowercase(), i + 1),
-                c,
-                20,
-                20,
-                None,
-                false,
-            ));
-        }
-    }
-    Scene {
-        space: Space {
-            x: 0,
-            y: 0,
-            width: 600,
-            height: 600,
-        },
-        grid: 10,
-        objects,
-    }
-}
+use crate::support::box_packing::{box_problem, corner, inside, obj, pilot_rules, touches};
+use crate::support::formulas::{and, atom, not, or};
 
 /// Run, verify the layout and the score, return the result.
 fn solve(problem: &Scene, rules: &RuleSet, opts: &SynthOptions) -> SynthResult {
@@ -508,218 +401,6 @@ fn directions_are_exact_with_off_grid_sizes() {
     assert_eq!(r.evaluation.unwrap().satisfied_weight, 1.0);
 }
 
-// ---- measurements (run with `cargo test --release --test integration synth:: -- --ignored --nocapture`)
-
-fn templates(a: &str, classes: &[&str]) -> Vec<Formula> {
-    let mut out = Vec::new();
-    for b in classes.iter().copied().chain(["*"]) {
-        for d in ["N", "S", "E", "W"] {
-            out.push(atom(&format!("DR_{d}"), a, b));
-            out.push(atom(&format!("EC_{d}"), a, b));
-            out.push(not(atom(&format!("DR_{d}"), a, b)));
-        }
-        out.push(or(["EC_N", "EC_S", "EC_E", "EC_W"]
-            .iter()
-            .map(|r| atom(r, a, b))
-            .collect()));
-        out.push(and(["DR_N", "DR_S", "DR_E", "DR_W"]
-            .iter()
-            .map(|r| not(atom(r, a, b)))
-            .collect()));
-    }
-    out.push(corner(a));
-    out
-}
-
-/// A thesis-study-like problem: the box, 2–6 objects, 1–5 rules per class
-/// drawn from the pilot rules and the templates.
-fn study_problem(seed: u64) -> (Scene, RuleSet) {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let n = rng.random_range(2..=6);
-    let mut p = box_problem(0);
-    for i in 0..n {
-        let c = ["R", "G", "B"][rng.random_range(0..3)];
-        p.objects.push(obj(
-            &format!("{}{i}", c.to_lowercase()),
-            c,
-            20,
-            20,
-            None,
-            false,
-        ));
-    }
-    let pilot = pilot_rules();
-    let mut rules = Vec::new();
-    for c in ["R", "G", "B"] {
-        let mut pool: Vec<Formula> = pilot
-            .rules
-            .iter()
-            .filter(|r| r.subject() == c)
-            .map(|r| r.formula.clone())
-            .collect();
-        pool.extend(templates(c, &["R", "G", "B", "W"]));
-        for j in 0..rng.random_range(1..=5) {
-            let f = if rng.random_range(0..2) == 0 {
-                pool[rng.random_range(0..3)].clone()
-            } else {
-                pool[rng.random_range(0..pool.len())].clone()
-            };
-            let pv = 10f64.powf(-rng.random_range(2.0..12.0));
-            rules.push(Rule::new(format!("{c}{j}"), f).with_strength(Strength::P(pv)));
-        }
-    }
-    (p, RuleSet::new(rules))
-}
-
-fn scale_problem(per_class: usize, inner: i64) -> Scene {
-    let mut p = box_problem(per_class);
-    let (x0, y0) = (100, 100);
-    p.space.width = inner + 2 * x0 + 20;
-    p.space.height = inner + 2 * y0 + 20;
-    p.objects[0] = obj("w_south", "W", inner + 20, 10, Some((x0, y0)), true);
-    p.objects[1] = obj(
-        "w_north",
-        "W",
-        inner + 20,
-        10,
-        Some((x0, y0 + 10 + inner)),
-        true,
-    );
-    p.objects[2] = obj("w_west", "W", 10, inner, Some((x0, y0 + 10)), true);
-    p.objects[3] = obj(
-        "w_east",
-        "W",
-        10,
-        inner,
-        Some((x0 + 10 + inner, y0 + 10)),
-        true,
-    );
-    p
-}
-
-/// CPU time of this thread in ms (robust against a loaded machine).
-fn cpu_ms() -> f64 {
-    let mut t = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: `t` is a valid, writable timespec.
-    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
-    t.tv_sec as f64 * 1e3 + t.tv_nsec as f64 / 1e6
-}
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
-    v[v.len() / 2]
-}
-
-#[test]
-#[ignore]
-fn bench_study() {
-    let quick = std::env::var_os("BENCH_QUICK").is_some();
-    for strategy in [
-        rccpack::synth::Strategy::UpperBoundFirst,
-        rccpack::synth::Strategy::ImproveFromFirst,
-    ] {
-        for (sym, red) in [(true, true), (true, false), (false, false)] {
-            if quick && !(sym && red) {
-                continue;
-            }
-            let mut times = Vec::new();
-            let mut not_opt = 0;
-            for seed in 0..250 {
-                let (p, rules) = study_problem(seed);
-                let opts = SynthOptions {
-                    strategy,
-                    symmetry_breaking: sym,
-                    redundant: red,
-                    time_limit: Some(Duration::from_secs(5)),
-                    ..Default::default()
-                };
-                let c0 = cpu_ms();
-                let r = solve(&p, &rules, &opts);
-                if r.status != Status::Optimal {
-                    not_opt += 1;
-                }
-                let dt = cpu_ms() - c0;
-                if dt > 100.0 && std::env::var_os("BENCH_SLOW").is_some() {
-                    println!(
-                        "  slow seed {seed}: {dt:.0} ms, {} objects, nodes {}, conflicts {}, score {:?}, first {:?} ms",
-                        p.objects.len() - 4,
-                        r.stats.nodes,
-                        r.stats.conflicts,
-                        r.evaluation.as_ref().map(|e| e.score),
-                        r.stats.time_to_first_ms
-                    );
-                    for rule in &rules.rules {
-                        println!("    {}", rccpack::rules::print_rule(rule));
-                    }
-                }
-                times.push(dt);
-            }
-            let max = times.iter().cloned().fold(0.0, f64::max);
-            println!(
-                "study {strategy:?} sym={sym} red={red}: CPU median {:.2} ms, max {:.1} ms, not optimal {not_opt}",
-                median(&mut times),
-                max
-            );
-        }
-    }
-}
-
-#[test]
-#[ignore]
-fn bench_scale() {
-    let limit: u64 = std::env::var("BENCH_LIMIT")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(20);
-    let quick = std::env::var_os("BENCH_QUICK").is_some();
-    for (per_class, inner) in [(8usize, 200i64), (16, 300)] {
-        for strategy in [
-            rccpack::synth::Strategy::UpperBoundFirst,
-            rccpack::synth::Strategy::ImproveFromFirst,
-        ] {
-            if quick && strategy != rccpack::synth::Strategy::UpperBoundFirst {
-                continue;
-            }
-            for (sym, red) in [(true, true), (true, false), (false, false)] {
-                if quick && !(sym && red) {
-                    continue;
-                }
-                let p = scale_problem(per_class, inner);
-                let mut times = Vec::new();
-                let mut scores = Vec::new();
-                for seed in 0..3 {
-                    let opts = SynthOptions {
-                        strategy,
-                        seed,
-                        symmetry_breaking: sym,
-                        redundant: red,
-                        time_limit: Some(Duration::from_secs(limit)),
-                        ..Default::default()
-                    };
-                    let c0 = cpu_ms();
-                    let r = solve(&p, &pilot_rules(), &opts);
-                    times.push(cpu_ms() - c0);
-                    scores.push(format!(
-                        "{:?}/{:.4}/first {:.0}ms",
-                        r.status,
-                        r.evaluation.map(|e| e.score).unwrap_or(f64::NAN),
-                        r.stats.time_to_first_ms.unwrap_or(f64::NAN)
-                    ));
-                }
-                println!(
-                    "scale n={} {strategy:?} sym={sym} red={red}: CPU median {:.1} ms {:?}",
-                    per_class * 3,
-                    median(&mut times),
-                    scores
-                );
-            }
-        }
-    }
-}
-
 // ---- Second edition (SPEC §11) ----
 
 fn qatom(rel: &str, s: &str, q: Quant, t: Target) -> Formula {
@@ -932,8 +613,7 @@ fn landmark_on_a_movable_or_missing_object_is_an_empty_target() {
 /// key order counts).
 #[test]
 fn synth_report_keeps_first_edition_format() {
-    let dir = std::env::temp_dir().join(format!("rccpack-synth-report-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::support::scratch("synth-report");
     let rules = dir.join("r.rcc");
     std::fs::write(
         &rules,
@@ -941,7 +621,7 @@ fn synth_report_keeps_first_edition_format() {
     )
     .unwrap();
     let report = dir.join("report.json");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rccpack"))
+    let out = crate::support::command()
         .arg("synth")
         .arg(concat!(
             env!("CARGO_MANIFEST_DIR"),
@@ -1001,7 +681,7 @@ fn synth_report_keeps_first_edition_format() {
 }
 
 // ---------------------------------------------------------------------------
-// Warm starts (issue 20): the bundled example with more blocks per class.
+// Warm starts: the bundled example with more blocks per class.
 
 /// The bundled example's problem with `n` blocks of each class (same sizes).
 fn bundled_with(n: usize) -> Scene {

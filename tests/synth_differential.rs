@@ -38,9 +38,10 @@
 //! 5000 + 2000 first-edition and 10000 + 4000 second-edition cases in
 //! spaces up to 60×60.
 
+use crate::support::cases::Case;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rccpack::bench::pool::{among, atom, corner, formula_text, touches};
+use rccpack::bench::pool::{among, atom, corner, touches};
 use rccpack::eval::evaluate;
 use rccpack::relations::{Contact, Dir, Kind, Quant, Relation};
 use rccpack::resemblance::Likeness;
@@ -62,45 +63,6 @@ const VOC: Vocabulary = Vocabulary {
 };
 
 const BASE_SEED: u64 = 0x5EED_D1FF;
-
-/// One random problem.
-#[derive(Debug, Clone)]
-struct Case {
-    index: u64,
-    scene: Scene,
-    rules: RuleSet,
-    contact: Contact,
-}
-
-impl Case {
-    /// Everything needed to reproduce the case by hand.
-    fn describe(&self) -> String {
-        let mut s = format!(
-            "case {} (contact {}):\n{}rules:\n",
-            self.index,
-            self.contact,
-            self.scene.to_json()
-        );
-        for r in &self.rules.rules {
-            let m = match r.strength {
-                Strength::Hard => " hard".to_string(),
-                Strength::Weight(w) if w != 1.0 => format!(" weight {w}"),
-                _ => String::new(),
-            };
-            let scope = match r.scope {
-                Scope::Each | Scope::Group => String::new(),
-                Scope::Scene(q) => format!("{q} {}: ", r.subject()),
-            };
-            s.push_str(&format!(
-                "rule {}{}: {scope}{}\n",
-                r.name,
-                m,
-                formula_text(&r.formula)
-            ));
-        }
-        s
-    }
-}
 
 /// Which rule language a run draws from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -276,11 +238,7 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
         let o = Object::fixed_at(id, class, x, y, fw, fh);
         // Keep the scene valid: a second fixed object that overlaps the
         // first is dropped.
-        let clash = objects.iter().any(|p| match (p.rect(), o.rect()) {
-            (Some(a), Some(b)) => a.interiors_overlap(&b),
-            _ => false,
-        });
-        if !clash {
+        if !crate::support::overlaps_any(&objects, &o) {
             objects.push(o);
         }
     }
@@ -332,24 +290,11 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
         let x = 10 * rng.random_range(0..w / 10);
         let y = 10 * rng.random_range(0..h / 10);
         let o = Object::placed(&format!("p{i}"), class, x, y, 10, 10);
-        let clash = objects.iter().any(|p| match (p.rect(), o.rect()) {
-            (Some(a), Some(b)) => a.interiors_overlap(&b),
-            _ => false,
-        });
-        if !clash {
+        if !crate::support::overlaps_any(&objects, &o) {
             objects.push(o);
         }
     }
-    let scene = Scene {
-        space: Space {
-            x: 0,
-            y: 0,
-            width: w,
-            height: h,
-        },
-        grid: 10,
-        objects,
-    };
+    let scene = crate::support::table(w, h, objects);
     let n_rules = if third {
         rng.random_range(0..=2)
     } else {

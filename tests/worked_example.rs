@@ -10,9 +10,10 @@
 //!       x=0  20   40   60
 //! ```
 
+use crate::support::formulas::atom;
 use rccpack::eval::Evaluator;
 use rccpack::relations::{Contact, Dir, Kind, Relation};
-use rccpack::rules::{Atom, Formula, Rule, RuleSet, Target};
+use rccpack::rules::{Formula, Rule, RuleSet};
 use rccpack::scene::Scene;
 
 fn scene() -> Scene {
@@ -25,15 +26,6 @@ fn scene() -> Scene {
         {"id":"b2","class":"B","x":20,"y":20,"width":20,"height":20}]}"#,
     )
     .unwrap()
-}
-
-fn atom(kind: Kind, dir: Dir, s: &str, t: &str) -> Formula {
-    let target = if t == "*" {
-        Target::Any
-    } else {
-        Target::Class(t.into())
-    };
-    Formula::Atom(Atom::new(Relation::new(kind, dir), s, target))
 }
 
 /// Ids of the objects (of the atom's subject class) that satisfy `f`.
@@ -54,16 +46,16 @@ fn holders(scene: &Scene, f: &Formula, contact: Contact) -> Vec<String> {
 fn blues_are_north_of_every_red() {
     let s = scene();
     assert_eq!(
-        holders(&s, &atom(Kind::DR, Dir::N, "B", "R"), Contact::Point),
+        holders(&s, &atom("DR_N", "B", "R"), Contact::Point),
         ["b1", "b2"]
     );
     // ...and rest on at least one red.
     assert_eq!(
-        holders(&s, &atom(Kind::EC, Dir::N, "B", "R"), Contact::Point),
+        holders(&s, &atom("EC_N", "B", "R"), Contact::Point),
         ["b1", "b2"]
     );
     assert_eq!(
-        holders(&s, &atom(Kind::EC, Dir::N, "B", "R"), Contact::Edge),
+        holders(&s, &atom("EC_N", "B", "R"), Contact::Edge),
         ["b1", "b2"]
     );
 }
@@ -72,39 +64,30 @@ fn blues_are_north_of_every_red() {
 fn reds_under_a_blue() {
     let s = scene();
     // r3 touches b2 only at the corner (40, 20): it counts in point mode.
-    let ec_s = atom(Kind::EC, Dir::S, "R", "B");
+    let ec_s = atom("EC_S", "R", "B");
     assert_eq!(holders(&s, &ec_s, Contact::Point), ["r1", "r2", "r3"]);
     assert_eq!(holders(&s, &ec_s, Contact::Edge), ["r1", "r2"]);
     // Only r3 is east of every blue; nothing is west of every blue.
-    assert_eq!(
-        holders(&s, &atom(Kind::DR, Dir::E, "R", "B"), Contact::Point),
-        ["r3"]
-    );
-    assert!(holders(&s, &atom(Kind::DR, Dir::W, "R", "B"), Contact::Point).is_empty());
+    assert_eq!(holders(&s, &atom("DR_E", "R", "B"), Contact::Point), ["r3"]);
+    assert!(holders(&s, &atom("DR_W", "R", "B"), Contact::Point).is_empty());
 }
 
 #[test]
 fn same_class_and_any_targets_exclude_the_object_itself() {
     let s = scene();
     // b1 touches b2 on b2's west side; b2 touches b1 on b1's east side.
-    assert_eq!(
-        holders(&s, &atom(Kind::EC, Dir::W, "B", "B"), Contact::Point),
-        ["b1"]
-    );
-    assert_eq!(
-        holders(&s, &atom(Kind::EC, Dir::E, "B", "B"), Contact::Point),
-        ["b2"]
-    );
+    assert_eq!(holders(&s, &atom("EC_W", "B", "B"), Contact::Point), ["b1"]);
+    assert_eq!(holders(&s, &atom("EC_E", "B", "B"), Contact::Point), ["b2"]);
     // DR_N(B, B): b1 is not north of b2 (same row), so nobody.
-    assert!(holders(&s, &atom(Kind::DR, Dir::N, "B", "B"), Contact::Point).is_empty());
+    assert!(holders(&s, &atom("DR_N", "B", "B"), Contact::Point).is_empty());
     // DR_S(R, *) fails for everyone since the reds see each other side by side.
-    assert!(holders(&s, &atom(Kind::DR, Dir::S, "R", "*"), Contact::Point).is_empty());
+    assert!(holders(&s, &atom("DR_S", "R", "*"), Contact::Point).is_empty());
     // A class with no objects: DR holds vacuously, EC never.
     assert_eq!(
-        holders(&s, &atom(Kind::DR, Dir::N, "B", "Q"), Contact::Point),
+        holders(&s, &atom("DR_N", "B", "Q"), Contact::Point),
         ["b1", "b2"]
     );
-    assert!(holders(&s, &atom(Kind::EC, Dir::N, "B", "Q"), Contact::Point).is_empty());
+    assert!(holders(&s, &atom("EC_N", "B", "Q"), Contact::Point).is_empty());
 }
 
 #[test]
@@ -114,17 +97,17 @@ fn formulas_and_score() {
     let touches = Formula::Or(
         Dir::ALL
             .iter()
-            .map(|&d| atom(Kind::EC, d, "B", "B"))
+            .map(|&d| atom(Relation::new(Kind::EC, d), "B", "B"))
             .collect(),
     );
     assert_eq!(holders(&s, &touches, Contact::Point), ["b1", "b2"]);
     // !DR_N(R, B): every red is south of the blues, so not north of them: all hold.
-    let not_north = Formula::not(atom(Kind::DR, Dir::N, "R", "B"));
+    let not_north = Formula::not(atom("DR_N", "R", "B"));
     assert_eq!(holders(&s, &not_north, Contact::Point), ["r1", "r2", "r3"]);
 
     let rules = RuleSet::new(vec![
         Rule::new("b_touch", touches),
-        Rule::new("r_east", atom(Kind::DR, Dir::E, "R", "B"))
+        Rule::new("r_east", atom("DR_E", "R", "B"))
             .with_strength(rccpack::rules::Strength::Weight(2.0)),
     ]);
     let e = rccpack::eval::evaluate(&s, &rules, Contact::Point);
@@ -141,10 +124,10 @@ fn unplaced_objects_take_no_part() {
     s.objects[2].x = None; // r3 unplaced
     s.objects[2].y = None;
     assert_eq!(
-        holders(&s, &atom(Kind::DR, Dir::E, "R", "B"), Contact::Point),
+        holders(&s, &atom("DR_E", "R", "B"), Contact::Point),
         Vec::<String>::new()
     );
-    let rules = RuleSet::new(vec![Rule::new("r", atom(Kind::DR, Dir::S, "R", "B"))]);
+    let rules = RuleSet::new(vec![Rule::new("r", atom("DR_S", "R", "B"))]);
     let e = rccpack::eval::evaluate(&s, &rules, Contact::Point);
     assert_eq!(e.rules[0].subjects, 2);
 }

@@ -77,6 +77,7 @@ fn sample_error(e: SampleError) -> PyErr {
         SampleError::LimitReached { .. } => "limit",
         SampleError::BadMinScore(_) => "bad_min_score",
         SampleError::Synth(_) => "synth",
+        _ => "other",
     };
     let text = match &e {
         SampleError::Infeasible(c) => {

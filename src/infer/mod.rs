@@ -52,6 +52,7 @@ use std::fmt::Write as _;
 
 /// Why learning cannot run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum InferError {
     /// A parameter is out of its range.
     #[error("learning parameter `{param}` is {value}; expected {expected}")]

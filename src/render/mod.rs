@@ -64,6 +64,7 @@ impl Default for RenderOptions {
 
 /// Why a picture could not be made.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum RenderError {
     /// The output file's extension names no supported format.
     #[error("unsupported picture format {found}; expected `.svg` or `.png`")]

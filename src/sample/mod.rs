@@ -144,6 +144,7 @@ impl Default for SampleOptions {
 
 /// Why sampling stopped without a layout, or could not start.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SampleError {
     /// The problem or the rules are not usable (as for synthesis).
     #[error(transparent)]

@@ -1,11 +1,68 @@
-//! Random second-edition formulas for the differential tests
-//! (`synth_differential`, `ask_probes`): atoms with every relation,
-//! quantifier and target kind, and trees of them.
+//! Formulas for the tests: atoms written as in the language (`atom("EC_N",
+//! "B", "*")`), `and`/`or`/`not`, and random second-edition formulas for
+//! the differential tests (`synth_differential`, `ask_probes`, `emit`):
+//! atoms with every relation, quantifier and target kind, and trees of them.
 
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 use rccpack::relations::{Dir, Kind, Quant, Relation};
 use rccpack::rules::{Atom, Formula, Target};
+
+/// A relation as the tests name it: a [`Relation`], or its name (`"EC_N"`).
+pub trait AsRelation {
+    /// The relation.
+    fn relation(self) -> Relation;
+}
+
+impl AsRelation for Relation {
+    fn relation(self) -> Relation {
+        self
+    }
+}
+
+impl AsRelation for &str {
+    fn relation(self) -> Relation {
+        Relation::from_name(self).unwrap_or_else(|| panic!("no relation {self:?}"))
+    }
+}
+
+impl AsRelation for &&str {
+    fn relation(self) -> Relation {
+        (*self).relation()
+    }
+}
+
+impl AsRelation for &String {
+    fn relation(self) -> Relation {
+        self.as_str().relation()
+    }
+}
+
+/// The atom `REL(subject, target)` with the relation's default quantifier;
+/// `target` is a class, or `*` for any object.
+pub fn atom(rel: impl AsRelation, subject: &str, target: &str) -> Formula {
+    let target = if target == "*" {
+        Target::Any
+    } else {
+        Target::Class(target.into())
+    };
+    Formula::Atom(Atom::new(rel.relation(), subject, target))
+}
+
+/// `f1 & f2 & …`
+pub fn and(v: Vec<Formula>) -> Formula {
+    Formula::And(v)
+}
+
+/// `f1 | f2 | …`
+pub fn or(v: Vec<Formula>) -> Formula {
+    Formula::Or(v)
+}
+
+/// `!f`
+pub fn not(f: Formula) -> Formula {
+    Formula::not(f)
+}
 
 /// The names a generator draws targets from.
 pub struct Vocabulary {

@@ -1,5 +1,8 @@
-//! What the integration tests share: running the built binary, reading its
-//! output, fresh folders, the bundled example's paths.
+//! What the integration tests (and the benchmarks, through `#[path]`)
+//! share: running the built binary, reading its output, fresh folders and
+//! files, the bundled examples, a median; `formulas` builds atoms and random
+//! formulas, `cases` the random problems of the differential tests,
+//! `box_packing` the box-packing problem and its pilot rules.
 
 #![allow(dead_code)] // each test module uses part of it
 
@@ -21,9 +24,14 @@ pub fn rccpack(args: &[&str]) -> Output {
     rccpack_in(root(), args)
 }
 
+/// A command running the built `rccpack` binary.
+pub fn command() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_rccpack"))
+}
+
 /// Run the `rccpack` binary with `args` in `dir`.
 pub fn rccpack_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_rccpack"))
+    command()
         .args(args)
         .current_dir(dir)
         .output()
@@ -47,4 +55,74 @@ pub fn scratch(tag: &str) -> PathBuf {
     std::fs::create_dir_all(&d).expect("create a scratch folder");
     d
 }
+
+/// A file `name` holding `text` in `dir`; its path as text, as the
+/// command line takes it.
+pub fn write_file(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+    p.to_str().expect("a UTF-8 temporary path").to_string()
+}
+
+/// A file of the crate (`rel` from the crate root) as text.
+pub fn read(rel: impl AsRef<Path>) -> String {
+    let p = root().join(rel);
+    std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+/// A bundled example's folder (`examples/<name>`).
+pub fn example(name: &str) -> PathBuf {
+    root().join("examples").join(name)
+}
+
+/// A fresh folder `tag` (as [`scratch`]) holding a copy of `files` of the
+/// bundled example `name`.
+pub fn example_copy(tag: &str, name: &str, files: &[&str]) -> PathBuf {
+    let dir = scratch(tag);
+    for f in files {
+        std::fs::copy(example(name).join(f), dir.join(f)).expect("copy an example file");
+    }
+    dir
+}
+
+/// A `w`×`h` table at the origin, grid 10, holding `objects`.
+pub fn table(w: i64, h: i64, objects: Vec<rccpack::scene::Object>) -> rccpack::scene::Scene {
+    rccpack::scene::Scene {
+        space: rccpack::scene::Space {
+            x: 0,
+            y: 0,
+            width: w,
+            height: h,
+        },
+        grid: 10,
+        objects,
+    }
+}
+
+/// Whether `o` overlaps (interiors) a placed object of `objects`.
+pub fn overlaps_any(objects: &[rccpack::scene::Object], o: &rccpack::scene::Object) -> bool {
+    objects.iter().any(|p| match (p.rect(), o.rect()) {
+        (Some(a), Some(b)) => a.interiors_overlap(&b),
+        _ => false,
+    })
+}
+
+/// Fails, naming what is missing, unless `peer` can run: a peer test is
+/// `#[ignore]`d, and one that is run must run.
+pub fn require_peer(peer: rccpack::bench::peers::Peer) {
+    if let Err(why) = rccpack::bench::peers::check_available(peer) {
+        panic!("{peer} cannot run: {why}");
+    }
+}
+
+/// The median of `v`: its element at `len / 2` once sorted (the upper
+/// one of an even count); the default value (0) when `v` is empty.
+pub fn median<T: Copy + PartialOrd + Default>(v: &[T]) -> T {
+    let mut s = v.to_vec();
+    s.sort_by(|a, b| a.partial_cmp(b).expect("no NaN"));
+    s.get(s.len() / 2).copied().unwrap_or_default()
+}
+
+pub mod box_packing;
+pub mod cases;
 pub mod formulas;
