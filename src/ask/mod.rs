@@ -9,10 +9,12 @@
 //! - `budget`: the node budget every question is produced under;
 //! - `lookahead`: the next question for both answers, computed while the
 //!   person looks;
+//! - `answers`: the `answers.json` journal;
 //! - `session`: the question loop without I/O — which rule next, what an
 //!   answer does ([`Asker`]); the command line (`rccpack ask`) and the
 //!   studio save what it returns.
 
+mod answers;
 mod budget;
 mod edit;
 mod lookahead;
@@ -27,7 +29,5 @@ pub use probe::{
     find_probe, negation, probe_rules, Probe, ProbeOptions, ProbeOutcome, DEFAULT_CHECK_NODES,
     DEFAULT_PROBE_NODES,
 };
-pub use session::{
-    Answer, AnswersFile, AnswersFileError, AskError, AskOptions, Asker, Question, Tally, Unasked,
-    CONFIRMED,
-};
+pub use answers::{Answer, AnswersFile, AnswersFileError, CONFIRMED};
+pub use session::{AskError, AskOptions, Asker, Question, Tally, Unasked};
