@@ -95,7 +95,14 @@ pub fn learn_with_priors(
     for (c, _) in &class_list {
         classes.intern(c);
     }
-    let st = statement_set(demos, statements, params, priors, &classes, class_list.len())?;
+    let st = statement_set(
+        demos,
+        statements,
+        params,
+        priors,
+        &classes,
+        class_list.len(),
+    )?;
     let set = st.set.as_ref();
     // Every landmark is interned before compiling, so that each scene's
     // atom table resolves it.
@@ -111,7 +118,9 @@ pub fn learn_with_priors(
     debug_assert!(subjects.iter().all(|&c| c < classes.len()), "checked");
 
     let broken = find_candidates(demos, &classes, &compiled, params.contact);
-    let counts = chance_counts(demos, params, &classes, &compiled, &broken, deadline, cancel)?;
+    let counts = chance_counts(
+        demos, params, &classes, &compiled, &broken, deadline, cancel,
+    )?;
     let stats = class_stats(demos, &classes, params);
     // Scene-level statements (§11.5): q per random scene, n = d.
     let scene_epsilon = params.epsilon.unwrap_or(0.5 / params.samples as f64);

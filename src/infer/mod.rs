@@ -73,4 +73,3 @@ pub fn statement_text(scope: Scope, formula: &Formula) -> String {
         print_formula(formula)
     )
 }
-

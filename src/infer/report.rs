@@ -70,7 +70,6 @@ impl Learned {
     }
 }
 
-
 /// The JSON report of `rccpack learn --report`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {

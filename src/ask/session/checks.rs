@@ -358,7 +358,11 @@ impl Asker {
 
     /// A probe for rule `k` that is a demonstration with a few objects
     /// moved, within the question's budget.
-    pub(super) fn edit_probe(&self, k: usize, checkers: &mut Vec<Option<ProbeChecker>>) -> Option<Probe> {
+    pub(super) fn edit_probe(
+        &self,
+        k: usize,
+        checkers: &mut Vec<Option<ProbeChecker>>,
+    ) -> Option<Probe> {
         if !self.opts.edits {
             return None;
         }
