@@ -604,9 +604,9 @@ mod tests {
 
     /// The bundled example's problem and demonstrations.
     fn example() -> (Scene, Vec<Scene>) {
-        let demos = scenes_from_json(include_str!("../../examples/box-packing/demos.json"))
+        let demos = scenes_from_json(include_str!("../../../examples/box-packing/demos.json"))
             .expect("demonstrations");
-        let problem = Scene::from_json(include_str!("../../examples/box-packing/problem.json"))
+        let problem = Scene::from_json(include_str!("../../../examples/box-packing/problem.json"))
             .expect("problem");
         (problem, demos)
     }

@@ -91,7 +91,7 @@ fn rule_summary(set: &RuleSet, confirmed: &[String]) -> Vec<RuleSummary> {
     set.rules
         .iter()
         .map(|r| RuleSummary {
-            confirmed: confirmed.iter().any(|c| *c == r.name),
+            confirmed: confirmed.contains(&r.name),
             formula: statement_text(r.scope, &r.formula),
             hard: r.strength.is_hard(),
             name: r.name.clone(),

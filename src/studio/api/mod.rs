@@ -46,7 +46,7 @@ pub(crate) struct ApiError {
     path: Option<String>,
     kind: Option<&'static str>,
     file: Option<String>,
-    current: Option<learned::LearnedView>,
+    current: Option<Box<learned::LearnedView>>,
 }
 
 /// The body of an error answer.
@@ -54,7 +54,7 @@ pub(crate) struct ApiError {
 struct ErrorBody {
     /// `learned.rcc` as it is on disk now (a refused write).
     #[serde(skip_serializing_if = "Option::is_none")]
-    current: Option<learned::LearnedView>,
+    current: Option<Box<learned::LearnedView>>,
     error: String,
     /// The rules file a parse error is about.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -94,7 +94,7 @@ impl ApiError {
         self
     }
     fn current(mut self, current: learned::LearnedView) -> Self {
-        self.current = Some(current);
+        self.current = Some(Box::new(current));
         self
     }
     fn io(name: &str, e: std::io::Error) -> Self {
