@@ -37,7 +37,7 @@ pub fn remove_in_flight() {
 
 /// The name prefix shared by every temporary file of [`atomic_write`]:
 /// `.NAME.tmp-PID-N` beside the target `NAME`.
-pub fn temp_name(target_name: &str, n: u64) -> String {
+pub(crate) fn temp_name(target_name: &str, n: u64) -> String {
     format!(".{target_name}.tmp-{}-{n}", std::process::id())
 }
 
@@ -270,7 +270,7 @@ mod tests {
             e.to_string().contains("0xff at byte offset 5 (line 2)"),
             "{e}"
         );
-        // Old Mac line ends count as lines too (issue 35 item 13).
+        // Old Mac line ends count as lines too.
         assert_eq!(utf8_text(b"a\rb\rc\xff".to_vec()).unwrap_err().line, 3);
         assert_eq!(utf8_text(b"a\r\nb\xff".to_vec()).unwrap_err().line, 2);
     }

@@ -9,10 +9,12 @@
 //! - `budget`: the node budget every question is produced under;
 //! - `lookahead`: the next question for both answers, computed while the
 //!   person looks;
+//! - `answers`: the `answers.json` journal;
 //! - `session`: the question loop without I/O — which rule next, what an
 //!   answer does ([`Asker`]); the command line (`rccpack ask`) and the
 //!   studio save what it returns.
 
+mod answers;
 mod budget;
 mod edit;
 mod lookahead;
@@ -23,11 +25,9 @@ pub use budget::{QuestionBudget, DEFAULT_QUESTION_NODES, DEFAULT_QUESTION_WALL};
 pub use edit::{Edit, Moved};
 pub use lookahead::Lookahead;
 
+pub use answers::{Answer, AnswersFile, AnswersFileError, CONFIRMED};
 pub use probe::{
     find_probe, negation, probe_rules, Probe, ProbeOptions, ProbeOutcome, DEFAULT_CHECK_NODES,
     DEFAULT_PROBE_NODES,
 };
-pub use session::{
-    Answer, AnswersFile, AnswersFileError, AskError, AskOptions, Asker, Question, Tally, Unasked,
-    CONFIRMED,
-};
+pub use session::{AskError, AskOptions, Asker, Question, Tally, Unasked};

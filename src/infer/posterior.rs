@@ -18,15 +18,15 @@
 //! a number, floored at [`P_FLOOR`] since a `.rcc` file requires `0 < P`.
 
 /// The smallest posterior written to a `.rcc` file (SPEC §7.6).
-pub const P_FLOOR: f64 = 1e-300;
+pub(crate) const P_FLOOR: f64 = 1e-300;
 
 /// `p = max(ε, q)`.
-pub fn chance_p(q: f64, epsilon: f64) -> f64 {
+pub(crate) fn chance_p(q: f64, epsilon: f64) -> f64 {
     q.max(epsilon)
 }
 
 /// `log10 L = n·log10 p` for `0 < p ≤ 1`.
-pub fn log10_likelihood(p: f64, n: u64) -> f64 {
+pub(crate) fn log10_likelihood(p: f64, n: u64) -> f64 {
     if n == 0 {
         return 0.0;
     }
@@ -44,14 +44,14 @@ fn log10_sum(a: f64, b: f64) -> f64 {
 
 /// `log10 P` with `P = π·L / (π·L + 1 − π)`, from `log10 L` and the prior
 /// `π ∈ (0, 1)`.
-pub fn log10_posterior(log10_l: f64, prior: f64) -> f64 {
+pub(crate) fn log10_posterior(log10_l: f64, prior: f64) -> f64 {
     let a = prior.log10() + log10_l;
     let b = (1.0 - prior).log10();
     a - log10_sum(a, b)
 }
 
 /// The posterior as written: `10^log10_p`, at least [`P_FLOOR`].
-pub fn written_posterior(log10_p: f64) -> f64 {
+pub(crate) fn written_posterior(log10_p: f64) -> f64 {
     let p = 10f64.powf(log10_p);
     if p.is_finite() && p >= P_FLOOR {
         p
@@ -83,7 +83,8 @@ impl Posterior {
             log10_posterior: log10_posterior(log10_likelihood, prior),
         }
     }
-    /// The posterior as written (floored at [`P_FLOOR`]).
+    /// The posterior as written (floored at 1e-300, the smallest a `.rcc`
+    /// file holds).
     pub fn written(&self) -> f64 {
         written_posterior(self.log10_posterior)
     }
@@ -114,6 +115,31 @@ mod tests {
             learned.push(p.learned(0.01));
         }
         assert_eq!(learned, [false, true, false]);
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig { cases: 256, ..Default::default() })]
+
+        /// Law: for `L ≪ 1` at prior 0.5 the posterior agrees with the
+        /// unnormalised product `L`: `P = L/(L+1)`, so
+        /// `0 ≤ L − P = L²/(1+L) ≤ L²` — checked up to the rounding of the
+        /// `log10 → value` conversion, a relative `ln 10 · |log10 L| · ε_mach`
+        /// (times a small factor).
+        #[test]
+        fn small_likelihood_posterior_is_the_product(log10_l in -300.0..-3.0f64) {
+            let l = 10f64.powf(log10_l);
+            let p = 10f64.powf(log10_posterior(log10_l, 0.5));
+            let rounding = 4.0 * std::f64::consts::LN_10 * (1.0 - log10_l) * f64::EPSILON * l;
+            proptest::prop_assert!((l - p).abs() <= l * l + rounding, "L {l}, P {p}");
+        }
+
+        /// Law: a higher prior gives a higher posterior for the same L.
+        #[test]
+        fn higher_prior_gives_higher_posterior(log10_l in -400.0..0.0f64, a in 1e-6..0.999f64, f in 1.001..2.0f64) {
+            let b = (a * f).min(1.0 - 1e-9);
+            proptest::prop_assume!(b > a);
+            proptest::prop_assert!(log10_posterior(log10_l, a) < log10_posterior(log10_l, b));
+        }
     }
 
     #[test]

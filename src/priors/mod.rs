@@ -1,4 +1,4 @@
-//! Priors learned across tasks (issue 30; thesis §5.2.1 and §5.2.3).
+//! Priors learned across tasks (thesis §5.2.1 and §5.2.3).
 //!
 //! # Background
 //!

@@ -185,6 +185,8 @@ pub fn missing_classes(rules: &RuleSet, scene: &Scene) -> Vec<String> {
 }
 
 /// The note a command prints for [`missing_classes`] (SPEC §15), or `None`.
+/// Shared with the command line (a separate crate); not part of the API.
+#[doc(hidden)]
 pub fn missing_classes_note(missing: &[String]) -> Option<String> {
     match missing {
         [] => None,

@@ -10,9 +10,9 @@
 //! The API is described in `docs/studio-api.md`.
 
 mod api;
-pub use crate::task::files as storage;
 
 use crate::scene::Scene;
+use crate::task::files;
 use axum::extract::DefaultBodyLimit;
 use axum::routing::{get, post};
 use axum::Router;
@@ -21,7 +21,7 @@ use std::sync::Arc;
 use tower_http::limit::RequestBodyLimitLayer;
 
 /// Largest request body accepted, in bytes (1 MiB).
-pub const BODY_LIMIT: usize = 1 << 20;
+pub(crate) const BODY_LIMIT: usize = 1 << 20;
 
 /// Why the studio cannot start on a folder.
 #[derive(Debug, thiserror::Error)]
@@ -93,7 +93,7 @@ pub fn router_with(dir: &Path, opts: StudioOptions) -> Result<Router, StudioErro
         path: dir.join(name),
         message: e.to_string(),
     };
-    let path = dir.join(storage::PROBLEM);
+    let path = dir.join(files::PROBLEM);
     let text = match crate::task::read_text(&path) {
         Ok(t) => t,
         Err(crate::task::TaskError::NotUtf8 { source, .. }) => {
@@ -121,14 +121,14 @@ pub fn router_with(dir: &Path, opts: StudioOptions) -> Result<Router, StudioErro
         }
     };
     let problem = Scene::from_json(&text).map_err(|e| StudioError::Problem {
-        path: dir.join(storage::PROBLEM),
+        path: dir.join(files::PROBLEM),
         message: e.to_string(),
     })?;
-    if storage::read_optional(dir, storage::DEMOS)
-        .map_err(|e| io(storage::DEMOS, e))?
+    if files::read_optional(dir, files::DEMOS)
+        .map_err(|e| io(files::DEMOS, e))?
         .is_none()
     {
-        storage::atomic_write(dir, storage::DEMOS, "[]\n").map_err(|e| io(storage::DEMOS, e))?;
+        files::atomic_write(dir, files::DEMOS, "[]\n").map_err(|e| io(files::DEMOS, e))?;
     }
     let problem_json = serde_json::from_str(&problem.to_json()).expect("scene JSON re-parses");
     let state = Arc::new(AppState {

@@ -149,23 +149,7 @@ pub fn write_outcome(
 ) -> Result<Written, FolderError> {
     let mut stdout = Vec::new();
     let mut written = Vec::new();
-    let learned_path = out.join(files::LEARNED);
-    let old = files::read_optional(out, files::LEARNED).map_err(|source| FolderError::Read {
-        path: learned_path.clone(),
-        source,
-    })?;
-    let (rcc, backup) = files::carry_confirmed(old.as_deref(), &learned.rcc_header(), rules);
-    if backup {
-        let bak = out.join(files::LEARNED_BACKUP);
-        written.push(write(bak.clone(), old.unwrap_or_default())?);
-        stdout.push(format!(
-            "note: {} was not what this run learned; kept as {}",
-            learned_path.display(),
-            bak.display()
-        ));
-    }
-    written.push(write(learned_path, rcc)?);
-    written.push(write(out.join(files::LEARN_REPORT), learned.report_json())?);
+    write_learned(out, learned, rules, &mut stdout, &mut written)?;
     let result = &placement.result;
     // Learned rules about a class today's problem lacks hold as SPEC §4
     // says (SPEC §15): a note, then a layout.
@@ -183,52 +167,15 @@ pub fn write_outcome(
     ));
     let (stderr, exit_code) = match (&result.scene, &result.evaluation) {
         (Some(scene), Some(ev)) => {
-            written.push(write(out.join(files::SOLUTION), scene.to_json())?);
-            let png = out.join(files::SOLUTION_PNG);
-            let ropts = RenderOptions {
+            let shown = Shown {
+                dir,
+                out,
+                problem,
+                rules,
+                placement: &placement,
                 contact,
-                scale: 1.0,
-                title: Some(format!("{} — synthesised", dir.display())),
-                like: placement.like.clone(),
-                ..RenderOptions::default()
             };
-            render_to_path(scene, Some(rules), &ropts, &png).map_err(|source| {
-                FolderError::Render {
-                    path: png.clone(),
-                    source,
-                }
-            })?;
-            written.push(png.clone());
-            let broken: Vec<String> = ev
-                .rules
-                .iter()
-                .filter(|r| r.satisfied < r.subjects)
-                .map(|r| format!("{} {}/{}", r.name, r.satisfied, r.subjects))
-                .collect();
-            stdout.push(format!(
-                "placed {} objects: {} score {:.6} (weight {:.3} / {:.3}){}{} in {:.1} ms -> {}, {}",
-                problem.objects.iter().filter(|o| !o.is_placed()).count(),
-                match result.status {
-                    Status::Optimal => "optimal,",
-                    _ => "feasible (time limit),",
-                },
-                ev.score,
-                ev.satisfied_weight,
-                ev.total_weight,
-                bound_text(result),
-                resemblance_text(result.resemblance),
-                result.stats.time_ms,
-                out.join(files::SOLUTION).display(),
-                png.display()
-            ));
-            if broken.is_empty() {
-                stdout.push("every placed object keeps every learned rule".into());
-            } else {
-                stdout.push(format!(
-                    "rules not kept by every object: {}",
-                    broken.join(", ")
-                ));
-            }
+            write_layout(&shown, scene, ev, &mut stdout, &mut written)?;
             (None, 0)
         }
         _ if result.status == Status::Infeasible => {
@@ -247,6 +194,103 @@ pub fn write_outcome(
         exit_code,
         files: written,
     })
+}
+
+/// `learned.rcc` with the confirmed marks of the file in `out` carried over
+/// (a file that would change otherwise kept as `learned.rcc.bak` first,
+/// with a note), then `learn-report.json`.
+fn write_learned(
+    out: &Path,
+    learned: &Learned,
+    rules: &RuleSet,
+    stdout: &mut Vec<String>,
+    written: &mut Vec<PathBuf>,
+) -> Result<(), FolderError> {
+    let learned_path = out.join(files::LEARNED);
+    let old = files::read_optional(out, files::LEARNED).map_err(|source| FolderError::Read {
+        path: learned_path.clone(),
+        source,
+    })?;
+    let (rcc, backup) = files::carry_confirmed(old.as_deref(), &learned.rcc_header(), rules);
+    if backup {
+        let bak = out.join(files::LEARNED_BACKUP);
+        written.push(write(bak.clone(), old.unwrap_or_default())?);
+        stdout.push(format!(
+            "note: {} was not what this run learned; kept as {}",
+            learned_path.display(),
+            bak.display()
+        ));
+    }
+    written.push(write(learned_path, rcc)?);
+    written.push(write(out.join(files::LEARN_REPORT), learned.report_json())?);
+    Ok(())
+}
+
+/// What [`write_layout`] shows a layout against.
+struct Shown<'a> {
+    dir: &'a Path,
+    out: &'a Path,
+    problem: &'a Scene,
+    rules: &'a RuleSet,
+    placement: &'a Placement,
+    contact: crate::relations::Contact,
+}
+
+/// `solution.json` and `solution.png` of a layout, and the lines that say
+/// how good it is and which rules it does not keep.
+fn write_layout(
+    x: &Shown,
+    scene: &Scene,
+    ev: &crate::eval::Evaluation,
+    stdout: &mut Vec<String>,
+    written: &mut Vec<PathBuf>,
+) -> Result<(), FolderError> {
+    let result = &x.placement.result;
+    written.push(write(x.out.join(files::SOLUTION), scene.to_json())?);
+    let png = x.out.join(files::SOLUTION_PNG);
+    let ropts = RenderOptions {
+        contact: x.contact,
+        scale: 1.0,
+        title: Some(format!("{} — synthesised", x.dir.display())),
+        like: x.placement.like.clone(),
+        ..RenderOptions::default()
+    };
+    render_to_path(scene, Some(x.rules), &ropts, &png).map_err(|source| FolderError::Render {
+        path: png.clone(),
+        source,
+    })?;
+    written.push(png.clone());
+    let broken: Vec<String> = ev
+        .rules
+        .iter()
+        .filter(|r| r.satisfied < r.subjects)
+        .map(|r| format!("{} {}/{}", r.name, r.satisfied, r.subjects))
+        .collect();
+    stdout.push(format!(
+        "placed {} objects: {} score {:.6} (weight {:.3} / {:.3}){}{} in {:.1} ms -> {}, {}",
+        x.problem.objects.iter().filter(|o| !o.is_placed()).count(),
+        match result.status {
+            Status::Optimal => "optimal,",
+            _ => "feasible (time limit),",
+        },
+        ev.score,
+        ev.satisfied_weight,
+        ev.total_weight,
+        bound_text(result),
+        resemblance_text(result.resemblance),
+        result.stats.time_ms,
+        x.out.join(files::SOLUTION).display(),
+        png.display()
+    ));
+    if broken.is_empty() {
+        stdout.push("every placed object keeps every learned rule".into());
+    } else {
+        stdout.push(format!(
+            "rules not kept by every object: {}",
+            broken.join(", ")
+        ));
+    }
+    Ok(())
 }
 
 /// `rccpack run DIR --out OUT` on a task already read from `dir`: lock

@@ -499,7 +499,7 @@ function showResult(r, cancelled) {
 }
 
 // "Another layout like this": the next draw of `rccpack sample` with at least
-// the score of the synthesized layout (issue 24).
+// the score of the synthesized layout.
 async function anotherLayout() {
   const r = synthRules();
   if (!r || state.likeScore === undefined) return;

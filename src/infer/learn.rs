@@ -1,0 +1,359 @@
+//! The learning pipeline: statements (given, or generated from the
+//! templates, with priors when given), candidates, the null model's counts,
+//! the posteriors and the order of the learned rules.
+
+use super::checks::{check_demo_landmarks, check_demos, check_statements};
+use super::{
+    english, find_candidates, templates, ClassStats, InferError, LearnParams, Learned, NullModel,
+    Posterior, Provenance, StatementResult, StatementSource,
+};
+use crate::eval::CompiledRule;
+use crate::relations::{ClassIndex, Contact};
+use crate::rules::{RuleSet, Scope};
+use crate::scene::Scene;
+use std::borrow::Cow;
+
+/// Learn rules from `demos`. `statements`: the statement set, or `None` for
+/// the templates `params.templates` (§8, §11.5) over the demonstrations'
+/// classes and landmarks. Strengths and comments of given statements are
+/// ignored.
+pub fn learn(
+    demos: &[Scene],
+    statements: Option<&RuleSet>,
+    params: &LearnParams,
+) -> Result<Learned, InferError> {
+    learn_until(demos, statements, params, None)
+}
+
+/// [`learn`] that gives up with [`InferError::TimeLimit`] once `deadline`
+/// passes (checked per random scene of the null model), so a command's
+/// time limit covers learning too.
+pub fn learn_until(
+    demos: &[Scene],
+    statements: Option<&RuleSet>,
+    params: &LearnParams,
+    deadline: Option<std::time::Instant>,
+) -> Result<Learned, InferError> {
+    learn_cancellable(demos, statements, params, deadline, None)
+}
+
+/// [`learn_until`] that also gives up with [`InferError::Cancelled`] once
+/// `cancel` is set (checked per random scene of the null model).
+pub fn learn_cancellable(
+    demos: &[Scene],
+    statements: Option<&RuleSet>,
+    params: &LearnParams,
+    deadline: Option<std::time::Instant>,
+    cancel: Option<&std::sync::atomic::AtomicBool>,
+) -> Result<Learned, InferError> {
+    learn_with_priors(demos, statements, params, None, deadline, cancel)
+}
+
+/// Which of `set`'s statements every demonstration satisfies (the
+/// candidates, as [`learn`] finds them), without the null model.
+pub fn candidate_flags(
+    demos: &[Scene],
+    set: &RuleSet,
+    contact: Contact,
+) -> Result<Vec<bool>, InferError> {
+    check_demos(demos)?;
+    let mut classes = ClassIndex::default();
+    for (c, _) in &templates::demo_classes(demos) {
+        classes.intern(c);
+    }
+    for id in set.landmarks() {
+        classes.intern_landmark(&id);
+    }
+    let compiled: Vec<CompiledRule> = set
+        .rules
+        .iter()
+        .map(|r| CompiledRule::compile(r, &mut classes.clone()))
+        .collect();
+    Ok(find_candidates(demos, &classes, &compiled, contact)
+        .into_iter()
+        .map(|b| b.is_none())
+        .collect())
+}
+
+/// [`learn_cancellable`] with priors learned across tasks
+/// ([`crate::priors`]): a generated statement gets the prior of its kind
+/// (`π = 1 − prior`), a statement of a ruled-out kind is left out of the
+/// statements, and given statements keep `params.prior`. `None`: exactly
+/// [`learn_cancellable`].
+pub fn learn_with_priors(
+    demos: &[Scene],
+    statements: Option<&RuleSet>,
+    params: &LearnParams,
+    priors: Option<&crate::priors::Priors>,
+    deadline: Option<std::time::Instant>,
+    cancel: Option<&std::sync::atomic::AtomicBool>,
+) -> Result<Learned, InferError> {
+    params.validate()?;
+    check_demos(demos)?;
+    let class_list = templates::demo_classes(demos);
+    let mut classes = ClassIndex::default();
+    for (c, _) in &class_list {
+        classes.intern(c);
+    }
+    let st = statement_set(
+        demos,
+        statements,
+        params,
+        priors,
+        &classes,
+        class_list.len(),
+    )?;
+    let set = st.set.as_ref();
+    // Every landmark is interned before compiling, so that each scene's
+    // atom table resolves it.
+    for id in set.landmarks() {
+        classes.intern_landmark(&id);
+    }
+    let compiled: Vec<CompiledRule> = set
+        .rules
+        .iter()
+        .map(|r| CompiledRule::compile(r, &mut classes.clone()))
+        .collect();
+    let subjects: Vec<usize> = compiled.iter().map(|r| r.subject).collect();
+    debug_assert!(subjects.iter().all(|&c| c < classes.len()), "checked");
+
+    let broken = find_candidates(demos, &classes, &compiled, params.contact);
+    let counts = chance_counts(
+        demos, params, &classes, &compiled, &broken, deadline, cancel,
+    )?;
+    let stats = class_stats(demos, &classes, params);
+    // Scene-level statements (§11.5): q per random scene, n = d.
+    let scene_epsilon = params.epsilon.unwrap_or(0.5 / params.samples as f64);
+    let numbers = Numbers {
+        demos: demos.len(),
+        params,
+        stats: &stats,
+        subjects: &subjects,
+        scene_epsilon,
+        priors: st.priors.as_deref(),
+    };
+    let mut results = weigh(set, &broken, &counts, &numbers);
+    let order = rank(&mut results, params.contact);
+    let used: Vec<bool> = (0..classes.len()).map(|c| subjects.contains(&c)).collect();
+    Ok(Learned {
+        params: *params,
+        demos: demos.len(),
+        source: st.source,
+        classes: stats
+            .into_iter()
+            .zip(used)
+            .filter_map(|(s, u)| u.then_some(s))
+            .collect(),
+        scene_epsilon,
+        statements: results,
+        order,
+        priors: priors.map(|p| crate::priors::apply::summary(p, st.ruled_out)),
+    })
+}
+
+/// The statements learning weighs, with their priors.
+struct Statements<'a> {
+    set: Cow<'a, RuleSet>,
+    source: StatementSource,
+    /// Per statement, with priors.
+    priors: Option<Vec<crate::priors::StatementPrior>>,
+    /// Generated statements the priors left out.
+    ruled_out: Vec<crate::priors::RuledOut>,
+}
+
+/// The given statements, checked, or the templates' over the
+/// demonstrations (at most [`crate::limits::MAX_STATEMENTS`]); with priors,
+/// each statement's prior and the generated ones of a ruled-out kind left
+/// out.
+fn statement_set<'a>(
+    demos: &[Scene],
+    statements: Option<&'a RuleSet>,
+    params: &LearnParams,
+    priors: Option<&crate::priors::Priors>,
+    classes: &ClassIndex,
+    class_count: usize,
+) -> Result<Statements<'a>, InferError> {
+    let too_many = |statements: usize| InferError::TooManyStatements {
+        statements,
+        classes: class_count,
+    };
+    let st = match statements {
+        Some(s) => {
+            check_statements(s, classes)?;
+            check_demo_landmarks(s, demos)?;
+            Statements {
+                set: Cow::Borrowed(s),
+                source: StatementSource::Given,
+                priors: priors.map(|_| crate::priors::apply::given(s, params.prior)),
+                ruled_out: Vec::new(),
+            }
+        }
+        None => {
+            let estimate = templates::estimate_set(demos, params.templates);
+            if estimate > crate::limits::MAX_STATEMENTS {
+                return Err(too_many(estimate));
+            }
+            let (set, origins) = templates::generate_with_origins(demos, params.templates);
+            let (set, used, ruled_out) = match priors {
+                Some(p) => {
+                    let (set, used, out) = crate::priors::apply::generated(p, demos, set, &origins);
+                    (set, Some(used), out)
+                }
+                None => (set, None, Vec::new()),
+            };
+            Statements {
+                set: Cow::Owned(set),
+                source: StatementSource::Templates,
+                priors: used,
+                ruled_out,
+            }
+        }
+    };
+    if st.set.rules.len() > crate::limits::MAX_STATEMENTS {
+        return Err(too_many(st.set.rules.len()));
+    }
+    Ok(st)
+}
+
+/// Per candidate (statements with `broken[k]` none), in order: how many
+/// subject objects (scene-level: random scenes) of the null model's
+/// random scenes satisfy it.
+fn chance_counts(
+    demos: &[Scene],
+    params: &LearnParams,
+    classes: &ClassIndex,
+    compiled: &[CompiledRule],
+    broken: &[Option<Provenance>],
+    deadline: Option<std::time::Instant>,
+    cancel: Option<&std::sync::atomic::AtomicBool>,
+) -> Result<Vec<u64>, InferError> {
+    let cand: Vec<CompiledRule> = (0..compiled.len())
+        .filter(|&k| broken[k].is_none())
+        .map(|k| compiled[k].clone())
+        .collect();
+    if cand.is_empty() {
+        return Ok(Vec::new());
+    }
+    NullModel::new(demos, params.seed)?.count_until(
+        params.samples,
+        classes,
+        &cand,
+        params.contact,
+        deadline,
+        cancel,
+    )
+}
+
+/// `n_A` and `N_A` per class, and the floor `ε`.
+fn class_stats(demos: &[Scene], classes: &ClassIndex, params: &LearnParams) -> Vec<ClassStats> {
+    let d = demos.len();
+    let per_demo: Vec<Vec<u64>> = demos
+        .iter()
+        .map(|s| {
+            let mut v = vec![0u64; classes.len()];
+            for o in &s.objects {
+                v[classes.get(&o.class).expect("interned")] += 1;
+            }
+            v
+        })
+        .collect();
+    let full = (params.samples / d) as u64;
+    let rest = params.samples % d;
+    (0..classes.len())
+        .map(|c| {
+            let n: u64 = per_demo.iter().map(|v| v[c]).sum();
+            let big_n = full
+                .saturating_mul(n)
+                .saturating_add(per_demo[..rest].iter().map(|v| v[c]).sum::<u64>());
+            ClassStats {
+                class: classes.name(c).to_string(),
+                demo_objects: n,
+                sample_objects: big_n,
+                epsilon: params.epsilon.unwrap_or(0.5 / big_n.max(1) as f64),
+            }
+        })
+        .collect()
+}
+
+/// What [`weigh`] needs besides the statements and the counts.
+struct Numbers<'a> {
+    demos: usize,
+    params: &'a LearnParams,
+    stats: &'a [ClassStats],
+    /// Per statement, its subject class.
+    subjects: &'a [usize],
+    scene_epsilon: f64,
+    priors: Option<&'a [crate::priors::StatementPrior]>,
+}
+
+/// Every statement's result: for a candidate its chance rate, posterior
+/// and whether it is learned at the cutoff.
+fn weigh(
+    set: &RuleSet,
+    broken: &[Option<Provenance>],
+    counts: &[u64],
+    x: &Numbers,
+) -> Vec<StatementResult> {
+    let params = x.params;
+    let mut results: Vec<StatementResult> = Vec::with_capacity(set.rules.len());
+    let mut ci = 0;
+    for (k, rule) in set.rules.iter().enumerate() {
+        let st = &x.stats[x.subjects[k]];
+        let (n, trials, epsilon) = match rule.scope {
+            Scope::Each => (st.demo_objects, st.sample_objects, st.epsilon),
+            Scope::Scene(_) | Scope::Group => {
+                (x.demos as u64, params.samples as u64, x.scene_epsilon)
+            }
+        };
+        let mut r = StatementResult {
+            index: k,
+            name: rule.name.clone(),
+            formula: rule.formula.clone(),
+            scope: rule.scope,
+            subject: rule.subject().to_string(),
+            candidate: broken[k].is_none(),
+            broken_by: broken[k].clone(),
+            n,
+            satisfied: None,
+            q: None,
+            posterior: None,
+            learned: false,
+            implied_by: None,
+            english: english::statement_reading(rule.scope, &rule.formula),
+            prior: x.priors.map(|p| p[k].clone()),
+        };
+        if r.candidate {
+            let sat = counts[ci];
+            ci += 1;
+            let q = sat as f64 / trials.max(1) as f64;
+            let prior = x.priors.map_or(params.prior, |p| 1.0 - p[k].prior);
+            let post = Posterior::new(q, epsilon, r.n, prior);
+            r.satisfied = Some(sat);
+            r.q = Some(q);
+            r.learned = post.learned(params.cutoff);
+            r.posterior = Some(post);
+        }
+        results.push(r);
+    }
+    results
+}
+
+/// The learned rules, strongest first (smallest posterior; ties by
+/// statement order), each marked with the first stronger one implying it.
+fn rank(results: &mut [StatementResult], contact: Contact) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..results.len()).filter(|&k| results[k].learned).collect();
+    let key = |k: usize| results[k].posterior.map_or(0.0, |p| p.log10_posterior);
+    order.sort_by(|&a, &b| key(a).total_cmp(&key(b)).then(a.cmp(&b)));
+    for (i, &k) in order.iter().enumerate() {
+        let (rk, implied) = (&results[k], &order[..i]);
+        let by = implied
+            .iter()
+            .find(|&&s| {
+                let rs = &results[s];
+                english::rule_implies((rs.scope, &rs.formula), (rk.scope, &rk.formula), contact)
+            })
+            .map(|&s| results[s].name.clone());
+        results[k].implied_by = by;
+    }
+    order
+}

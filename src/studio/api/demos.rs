@@ -1,0 +1,263 @@
+//! `/api/demos`: list, read, add and delete the demonstrations of
+//! `demos.json`. A file that does not parse is reported (409) and never
+//! overwritten; every write holds the folder's lock.
+
+use super::super::AppState;
+use super::{off_async, ok, reply, scene_value, ApiError, ApiResult, St};
+use crate::scene::{scenes_from_json, scenes_to_json, Scene};
+use crate::task::files::{self, DEMOS};
+use axum::body::Bytes;
+use axum::extract::{Path, Query, State};
+use axum::http::StatusCode;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+/// Read demos.json; a file that does not parse is reported (409) and never
+/// overwritten.
+pub(super) fn read_demos(st: &AppState) -> Result<Vec<Scene>, ApiError> {
+    read_demos_versioned(st).map(|(d, _)| d)
+}
+
+/// The demonstrations and the version of the file they came from.
+pub(super) fn read_demos_versioned(st: &AppState) -> Result<(Vec<Scene>, String), ApiError> {
+    let text = files::read_optional(&st.dir, DEMOS)
+        .map_err(|e| {
+            // Not UTF-8: corrupt like any other bad content (409), not a
+            // failure of the server.
+            if e.kind() == std::io::ErrorKind::InvalidData {
+                corrupt(&e.to_string())
+            } else {
+                ApiError::io(DEMOS, e)
+            }
+        })?
+        .unwrap_or_else(|| "[]".into());
+    if !text.trim_start().starts_with('[') {
+        return Err(corrupt("expected a JSON array of scenes"));
+    }
+    let demos = scenes_from_json(&text).map_err(|e| corrupt(&e.to_string()))?;
+    Ok((demos, files::version(Some(&text))))
+}
+
+/// The task folder's lock (shared with `rccpack ask`), taken while
+/// writing; a 409 naming it when an `ask` session holds it.
+pub(super) fn folder_lock(st: &AppState) -> Result<crate::fsutil::DirLock, ApiError> {
+    match crate::fsutil::DirLock::try_lock(&st.dir) {
+        Ok(Some(l)) => Ok(l),
+        Ok(None) => Err(ApiError::new(
+            StatusCode::CONFLICT,
+            format!(
+                "the task folder is in use by `rccpack ask` (it holds {}); nothing was written — try again when it ends",
+                crate::fsutil::LOCK_FILE
+            ),
+        )
+        .kind("folder_locked")),
+        Err(e) => Err(ApiError::io(crate::fsutil::LOCK_FILE, e)),
+    }
+}
+
+fn corrupt(why: &str) -> ApiError {
+    ApiError::new(
+        StatusCode::CONFLICT,
+        format!(
+            "{DEMOS}: {why}; the studio will not overwrite it — fix or move the file, then reload"
+        ),
+    )
+    .kind("corrupt_demos")
+}
+
+/// Parse a posted demonstration and check it as `check`/`score` would, plus
+/// that it is a complete layout of this task.
+fn parse_demo(st: &AppState, body: &[u8]) -> Result<Scene, ApiError> {
+    let text = std::str::from_utf8(body).map_err(|_| ApiError::bad("request body is not UTF-8"))?;
+    let scene = Scene::from_json(text).map_err(|e| {
+        let path = e.path().to_string();
+        ApiError::bad(format!("demonstration: {e}")).at(path)
+    })?;
+    let p = &st.problem;
+    if scene.space != p.space {
+        return Err(ApiError::bad(format!(
+            "demonstration: space: {}x{} at ({}, {}) differs from {}'s {}x{} at ({}, {})",
+            scene.space.width,
+            scene.space.height,
+            scene.space.x,
+            scene.space.y,
+            files::PROBLEM,
+            p.space.width,
+            p.space.height,
+            p.space.x,
+            p.space.y
+        ))
+        .at("space"));
+    }
+    if scene.grid != p.grid {
+        return Err(ApiError::bad(format!(
+            "demonstration: grid: {} differs from {}'s {}",
+            scene.grid,
+            files::PROBLEM,
+            p.grid
+        ))
+        .at("grid"));
+    }
+    for (i, o) in scene.objects.iter().enumerate() {
+        if !o.is_placed() {
+            return Err(ApiError::bad(format!(
+                "demonstration: objects[{i}]: object `{}` has no position; every object of a demonstration must be placed",
+                o.id
+            ))
+            .at(format!("objects[{i}]")));
+        }
+        if o.fixed {
+            if !p
+                .objects
+                .iter()
+                .any(|f| f.fixed && f.id == o.id && f.rect() == o.rect() && f.class == o.class)
+            {
+                return Err(ApiError::bad(format!(
+                    "demonstration: objects[{i}]: fixed object `{}` is not a fixed object of {} (fixed objects never move)",
+                    o.id,
+                    files::PROBLEM
+                ))
+                .at(format!("objects[{i}]")));
+            }
+        } else if !p
+            .objects
+            .iter()
+            .any(|k| !k.fixed && k.class == o.class && k.width == o.width && k.height == o.height)
+        {
+            return Err(ApiError::bad(format!(
+                "demonstration: objects[{i}]: object `{}` ({} {}x{}) is not one of the kinds of objects of {}",
+                o.id,
+                o.class,
+                o.width,
+                o.height,
+                files::PROBLEM
+            ))
+            .at(format!("objects[{i}]")));
+        }
+    }
+    for f in p.objects.iter().filter(|o| o.fixed) {
+        if !scene.objects.iter().any(|o| o.fixed && o.id == f.id) {
+            return Err(ApiError::bad(format!(
+                "demonstration: objects: fixed object `{}` of {} is missing",
+                f.id,
+                files::PROBLEM
+            ))
+            .at("objects"));
+        }
+    }
+    if !scene.objects.iter().any(|o| !o.fixed) {
+        return Err(ApiError::bad(
+            "demonstration: objects: place at least one object before saving",
+        )
+        .at("objects"));
+    }
+    Ok(scene)
+}
+
+/// The body of `GET /api/demos`.
+#[derive(Serialize)]
+struct DemoList {
+    count: usize,
+    demos: Vec<Value>,
+    /// The file's version, for `DELETE /api/demos/{index}?version=`.
+    version: String,
+}
+
+/// The body of `POST /api/demos` (`201 Created`).
+#[derive(Serialize)]
+struct Saved {
+    count: usize,
+    /// The new demonstration's index.
+    index: usize,
+}
+
+/// The body of `DELETE /api/demos/{index}`.
+#[derive(Serialize)]
+struct Deleted {
+    count: usize,
+}
+
+pub(crate) async fn list_demos(State(st): St) -> ApiResult {
+    let st2 = st.clone();
+    let list = off_async(move || {
+        let (demos, version) = read_demos_versioned(&st2)?;
+        Ok(DemoList {
+            count: demos.len(),
+            demos: demos.iter().map(scene_value).collect(),
+            version,
+        })
+    })
+    .await?;
+    ok(&list)
+}
+
+pub(crate) async fn save_demo(State(st): St, body: Bytes) -> ApiResult {
+    let st2 = st.clone();
+    let scene = off_async(move || parse_demo(&st2, &body)).await?;
+    let _guard = st.write_lock.lock().await;
+    let _folder = folder_lock(&st)?;
+    let mut demos = read_demos(&st)?;
+    demos.push(scene);
+    st.reset_ask();
+    files::atomic_write(&st.dir, DEMOS, &scenes_to_json(&demos))
+        .map_err(|e| ApiError::io(DEMOS, e))?;
+    Ok(reply(
+        StatusCode::CREATED,
+        &Saved {
+            count: demos.len(),
+            index: demos.len() - 1,
+        },
+    ))
+}
+
+fn demo_index(raw: &str, len: usize) -> Result<usize, ApiError> {
+    match raw.parse::<usize>() {
+        Ok(i) if i < len => Ok(i),
+        _ => Err(ApiError::new(
+            StatusCode::NOT_FOUND,
+            format!("no demonstration [{raw}]; {DEMOS} holds {len}"),
+        )),
+    }
+}
+
+pub(crate) async fn get_demo(State(st): St, Path(index): Path<String>) -> ApiResult {
+    let st2 = st.clone();
+    let v = off_async(move || {
+        let demos = read_demos(&st2)?;
+        let i = demo_index(&index, demos.len())?;
+        Ok(scene_value(&demos[i]))
+    })
+    .await?;
+    ok(&v)
+}
+
+#[derive(Deserialize)]
+pub(crate) struct DeleteQuery {
+    /// The `version` from `GET /api/demos`: refuse when the file changed
+    /// since (another tab saved or deleted), so the index still means the
+    /// demonstration the user saw.
+    version: Option<String>,
+}
+
+pub(crate) async fn delete_demo(
+    State(st): St,
+    Path(index): Path<String>,
+    Query(q): Query<DeleteQuery>,
+) -> ApiResult {
+    let _guard = st.write_lock.lock().await;
+    let _folder = folder_lock(&st)?;
+    let (mut demos, version) = read_demos_versioned(&st)?;
+    if q.version.as_ref().is_some_and(|v| *v != version) {
+        return Err(ApiError::new(
+            StatusCode::CONFLICT,
+            format!("{DEMOS} changed since the page listed it (another tab?); nothing deleted — reload the list and try again"),
+        )
+        .kind("stale_demos"));
+    }
+    let i = demo_index(&index, demos.len())?;
+    demos.remove(i);
+    st.reset_ask();
+    files::atomic_write(&st.dir, DEMOS, &scenes_to_json(&demos))
+        .map_err(|e| ApiError::io(DEMOS, e))?;
+    ok(&Deleted { count: demos.len() })
+}
