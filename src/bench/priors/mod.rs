@@ -87,8 +87,8 @@
 //! number of threads.
 
 use super::tasks::{
-    block, box_for, draw_maxes, make_demos_n, BoxGeom, ClassSpec, Corner, Habit, Side, BLOCK_SIZES,
-    BOX_FOR,
+    block, box_for, draw_maxes, make_demos_n, BoxGeom, ClassSpec, Corner, Habit, WallSide,
+    BLOCK_SIZES, BOX_FOR,
 };
 use crate::ask::{AskOptions, Asker, ProbeOptions, QuestionBudget};
 use crate::eval::evaluate;
@@ -299,14 +299,14 @@ pub struct PopTask {
 /// shared, "north of" only above a class that leaves room).
 pub fn draw_population_habits(k: usize, rng: &mut ChaCha8Rng) -> Vec<Habit> {
     let w = HABIT_WEIGHTS;
-    let mut walls = vec![Side::S, Side::W, Side::E, Side::N];
+    let mut walls = vec![WallSide::S, WallSide::W, WallSide::E, WallSide::N];
     let mut corners = vec![Corner::SW, Corner::SE, Corner::NE, Corner::NW];
     let mut stack_used = false;
     let mut out: Vec<Habit> = Vec::new();
     for i in 0..k {
         let mut options: Vec<(Habit, u32)> = vec![(Habit::Cluster, w.cluster)];
         for &wall in &walls {
-            let weight = if wall == Side::S {
+            let weight = if wall == WallSide::S {
                 w.band_south
             } else {
                 w.band_other
@@ -325,7 +325,7 @@ pub fn draw_population_habits(k: usize, rng: &mut ChaCha8Rng) -> Vec<Habit> {
             .filter(|&j| {
                 !matches!(
                     out[j],
-                    Habit::Band { wall: Side::N }
+                    Habit::Band { wall: WallSide::N }
                         | Habit::Corner {
                             corner: Corner::NW | Corner::NE
                         }
