@@ -1,5 +1,5 @@
 //! How diverse and how uniform [`crate::sample::sample()`]'s layouts are
-//! (`rccpack bench sample`, issue 24).
+//! (`rccpack bench sample`).
 //!
 //! * [`enumerate`] — every layout of a **tiny** problem by brute force
 //!   (every grid position of every unplaced object, overlaps skipped, hard

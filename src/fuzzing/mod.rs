@@ -1,4 +1,4 @@
-//! Fuzz harnesses (issue 11), shared by the cargo-fuzz targets in `fuzz/`
+//! Fuzz harnesses, shared by the cargo-fuzz targets in `fuzz/`
 //! and by `tests/fuzz_replay.rs`, which replays every committed corpus and
 //! regression file on stable Rust.
 //!
