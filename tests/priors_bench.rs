@@ -14,7 +14,7 @@ use rccpack::bench::priors::{
     draw_population_habits, library_kept, population, run, Condition, PriorsBenchConfig,
     PriorsBenchReport, CLASS_POOL,
 };
-use rccpack::bench::tasks::{Habit, Side};
+use rccpack::bench::tasks::{Habit, WallSide};
 use rccpack::infer::candidate_flags;
 use rccpack::relations::Contact;
 use std::collections::BTreeSet;
@@ -110,7 +110,7 @@ fn habits_are_far_from_uniform() {
         for h in draw_population_habits(3, &mut rng) {
             all += 1;
             match h {
-                Habit::Cluster | Habit::Band { wall: Side::S } => common += 1,
+                Habit::Cluster | Habit::Band { wall: WallSide::S } => common += 1,
                 Habit::Corner { .. } | Habit::Stack => rare += 1,
                 _ => {}
             }

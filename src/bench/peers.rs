@@ -25,9 +25,9 @@
 
 use super::BenchError;
 use crate::synth::emit::{to_json, to_minizinc, Emitted};
-use std::io::Read as _;
+use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::{Command, ExitStatus, Stdio};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
@@ -226,6 +226,7 @@ pub fn solve_with(
     run_peer(peer, e, time_limit, workers).map_err(BenchError::PeerFailed)
 }
 
+/// Run `peer`'s script on `e` and read its answer.
 fn run_peer(
     peer: Peer,
     e: &Emitted,
@@ -237,10 +238,37 @@ fn run_peer(
         Peer::Gecode => to_minizinc(e),
     };
     let model = TempModel::write(peer.extension(), &text).map_err(|m| format!("{peer}: {m}"))?;
+    let run = run_script(peer, &model.0, time_limit, workers)?;
+    read_answer(peer, e, &run)
+}
+
+/// What a peer's script did: its output, how it ended, how long it ran.
+struct ScriptRun {
+    /// Everything it printed on stdout.
+    stdout: String,
+    /// Everything it printed on stderr.
+    stderr: String,
+    /// How it exited (`None`: the process was lost).
+    status: Option<ExitStatus>,
+    /// Killed at the deadline (time limit plus [`GRACE`]).
+    killed: bool,
+    /// Wall time of the process, ms.
+    process_ms: f64,
+}
+
+/// Start `peer`'s script on the model file and wait for it, reading both
+/// pipes on their own threads (a full pipe would block the child), and
+/// killing it at the deadline.
+fn run_script(
+    peer: Peer,
+    model: &Path,
+    time_limit: Duration,
+    workers: u32,
+) -> Result<ScriptRun, String> {
     let start = Instant::now();
     let mut child = Command::new("python3")
         .arg(peer.script())
-        .arg(&model.0)
+        .arg(model)
         .arg("--time-limit")
         .arg(format!("{}", time_limit.as_secs_f64()))
         .arg("--workers")
@@ -250,24 +278,8 @@ fn run_peer(
         .stderr(Stdio::piped())
         .spawn()
         .map_err(|err| format!("{peer}: cannot run python3: {err}"))?;
-    // Read both pipes on their own threads (a full pipe would block the
-    // child), and wait with a deadline.
-    let mut out_pipe = child.stdout.take();
-    let mut err_pipe = child.stderr.take();
-    let out_t = std::thread::spawn(move || {
-        let mut s = Vec::new();
-        if let Some(p) = out_pipe.as_mut() {
-            let _ = p.read_to_end(&mut s);
-        }
-        s
-    });
-    let err_t = std::thread::spawn(move || {
-        let mut s = Vec::new();
-        if let Some(p) = err_pipe.as_mut() {
-            let _ = p.read_to_end(&mut s);
-        }
-        s
-    });
+    let out_t = read_all(child.stdout.take());
+    let err_t = read_all(child.stderr.take());
     let deadline = start + time_limit.saturating_add(GRACE);
     let mut killed = false;
     let status = loop {
@@ -283,28 +295,51 @@ fn run_peer(
         }
     };
     let process_ms = start.elapsed().as_secs_f64() * 1000.0;
-    let stdout = String::from_utf8_lossy(&out_t.join().unwrap_or_default()).into_owned();
-    let stderr = String::from_utf8_lossy(&err_t.join().unwrap_or_default()).into_owned();
+    Ok(ScriptRun {
+        stdout: String::from_utf8_lossy(&out_t.join().unwrap_or_default()).into_owned(),
+        stderr: String::from_utf8_lossy(&err_t.join().unwrap_or_default()).into_owned(),
+        status,
+        killed,
+        process_ms,
+    })
+}
+
+/// Read `pipe` to its end on a thread of its own.
+fn read_all<R: Read + Send + 'static>(mut pipe: Option<R>) -> std::thread::JoinHandle<Vec<u8>> {
+    std::thread::spawn(move || {
+        let mut s = Vec::new();
+        if let Some(p) = pipe.as_mut() {
+            let _ = p.read_to_end(&mut s);
+        }
+        s
+    })
+}
+
+/// The answer of a script run: its last non-empty line of stdout as a
+/// [`Line`], checked (a known status, values for every variable within
+/// its domain when there is a solution, a finite time). Errors end with
+/// the last lines of its stderr.
+fn read_answer(peer: Peer, e: &Emitted, run: &ScriptRun) -> Result<PeerResult, String> {
     let fail = |what: String| {
-        let t = tail(&stderr, 10);
+        let t = tail(&run.stderr, 10);
         if t.trim().is_empty() {
             format!("{peer}: {what}")
         } else {
             format!("{peer}: {what}; stderr:\n{t}")
         }
     };
-    if killed {
+    if run.killed {
         return Err(fail(format!(
             "still running {} s past its time limit, killed",
             GRACE.as_secs()
         )));
     }
-    match status {
+    match run.status {
         Some(s) if s.success() => {}
         Some(s) => return Err(fail(format!("the script failed ({s})"))),
         None => return Err(fail("lost the script's process".into())),
     }
-    let Some(last) = stdout.lines().rev().find(|l| !l.trim().is_empty()) else {
+    let Some(last) = run.stdout.lines().rev().find(|l| !l.trim().is_empty()) else {
         return Err(fail("the script printed nothing".into()));
     };
     let line: Line = serde_json::from_str(last)
@@ -318,27 +353,7 @@ fn run_peer(
     };
     let has_solution = matches!(status, PeerStatus::Optimal | PeerStatus::Feasible);
     let values = match (has_solution, line.values) {
-        (true, Some(v)) => {
-            let vars = &e.model.vars;
-            if v.len() != vars.len() {
-                return Err(fail(format!(
-                    "{} values for {} variables",
-                    v.len(),
-                    vars.len()
-                )));
-            }
-            if let Some((i, x)) = v
-                .iter()
-                .enumerate()
-                .find(|&(i, &x)| !(0..=vars[i].ub).contains(&x))
-            {
-                return Err(fail(format!(
-                    "value {x} of variable {i} is outside its domain 0..={}",
-                    vars[i].ub
-                )));
-            }
-            Some(v)
-        }
+        (true, Some(v)) => Some(in_domains(v, e).map_err(fail)?),
         (true, None) => return Err(fail(format!("status {} without values", line.status))),
         (false, _) => None,
     };
@@ -350,8 +365,28 @@ fn run_peer(
         values,
         objective: if has_solution { line.objective } else { None },
         time_ms: line.time_s * 1000.0,
-        process_ms,
+        process_ms: run.process_ms,
     })
+}
+
+/// `v` when it has one value per variable of `e`'s model, each within its
+/// domain.
+fn in_domains(v: Vec<i64>, e: &Emitted) -> Result<Vec<i64>, String> {
+    let vars = &e.model.vars;
+    if v.len() != vars.len() {
+        return Err(format!("{} values for {} variables", v.len(), vars.len()));
+    }
+    if let Some((i, x)) = v
+        .iter()
+        .enumerate()
+        .find(|&(i, &x)| !(0..=vars[i].ub).contains(&x))
+    {
+        return Err(format!(
+            "value {x} of variable {i} is outside its domain 0..={}",
+            vars[i].ub
+        ));
+    }
+    Ok(v)
 }
 
 /// At most 200 characters of `s`, for messages.

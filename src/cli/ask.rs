@@ -337,32 +337,72 @@ fn on_interrupt(dir: PathBuf, answers: PathBuf) {
     });
 }
 
+/// The files of a task folder a session reads and writes.
+struct SessionFiles {
+    dir: PathBuf,
+    problem: PathBuf,
+    demos: PathBuf,
+    answers: PathBuf,
+    learned: PathBuf,
+    statements: PathBuf,
+    probes: PathBuf,
+}
+
+impl SessionFiles {
+    fn new(dir: &Path) -> Self {
+        SessionFiles {
+            dir: dir.to_path_buf(),
+            problem: dir.join(storage::PROBLEM),
+            demos: dir.join(storage::DEMOS),
+            answers: dir.join(storage::ANSWERS),
+            learned: dir.join(storage::LEARNED),
+            statements: dir.join(storage::STATEMENTS),
+            probes: dir.join(storage::PROBES),
+        }
+    }
+
+    /// A write into the folder failed.
+    fn io_error(&self, (file, e): (&str, std::io::Error)) -> Reported {
+        Reported(format!(
+            "error: {}: cannot write: {e}",
+            self.dir.join(file).display()
+        ))
+    }
+
+    /// The problem could not be used for a question.
+    fn problem_error(&self, e: rccpack::ask::AskError) -> Reported {
+        Reported(format!("error: {}: {e}", self.problem.display()))
+    }
+}
+
+/// How the question loop ended.
+struct LoopEnd {
+    /// The session after the last answer.
+    asker: Asker,
+    /// Questions asked in this run.
+    asked_now: usize,
+    /// Per question, ms from the answer before it until it was ready.
+    times: Vec<f64>,
+    /// Why the session was aborted, if it was.
+    aborted: Option<String>,
+    /// Stopped at `--max-questions`.
+    out_of_budget: bool,
+}
+
+/// Run a question session in the task folder (see the module doc).
 pub fn run(a: AskArgs) -> Result<ExitCode> {
-    let dir = &a.dir;
-    let problem_path = dir.join(storage::PROBLEM);
-    let demos_path = dir.join(storage::DEMOS);
-    let answers_path = dir.join(storage::ANSWERS);
-    let learned_path = dir.join(storage::LEARNED);
+    let files = SessionFiles::new(&a.dir);
     // One session per task folder (the studio takes the same lock to write).
-    let _lock = super::io::lock_folder(dir)?;
-    on_interrupt(dir.clone(), answers_path.clone());
-    let problem = read_scene(&problem_path)?;
-    let (demos, _) = read_scenes(&demos_path)?;
-    let statements_path = dir.join(storage::STATEMENTS);
-    let statements: Option<RuleSet> = if statements_path.exists() {
-        Some(read_rules(&statements_path, &demos)?)
-    } else {
-        None
-    };
-    let answers = if answers_path.exists() {
-        AnswersFile::from_json(&read_text(&answers_path)?)
-            .map_err(|e| Reported(format!("error: {}: {e}", answers_path.display())))?
-            .answers
-    } else {
-        Vec::new()
-    };
-    let resumed = answers.len();
-    let opts = AskOptions {
+    let _lock = super::io::lock_folder(&files.dir)?;
+    on_interrupt(files.dir.clone(), files.answers.clone());
+    let asker = start_session(&a, &files)?;
+    let end = question_loop(&a, &files, asker)?;
+    finish(&a, &files, end)
+}
+
+/// The options of the session from the flags (reads `--priors`).
+fn ask_options(a: &AskArgs) -> Result<AskOptions> {
+    Ok(AskOptions {
         learn: LearnParams {
             samples: a.samples,
             cutoff: a.cutoff,
@@ -387,14 +427,37 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         edits: !a.no_edits,
         priors: super::priors::read_priors_opt(a.priors.as_deref())?.map(std::sync::Arc::new),
         ..AskOptions::default()
+    })
+}
+
+/// Read the folder (problem, demonstrations, statements, answers of
+/// earlier runs), start or resume the session and record its start; say
+/// what was kept, what is resumed and which learned rules are about a
+/// class the problem lacks.
+fn start_session(a: &AskArgs, files: &SessionFiles) -> Result<Asker> {
+    let problem = read_scene(&files.problem)?;
+    let (demos, _) = read_scenes(&files.demos)?;
+    let statements: Option<RuleSet> = if files.statements.exists() {
+        Some(read_rules(&files.statements, &demos)?)
+    } else {
+        None
     };
+    let answers = if files.answers.exists() {
+        AnswersFile::from_json(&read_text(&files.answers)?)
+            .map_err(|e| Reported(format!("error: {}: {e}", files.answers.display())))?
+            .answers
+    } else {
+        Vec::new()
+    };
+    let resumed = answers.len();
+    let opts = ask_options(a)?;
     let n_demos = demos.len();
     let problem_classes = problem.clone();
-    let mut asker = Asker::new(problem, demos, statements, answers, opts).map_err(|e| {
+    let asker = Asker::new(problem, demos, statements, answers, opts).map_err(|e| {
         let file = match e {
-            rccpack::ask::AskError::BadAnswer { .. } => &answers_path,
-            rccpack::ask::AskError::Synth(_) => &problem_path,
-            _ => &demos_path,
+            rccpack::ask::AskError::BadAnswer { .. } => &files.answers,
+            rccpack::ask::AskError::Synth(_) => &files.problem,
+            _ => &files.demos,
         };
         let text = match &e {
             rccpack::ask::AskError::Learn(e) => super::learn_error_text(e),
@@ -402,24 +465,20 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         };
         Reported(format!("error: {}: {text}", file.display()))
     })?;
-    let io_error = |(file, e): (&str, std::io::Error)| {
-        Reported(format!(
-            "error: {}: cannot write: {e}",
-            dir.join(file).display()
-        ))
-    };
-    if storage::write_session_start(dir, &asker, n_demos, resumed).map_err(io_error)? {
+    if storage::write_session_start(&files.dir, &asker, n_demos, resumed)
+        .map_err(|e| files.io_error(e))?
+    {
         outln(format!(
             "note: {} was not learned from {} with these settings; kept as {}",
-            learned_path.display(),
-            demos_path.display(),
-            dir.join(storage::LEARNED_BACKUP).display()
+            files.learned.display(),
+            files.demos.display(),
+            files.dir.join(storage::LEARNED_BACKUP).display()
         ))?;
     }
     if resumed > 0 {
         outln(format!(
             "resuming: {resumed} answers in {}",
-            answers_path.display()
+            files.answers.display()
         ))?;
     }
     // SPEC §15: learned rules about a class today's problem lacks.
@@ -427,7 +486,13 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
     if let Some(note) = rccpack::rules::missing_classes_note(&missing) {
         outln(note)?;
     }
-    let probes = dir.join(storage::PROBES);
+    Ok(asker)
+}
+
+/// Ask until no question is left, `--max-questions` is reached or the
+/// person (or the oracle) aborts; every answer journaled before it is
+/// applied, and the folder's files written after it.
+fn question_loop(a: &AskArgs, files: &SessionFiles, mut asker: Asker) -> Result<LoopEnd> {
     let mut asked_now = 0usize;
     let mut times: Vec<f64> = Vec::new();
     let mut aborted: Option<String> = None;
@@ -437,10 +502,8 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
     } else {
         std::thread::available_parallelism().map_or(1, |n| n.get())
     };
-    let problem_error =
-        |e: rccpack::ask::AskError| Reported(format!("error: {}: {e}", problem_path.display()));
     let t = Instant::now();
-    let mut next = asker.next_question().map_err(problem_error)?;
+    let mut next = asker.next_question().map_err(|e| files.problem_error(e))?;
     // The wait before the first question, then answer → next question.
     let mut ready_ms = t.elapsed().as_secs_f64() * 1000.0;
     while let Some(q) = next.take() {
@@ -450,45 +513,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         }
         times.push(ready_ms);
         let number = asker.answers().len() + 1;
-        std::fs::create_dir_all(&probes).map_err(|e| {
-            Reported(format!(
-                "error: {}: cannot create folder: {e}",
-                probes.display()
-            ))
-        })?;
-        let json = probes.join(format!("probe-{number}.json"));
-        let png = probes.join(format!("probe-{number}.png"));
-        write(&json, &q.probe.scene.to_json())?;
-        let rule = asker
-            .held()
-            .rules
-            .iter()
-            .find(|r| r.name == q.rule)
-            .cloned()
-            .expect("the question's rule is held");
-        let ropts = RenderOptions {
-            contact: a.contact,
-            scale: 1.0,
-            title: Some(format!(
-                "question {number}: is this acceptable? (breaks {})",
-                q.rule
-            )),
-            like: None,
-            moved: q
-                .probe
-                .edit
-                .iter()
-                .flat_map(|e| &e.moved)
-                .map(|m| (m.id.clone(), m.x, m.y))
-                .collect(),
-        };
-        render_to_path(
-            &q.probe.scene,
-            Some(&RuleSet::new(vec![rule])),
-            &ropts,
-            &png,
-        )
-        .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;
+        let (json, png) = write_probe(a, files, &asker, &q, number)?;
         // While the person (or the oracle) looks: the next question for
         // both answers.
         let ahead = asker.look_ahead(&q, threads);
@@ -519,19 +544,91 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         // The journal first: relearning from an accepted probe takes a
         // while, and Ctrl-C during it must not lose the answer (the next
         // run replays the journal).
-        journal_answer(&answers_path, &asker, &q, accepted)?;
+        journal_answer(&files.answers, &asker, &q, accepted)?;
         let t = Instant::now();
         let (after, upcoming) = match ahead.answer(accepted) {
             Ok(b) => b,
-            Err(e @ rccpack::ask::AskError::Synth(_)) => return Err(problem_error(e).into()),
-            Err(e) => return Err(Reported(format!("error: {}: {e}", demos_path.display())).into()),
+            Err(e @ rccpack::ask::AskError::Synth(_)) => return Err(files.problem_error(e).into()),
+            Err(e) => return Err(Reported(format!("error: {}: {e}", files.demos.display())).into()),
         };
         ready_ms = t.elapsed().as_secs_f64() * 1000.0;
         asker = after;
         next = upcoming;
         asked_now += 1;
-        storage::write_after_answer(dir, &asker, accepted).map_err(io_error)?;
+        storage::write_after_answer(&files.dir, &asker, accepted).map_err(|e| files.io_error(e))?;
     }
+    Ok(LoopEnd {
+        asker,
+        asked_now,
+        times,
+        aborted,
+        out_of_budget,
+    })
+}
+
+/// Write question `number`'s probe as `probes/probe-N.json` and its
+/// picture `probes/probe-N.png` (the rule it breaks, the moved objects
+/// outlined); their paths.
+fn write_probe(
+    a: &AskArgs,
+    files: &SessionFiles,
+    asker: &Asker,
+    q: &Question,
+    number: usize,
+) -> Result<(PathBuf, PathBuf)> {
+    let probes = &files.probes;
+    std::fs::create_dir_all(probes).map_err(|e| {
+        Reported(format!(
+            "error: {}: cannot create folder: {e}",
+            probes.display()
+        ))
+    })?;
+    let json = probes.join(format!("probe-{number}.json"));
+    let png = probes.join(format!("probe-{number}.png"));
+    write(&json, &q.probe.scene.to_json())?;
+    let rule = asker
+        .held()
+        .rules
+        .iter()
+        .find(|r| r.name == q.rule)
+        .cloned()
+        .expect("the question's rule is held");
+    let ropts = RenderOptions {
+        contact: a.contact,
+        scale: 1.0,
+        title: Some(format!(
+            "question {number}: is this acceptable? (breaks {})",
+            q.rule
+        )),
+        like: None,
+        moved: q
+            .probe
+            .edit
+            .iter()
+            .flat_map(|e| &e.moved)
+            .map(|m| (m.id.clone(), m.x, m.y))
+            .collect(),
+    };
+    render_to_path(
+        &q.probe.scene,
+        Some(&RuleSet::new(vec![rule])),
+        &ropts,
+        &png,
+    )
+    .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;
+    Ok((json, png))
+}
+
+/// The session's summary line, the unasked rules (when it ran to the
+/// end), why it stopped; exit 1 when it was aborted.
+fn finish(a: &AskArgs, files: &SessionFiles, end: LoopEnd) -> Result<ExitCode> {
+    let LoopEnd {
+        asker,
+        asked_now,
+        times,
+        aborted,
+        out_of_budget,
+    } = end;
     let p = asker.progress();
     let median = {
         let mut t = times.clone();
@@ -558,7 +655,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         } else {
             String::new()
         },
-        learned_path.display()
+        files.learned.display()
     ))?;
     if !out_of_budget && aborted.is_none() {
         show_unasked(&asker)?;
@@ -573,7 +670,7 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
         ewriteln!(
             "error: aborted ({why}); {} answers are saved in {}, run again to resume",
             p.asked,
-            answers_path.display()
+            files.answers.display()
         );
         return Ok(ExitCode::from(1));
     }

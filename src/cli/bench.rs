@@ -315,10 +315,57 @@ fn available_peers(asked: &[Peer], bench: &str) -> Vec<Peer> {
         .collect()
 }
 
+/// `bench tasks`: generate the tasks, solve every problem, print the
+/// tables, write `tasks.json`; exit 1 when a solve failed.
 fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
     let limit = a
         .time_limit
         .unwrap_or(Duration::from_secs(if a.quick { 5 } else { 30 }));
+    let cfg = tasks_config(&a, limit);
+    std::fs::create_dir_all(&a.out)
+        .with_context(|| format!("{}: cannot create directory", a.out.display()))?;
+
+    let all = tasks::all_tasks(&cfg)?;
+    print_tasks(&cfg, limit, &all);
+    if let Some(dir) = &a.problems_out {
+        write_task_problems(dir, &all)?;
+        ewriteln!("wrote the problems to {}", dir.display());
+    }
+
+    let started = std::time::Instant::now();
+    let report = solve_tasks(&cfg, &all);
+    print!("{}", tasks::table_text(&report.summary));
+    println!(
+        "(proven = score-only solves proved optimal; median/max = score-only wall time; like_pr = like solves with score and cost proven; like/so = like median / score-only median; rcc_below / rcc_above = problems where rccpack's score-only score is below / above the peer's) — {:.0} s in all",
+        started.elapsed().as_secs_f64()
+    );
+    let bad = failed_solves(&report);
+    if !bad.is_empty() {
+        println!(
+            "!!! {} solves FAILED (engine error or layout rejected by the checker) — a bug:",
+            bad.len()
+        );
+        for b in &bad {
+            println!("!!!   {b}");
+        }
+    }
+    let json = a.out.join("tasks.json");
+    write_file(
+        &json,
+        serde_json::to_string_pretty(&report)? + "\n",
+        "the report",
+    )?;
+    ewriteln!("wrote {}", json.display());
+    Ok(if bad.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+/// The benchmark's configuration from the flags (`--quick` first, flags
+/// given explicitly win).
+fn tasks_config(a: &TasksArgs, limit: Duration) -> TasksConfig {
     let mut cfg = if a.quick {
         TasksConfig::quick(a.seed, limit)
     } else {
@@ -346,10 +393,12 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
     if let Some(ps) = &a.peers {
         cfg.peers = available_peers(ps, "tasks");
     }
-    std::fs::create_dir_all(&a.out)
-        .with_context(|| format!("{}: cannot create directory", a.out.display()))?;
+    cfg
+}
 
-    let all = tasks::all_tasks(&cfg)?;
+/// The run's header line and one line per task (series, index,
+/// demonstrations, rules, objects per problem, style).
+fn print_tasks(cfg: &TasksConfig, limit: Duration, all: &[tasks::BenchTask]) {
     println!(
         "rccpack bench tasks: seed {}, time limit {} s, {} tasks{}, {} problems, {}{}{}",
         cfg.seed,
@@ -369,7 +418,7 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
         if cfg.warm_start { ", warm start" } else { "" },
         if cfg.lns { "" } else { ", no LNS" },
     );
-    for t in &all {
+    for t in all {
         println!(
             "  {} {:>2}: {} demos, {} rules; objects {}; {}",
             t.series.name(),
@@ -384,28 +433,34 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
             t.style
         );
     }
-    if let Some(dir) = &a.problems_out {
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("{}: cannot create directory", dir.display()))?;
-        for t in &all {
-            let demos = rccpack::scene::scenes_to_json(&t.demos);
-            for p in &t.problems {
-                write_file(
-                    &dir.join(format!("{}.json", p.name)),
-                    p.scene.to_json() + "\n",
-                    "the problem",
-                )?;
-                write_file(&dir.join(format!("{}.rcc", p.name)), &t.rcc, "the rules")?;
-                write_file(
-                    &dir.join(format!("{}.demos.json", p.name)),
-                    demos.clone() + "\n",
-                    "the demonstrations",
-                )?;
-            }
-        }
-        ewriteln!("wrote the problems to {}", dir.display());
-    }
+}
 
+/// Every problem as `NAME.json`, `NAME.rcc` and `NAME.demos.json` in `dir`.
+fn write_task_problems(dir: &std::path::Path, all: &[tasks::BenchTask]) -> Result<()> {
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("{}: cannot create directory", dir.display()))?;
+    for t in all {
+        let demos = rccpack::scene::scenes_to_json(&t.demos);
+        for p in &t.problems {
+            write_file(
+                &dir.join(format!("{}.json", p.name)),
+                p.scene.to_json() + "\n",
+                "the problem",
+            )?;
+            write_file(&dir.join(format!("{}.rcc", p.name)), &t.rcc, "the rules")?;
+            write_file(
+                &dir.join(format!("{}.demos.json", p.name)),
+                demos.clone() + "\n",
+                "the demonstrations",
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// Solve every problem with the engine, a progress bar on a terminal and
+/// one line per solved problem otherwise.
+fn solve_tasks(cfg: &TasksConfig, all: &[tasks::BenchTask]) -> tasks::TasksReport {
     let total: usize = all.iter().map(|t| t.problems.len()).sum();
     let bar = ProgressBar::new(total as u64);
     bar.set_style(
@@ -434,15 +489,15 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
         solve: &synthesize,
         verify: &verify_text,
     };
-    let started = std::time::Instant::now();
-    let report = tasks::run_tasks(engine, &cfg, &all, &mut progress);
+    let report = tasks::run_tasks(engine, cfg, all, &mut progress);
     bar.finish_and_clear();
-    print!("{}", tasks::table_text(&report.summary));
-    println!(
-        "(proven = score-only solves proved optimal; median/max = score-only wall time; like_pr = like solves with score and cost proven; like/so = like median / score-only median; rcc_below / rcc_above = problems where rccpack's score-only score is below / above the peer's) — {:.0} s in all",
-        started.elapsed().as_secs_f64()
-    );
-    let bad: Vec<String> = report
+    report
+}
+
+/// The solves that failed (engine error or layout rejected by the
+/// checker), one line each.
+fn failed_solves(report: &tasks::TasksReport) -> Vec<String> {
+    report
         .rows
         .iter()
         .flat_map(|r| {
@@ -457,28 +512,7 @@ fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
                     )
                 })
         })
-        .collect();
-    if !bad.is_empty() {
-        println!(
-            "!!! {} solves FAILED (engine error or layout rejected by the checker) — a bug:",
-            bad.len()
-        );
-        for b in &bad {
-            println!("!!!   {b}");
-        }
-    }
-    let json = a.out.join("tasks.json");
-    write_file(
-        &json,
-        serde_json::to_string_pretty(&report)? + "\n",
-        "the report",
-    )?;
-    ewriteln!("wrote {}", json.display());
-    Ok(if bad.is_empty() {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
-    })
+        .collect()
 }
 
 /// The population of `bench priors` as task folders under `dir`.
@@ -534,7 +568,24 @@ fn parse_size(s: &str) -> Result<f64, String> {
     }
 }
 
+/// `bench thesis`: run the study, print its tables, write `thesis.json`
+/// and the charts; exit 1 when a problem failed.
 fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
+    let cfg = thesis_config(&a);
+    std::fs::create_dir_all(&a.out)
+        .with_context(|| format!("{}: cannot create directory", a.out.display()))?;
+    let report = run_study(&cfg, a.problems_out.as_deref())?;
+    let bad = print_study(&a, &cfg, &report)?;
+    write_study(&a, &cfg, &report)?;
+    Ok(if bad > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+/// The study's configuration from the flags.
+fn thesis_config(a: &ThesisArgs) -> StudyConfig {
     let limit = a.time_limit;
     let mut cfg = if a.quick {
         StudyConfig::quick(a.seed, limit)
@@ -561,9 +612,15 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
     if let Some(ps) = &a.peers {
         cfg.peers = available_peers(ps, "thesis");
     }
-    std::fs::create_dir_all(&a.out)
-        .with_context(|| format!("{}: cannot create directory", a.out.display()))?;
+    cfg
+}
 
+/// Run the study with a progress bar (drawing the sets, then solving);
+/// with `problems_out`, write every problem there.
+fn run_study(
+    cfg: &StudyConfig,
+    problems_out: Option<&std::path::Path>,
+) -> Result<thesis::StudyReport> {
     let bar = ProgressBar::new(cfg.sets as u64);
     bar.set_style(
         ProgressStyle::with_template("{prefix:>8} [{bar:40}] {pos}/{len} {msg} ({elapsed})")
@@ -596,12 +653,17 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
         solve: &synthesize,
         verify: &verify_text,
     };
-    let report = thesis::run_study(engine, &cfg, &mut progress);
-    if let Some(dir) = &a.problems_out {
-        write_problems(dir, &cfg, &report)?;
+    let report = thesis::run_study(engine, cfg, &mut progress);
+    if let Some(dir) = problems_out {
+        write_problems(dir, cfg, &report)?;
     }
     bar.finish_and_clear();
+    Ok(report)
+}
 
+/// The study's header, tables and failures on stdout; how many problems
+/// failed.
+fn print_study(a: &ThesisArgs, cfg: &StudyConfig, report: &thesis::StudyReport) -> Result<usize> {
     outln(format!(
         "rccpack bench thesis: seed {}, time limit {} s, {} viable sets from {} draws, {} problems",
         cfg.seed,
@@ -623,11 +685,16 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
     if bad > 0 {
         outln(format!("{bad} problems failed (engine error or solution rejected by the checker): see thesis.json"))?;
     }
+    Ok(bad)
+}
 
+/// `thesis.json`, `thesis.png` and (with a scale series)
+/// `thesis-scale.png` in `--out`.
+fn write_study(a: &ThesisArgs, cfg: &StudyConfig, report: &thesis::StudyReport) -> Result<()> {
     let json = a.out.join("thesis.json");
     write_file(
         &json,
-        serde_json::to_string_pretty(&report)? + "\n",
+        serde_json::to_string_pretty(report)? + "\n",
         "the report",
     )?;
     let png = a.out.join("thesis.png");
@@ -669,11 +736,7 @@ fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
     for p in written {
         ewriteln!("wrote {}", p.display());
     }
-    Ok(if bad > 0 {
-        ExitCode::from(1)
-    } else {
-        ExitCode::SUCCESS
-    })
+    Ok(())
 }
 
 /// Draw a chart whole or not at all (as `fsutil::atomic_write`): to a

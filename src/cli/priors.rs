@@ -1,5 +1,5 @@
 //! `rccpack priors TASK_DIR... -o PRIORS.json`: priors per kind of
-//! statement from a library of finished task folders (issue 30), and the
+//! statement from a library of finished task folders, and the
 //! `--priors FILE` reader of `learn`, `run`, `ask` and the studio.
 
 use super::{read_text, write_file, Reported};

@@ -65,6 +65,8 @@ pub struct SampleArgs {
     quiet: bool,
 }
 
+/// Draw up to `-n` distinct layouts and write them; exit 2 when there is
+/// none of the quality asked.
 pub fn run(a: SampleArgs) -> Result<ExitCode> {
     super::guard_outputs(
         &[&a.problem, &a.rules],
@@ -77,74 +79,14 @@ pub fn run(a: SampleArgs) -> Result<ExitCode> {
         None => Vec::new(),
     };
     let rules = read_rules_seen(&a.rules, std::slice::from_ref(&problem), &like)?;
-    let quality = match (a.all_rules, a.min_score) {
-        (true, _) => Quality::AllRules,
-        (false, Some(x)) => {
-            if !(0.0..=1.0).contains(&x) {
-                return Err(Reported(format!(
-                    "error: --min-score {}: expected a number from 0 to 1",
-                    rccpack::limits::number(x)
-                ))
-                .into());
-            }
-            Quality::MinScore(x)
-        }
-        (false, None) => Quality::Optimum,
-    };
-    let cancel = Arc::new(AtomicBool::new(false));
-    {
-        let c = cancel.clone();
-        // Ctrl-C stops the search; what was found is still written.
-        super::signals::on_signal(move || c.store(true, Ordering::Relaxed));
-    }
-    let opts = SampleOptions {
-        quality,
-        seed: a.seed,
-        contact: a.contact,
-        time_limit: a.time_limit,
-        layout_node_limit: a.layout_node_limit,
-        like,
-        cancel: Some(cancel),
-        repair: if a.repair == "activity" {
-            Repair::Activity
-        } else {
-            Repair::Random
-        },
-        ..SampleOptions::default()
-    };
+    let opts = sample_options(&a, like)?;
+    let quality = opts.quality;
     let start = Instant::now();
-    let bad = |e: SampleError| {
-        // A fault of the rules (their weights) names the rule file.
-        let file = match &e {
-            SampleError::Synth(
-                rccpack::SynthError::WeightsTooLarge | rccpack::SynthError::BadWeight { .. },
-            ) => &a.rules,
-            _ => &a.problem,
-        };
-        Reported(format!("error: {}: {e}", file.display()))
+    let mut sampler = sample(&problem, &rules, &opts).map_err(|e| failure(&a, e))?;
+    let (layouts, limit) = match draw(&a, &mut sampler)? {
+        Ok(drawn) => drawn,
+        Err(code) => return Ok(code),
     };
-    let mut sampler = sample(&problem, &rules, &opts).map_err(bad)?;
-    let mut layouts = Vec::with_capacity(a.n.min(1 << 16));
-    let mut limit = false;
-    while layouts.len() < a.n {
-        match sampler.next() {
-            None => break,
-            Some(Ok(s)) => layouts.push(s),
-            Some(Err(SampleError::LimitReached { .. })) => {
-                limit = true;
-                break;
-            }
-            Some(Err(SampleError::Infeasible(c))) => {
-                ewriteln!("infeasible: {}", super::synth::conflict_text(&c));
-                return Ok(ExitCode::from(2));
-            }
-            Some(Err(e @ SampleError::NoLayout { .. })) => {
-                ewriteln!("{e}");
-                return Ok(ExitCode::from(2));
-            }
-            Some(Err(e)) => return Err(bad(e).into()),
-        }
-    }
     let ms = start.elapsed().as_secs_f64() * 1000.0;
     if layouts.is_empty() && limit {
         return Err(LimitStruck(format!(
@@ -175,6 +117,88 @@ pub fn run(a: SampleArgs) -> Result<ExitCode> {
         ewriteln!("{k} distinct layouts of {what} in {ms:.1} ms");
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The sampler's options from the flags (`--min-score` checked); Ctrl-C
+/// stops the search and what was found is still written.
+fn sample_options(a: &SampleArgs, like: Vec<rccpack::scene::Scene>) -> Result<SampleOptions> {
+    let quality = match (a.all_rules, a.min_score) {
+        (true, _) => Quality::AllRules,
+        (false, Some(x)) => {
+            if !(0.0..=1.0).contains(&x) {
+                return Err(Reported(format!(
+                    "error: --min-score {}: expected a number from 0 to 1",
+                    rccpack::limits::number(x)
+                ))
+                .into());
+            }
+            Quality::MinScore(x)
+        }
+        (false, None) => Quality::Optimum,
+    };
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        let c = cancel.clone();
+        // Ctrl-C stops the search; what was found is still written.
+        super::signals::on_signal(move || c.store(true, Ordering::Relaxed));
+    }
+    Ok(SampleOptions {
+        quality,
+        seed: a.seed,
+        contact: a.contact,
+        time_limit: a.time_limit,
+        layout_node_limit: a.layout_node_limit,
+        like,
+        cancel: Some(cancel),
+        repair: if a.repair == "activity" {
+            Repair::Activity
+        } else {
+            Repair::Random
+        },
+        ..SampleOptions::default()
+    })
+}
+
+/// A sampling error naming its file: a fault of the rules (their
+/// weights) the rule file, any other the problem.
+fn failure(a: &SampleArgs, e: SampleError) -> Reported {
+    let file = match &e {
+        SampleError::Synth(
+            rccpack::SynthError::WeightsTooLarge | rccpack::SynthError::BadWeight { .. },
+        ) => &a.rules,
+        _ => &a.problem,
+    };
+    Reported(format!("error: {}: {e}", file.display()))
+}
+
+/// Up to `-n` layouts from `sampler`, and whether a limit stopped it; or
+/// the exit code when the problem has none (infeasible: 2).
+fn draw(
+    a: &SampleArgs,
+    sampler: &mut rccpack::sample::Sampler,
+) -> Result<Result<(Vec<rccpack::scene::Scene>, bool), ExitCode>> {
+    let mut layouts = Vec::with_capacity(a.n.min(1 << 16));
+    let mut limit = false;
+    while layouts.len() < a.n {
+        match sampler.next() {
+            None => break,
+            Some(Ok(s)) => layouts.push(s),
+            Some(Err(SampleError::LimitReached { .. })) => {
+                limit = true;
+                break;
+            }
+            Some(Err(SampleError::Infeasible(c))) => {
+                ewriteln!("infeasible: {}", super::synth::conflict_text(&c));
+                return Ok(Err(ExitCode::from(2)));
+            }
+            Some(Err(e @ SampleError::NoLayout { .. })) => {
+                ewriteln!("{e}");
+                return Ok(Err(ExitCode::from(2)));
+            }
+            Some(Err(e)) => return Err(failure(a, e).into()),
+        }
+    }
+    Ok(Ok((layouts, limit)))
 }
 
 /// `rccpack bench sample [--seed S] [-n N] [--draws-per-layout K] [--tasks T]

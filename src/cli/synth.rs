@@ -3,7 +3,11 @@ use anyhow::Result;
 use clap::Args;
 use rccpack::relations::Contact;
 use rccpack::resemblance::Likeness;
-use rccpack::synth::{emit, synthesize, Progress, ProgressFn, Status, SynthError, SynthOptions};
+use rccpack::rules::RuleSet;
+use rccpack::scene::Scene;
+use rccpack::synth::{
+    emit, synthesize, Progress, ProgressFn, Status, SynthError, SynthOptions, SynthResult,
+};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -132,6 +136,8 @@ fn failure(a: &SynthArgs, e: &SynthError) -> Reported {
     ))
 }
 
+/// Solve the problem, write the layout (and the report, the emitted
+/// model); exit 0 with a layout, 2 infeasible, 3 unknown.
 pub fn run(a: SynthArgs) -> Result<ExitCode> {
     let emit_to = match &a.emit {
         Some(p) => Some((p.clone(), emit_format(p)?)),
@@ -149,6 +155,44 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             ("--warm-start", a.warm_start.as_deref()),
         ],
     )?;
+    let Inputs {
+        problem,
+        like_scenes,
+        warm_start,
+        rules,
+    } = read_inputs(&a)?;
+    let opts = synth_options(&a, like_scenes.as_deref(), warm_start);
+    if let Some((path, format)) = &emit_to {
+        write_emitted(path, *format, &problem, &rules, &opts).map_err(|e| match e {
+            Emitted::Refused(e) => failure(&a, &e).into(),
+            Emitted::Write(e) => e,
+        })?;
+        if opts.like.is_some() && !a.quiet {
+            ewriteln!(
+                "note: {}: the model holds the score objective only, not --like's resemblance",
+                path.display()
+            );
+        }
+    }
+    let result = synthesize(&problem, &rules, &opts).map_err(|e| failure(&a, &e))?;
+    if let Some(path) = &a.report {
+        super::write_file(path, rccpack::synth::report::report_json(&result), "report")?;
+    }
+    write_result(&a, &result)
+}
+
+/// What a solve reads: the problem, the like-scenes, the warm start and
+/// the rules.
+struct Inputs {
+    problem: Scene,
+    like_scenes: Option<Vec<Scene>>,
+    warm_start: Vec<Scene>,
+    rules: RuleSet,
+}
+
+/// Read the problem, `--like`, `--warm-start` (default: the like-scenes;
+/// `none`: none) and the rules (checked against every scene read).
+fn read_inputs(a: &SynthArgs) -> Result<Inputs> {
     let problem = read_scene(&a.problem)?;
     let like_scenes = match &a.like {
         Some(p) => Some(read_scenes(p)?.0),
@@ -164,6 +208,21 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         std::slice::from_ref(&problem),
         &[like_scenes.as_deref().unwrap_or_default(), &warm_start[..]].concat(),
     )?;
+    Ok(Inputs {
+        problem,
+        like_scenes,
+        warm_start,
+        rules,
+    })
+}
+
+/// The engine's options from the flags: Ctrl-C stops the search (the
+/// best layout found is still written); incumbents on a terminal's stderr.
+fn synth_options(
+    a: &SynthArgs,
+    like_scenes: Option<&[Scene]>,
+    warm_start: Vec<Scene>,
+) -> SynthOptions {
     let time_limit = a.time_limit;
     let cancel = Arc::new(AtomicBool::new(false));
     {
@@ -181,7 +240,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
             );
         }))
     });
-    let opts = SynthOptions {
+    SynthOptions {
         contact: a.contact,
         time_limit,
         node_limit: a.node_limit,
@@ -190,27 +249,16 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         redundant: !a.no_redundant,
         cancel: Some(cancel),
         progress,
-        like: like_scenes.as_deref().map(Likeness::new),
+        like: like_scenes.map(Likeness::new),
         warm_start,
         ..SynthOptions::default()
-    };
-    if let Some((path, format)) = &emit_to {
-        write_emitted(path, *format, &problem, &rules, &opts).map_err(|e| match e {
-            Emitted::Refused(e) => failure(&a, &e).into(),
-            Emitted::Write(e) => e,
-        })?;
-        if opts.like.is_some() && !a.quiet {
-            ewriteln!(
-                "note: {}: the model holds the score objective only, not --like's resemblance",
-                path.display()
-            );
-        }
     }
-    let result = synthesize(&problem, &rules, &opts).map_err(|e| failure(&a, &e))?;
+}
+
+/// The layout to `-o` or stdout and its summary on stderr, or why there
+/// is none; the exit code.
+fn write_result(a: &SynthArgs, result: &SynthResult) -> Result<ExitCode> {
     let ev = result.evaluation.as_ref();
-    if let Some(path) = &a.report {
-        super::write_file(path, rccpack::synth::report::report_json(&result), "report")?;
-    }
     match result.status {
         Status::Optimal | Status::Feasible => {
             let scene = result.scene.as_ref().expect("a solution has a scene");
@@ -230,7 +278,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
                     e.score,
                     e.satisfied_weight,
                     e.total_weight,
-                    bound_text(&result),
+                    bound_text(result),
                     resemblance_text(result.resemblance),
                     result.stats.time_ms,
                     result.stats.nodes

@@ -1,4 +1,4 @@
-//! Fuzz harnesses (issue 11), shared by the cargo-fuzz targets in `fuzz/`
+//! Fuzz harnesses, shared by the cargo-fuzz targets in `fuzz/`
 //! and by `tests/fuzz_replay.rs`, which replays every committed corpus and
 //! regression file on stable Rust.
 //!
@@ -522,10 +522,11 @@ fn within_synth_bound(p: &Scene) -> bool {
         })
 }
 
+/// One synthesis on a drawn problem and rule set, checked against the
+/// validator, the bound, the solution checker, the evaluator, brute force
+/// (when the positions are few) and a probe.
 fn synth_inner(u: &mut Unstructured) -> AResult<()> {
-    use crate::synth::brute_force::{approx_eq, solve_with_limit};
-    use crate::synth::verify_solution;
-    use crate::synth::{synthesize, Status, SynthError, SynthOptions};
+    use crate::synth::{synthesize, SynthError};
     let p = problem(u)?;
     let fixed_ids: Vec<String> = p
         .objects
@@ -535,27 +536,7 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
         .collect();
     let rules = rule_set(u, &fixed_ids, 4)?;
     let contact = *u.choose(&Contact::ALL)?;
-    let mut opts = SynthOptions {
-        contact,
-        node_limit: Some(u.int_in_range(50..=4000)?),
-        seed: u.arbitrary()?,
-        symmetry_breaking: u.arbitrary()?,
-        redundant: u.arbitrary()?,
-        ..SynthOptions::default()
-    };
-    // Large-neighbourhood search forced onto the tiny problem now and then
-    // (it runs only from 16 objects by default).
-    if u.arbitrary::<bool>()? {
-        opts.lns = Some(crate::synth::LnsOptions {
-            min_objects: 0,
-            window: 1,
-            max_window: 2,
-            patience: 2,
-            round_nodes: 100,
-            budget_nodes: 1_000,
-            proof_nodes: 50,
-        });
-    }
+    let opts = synth_options(u, contact)?;
     if std::env::var_os("RCCPACK_FUZZ_DEBUG").is_some() {
         eprintln!("{}{}\n{opts:?}", p.to_json(), print_rules(&rules));
     }
@@ -578,7 +559,48 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
         Err(e) => panic!("unexpected refusal: {e}\n{}", p.to_json()),
     };
     assert!(valid, "an invalid problem was solved");
-    // Brute force enumerates every position first: only when they are few.
+    let brute = brute_reference(&p, &rules, contact);
+    check_result(&p, &rules, contact, &r, brute.as_ref());
+    // A probe (SPEC §13) for one rule, the set as the held rules.
+    if brute.is_some() && !rules.rules.is_empty() {
+        probe_check(u, &p, &rules, contact)?;
+    }
+    Ok(())
+}
+
+/// The engine's options for one fuzzed solve: a node limit, seed,
+/// symmetry breaking and redundant constraints drawn, and now and then
+/// large-neighbourhood search forced onto the tiny problem (it runs only
+/// from 16 objects by default).
+fn synth_options(u: &mut Unstructured, contact: Contact) -> AResult<crate::synth::SynthOptions> {
+    let mut opts = crate::synth::SynthOptions {
+        contact,
+        node_limit: Some(u.int_in_range(50..=4000)?),
+        seed: u.arbitrary()?,
+        symmetry_breaking: u.arbitrary()?,
+        redundant: u.arbitrary()?,
+        ..crate::synth::SynthOptions::default()
+    };
+    if u.arbitrary::<bool>()? {
+        opts.lns = Some(crate::synth::LnsOptions {
+            min_objects: 0,
+            window: 1,
+            max_window: 2,
+            patience: 2,
+            round_nodes: 100,
+            budget_nodes: 1_000,
+            proof_nodes: 50,
+        });
+    }
+    Ok(opts)
+}
+
+/// Brute force on `p`, only when it has few positions to enumerate.
+fn brute_reference(
+    p: &Scene,
+    rules: &RuleSet,
+    contact: Contact,
+) -> Option<crate::synth::brute_force::BruteResult> {
     let positions: i128 = p
         .objects
         .iter()
@@ -590,11 +612,26 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
                 * count(i128::from(p.space.height) - i128::from(o.height))
         })
         .fold(1, |a: i128, n| a.saturating_mul(n.max(1)));
-    let brute = if positions <= 4000 {
-        solve_with_limit(&p, &rules, contact, 4000).ok()
+    if positions <= 4000 {
+        crate::synth::brute_force::solve_with_limit(p, rules, contact, 4000).ok()
     } else {
         None
-    };
+    }
+}
+
+/// A solve's result against the checker, the evaluator and brute force:
+/// a layout passes the checker, scores what the evaluator says, never
+/// beats brute force and matches it when proved optimal; "infeasible" only
+/// when brute force finds nothing either.
+fn check_result(
+    p: &Scene,
+    rules: &RuleSet,
+    contact: Contact,
+    r: &crate::synth::SynthResult,
+    brute: Option<&crate::synth::brute_force::BruteResult>,
+) {
+    use crate::synth::brute_force::approx_eq;
+    use crate::synth::{verify_solution, Status};
     let terms: f64 = r
         .evaluation
         .as_ref()
@@ -605,16 +642,16 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
                 .scene
                 .as_ref()
                 .unwrap_or_else(|| unreachable!("a solution has a scene"));
-            if let Err(e) = verify_solution(&p, s, &rules, contact) {
+            if let Err(e) = verify_solution(p, s, rules, contact) {
                 panic!("solution fails verification: {e}\n{}", s.to_json());
             }
             let e = r
                 .evaluation
                 .as_ref()
                 .unwrap_or_else(|| unreachable!("evaluated"));
-            let again = evaluate(s, &rules, contact);
+            let again = evaluate(s, rules, contact);
             assert_eq!(again.satisfied_weight, e.satisfied_weight);
-            if let Some(b) = &brute {
+            if let Some(b) = brute {
                 assert!(b.feasible, "brute force finds no layout, synthesis did");
                 // Weights are scaled to integers (≤ 1e-6 relative error per
                 // term), so allow that much.
@@ -638,7 +675,7 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
             }
         }
         Status::Infeasible => {
-            if let Some(b) = &brute {
+            if let Some(b) = brute {
                 assert!(
                     !b.feasible,
                     "infeasible, but brute force found {}",
@@ -648,11 +685,6 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
         }
         Status::Unknown => {}
     }
-    // A probe (SPEC §13) for one rule, the set as the held rules.
-    if brute.is_some() && !rules.rules.is_empty() {
-        probe_check(u, &p, &rules, contact)?;
-    }
-    Ok(())
 }
 
 /// The probe for one rule of `rules` breaks it and keeps the others (by the

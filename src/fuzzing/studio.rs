@@ -153,8 +153,8 @@ fn studio_inner(u: &mut Unstructured, root: &std::path::Path) -> AResult<()> {
         if let Some(h) = &req.host {
             b = b.header(axum::http::header::HOST, h.as_str());
         }
-        // The page's own requests are JSON (issue 21: any other content type
-        // is refused before a handler runs, which would hide the handlers).
+        // The page's own requests are JSON (any other content type is
+        // refused before a handler runs, which would hide the handlers).
         b = b.header(axum::http::header::CONTENT_TYPE, "application/json");
         // A URI or header the HTTP types refuse never reaches the server.
         let Ok(http_req) = b.body(axum::body::Body::from(req.body.clone())) else {

@@ -37,8 +37,8 @@
 //! `place_group` and the [`ShapeKind`] it shows in [`habit_shape`].
 
 use super::{
-    block, box_for, learn_with, rotated, scaled, size_label, ClassSpec, Habit, Placer, Side, Task,
-    TaskError, TaskProblem, TaskSeries, TasksConfig, GRID,
+    box_for, demo_scene, learn_with, problems_in, rotated, scaled, style_text, BenchTask, BoxGeom,
+    ClassSpec, Habit, Placer, TaskGenError, TaskSeries, TasksConfig, WallSide, GRID,
 };
 use crate::relations::Contact;
 use crate::scene::{Rect, Scene};
@@ -87,7 +87,7 @@ pub(super) fn place_group(
     };
     let xs: Vec<i64> = match spec.habit {
         Habit::Column {
-            wall: Some(Side::W),
+            wall: Some(WallSide::W),
         } => vec![x0],
         Habit::Column { wall: Some(_) } => vec![x1 - w],
         _ => rotated(x0, x1 - cols * w, rng),
@@ -112,8 +112,8 @@ pub(super) fn place_group(
 fn draw_group_habits(k: usize, rng: &mut ChaCha8Rng) -> Vec<Habit> {
     let column = |rng: &mut ChaCha8Rng| Habit::Column {
         wall: match rng.random_range(0..4) {
-            0 => Some(Side::W),
-            1 => Some(Side::E),
+            0 => Some(WallSide::W),
+            1 => Some(WallSide::E),
             _ => None,
         },
     };
@@ -139,123 +139,22 @@ fn draw_group_habits(k: usize, rng: &mut ChaCha8Rng) -> Vec<Habit> {
 
 /// Group task `index` of `cfg` (deterministic in `cfg.seed`, `index`,
 /// `cfg.sizes`' values and `cfg.templates`).
-pub fn generate_group_task(cfg: &TasksConfig, index: usize) -> Result<Task, TaskError> {
+pub fn generate_group_task(cfg: &TasksConfig, index: usize) -> Result<BenchTask, TaskGenError> {
     let mut rng = ChaCha8Rng::seed_from_u64(cfg.seed);
     rng.set_stream(GROUP_STREAM + index as u64);
     let largest = cfg.sizes.iter().copied().fold(1.0, f64::max);
     const TRIES: usize = 20;
     for _ in 0..TRIES {
         let k = rng.random_range(2..=3usize);
-        let habits = draw_group_habits(k, &mut rng);
-        let classes: Vec<ClassSpec> = (0..k)
-            .map(|i| {
-                let (w, h) =
-                    [(20, 20), (20, 20), (20, 20), (30, 20), (20, 30)][rng.random_range(0..5usize)];
-                ClassSpec {
-                    class: ["R", "G", "B"][i].to_string(),
-                    width: w,
-                    height: h,
-                    max_count: rng.random_range(3..=4),
-                    habit: habits[i],
-                }
-            })
-            .collect();
-        let mut geom = box_for(&classes, largest.max(2.0), &mut rng);
-        // Room for the longest run of the largest problem, and a block.
-        let run = classes
-            .iter()
-            .map(|c| scaled(c.max_count, largest) as i64 * c.width.max(c.height) + 2 * GRID)
-            .max()
-            .unwrap_or(0);
-        geom.width = geom.width.max(run);
-        geom.height = geom.height.max(run);
-        geom.margin = geom.width.max(geom.height) - GRID;
-        let d = rng.random_range(3..=5usize);
-        let mut demos = Vec::with_capacity(d);
-        let mut failed = false;
-        for di in 0..d {
-            let mut placed = None;
-            for _attempt in 0..20 {
-                let mut p = Placer {
-                    interior: geom.interior(),
-                    taken: Vec::new(),
-                };
-                let mut all: Vec<Vec<Rect>> = Vec::new();
-                for c in &classes {
-                    // One demonstration shows the largest count.
-                    let n = if di == 0 {
-                        c.max_count
-                    } else {
-                        rng.random_range(3..=c.max_count)
-                    };
-                    match place_group(&p, c, n, &mut rng) {
-                        Some(rs) => {
-                            p.taken.extend(rs.iter().copied());
-                            all.push(rs);
-                        }
-                        None => break,
-                    }
-                }
-                if all.len() == classes.len() {
-                    placed = Some(all);
-                    break;
-                }
-            }
-            let Some(placed) = placed else {
-                failed = true;
-                break;
-            };
-            let mut scene = geom.scene();
-            for (c, rs) in classes.iter().zip(&placed) {
-                scene.objects.extend(
-                    rs.iter()
-                        .enumerate()
-                        .map(|(k, r)| block(&c.class, k, c.width, c.height, Some(*r))),
-                );
-            }
-            demos.push(scene);
-        }
-        if failed {
+        let classes = draw_group_classes(k, &mut rng);
+        let geom = group_box(&classes, largest, &mut rng);
+        let Some(demos) = group_demos(&geom, &classes, &mut rng) else {
             continue;
-        }
+        };
         let (rules, rcc) = learn_with(&demos, index, cfg.templates)?;
-        let style = classes
-            .iter()
-            .map(|c| {
-                format!(
-                    "{} {}x{} ≤{}: {}",
-                    c.class,
-                    c.width,
-                    c.height,
-                    c.max_count,
-                    c.habit.describe(&classes)
-                )
-            })
-            .collect::<Vec<_>>()
-            .join("; ");
-        let problems = cfg
-            .sizes
-            .iter()
-            .enumerate()
-            .map(|(si, &m)| {
-                let mut scene = geom.scene();
-                for c in &classes {
-                    let n = scaled(c.max_count, m);
-                    scene
-                        .objects
-                        .extend((0..n).map(|j| block(&c.class, j, c.width, c.height, None)));
-                }
-                let movable = scene.objects.iter().filter(|o| !o.fixed).count();
-                TaskProblem {
-                    size_index: si,
-                    size: size_label(m),
-                    name: format!("group{index:02}-{}", size_label(m)),
-                    scene,
-                    movable,
-                }
-            })
-            .collect();
-        return Ok(Task {
+        let style = style_text(&classes);
+        let problems = problems_in(&geom, &classes, &cfg.sizes, &format!("group{index:02}"));
+        return Ok(BenchTask {
             series: TaskSeries::Groups,
             index,
             classes,
@@ -266,15 +165,87 @@ pub fn generate_group_task(cfg: &TasksConfig, index: usize) -> Result<Task, Task
             problems,
         });
     }
-    Err(TaskError::Unplaceable {
+    Err(TaskGenError::Unplaceable {
         task: index,
         tries: TRIES,
     })
 }
 
+/// The `k` classes of a group task: habits first, then per class a block
+/// size (20×20 three times as likely) and a largest count of 3 or 4.
+fn draw_group_classes(k: usize, rng: &mut ChaCha8Rng) -> Vec<ClassSpec> {
+    let habits = draw_group_habits(k, rng);
+    (0..k)
+        .map(|i| {
+            let (w, h) =
+                [(20, 20), (20, 20), (20, 20), (30, 20), (20, 30)][rng.random_range(0..5usize)];
+            ClassSpec {
+                class: ["R", "G", "B"][i].to_string(),
+                width: w,
+                height: h,
+                max_count: rng.random_range(3..=4),
+                habit: habits[i],
+            }
+        })
+        .collect()
+}
+
+/// The box of a group task: [`box_for`] at `max(2, largest)`, widened for
+/// the longest run of the largest problem and a block.
+fn group_box(classes: &[ClassSpec], largest: f64, rng: &mut ChaCha8Rng) -> BoxGeom {
+    let mut geom = box_for(classes, largest.max(2.0), rng);
+    let run = classes
+        .iter()
+        .map(|c| scaled(c.max_count, largest) as i64 * c.width.max(c.height) + 2 * GRID)
+        .max()
+        .unwrap_or(0);
+    geom.width = geom.width.max(run);
+    geom.height = geom.height.max(run);
+    geom.margin = geom.width.max(geom.height) - GRID;
+    geom
+}
+
+/// 3–5 demonstrations, the first showing every class's largest count, or
+/// `None` when one could not be placed.
+fn group_demos(geom: &BoxGeom, classes: &[ClassSpec], rng: &mut ChaCha8Rng) -> Option<Vec<Scene>> {
+    let d = rng.random_range(3..=5usize);
+    let mut demos = Vec::with_capacity(d);
+    for di in 0..d {
+        let placed = (0..20).find_map(|_| place_group_demo(geom, classes, di == 0, rng))?;
+        demos.push(demo_scene(geom, classes, &placed));
+    }
+    Some(demos)
+}
+
+/// One attempt at a demonstration's blocks, per class by its group habit
+/// (`largest`: every class at its largest count, else 3..=largest).
+fn place_group_demo(
+    geom: &BoxGeom,
+    classes: &[ClassSpec],
+    largest: bool,
+    rng: &mut ChaCha8Rng,
+) -> Option<Vec<Vec<Rect>>> {
+    let mut p = Placer {
+        interior: geom.interior(),
+        taken: Vec::new(),
+    };
+    let mut all: Vec<Vec<Rect>> = Vec::new();
+    for c in classes {
+        let n = if largest {
+            c.max_count
+        } else {
+            rng.random_range(3..=c.max_count)
+        };
+        let rs = place_group(&p, c, n, rng)?;
+        p.taken.extend(rs.iter().copied());
+        all.push(rs);
+    }
+    Some(all)
+}
+
 /// Of the classes of `task` demonstrated with a group habit, how many keep
 /// their shape in `layout`: `(kept, classes)`.
-pub fn shapes_kept(task: &Task, layout: &Scene, contact: Contact) -> (usize, usize) {
+pub fn shapes_kept(task: &BenchTask, layout: &Scene, contact: Contact) -> (usize, usize) {
     let mut kept = 0;
     let mut total = 0;
     for c in &task.classes {

@@ -1,0 +1,298 @@
+//! Solving the problems of the tasks: score only, with `like` = the
+//! demonstrations, and the peers on the emitted score-only model; every
+//! layout re-checked by the checker.
+
+use super::report::{row_line, summarize, TaskReport, TasksReport};
+use super::{groups, BenchTask, TaskSeries, TasksConfig};
+use crate::bench::peers::Peer;
+use crate::bench::thesis::PeerRow;
+use crate::bench::{peers, Solver};
+use crate::relations::Contact;
+use crate::resemblance::Likeness;
+use crate::rules::RuleSet;
+use crate::scene::Scene;
+use crate::synth::{Status, SynthOptions};
+use serde::Serialize;
+use std::time::Instant;
+
+/// The options of a solve: score only (`like = None`) or with the
+/// demonstrations as like-scenes.
+pub fn solve_options(cfg: &TasksConfig, demos: &[Scene], like: bool) -> SynthOptions {
+    let mut opts = SynthOptions {
+        contact: Contact::Point,
+        time_limit: Some(cfg.time_limit),
+        seed: cfg.seed,
+        like: like.then(|| Likeness::new(demos)),
+        ..SynthOptions::default()
+    };
+    if cfg.warm_start {
+        opts.warm_start = demos.to_vec();
+    }
+    if !cfg.lns {
+        opts.lns = None;
+    }
+    opts
+}
+
+/// One solve of one problem.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct SolveRow {
+    /// How it ended (`None`: the engine returned an error).
+    pub status: Option<Status>,
+    /// Wall time around the call, ms.
+    pub time_ms: f64,
+    /// Search nodes.
+    pub nodes: u64,
+    /// Evaluator score of the layout.
+    pub score: Option<f64>,
+    /// Resemblance cost (with `like`).
+    pub cost: Option<u64>,
+    /// Whether the cost is proven minimal (with `like`).
+    pub cost_proven: Option<bool>,
+    /// Whether the layout passed the checker (`None`: no layout).
+    pub verified: Option<bool>,
+    /// The checker's complaint or the engine's error.
+    pub error: Option<String>,
+    /// Group tasks: of the classes demonstrated with a group shape, how
+    /// many keep it in the layout, `[kept, classes]`.
+    pub shapes_kept: Option<[usize; 2]>,
+    /// The layout (not written to `tasks.json`).
+    #[serde(skip)]
+    pub layout: Option<Scene>,
+}
+
+/// Solve `scene` once with `opts` and check the layout.
+pub fn solve_once(
+    engine: Solver<'_>,
+    scene: &Scene,
+    rules: &RuleSet,
+    opts: &SynthOptions,
+) -> SolveRow {
+    let t0 = Instant::now();
+    let res = (engine.solve)(scene, rules, opts);
+    let time_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let mut row = SolveRow {
+        status: None,
+        time_ms,
+        nodes: 0,
+        score: None,
+        cost: None,
+        cost_proven: None,
+        verified: None,
+        error: None,
+        shapes_kept: None,
+        layout: None,
+    };
+    match res {
+        Err(e) => row.error = Some(e.to_string()),
+        Ok(r) => {
+            row.status = Some(r.status);
+            row.nodes = r.stats.nodes;
+            row.score = r.evaluation.as_ref().map(|e| e.score);
+            if let Some(rs) = &r.resemblance {
+                row.cost = Some(rs.cost);
+                row.cost_proven = Some(rs.proven);
+            }
+            if let Some(sol) = &r.scene {
+                match (engine.verify)(scene, sol, rules, opts.contact) {
+                    Ok(()) => row.verified = Some(true),
+                    Err(e) => {
+                        row.verified = Some(false);
+                        row.error = Some(e);
+                    }
+                }
+            }
+            row.layout = r.scene;
+        }
+    }
+    row
+}
+
+/// Run `peer` on the emitted (score-only) model of a problem; its layout
+/// is scored by the evaluator and checked.
+pub fn solve_peer(
+    engine: Solver<'_>,
+    cfg: &TasksConfig,
+    scene: &Scene,
+    rules: &RuleSet,
+    peer: Peer,
+) -> PeerRow {
+    let mut row = PeerRow {
+        peer: peer.name().into(),
+        status: None,
+        time_ms: 0.0,
+        process_ms: 0.0,
+        score: None,
+        verified: None,
+        error: None,
+    };
+    let opts = solve_options(cfg, &[], false);
+    let e = match crate::synth::emit::emitted(scene, rules, &opts) {
+        Ok(e) => e,
+        Err(e) => {
+            row.error = Some(e.to_string());
+            return row;
+        }
+    };
+    match peers::solve(peer, &e, cfg.time_limit) {
+        Err(e) => row.error = Some(e.to_string()),
+        Ok(r) => {
+            row.status = Some(r.status);
+            row.time_ms = r.time_ms;
+            row.process_ms = r.process_ms;
+            if let Some(v) = &r.values {
+                let sol = e.model.scene(scene, v);
+                row.score = Some(crate::eval::evaluate(&sol, rules, opts.contact).score);
+                match (engine.verify)(scene, &sol, rules, opts.contact) {
+                    Ok(()) => row.verified = Some(true),
+                    Err(msg) => {
+                        row.verified = Some(false);
+                        row.error = Some(msg);
+                    }
+                }
+            }
+        }
+    }
+    row
+}
+
+/// One problem, solved.
+#[derive(Debug, Clone, Serialize)]
+pub struct TaskRow {
+    /// Generated tasks or the bundled example.
+    pub series: TaskSeries,
+    /// Task index.
+    pub task: usize,
+    /// Size index (for grouping).
+    pub size_index: usize,
+    /// `1.5x`, `8/class`.
+    pub size: String,
+    /// File name stem.
+    pub name: String,
+    /// Movable objects.
+    pub movable: usize,
+    /// Learned rules.
+    pub rules: usize,
+    /// The score-only solve.
+    pub score_only: SolveRow,
+    /// The solve with `like` = the demonstrations.
+    pub like: Option<SolveRow>,
+    /// The peers on the score-only model.
+    pub peers: Vec<PeerRow>,
+}
+
+/// What the benchmark is doing, for a progress bar.
+#[derive(Debug, Clone)]
+pub enum TasksEvent {
+    /// A problem was solved: one line about it.
+    Solved {
+        /// Problems solved.
+        done: usize,
+        /// Problems in all.
+        total: usize,
+        /// e.g. `task03-1.5x (31 objects): score-only optimal 1.000 in 0.2 s; …`.
+        line: String,
+    },
+    /// A problem is about to be solved (`done` solved before it).
+    Solving {
+        /// Problems solved.
+        done: usize,
+        /// Problems in all.
+        total: usize,
+        /// e.g. `task03-1.5x like`.
+        label: String,
+    },
+}
+
+/// Solve every problem of `tasks` (score only, with `like`, peers), one
+/// solver at a time.
+pub fn run_tasks(
+    engine: Solver<'_>,
+    cfg: &TasksConfig,
+    tasks: &[BenchTask],
+    progress: &mut dyn FnMut(&TasksEvent),
+) -> TasksReport {
+    let total: usize = tasks.iter().map(|t| t.problems.len()).sum();
+    let mut rows = Vec::with_capacity(total);
+    for t in tasks {
+        let score_opts = solve_options(cfg, &t.demos, false);
+        let like_opts = solve_options(cfg, &t.demos, true);
+        for p in &t.problems {
+            let done = rows.len();
+            let label = |what: &str| TasksEvent::Solving {
+                done,
+                total,
+                label: format!("{} {what}", p.name),
+            };
+            let kept = |mut row: SolveRow, opts: &SynthOptions| {
+                if t.series == TaskSeries::Groups {
+                    row.shapes_kept = row.layout.as_ref().map(|l| {
+                        let (k, n) = groups::shapes_kept(t, l, opts.contact);
+                        [k, n]
+                    });
+                }
+                row.layout = None;
+                row
+            };
+            progress(&label("score-only"));
+            let score_only = kept(
+                solve_once(engine, &p.scene, &t.rules, &score_opts),
+                &score_opts,
+            );
+            let like = cfg.like.then(|| {
+                progress(&label("like"));
+                kept(
+                    solve_once(engine, &p.scene, &t.rules, &like_opts),
+                    &like_opts,
+                )
+            });
+            let peers = cfg
+                .peers
+                .iter()
+                .map(|&peer| {
+                    progress(&label(peer.name()));
+                    solve_peer(engine, cfg, &p.scene, &t.rules, peer)
+                })
+                .collect();
+            let row = TaskRow {
+                series: t.series,
+                task: t.index,
+                size_index: p.size_index,
+                size: p.size.clone(),
+                name: p.name.clone(),
+                movable: p.movable,
+                rules: t.rules.rules.len(),
+                score_only,
+                like,
+                peers,
+            };
+            progress(&TasksEvent::Solved {
+                done: done + 1,
+                total,
+                line: row_line(&row),
+            });
+            rows.push(row);
+        }
+    }
+    progress(&TasksEvent::Solving {
+        done: total,
+        total,
+        label: "done".into(),
+    });
+    TasksReport {
+        config: cfg.clone(),
+        tasks: tasks
+            .iter()
+            .map(|t| TaskReport {
+                series: t.series,
+                index: t.index,
+                style: t.style.clone(),
+                classes: t.classes.clone(),
+                demos: t.demos.len(),
+                rules: t.rules.rules.len(),
+            })
+            .collect(),
+        summary: summarize(&rows),
+        rows,
+    }
+}
