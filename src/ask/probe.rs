@@ -434,7 +434,7 @@ impl ProbeChecker {
 
     /// One solve under the assumptions "these rules hold".
     fn solve(&mut self, assume: &[usize], nodes: Option<u64>) -> Checked {
-        use crate::synth::engine::Sat;
+        use crate::synth::backend::Verdict;
         // An object that cannot lie in the space: no layout at all.
         let Some(engine) = self.engine.as_mut() else {
             return Checked::Proven;
@@ -456,9 +456,9 @@ impl ProbeChecker {
             t.elapsed().as_secs_f64() * 1e3
         );
         match sat {
-            Sat::Solution(v) => Checked::Witness(self.model.scene(&self.problem, &v)),
-            Sat::Unsat => Checked::Proven,
-            Sat::Unknown => Checked::Stopped,
+            Verdict::Solution(v) => Checked::Witness(self.model.scene(&self.problem, &v)),
+            Verdict::Infeasible(_) => Checked::Proven,
+            Verdict::Unknown => Checked::Stopped,
         }
     }
 }

@@ -719,7 +719,8 @@ fn explain(
     limits: &backend::Limits,
     stats: &mut SolveStats,
 ) -> Result<Conflict, SynthError> {
-    use engine::{Engine, Sat};
+    use backend::Verdict;
+    use engine::Engine;
     use model::{BuildOptions, Model};
     let base = BuildOptions {
         contact: opts.contact,
@@ -749,7 +750,7 @@ fn explain(
     stats.conflicts += e0.conflicts();
     drop(e0);
     match fit {
-        Sat::Unsat => {
+        Verdict::Infeasible(_) => {
             return Ok(Conflict {
                 objects_cannot_fit: true,
                 ..Conflict::default()
@@ -757,13 +758,13 @@ fn explain(
         }
         // Whether the objects fit is not known: blame nothing (every hard
         // rule may be harmless).
-        Sat::Unknown => {
+        Verdict::Unknown => {
             return Ok(Conflict {
                 limit_struck: true,
                 ..Conflict::default()
             })
         }
-        Sat::Solution(_) => {}
+        Verdict::Solution(_) => {}
     }
     // The objects fit, so the hard rules together conflict (the main solve
     // proved it); past the deadline they are named together, unshrunk.
