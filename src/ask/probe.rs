@@ -35,7 +35,7 @@
 
 use crate::eval::evaluate;
 use crate::relations::{Contact, Quant, MAX_COUNT};
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::{Formula, Rule, RuleSet, Scope, Strength};
 use crate::scene::Scene;
 use crate::synth::{synthesize, Status, SynthError, SynthOptions};
@@ -120,7 +120,7 @@ pub struct ProbeOptions {
     /// check then counts as undecided).
     pub check_nodes: Option<u64>,
     /// Positions the probe should resemble (the demonstrations).
-    pub like: Option<Likeness>,
+    pub like: Option<ResemblanceTarget>,
     /// For a rule with no probe, name the held rules implying it (one more
     /// solve per held rule).
     pub explain: bool,

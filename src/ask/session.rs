@@ -66,7 +66,7 @@ use super::edit::{Edit, EditSearch};
 use super::probe::{search_probe, Checked, Probe, ProbeChecker, ProbeOptions, ProbeOutcome};
 use crate::infer::english::rule_implies;
 use crate::infer::{InferError, LearnParams, Learned};
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::{print_rule, RuleSet};
 use crate::scene::Scene;
 use crate::synth::SynthError;
@@ -344,7 +344,7 @@ pub struct Asker {
     answers: Vec<Answer>,
     confirmed: BTreeSet<String>,
     /// Resemblance to the demonstrations (accepted probes included).
-    like: Option<Likeness>,
+    like: Option<ResemblanceTarget>,
     known: HashMap<String, Known>,
     /// Which held rule alone implies which (by statement text; `None`: a
     /// limit stopped the check, which counts as "no"), while the held
@@ -477,7 +477,7 @@ impl Asker {
             None,
             None,
         )?;
-        let like = opts.resemble.then(|| Likeness::new(&demos));
+        let like = opts.resemble.then(|| ResemblanceTarget::new(&demos));
         let mut asker = Asker {
             problem,
             demos,
@@ -1284,7 +1284,7 @@ impl Asker {
                 None,
                 None,
             )?;
-            self.like = self.opts.resemble.then(|| Likeness::new(&demos));
+            self.like = self.opts.resemble.then(|| ResemblanceTarget::new(&demos));
             self.demos = demos;
             self.learned = learned;
             self.known.clear();

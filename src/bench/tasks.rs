@@ -50,7 +50,7 @@ use super::peers::{self, Peer, PeerStatus};
 use super::thesis::{median, PeerRow};
 use crate::infer::{learn, InferError, LearnParams, Templates};
 use crate::relations::Contact;
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::RuleSet;
 use crate::scene::{scenes_from_json, Object, Rect, Scene, Space};
 use crate::synth::{Status, SynthOptions};
@@ -973,7 +973,7 @@ pub fn solve_options(cfg: &TasksConfig, demos: &[Scene], like: bool) -> SynthOpt
         contact: Contact::Point,
         time_limit: Some(cfg.time_limit),
         seed: cfg.seed,
-        like: like.then(|| Likeness::new(demos)),
+        like: like.then(|| ResemblanceTarget::new(demos)),
         ..SynthOptions::default()
     };
     if cfg.warm_start {

@@ -2,7 +2,7 @@ use super::{read_rules_seen, read_scene, read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::relations::Contact;
-use rccpack::resemblance::Likeness;
+use rccpack::resemblance::ResemblanceTarget;
 use rccpack::synth::{emit, synthesize, Progress, ProgressFn, Status, SynthError, SynthOptions};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -190,7 +190,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         redundant: !a.no_redundant,
         cancel: Some(cancel),
         progress,
-        like: like_scenes.as_deref().map(Likeness::new),
+        like: like_scenes.as_deref().map(ResemblanceTarget::new),
         warm_start,
         ..SynthOptions::default()
     };

@@ -7,7 +7,7 @@ use super::style::{
     class_colour, darker, esc, n, text_on, truncate, CHAR_W, FONT, GAP, HEADER, MARGIN, PALETTE,
 };
 use super::RenderOptions;
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::scene::{Object, Scene, Space};
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -187,7 +187,7 @@ pub(super) fn write_table(out: &mut String, f: &Frame, grid: i64) {
 pub(super) fn write_shown(
     out: &mut String,
     f: &Frame,
-    like: &Likeness,
+    like: &ResemblanceTarget,
     colours: &HashMap<String, &'static str>,
 ) {
     out.push_str("<g class=\"like\">\n");

@@ -17,7 +17,7 @@
 
 use crate::eval::{evaluate, Evaluation};
 use crate::relations::Contact;
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::RuleSet;
 use crate::scene::{Object, Scene};
 use std::path::Path;
@@ -46,7 +46,7 @@ pub struct RenderOptions {
     /// Positions shown in like-scenes (SPEC §12), drawn faintly under the
     /// layout in each class's colour: a heat map of where each class was
     /// shown.
-    pub like: Option<Likeness>,
+    pub like: Option<ResemblanceTarget>,
     /// Objects that moved, each with where it was `(id, x, y)` (a probe
     /// that is an edit of a demonstration): the old place is drawn dashed,
     /// with a line to the object, which is outlined.

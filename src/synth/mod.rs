@@ -18,7 +18,7 @@
 //! - `verify` ([`verify_solution`]), `brute_force` — the independent
 //!   checker (run on every output) and the exhaustive reference of the
 //!   tests;
-//! - `weights`, `like`, `warm`, `capacity` — integer objective weights, the second
+//! - `weights`, `resemblance_terms`, `warm`, `capacity` — integer objective weights, the second
 //!   objective's terms, the warm start, the area test before any engine.
 //!
 //! # Second-edition rules (SPEC §11)
@@ -46,7 +46,7 @@
 
 use crate::eval::Evaluation;
 use crate::relations::Contact;
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::RuleSet;
 use crate::scene::Scene;
 use std::sync::atomic::AtomicBool;
@@ -64,7 +64,6 @@ mod driver;
 pub mod emit;
 pub(crate) mod engine;
 mod explain;
-mod like;
 mod lns;
 // The solver-free model: internal, visible to the crate's own differential
 // and emit tests (feature `fuzzing`).
@@ -74,6 +73,7 @@ pub mod model;
 #[cfg(not(feature = "fuzzing"))]
 pub(crate) mod model;
 pub mod report;
+mod resemblance_terms;
 mod solve;
 mod verify;
 mod warm;
@@ -106,7 +106,7 @@ pub struct SynthOptions {
     pub progress: Option<ProgressFn>,
     /// The second objective (SPEC §12): among the layouts with the best
     /// score, one most like these positions (`synth --like`).
-    pub like: Option<Likeness>,
+    pub like: Option<ResemblanceTarget>,
     /// On an infeasible problem, name a minimal conflicting set of hard
     /// rules ([`SynthResult::conflict`]); off, the result says only
     /// `infeasible` (a probe needs no more, and the shrinking costs one solve
@@ -253,7 +253,7 @@ impl SynthResult {
 /// The second objective's result (the report's `resemblance`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub struct Resemblance {
-    /// The layout's resemblance cost ([`Likeness::cost`]).
+    /// The layout's resemblance cost ([`ResemblanceTarget::cost`]).
     pub cost: u64,
     /// Whether the cost is proven minimal among the layouts whose §6
     /// numerator equals the returned layout's.
@@ -284,7 +284,7 @@ pub enum SynthError {
     },
     /// The resemblance target cannot be built for this problem.
     #[error(transparent)]
-    Likeness(#[from] crate::resemblance::LikenessError),
+    Resemblance(#[from] crate::resemblance::ResemblanceError),
     /// A number of the problem (or derived from it) is too large for the
     /// solver's 32-bit arithmetic; the message names it.
     #[error("{0}")]
@@ -518,10 +518,10 @@ pub fn synthesize(
         return Ok(s.without_layout(Status::Infeasible, Some(conflict), stats));
     }
     // The engine refuses costs past its 32-bit arithmetic.
-    let like_terms = (opts.like.as_ref())
-        .map(|like| like::like_terms(&model, problem, like))
+    let resemblance_terms = (opts.like.as_ref())
+        .map(|like| resemblance_terms::resemblance_terms(&model, problem, like))
         .transpose()?;
-    let Some(mut engine) = s.post_engine(like_terms.as_deref())? else {
+    let Some(mut engine) = s.post_engine(resemblance_terms.as_deref())? else {
         // The time limit struck while the model was being posted.
         return Ok(s.without_layout(Status::Unknown, None, stats));
     };
@@ -534,7 +534,7 @@ pub fn synthesize(
     let (mut first, mut best) = (None, None);
     let mut on_incumbent = |vals: &[i64]| s.found(vals, &mut first, &mut best);
     let mut outcome = s.maximise_score(&mut engine, &objective, &mut stats, &mut on_incumbent)?;
-    let resemblance = match (&opts.like, &like_terms) {
+    let resemblance = match (&opts.like, &resemblance_terms) {
         (Some(like), Some(terms)) => s.minimise_resemblance(
             &mut engine,
             &objective,

@@ -7,12 +7,12 @@
 use super::backend::{Backend, Limits};
 use super::driver::{self, Objective, OptOutcome};
 use super::engine::Engine;
-use super::like::{self, LikeTerm};
 use super::model::{BuildOptions, Lit, Model};
+use super::resemblance_terms::{self, ResemblanceTerm};
 use super::SynthResult;
 use super::{lns, ms, verify, warm};
 use super::{Conflict, Progress, Resemblance, SolveStats, Status, SynthError, SynthOptions};
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::RuleSet;
 use crate::scene::Scene;
 use std::time::{Duration, Instant};
@@ -85,10 +85,10 @@ impl Solve<'_> {
     /// limits struck while the model was posted).
     pub(super) fn post_engine(
         &self,
-        terms: Option<&[LikeTerm]>,
+        terms: Option<&[ResemblanceTerm]>,
     ) -> Result<Option<Engine>, SynthError> {
         let t_model = self.start.elapsed();
-        let Some(engine) = Engine::with_like_stop(
+        let Some(engine) = Engine::with_resemblance_stop(
             self.model,
             self.opts.seed,
             false,
@@ -192,15 +192,15 @@ impl Solve<'_> {
         &self,
         engine: &mut Engine,
         objective: &Objective<'_>,
-        like: &Likeness,
-        terms: &[LikeTerm],
+        like: &ResemblanceTarget,
+        terms: &[ResemblanceTerm],
         outcome: &mut OptOutcome,
         on_incumbent: &mut dyn FnMut(&[i64]),
     ) -> Option<Resemblance> {
         let (OptOutcome::Optimal(v) | OptOutcome::Feasible(v)) = outcome else {
             return None;
         };
-        let cost = |v: &[i64]| like::total_cost(terms, v);
+        let cost = |v: &[i64]| resemblance_terms::total_cost(terms, v);
         let r = driver::minimise_cost(
             engine,
             Some(objective),
@@ -209,7 +209,7 @@ impl Solve<'_> {
             self.limits,
             on_incumbent,
         );
-        debug_assert_eq!(r.cost, like::total_cost(terms, &r.values));
+        debug_assert_eq!(r.cost, resemblance_terms::total_cost(terms, &r.values));
         *v = r.values;
         let cost = like.cost(self.problem, &self.model.scene(self.problem, v));
         debug_assert_eq!(cost, r.cost);

@@ -4,9 +4,9 @@
 
 use super::brancher::Phased;
 use super::stop::{Counters, Counting};
-use super::{like_fits, Engine, Limits};
-use crate::synth::like::LikeTerm;
+use super::{resemblance_fits, Engine, Limits};
 use crate::synth::model::{BoolDef, Coord, Lit, Model};
+use crate::synth::resemblance_terms::ResemblanceTerm;
 use crate::synth::SynthError;
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
 use pumpkin_constraints::{boolean_equals, cumulative, less_than_or_equals};
@@ -44,7 +44,7 @@ pub(super) fn clamp_i32(v: i64) -> i32 {
 
 /// Check every number of `model` (and of the resemblance terms) that will
 /// be handed to Pumpkin before the solver exists.
-pub(super) fn check_ranges(model: &Model, like: &[LikeTerm]) -> Result<(), SynthError> {
+pub(super) fn check_ranges(model: &Model, like: &[ResemblanceTerm]) -> Result<(), SynthError> {
     for v in &model.vars {
         i32_of(v.ub, || {
             format!("the position range of objects[{}]", v.object)
@@ -64,7 +64,7 @@ pub(super) fn check_ranges(model: &Model, like: &[LikeTerm]) -> Result<(), Synth
             ));
         }
     }
-    if !like_fits(like) {
+    if !resemblance_fits(like) {
         return Err(SynthError::TooLarge(
             "resemblance costs are too large for the solver's 32-bit arithmetic".into(),
         ));
@@ -440,7 +440,7 @@ impl<'m> Builder<'m> {
         self,
         guards: Vec<Literal>,
         objective: Option<(DomainId, Vec<i64>)>,
-        like_total: Option<DomainId>,
+        resemblance_total: Option<DomainId>,
     ) -> Engine {
         let counters = Counters::default();
         let main: Box<dyn Brancher> = Box::new(self.solver.default_brancher());
@@ -471,8 +471,8 @@ impl<'m> Builder<'m> {
             counters,
             tag: self.tag,
             first_phase,
-            like_total,
-            pending_like: None,
+            resemblance_total,
+            pending_resemblance: None,
             dead: false,
         }
     }

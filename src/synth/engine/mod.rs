@@ -36,20 +36,20 @@
 //! unit, which is hopeless for scaled real weights.
 
 use super::backend::{Assumption, Backend, Core, Fact, Verdict};
-use super::like::LikeTerm;
 use super::model::Model;
+use super::resemblance_terms::ResemblanceTerm;
 use super::SynthError;
-use like::PendingLike;
+use resemblance::PendingResemblance;
 #[cfg(test)]
-use like::{LikeEncoding, LIKE_ENCODING};
+use resemblance::{ResemblanceEncoding, RESEMBLANCE_ENCODING};
 
 mod brancher;
 mod build;
 mod connected;
-mod like;
-mod like_group;
-mod like_map;
 mod no_overlap;
+mod resemblance;
+mod resemblance_group;
+mod resemblance_map;
 mod stop;
 use build::{check_ranges, clamp_i32, Builder};
 use pumpkin_conflict_resolvers::resolvers::ResolutionResolver;
@@ -84,9 +84,9 @@ pub struct Engine {
     tag: ConstraintTag,
     first_phase: Rc<Cell<bool>>,
     /// The resemblance total-cost variable (SPEC §12).
-    like_total: Option<DomainId>,
-    /// The second objective until the second phase starts ([`like`]).
-    pending_like: Option<PendingLike>,
+    resemblance_total: Option<DomainId>,
+    /// The second objective until the second phase starts ([`resemblance`]).
+    pending_resemblance: Option<PendingResemblance>,
     /// Proved infeasible whatever the assumptions: Pumpkin's solver must not
     /// be called again (it asserts), and every later call is infeasible
     /// with an empty core.
@@ -117,50 +117,50 @@ impl Engine {
         guarded: bool,
         coefs: Option<&[i64]>,
     ) -> Result<Engine, SynthError> {
-        Self::with_like(model, seed, guarded, coefs, &[])
+        Self::with_resemblance(model, seed, guarded, coefs, &[])
     }
 
     /// [`Engine::new`] with the resemblance terms of the second objective
     /// (none: no second objective). Each term's cost is a variable bounded
-    /// below by its distance map (see `post_like`); the total is one
-    /// variable. Costs that do not fit `i32` ([`like_fits`]) are a
+    /// below by its distance map (see `post_resemblance`); the total is one
+    /// variable. Costs that do not fit `i32` ([`resemblance_fits`]) are a
     /// [`SynthError::TooLarge`].
-    pub fn with_like(
+    pub fn with_resemblance(
         model: &Model,
         seed: u64,
         guarded: bool,
         coefs: Option<&[i64]>,
-        like: &[LikeTerm],
+        like: &[ResemblanceTerm],
     ) -> Result<Engine, SynthError> {
-        let e = Self::with_like_until(model, seed, guarded, coefs, like, None)?;
+        let e = Self::with_resemblance_until(model, seed, guarded, coefs, like, None)?;
         Ok(e.expect("no deadline"))
     }
 
-    /// [`Engine::with_like`], given up (`None`) once `deadline` passes:
+    /// [`Engine::with_resemblance`], given up (`None`) once `deadline` passes:
     /// posting a large model can take longer than the solve's time limit.
-    pub fn with_like_until(
+    pub fn with_resemblance_until(
         model: &Model,
         seed: u64,
         guarded: bool,
         coefs: Option<&[i64]>,
-        like: &[LikeTerm],
+        like: &[ResemblanceTerm],
         deadline: Option<std::time::Instant>,
     ) -> Result<Option<Engine>, SynthError> {
         let stop = Limits {
             deadline,
             ..Limits::default()
         };
-        Self::with_like_stop(model, seed, guarded, coefs, like, &stop)
+        Self::with_resemblance_stop(model, seed, guarded, coefs, like, &stop)
     }
 
-    /// [`Engine::with_like_until`] that also gives up when `stop`'s cancel
+    /// [`Engine::with_resemblance_until`] that also gives up when `stop`'s cancel
     /// flag is set (Ctrl-C while a large model is posted).
-    pub fn with_like_stop(
+    pub fn with_resemblance_stop(
         model: &Model,
         seed: u64,
         guarded: bool,
         coefs: Option<&[i64]>,
-        like: &[LikeTerm],
+        like: &[ResemblanceTerm],
         stop: &Limits,
     ) -> Result<Option<Engine>, SynthError> {
         check_ranges(model, like)?;
@@ -192,10 +192,10 @@ impl Engine {
             return Ok(None);
         }
         let objective = b.post_objective(coefs, obj)?;
-        // The second objective waits for the second phase (see `like`).
-        let pending = PendingLike::new(model, like);
+        // The second objective waits for the second phase (see `resemblance`).
+        let pending = PendingResemblance::new(model, like);
         let mut engine = b.finish(guards, objective, None);
-        engine.pending_like = pending;
+        engine.pending_resemblance = pending;
         Ok(Some(engine))
     }
 
@@ -378,7 +378,7 @@ impl Backend for Engine {
                     None => return Verdict::Infeasible(Core::Unknown),
                 },
                 Assumption::CostAtMost(k) => {
-                    if let Some(total) = self.like_total {
+                    if let Some(total) = self.resemblance_total {
                         let k = i32::try_from(k).unwrap_or(i32::MAX);
                         preds.push(predicate![total <= k]);
                     }
@@ -410,7 +410,7 @@ impl Backend for Engine {
                 .as_ref()
                 .map(|&(obj, _)| predicate![obj >= clamp_i32(k)]),
             Fact::CostAtLeast(k) => self
-                .like_total
+                .resemblance_total
                 .map(|total| predicate![total >= i32::try_from(k).unwrap_or(i32::MAX)]),
         };
         if let Some(p) = p {
@@ -428,15 +428,15 @@ impl Backend for Engine {
         if self.dead {
             return;
         }
-        if let Some(pending) = self.pending_like.take() {
+        if let Some(pending) = self.pending_resemblance.take() {
             let posted = pending.post(&mut self.solver, &self.vars, self.tag);
             self.brancher.inner.add_late(&posted.created);
-            self.like_total = Some(posted.total);
+            self.resemblance_total = Some(posted.total);
         }
     }
 
     fn cost_bound(&self) -> Option<u64> {
-        match (&self.pending_like, self.like_total) {
+        match (&self.pending_resemblance, self.resemblance_total) {
             (Some(p), _) => Some(p.min_total()),
             (None, Some(t)) => Some(u64::try_from(self.solver.lower_bound(&t)).unwrap_or(0)),
             (None, None) => None,
@@ -464,7 +464,7 @@ impl Backend for Engine {
 
 /// Whether the resemblance terms' costs fit the engine's `i32` arithmetic
 /// (every cost, every index and the total).
-pub fn like_fits(terms: &[LikeTerm]) -> bool {
+pub fn resemblance_fits(terms: &[ResemblanceTerm]) -> bool {
     let max = i32::MAX as u64;
     let mut total = 0u64;
     for t in terms {
@@ -486,7 +486,7 @@ mod tests {
     /// cost) on small problems with random like-scenes, and prove it.
     #[test]
     fn like_encodings_agree_with_brute_force() {
-        use crate::resemblance::Likeness;
+        use crate::resemblance::ResemblanceTarget;
         use crate::synth::{brute_force, synthesize, SynthOptions};
         let problem = Scene::from_json(
             r#"{"space":{"x":0,"y":0,"width":50,"height":40},"grid":10,"objects":[
@@ -539,15 +539,15 @@ mod tests {
                 continue;
             }
             checked += 1;
-            let like = Likeness::new(&scenes);
+            let like = ResemblanceTarget::new(&scenes);
             let bf = brute_force::solve_like(&problem, &rules, Contact::Point, &like, 10_000_000)
                 .unwrap();
             for enc in [
-                LikeEncoding::Clauses,
-                LikeEncoding::Propagator,
-                LikeEncoding::Both,
+                ResemblanceEncoding::Clauses,
+                ResemblanceEncoding::Propagator,
+                ResemblanceEncoding::Both,
             ] {
-                LIKE_ENCODING.with(|e| e.set(enc));
+                RESEMBLANCE_ENCODING.with(|e| e.set(enc));
                 let r = synthesize(
                     &problem,
                     &rules,
@@ -557,7 +557,7 @@ mod tests {
                     },
                 )
                 .unwrap();
-                LIKE_ENCODING.with(|e| e.set(LikeEncoding::Both));
+                RESEMBLANCE_ENCODING.with(|e| e.set(ResemblanceEncoding::Both));
                 let res = r.resemblance.expect("a resemblance");
                 let ev = r.evaluation.expect("an evaluation");
                 assert!(res.proven, "case {case}, {enc:?}: cost not proven");
