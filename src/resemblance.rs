@@ -119,7 +119,7 @@ impl ResemblanceTarget {
     }
 
     /// The positions shown for objects like `o` (same class and size).
-    pub fn positions_of(&self, o: &Object) -> &[(i64, i64)] {
+    pub(crate) fn positions_of(&self, o: &Object) -> &[(i64, i64)] {
         self.positions
             .get(&(o.class.clone(), o.width, o.height))
             .map_or(&[], Vec::as_slice)
@@ -135,7 +135,7 @@ impl ResemblanceTarget {
     /// The cost of object `o` at `(x, y)` on a grid of step `grid`: grid
     /// steps to the nearest shown position of its class and size, or 0 when
     /// none was shown.
-    pub fn object_cost(&self, o: &Object, x: i64, y: i64, grid: i64) -> u64 {
+    pub(crate) fn object_cost(&self, o: &Object, x: i64, y: i64, grid: i64) -> u64 {
         let g = i128::from(grid.max(1));
         self.positions_of(o)
             .iter()
@@ -166,7 +166,7 @@ impl ResemblanceTarget {
     /// position is `x = space.x + grid·gx`, the whole object inside the
     /// space), or `None` when no scene showed its class and size (it adds
     /// nothing anywhere).
-    pub fn distance_map(
+    pub(crate) fn distance_map(
         &self,
         problem: &Scene,
         o: &Object,

@@ -22,7 +22,7 @@ impl ClassIndex {
         }
     }
     /// Intern a name (adds it when new) and return its index.
-    pub fn intern(&mut self, name: &str) -> usize {
+    pub(crate) fn intern(&mut self, name: &str) -> usize {
         match self.get(name) {
             Some(i) => i,
             None => {
@@ -85,7 +85,7 @@ impl TargetCount {
     }
     /// The mask of relations whose default lifting holds (the first
     /// edition's class-atom byte, widened).
-    pub fn default_bits(&self) -> RelBits {
+    pub(crate) fn default_bits(&self) -> RelBits {
         Relation::ALL
             .iter()
             .filter(|r| self.holds(**r, r.default_quant()))
@@ -103,7 +103,7 @@ impl TargetCount {
 }
 
 /// The count of a target with no objects.
-pub const EMPTY_TARGET: TargetCount = TargetCount {
+const EMPTY_TARGET: TargetCount = TargetCount {
     total: 0,
     hits: [0; 16],
 };
@@ -208,7 +208,7 @@ impl ClassAtoms {
     /// [`ClassIndex::landmarks`]): one target object, or none when the
     /// landmark is missing from the scene or is `obj` itself. `None` when
     /// `obj` is unplaced.
-    pub fn landmark_count(&self, obj: usize, lm: usize) -> Option<TargetCount> {
+    pub(crate) fn landmark_count(&self, obj: usize, lm: usize) -> Option<TargetCount> {
         let a = (*self.rects.get(obj)?)?;
         let mut c = EMPTY_TARGET;
         if let Some(Some(l)) = self.landmarks.get(lm) {
@@ -237,7 +237,7 @@ impl ClassAtoms {
 
     /// Class index of object `obj` (`usize::MAX` for a class the index does
     /// not know).
-    pub fn class_of(&self, obj: usize) -> usize {
+    pub(crate) fn class_of(&self, obj: usize) -> usize {
         self.class_of[obj]
     }
 

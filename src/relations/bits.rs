@@ -58,7 +58,7 @@ pub fn implies(p: Relation, q: Relation, contact: Contact) -> bool {
 
 /// Whether intervals `[a1, a2]` and `[b1, b2]` meet under `contact`.
 #[inline]
-pub const fn projections_meet(a1: i64, a2: i64, b1: i64, b2: i64, contact: Contact) -> bool {
+const fn projections_meet(a1: i64, a2: i64, b1: i64, b2: i64, contact: Contact) -> bool {
     match contact {
         Contact::Point => a1 <= b2 && b1 <= a2,
         Contact::Edge => a1 < b2 && b1 < a2,

@@ -50,8 +50,8 @@ use std::fmt;
 mod atoms;
 mod bits;
 
-pub use atoms::{ClassAtoms, ClassIndex, TargetCount, EMPTY_TARGET};
-pub use bits::{holds, implies, order_types, projections_meet, relation_bits};
+pub use atoms::{ClassAtoms, ClassIndex, TargetCount};
+pub use bits::{holds, implies, order_types, relation_bits};
 
 /// A compass direction; north is +y, east is +x.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -231,7 +231,7 @@ impl Relation {
     }
 
     /// Its entry in [`TABLE`].
-    pub const fn def(self) -> &'static RelationDef {
+    pub(crate) const fn def(self) -> &'static RelationDef {
         &TABLE[self.index()]
     }
 
@@ -350,7 +350,7 @@ impl Edge {
         }
     }
     /// Whether it is the far edge (`x2`, `y2`): the near edge plus the size.
-    pub const fn is_far(self) -> bool {
+    pub(crate) const fn is_far(self) -> bool {
         matches!(self, Edge::X2 | Edge::Y2)
     }
     /// Its value on `r`.
@@ -447,7 +447,7 @@ impl RelationDef {
             .any(|conj| conj.iter().all(|c| c.holds(a, b)))
     }
     /// The English verb phrase with the direction filled in.
-    pub fn verb_phrase(&self) -> String {
+    pub(crate) fn verb_phrase(&self) -> String {
         self.verb.replace("{d}", self.rel.dir.word())
     }
 }

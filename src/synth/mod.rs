@@ -342,7 +342,7 @@ pub const MAX_POSITIONS: i64 = 1 << 18;
 /// numbers are within the solver's bounds ([`MAX_COORD`],
 /// [`MAX_POSITIONS`]). [`synthesize`] checks this first; callers that build
 /// `model::Model`s themselves must too.
-pub fn check_problem(problem: &Scene) -> Result<(), SynthError> {
+pub(crate) fn check_problem(problem: &Scene) -> Result<(), SynthError> {
     problem.validate()?;
     check_ranges(problem)
 }

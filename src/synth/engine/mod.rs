@@ -480,6 +480,7 @@ pub fn resemblance_fits(terms: &[ResemblanceTerm]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::synth::model::BoolDef;
 
     /// The resemblance encodings — clauses, the bounds propagator, both —
     /// each reach brute force's lexicographic optimum (numerator, then

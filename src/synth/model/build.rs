@@ -160,7 +160,7 @@ impl Model {
         // Non-overlap between every pair with at least one variable object:
         // one clause per pair for a small model (the pair literals also
         // guide the search), else implicit — the engine posts one
-        // propagator for all pairs (linear memory, issue 35 item 6) and
+        // propagator for all pairs (linear memory) and
         // `add_pairwise_no_overlap` writes the clauses for the peers.
         if pairwise {
             m.add_pairwise_no_overlap(opts.contact);

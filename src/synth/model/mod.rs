@@ -373,8 +373,8 @@ impl Model {
 mod tests {
     use super::*;
     use crate::eval::Evaluator;
-    use crate::relations::relation_bits;
-    use crate::rules::{Atom, Rule, Strength};
+    use crate::relations::{relation_bits, Dir, Kind, Quant, Relation};
+    use crate::rules::{Atom, Formula, Rule, RuleSet, Scope, Strength, Target};
     use crate::scene::{Object, Space};
 
     fn obj(id: &str, class: &str, w: i64, h: i64, pos: Option<(i64, i64)>) -> Object {

@@ -32,7 +32,7 @@ impl Model {
                 }
             }
         }
-        // First, as `build` used to put them.
+        // Non-overlap clauses come first.
         clauses.append(&mut self.clauses);
         self.clauses = clauses;
     }
