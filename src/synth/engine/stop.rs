@@ -14,6 +14,9 @@ use pumpkin_core::variables::DomainId;
 use std::cell::Cell;
 use std::rc::Rc;
 
+/// The search's counters, shared by the engine, its [`Counting`] brancher
+/// and its [`Stop`]: decisions, conflicts, and whether the search is above
+/// the root (where stopping is safe).
 #[derive(Debug, Clone, Default)]
 pub(super) struct Counters {
     pub(super) nodes: Rc<Cell<u64>>,
