@@ -38,7 +38,7 @@ use rccpack::bench::tasks::{generate_task, TasksConfig};
 use rccpack::eval::evaluate;
 use rccpack::infer::{learn, LearnParams};
 use rccpack::relations::Contact;
-use rccpack::resemblance::Likeness;
+use rccpack::resemblance::ResemblanceTarget;
 use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::sample::{sample, Quality, SampleOptions};
 use rccpack::scene::{scenes_from_json, Scene};
@@ -264,7 +264,7 @@ fn session(
 /// Probe searches of every held rule: (found, median ms, max ms).
 fn probe_times(problem: &Scene, demos: &[Scene], held: &RuleSet) -> (usize, f64, f64) {
     let opts = ProbeOptions {
-        like: Some(Likeness::new(demos)),
+        like: Some(ResemblanceTarget::new(demos)),
         ..ProbeOptions::default()
     };
     let mut probe_ms = Vec::new();

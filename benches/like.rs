@@ -13,7 +13,7 @@
 mod support;
 
 use rccpack::infer::{learn, LearnParams};
-use rccpack::resemblance::Likeness;
+use rccpack::resemblance::ResemblanceTarget;
 use rccpack::scene::{scenes_from_json, Scene};
 use rccpack::synth::{synthesize, Status, SynthOptions};
 use std::path::Path;
@@ -52,7 +52,7 @@ fn main() {
             problems.push((format!("{task}/demo{i}"), p, others));
         }
         for (name, p, like) in problems {
-            let like = Likeness::new(&like);
+            let like = ResemblanceTarget::new(&like);
             let mut plain = Vec::new();
             let mut with = Vec::new();
             let mut cost = 0;

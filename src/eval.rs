@@ -118,7 +118,7 @@ impl CompiledRule {
     }
 
     /// Compile a scope and formula (a statement without name or strength).
-    pub fn compile_parts(scope: Scope, f: &Formula, classes: &mut ClassIndex) -> Self {
+    pub(crate) fn compile_parts(scope: Scope, f: &Formula, classes: &mut ClassIndex) -> Self {
         let subject = classes.intern(f.subject());
         CompiledRule {
             scope,
@@ -145,7 +145,7 @@ impl CompiledRule {
     /// For a scene-level rule, whether it holds in the scene of `atoms`
     /// (which has `objects` objects); for a per-object rule, whether every
     /// placed subject satisfies it.
-    pub fn scene_holds(&self, atoms: &ClassAtoms, objects: usize) -> bool {
+    pub(crate) fn scene_holds(&self, atoms: &ClassAtoms, objects: usize) -> bool {
         if let Some((check, neg)) = self.group_check(atoms, objects) {
             return check.holds != neg;
         }
@@ -158,7 +158,7 @@ impl CompiledRule {
     }
 
     /// The shape of a group rule and whether it is negated.
-    pub fn group_shape(&self) -> Option<(ShapeKind, bool)> {
+    pub(crate) fn group_shape(&self) -> Option<(ShapeKind, bool)> {
         let mut f = &self.formula;
         let mut neg = false;
         loop {
@@ -176,7 +176,11 @@ impl CompiledRule {
     /// For a group rule: the verdict of [`shapes::check`] on the placed
     /// subject objects (indices into the scene's objects), and whether the
     /// rule is the shape's negation.
-    pub fn group_check(&self, atoms: &ClassAtoms, objects: usize) -> Option<(ShapeCheck, bool)> {
+    pub(crate) fn group_check(
+        &self,
+        atoms: &ClassAtoms,
+        objects: usize,
+    ) -> Option<(ShapeCheck, bool)> {
         let (kind, neg) = self.group_shape()?;
         let (ids, rects): (Vec<usize>, Vec<_>) = (0..objects)
             .filter(|&o| atoms.is_placed(o) && atoms.class_of(o) == self.subject)

@@ -16,13 +16,13 @@
 //!
 //! # Practical
 //!
-//! [`Likeness::cost`] is *the* resemblance function: reports, the studio,
+//! [`ResemblanceTarget::cost`] is *the* resemblance function: reports, the studio,
 //! tests and the brute-force reference all call it, as every score comes
-//! from `eval`. For the engine, [`Likeness::distance_map`] precomputes, per
+//! from `eval`. For the engine, [`ResemblanceTarget::distance_map`] precomputes, per
 //! class and size, the cost of every grid position of the problem (a table,
 //! not geometry): row-major over the object's grid-index domain
 //! `gx ∈ 0..nx`, `gy ∈ 0..ny` with `x = space.x + grid·gx`. A test checks
-//! the table against [`Likeness::object_cost`] cell by cell.
+//! the table against [`ResemblanceTarget::object_cost`] cell by cell.
 //!
 //! Arithmetic is done in `i128` and saturates at `u64::MAX`, so no
 //! coordinate, however far out, can wrap.
@@ -30,13 +30,13 @@
 use crate::scene::{Object, Scene};
 use std::collections::BTreeMap;
 
-/// The largest distance map [`Likeness::distance_map`] builds (cells).
+/// The largest distance map [`ResemblanceTarget::distance_map`] builds (cells).
 pub const MAX_MAP_CELLS: u64 = 4_000_000;
 
 /// Why a distance map cannot be built.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
-pub enum LikenessError {
+pub enum ResemblanceError {
     /// The object's grid domain has more cells than [`MAX_MAP_CELLS`].
     #[error(
         "object `{id}` has {cells} grid positions, more than the {max} a resemblance map may have; \
@@ -54,7 +54,7 @@ pub enum LikenessError {
 
 /// The positions shown in the like-scenes, per class and size.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct Likeness {
+pub struct ResemblanceTarget {
     /// `(class, width, height)` → positions `(x, y)`, sorted, one entry per
     /// shown object (a position shown twice is listed twice: the heat map
     /// draws it darker).
@@ -94,9 +94,9 @@ fn steps(d: i128, g: i128) -> u64 {
     u64::try_from(s).unwrap_or(u64::MAX)
 }
 
-impl Likeness {
+impl ResemblanceTarget {
     /// Collect the positions of every movable, placed object of `scenes`.
-    pub fn new(scenes: &[Scene]) -> Likeness {
+    pub fn new(scenes: &[Scene]) -> ResemblanceTarget {
         let mut positions: BTreeMap<(String, i64, i64), Vec<(i64, i64)>> = BTreeMap::new();
         for s in scenes {
             for o in &s.objects {
@@ -111,7 +111,7 @@ impl Likeness {
         for v in positions.values_mut() {
             v.sort_unstable();
         }
-        Likeness { positions }
+        ResemblanceTarget { positions }
     }
 
     /// Whether no scene showed any movable object.
@@ -120,7 +120,7 @@ impl Likeness {
     }
 
     /// The positions shown for objects like `o` (same class and size).
-    pub fn positions_of(&self, o: &Object) -> &[(i64, i64)] {
+    pub(crate) fn positions_of(&self, o: &Object) -> &[(i64, i64)] {
         self.positions
             .get(&(o.class.clone(), o.width, o.height))
             .map_or(&[], Vec::as_slice)
@@ -136,7 +136,7 @@ impl Likeness {
     /// The cost of object `o` at `(x, y)` on a grid of step `grid`: grid
     /// steps to the nearest shown position of its class and size, or 0 when
     /// none was shown.
-    pub fn object_cost(&self, o: &Object, x: i64, y: i64, grid: i64) -> u64 {
+    pub(crate) fn object_cost(&self, o: &Object, x: i64, y: i64, grid: i64) -> u64 {
         let g = i128::from(grid.max(1));
         self.positions_of(o)
             .iter()
@@ -167,11 +167,11 @@ impl Likeness {
     /// position is `x = space.x + grid·gx`, the whole object inside the
     /// space), or `None` when no scene showed its class and size (it adds
     /// nothing anywhere).
-    pub fn distance_map(
+    pub(crate) fn distance_map(
         &self,
         problem: &Scene,
         o: &Object,
-    ) -> Result<Option<DistanceMap>, LikenessError> {
+    ) -> Result<Option<DistanceMap>, ResemblanceError> {
         if self.positions_of(o).is_empty() {
             return Ok(None);
         }
@@ -187,7 +187,7 @@ impl Likeness {
         let ny = count(problem.space.height.saturating_sub(o.height));
         let cells = u128::from(nx) * u128::from(ny);
         if cells > u128::from(MAX_MAP_CELLS) {
-            return Err(LikenessError::TooManyPositions {
+            return Err(ResemblanceError::TooManyPositions {
                 id: o.id.clone(),
                 cells,
                 max: MAX_MAP_CELLS,
@@ -218,7 +218,7 @@ mod tests {
 
     #[test]
     fn cost_is_grid_steps_to_the_nearest_same_class_same_size_position_rounded_up() {
-        let like = Likeness::new(&[
+        let like = ResemblanceTarget::new(&[
             scene(r#"{"id":"a","class":"A","x":5,"y":-3,"width":10,"height":10}"#),
             scene(
                 r#"{"id":"a","class":"A","x":45,"y":27,"width":10,"height":10},
@@ -250,7 +250,7 @@ mod tests {
 
     #[test]
     fn distance_map_equals_object_cost_everywhere() {
-        let like = Likeness::new(&[scene(
+        let like = ResemblanceTarget::new(&[scene(
             r#"{"class":"A","x":8,"y":1,"width":10,"height":7},
                {"class":"A","x":42,"y":30,"width":10,"height":7}"#,
         )]);
@@ -282,7 +282,7 @@ mod tests {
             height: 1,
             fixed: false,
         };
-        let like = Likeness::new(&[Scene {
+        let like = ResemblanceTarget::new(&[Scene {
             space: crate::scene::Space {
                 x: i64::MIN / 2,
                 y: 0,
@@ -308,7 +308,7 @@ mod tests {
         .unwrap();
         assert!(matches!(
             like.distance_map(&problem, &problem.objects[0]),
-            Err(LikenessError::TooManyPositions { .. })
+            Err(ResemblanceError::TooManyPositions { .. })
         ));
     }
 }

@@ -94,7 +94,7 @@ impl ShapeKind {
     /// The relations whose disjunction (over the four directions of
     /// contact) makes two objects adjacent, and the alignment that must
     /// hold as well: `(contacts, alignment)`.
-    pub fn adjacency(self) -> (&'static [Relation], Option<Relation>) {
+    pub(crate) fn adjacency(self) -> (&'static [Relation], Option<Relation>) {
         const ALL: [Relation; 4] = [
             Relation::new(Kind::FL, Dir::N),
             Relation::new(Kind::FL, Dir::S),
@@ -117,7 +117,7 @@ impl ShapeKind {
     }
 
     /// What the shape says, for English readings: "form one column".
-    pub const fn verb(self) -> &'static str {
+    pub(crate) const fn verb(self) -> &'static str {
         match self {
             ShapeKind::Group => "form one group, each touching another flush",
             ShapeKind::Row => "form one row, each flush against the next, south edges on one line",
@@ -166,7 +166,7 @@ pub fn block_boxes(m: usize) -> Vec<(u64, u64)> {
 }
 
 /// The cell of a block: the largest width and the largest height.
-pub fn block_cell(rects: &[Rect]) -> (i64, i64) {
+pub(crate) fn block_cell(rects: &[Rect]) -> (i64, i64) {
     let w = rects.iter().map(|r| r.w).max().unwrap_or(0);
     let h = rects.iter().map(|r| r.h).max().unwrap_or(0);
     (w, h)
@@ -189,7 +189,7 @@ pub struct ShapeCheck {
 impl ShapeCheck {
     /// The objects outside the largest component (what a report names),
     /// sorted.
-    pub fn off_main(&self) -> Vec<usize> {
+    pub(crate) fn off_main(&self) -> Vec<usize> {
         let mut v: Vec<usize> = self.components.iter().skip(1).flatten().copied().collect();
         v.sort_unstable();
         v

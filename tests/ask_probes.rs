@@ -29,7 +29,7 @@ use rccpack::ask::{find_probe, negation, ProbeOptions, ProbeOutcome};
 use rccpack::bench::pool::{among, atom, corner, touches};
 use rccpack::eval::{evaluate, Evaluator};
 use rccpack::relations::{Contact, Dir, Kind, Quant, Relation, MAX_COUNT};
-use rccpack::resemblance::Likeness;
+use rccpack::resemblance::ResemblanceTarget;
 use rccpack::rules::{Atom, Formula, Rule, RuleSet, Scope, Target};
 use rccpack::scene::{Object, Rect, Scene};
 use rccpack::synth::brute_force::grid_positions;
@@ -378,7 +378,7 @@ fn check_case(case: &Case, t: &mut Tally) {
     let like = (case.index % 4 == 1)
         .then(|| random_layout(case, &mut ChaCha8Rng::seed_from_u64(case.index ^ 0x11CE)))
         .flatten()
-        .map(|s| Likeness::new(&[s]));
+        .map(|s| ResemblanceTarget::new(&[s]));
     for k in 0..case.rules.rules.len() {
         let rule = &case.rules.rules[k];
         let opts = ProbeOptions {
@@ -470,7 +470,7 @@ fn check_case(case: &Case, t: &mut Tally) {
                 if let Some(l) = &like {
                     // The resemblance cost is the evaluator-side one.
                     if p.cost != l.cost(&case.scene, &p.scene) {
-                        fail(t, format!("cost {} ≠ Likeness::cost", p.cost));
+                        fail(t, format!("cost {} ≠ ResemblanceTarget::cost", p.cost));
                     }
                 } else if p.cost != 0 {
                     fail(t, format!("cost {} without like", p.cost));

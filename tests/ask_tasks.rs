@@ -30,7 +30,7 @@ use rccpack::ask::{negation, AskOptions, Asker, ProbeOptions, QuestionBudget};
 use rccpack::eval::evaluate;
 use rccpack::infer::LearnParams;
 use rccpack::relations::Contact;
-use rccpack::resemblance::Likeness;
+use rccpack::resemblance::ResemblanceTarget;
 use rccpack::rules::{parse_rules, Rule, RuleSet, Strength};
 use rccpack::scene::{Object, Scene, Space};
 use rccpack::synth::{synthesize, Status, SynthOptions};
@@ -192,7 +192,7 @@ fn all_hold(scene: &Scene, rules: &RuleSet) -> bool {
 fn solve(
     scene: &Scene,
     rules: &RuleSet,
-    like: Option<Likeness>,
+    like: Option<ResemblanceTarget>,
     seed: u64,
 ) -> rccpack::synth::SynthResult {
     let opts = SynthOptions {
@@ -284,7 +284,7 @@ fn setup(task: &Task, truth: &RuleSet, rng: &mut ChaCha8Rng) -> (Scene, Vec<Scen
     let mut demos = Vec::new();
     for d in 0..8 {
         let m = random_mix(task, rng);
-        let like = Likeness::new(&[random_positions(&m, rng)]);
+        let like = ResemblanceTarget::new(&[random_positions(&m, rng)]);
         let r = solve(&m, &truth_hard, Some(like), d);
         let s = r
             .scene
@@ -474,7 +474,7 @@ fn run_task(task: &Task, truth_text: &str, mixes: usize) -> Outcome {
         }
     }
     // (c)
-    let like = Likeness::new(asker.demos());
+    let like = ResemblanceTarget::new(asker.demos());
     let r = solve(&problem, &held, Some(like), 0);
     match r.scene {
         Some(s) => {

@@ -262,7 +262,7 @@ fn like_scenes_are_shaded_under_the_layout() {
         scenes_from_json(&std::fs::read_to_string(dir.join("demos.json")).unwrap()).unwrap();
     let problem =
         Scene::from_json(&std::fs::read_to_string(dir.join("problem.json")).unwrap()).unwrap();
-    let like = rccpack::resemblance::Likeness::new(&demos);
+    let like = rccpack::resemblance::ResemblanceTarget::new(&demos);
     let svg = render_svg(
         &problem,
         None,

@@ -4,7 +4,7 @@
 use rccpack::eval::evaluate;
 use rccpack::infer::{learn, LearnParams};
 use rccpack::relations::Contact;
-use rccpack::resemblance::Likeness;
+use rccpack::resemblance::ResemblanceTarget;
 use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::scene::{scenes_from_json, Scene};
 use rccpack::synth::{synthesize, Status, SynthOptions};
@@ -24,7 +24,7 @@ fn learned(demos: &[Scene]) -> RuleSet {
     learn(demos, None, &LearnParams::default()).unwrap().rules()
 }
 
-fn with_like(like: Option<Likeness>) -> SynthOptions {
+fn with_like(like: Option<ResemblanceTarget>) -> SynthOptions {
     SynthOptions {
         like,
         ..SynthOptions::default()
@@ -55,7 +55,7 @@ fn bundled_example_sits_where_the_demonstrations_did() {
     let (demos, problem) = task("box-packing");
     let rules = learned(&demos);
     let plain = synthesize(&problem, &rules, &with_like(None)).unwrap();
-    let like = Likeness::new(&demos);
+    let like = ResemblanceTarget::new(&demos);
     let r = synthesize(&problem, &rules, &with_like(Some(like.clone()))).unwrap();
     assert_eq!(r.status, Status::Optimal);
     let sol = r.scene.as_ref().unwrap();
@@ -87,7 +87,12 @@ fn shelf_example_with_its_intended_rules() {
     let rules =
         parse_rules(&std::fs::read_to_string(example("shelf").join("intended.rcc")).unwrap())
             .unwrap();
-    let r = synthesize(&problem, &rules, &with_like(Some(Likeness::new(&demos)))).unwrap();
+    let r = synthesize(
+        &problem,
+        &rules,
+        &with_like(Some(ResemblanceTarget::new(&demos))),
+    )
+    .unwrap();
     assert_eq!(r.status, Status::Optimal);
     assert_eq!(r.evaluation.unwrap().score, 1.0);
     assert!(r.resemblance.unwrap().proven);
@@ -110,7 +115,7 @@ fn limits_in_the_second_phase_keep_the_score_and_are_deterministic() {
     let rules = learn(&demos, None, &params).unwrap().rules();
     let full = synthesize(&problem, &rules, &with_like(None)).unwrap();
     let first_phase_nodes = full.stats.nodes;
-    let like = Likeness::new(&demos);
+    let like = ResemblanceTarget::new(&demos);
     let cheapest = synthesize(&problem, &rules, &with_like(Some(like.clone()))).unwrap();
     let cheapest = cheapest.resemblance.unwrap();
     assert!(cheapest.proven);

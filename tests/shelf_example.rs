@@ -5,7 +5,7 @@
 use rccpack::eval::evaluate;
 use rccpack::infer::{learn, LearnParams, Templates};
 use rccpack::relations::Contact;
-use rccpack::resemblance::Likeness;
+use rccpack::resemblance::ResemblanceTarget;
 use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::scene::{scenes_from_json, Scene};
 use rccpack::synth::{synthesize, Status, SynthOptions};
@@ -84,7 +84,7 @@ fn run_learns_the_intentions_and_keeps_them() {
         &problem,
         &rules,
         &SynthOptions {
-            like: Some(Likeness::new(&demos)),
+            like: Some(ResemblanceTarget::new(&demos)),
             ..SynthOptions::default()
         },
     )
@@ -144,7 +144,7 @@ fn five_greens_keep_the_block() {
         &problem,
         &rules,
         &SynthOptions {
-            like: Some(Likeness::new(&demos)),
+            like: Some(ResemblanceTarget::new(&demos)),
             time_limit: Some(std::time::Duration::from_secs(120)),
             ..SynthOptions::default()
         },

@@ -492,7 +492,7 @@ async fn synth_on_the_bundled_example() {
         &std::fs::read_to_string(dir.join("problem.json")).unwrap(),
     )
     .unwrap();
-    let cost = rccpack::resemblance::Likeness::new(&demos).cost(&problem, &scene);
+    let cost = rccpack::resemblance::ResemblanceTarget::new(&demos).cost(&problem, &scene);
     assert_eq!(r["resemblance"]["cost"], cost, "{r}");
     assert_eq!(r["resemblance"]["proven"], true);
     let (s, v) = call(

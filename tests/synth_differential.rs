@@ -44,7 +44,7 @@ use rand_chacha::ChaCha8Rng;
 use rccpack::bench::pool::{among, atom, corner, touches};
 use rccpack::eval::evaluate;
 use rccpack::relations::{Contact, Dir, Kind, Quant, Relation};
-use rccpack::resemblance::Likeness;
+use rccpack::resemblance::ResemblanceTarget;
 use rccpack::rules::{Atom, Formula, Rule, RuleSet, Scope, Strength, Target};
 use rccpack::scene::{Object, Scene, Space};
 use rccpack::synth::brute_force::{self, approx_eq, BruteResult};
@@ -634,7 +634,7 @@ fn check_like_with(
     warm: bool,
 ) -> Result<BruteResult, String> {
     let scenes = random_like(case);
-    let like = Likeness::new(&scenes);
+    let like = ResemblanceTarget::new(&scenes);
     let bf = brute_force::solve_like(
         &case.scene,
         &case.rules,

@@ -10,7 +10,7 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyBytes, PyTuple};
 use rccpack_core::infer::{learn_with_priors, InferError, LearnParams, Templates};
 use rccpack_core::render::render_png as core_render_png;
-use rccpack_core::resemblance::Likeness;
+use rccpack_core::resemblance::ResemblanceTarget;
 use rccpack_core::synth::{Progress, ProgressFn};
 use rccpack_core::{
     evaluate as core_evaluate, render_svg, synthesize as core_synthesize, Contact, Evaluation,
@@ -585,7 +585,7 @@ pub fn synthesize(
         seed,
         cancel: Some(cancel.clone()),
         progress,
-        like: like_scenes.as_deref().map(Likeness::new),
+        like: like_scenes.as_deref().map(ResemblanceTarget::new),
         warm_start: warm,
         ..SynthOptions::default()
     };
@@ -673,7 +673,7 @@ fn render_options(
         )));
     }
     let like = match like {
-        Some(l) if !l.is_none() => Some(Likeness::new(&scenes_arg(l, "like")?)),
+        Some(l) if !l.is_none() => Some(ResemblanceTarget::new(&scenes_arg(l, "like")?)),
         _ => None,
     };
     Ok(RenderOptions {

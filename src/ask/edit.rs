@@ -37,7 +37,7 @@
 use super::budget::Meter;
 use super::probe::{probe_rules, Checked, Probe, ProbeChecker, ProbeOptions};
 use crate::eval::evaluate;
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::{Rule, RuleSet, Target};
 use crate::scene::Scene;
 use crate::synth::{synthesize, SynthOptions};
@@ -144,7 +144,7 @@ pub(crate) struct EditSearch<'a> {
     /// The demonstrations (accepted probes included).
     pub demos: &'a [Scene],
     /// Resemblance of the moved objects to the demonstrations.
-    pub like: Option<&'a Likeness>,
+    pub like: Option<&'a ResemblanceTarget>,
     /// How EC decides that two sides touch.
     pub contact: crate::relations::Contact,
     /// Seed of every solve.

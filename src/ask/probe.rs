@@ -35,7 +35,7 @@
 
 use crate::eval::evaluate;
 use crate::relations::{Contact, Quant, MAX_COUNT};
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::{Formula, Rule, RuleSet, Scope, Strength};
 use crate::scene::Scene;
 use crate::synth::{synthesize, Status, SynthError, SynthOptions};
@@ -120,7 +120,7 @@ pub struct ProbeOptions {
     /// check then counts as undecided).
     pub check_nodes: Option<u64>,
     /// Positions the probe should resemble (the demonstrations).
-    pub like: Option<Likeness>,
+    pub like: Option<ResemblanceTarget>,
     /// For a rule with no probe, name the held rules implying it (one more
     /// solve per held rule).
     pub explain: bool,
@@ -434,7 +434,7 @@ impl ProbeChecker {
 
     /// One solve under the assumptions "these rules hold".
     fn solve(&mut self, assume: &[usize], nodes: Option<u64>) -> Checked {
-        use crate::synth::engine::Sat;
+        use crate::synth::backend::Verdict;
         // An object that cannot lie in the space: no layout at all.
         let Some(engine) = self.engine.as_mut() else {
             return Checked::Proven;
@@ -456,9 +456,9 @@ impl ProbeChecker {
             t.elapsed().as_secs_f64() * 1e3
         );
         match sat {
-            Sat::Solution(v) => Checked::Witness(self.model.scene(&self.problem, &v)),
-            Sat::Unsat => Checked::Proven,
-            Sat::Unknown => Checked::Stopped,
+            Verdict::Solution(v) => Checked::Witness(self.model.scene(&self.problem, &v)),
+            Verdict::Infeasible(_) => Checked::Proven,
+            Verdict::Unknown => Checked::Stopped,
         }
     }
 }

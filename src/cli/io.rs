@@ -49,10 +49,13 @@ pub fn learn_error_text(e: &rccpack::InferError) -> String {
 
 /// A synthesis error in the command line's words (see [`learn_error_text`]).
 pub fn synth_error_text(e: &rccpack::SynthError) -> String {
-    use rccpack::resemblance::LikenessError;
+    use rccpack::resemblance::ResemblanceError;
     match e {
-        rccpack::SynthError::Likeness(LikenessError::TooManyPositions {
-            id, cells, max, ..
+        rccpack::SynthError::Resemblance(ResemblanceError::TooManyPositions {
+            id,
+            cells,
+            max,
+            ..
         }) => {
             format!(
                 "object `{id}` has {cells} grid positions, more than the {max} a resemblance map may have; \

@@ -3,7 +3,7 @@ use anyhow::Result;
 use clap::Args;
 use rccpack::relations::Contact;
 use rccpack::render::{render_to_path, RenderOptions};
-use rccpack::resemblance::Likeness;
+use rccpack::resemblance::ResemblanceTarget;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -80,7 +80,7 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
         contact: a.contact,
         scale: a.scale,
         title: Some(a.scene.display().to_string()),
-        like: like.as_deref().map(Likeness::new),
+        like: like.as_deref().map(ResemblanceTarget::new),
         ..RenderOptions::default()
     };
     render_to_path(&scene, rules.as_ref(), &opts, &a.output)

@@ -2,7 +2,7 @@ use super::{read_rules_seen, read_scene, read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::relations::Contact;
-use rccpack::resemblance::Likeness;
+use rccpack::resemblance::ResemblanceTarget;
 use rccpack::rules::RuleSet;
 use rccpack::scene::Scene;
 use rccpack::synth::{
@@ -249,7 +249,7 @@ fn synth_options(
         redundant: !a.no_redundant,
         cancel: Some(cancel),
         progress,
-        like: like_scenes.map(Likeness::new),
+        like: like_scenes.map(ResemblanceTarget::new),
         warm_start,
         ..SynthOptions::default()
     }

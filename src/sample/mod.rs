@@ -382,7 +382,7 @@ impl Sampler {
                 k.max(0)
             }
         };
-        let Some(mut engine) = Engine::with_like_until(
+        let Some(mut engine) = Engine::with_resemblance_until(
             &self.model,
             self.opts.seed,
             false,

@@ -21,7 +21,7 @@
 
 use crate::eval::Evaluator;
 use crate::relations::Contact;
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::RuleSet;
 use crate::scene::{Rect, Scene};
 
@@ -104,12 +104,12 @@ pub fn solve(
 
 /// Exhaustively solve `problem` for the lexicographic objective of SPEC
 /// §12: the largest numerator, then the smallest resemblance cost
-/// ([`Likeness::cost`], the one resemblance function).
+/// ([`ResemblanceTarget::cost`], the one resemblance function).
 pub fn solve_like(
     problem: &Scene,
     rules: &RuleSet,
     contact: Contact,
-    like: &Likeness,
+    like: &ResemblanceTarget,
     limit: u128,
 ) -> Result<BruteResult, BruteError> {
     run(problem, rules, contact, Some(like), limit)
@@ -134,7 +134,7 @@ fn run(
     problem: &Scene,
     rules: &RuleSet,
     contact: Contact,
-    like: Option<&Likeness>,
+    like: Option<&ResemblanceTarget>,
     limit: u128,
 ) -> Result<BruteResult, BruteError> {
     problem
@@ -186,7 +186,7 @@ fn run(
 struct Search<'a> {
     rules: &'a RuleSet,
     contact: Contact,
-    like: Option<&'a Likeness>,
+    like: Option<&'a ResemblanceTarget>,
     problem: &'a Scene,
     scene: Scene,
     free: &'a [usize],

@@ -1,5 +1,5 @@
 //! Area first: bounds that prove at once, without the engine, that the
-//! objects to place cannot all fit in the space (issue 21, item 3). Every
+//! objects to place cannot all fit in the space. Every
 //! bound is sound — it only ever says "cannot fit" when no layout exists —
 //! and takes time linear in the objects (quadratic only in up to
 //! [`MAX_UNION_OBJECTS`] placed objects).

@@ -77,14 +77,9 @@ pub struct LnsOptions {
     pub round_nodes: u64,
     /// Search nodes without an improvement that end `Lns::improve` and
     /// the first LNS phase of `Lns::alternate` without a warm start
-    /// (default 10 000; it was 1 000 000, which on realistic tasks without
-    /// a warm start kept LNS's slow, fruitless rounds going for the whole
-    /// time limit while the main engine alone proves them in 3 500–11 000
-    /// nodes: `bench tasks --tasks 6 --sizes 1,1.5,2 --no-like
-    /// --no-warm-start --time-limit 10` proved 12 of 18 with 1 000 000,
-    /// 15 with 30 000, 16 with 10 000; the thesis-style scale series,
-    /// `bench thesis --no-pilot --sets 3 --scale-ns 16,24,32,48 --scale-ks
-    /// 3,5 --time-limit 10`, 17, 18 and 18 of 24, medians as fast or faster).
+    /// (default 10 000: small enough that fruitless rounds hand the search
+    /// back to the main engine, which proves realistic tasks without a warm
+    /// start in a few thousand nodes).
     pub budget_nodes: u64,
     /// Search nodes of the main engine's first proof attempt in
     /// `Lns::alternate`; each later attempt gets twice as many (default

@@ -18,7 +18,7 @@
 //! - `verify` ([`verify_solution`]), `brute_force` — the independent
 //!   checker (run on every output) and the exhaustive reference of the
 //!   tests;
-//! - `weights`, `like`, `warm`, `capacity` — integer objective weights, the second
+//! - `weights`, `resemblance_terms`, `warm`, `capacity` — integer objective weights, the second
 //!   objective's terms, the warm start, the area test before any engine.
 //!
 //! # Second-edition rules (SPEC §11)
@@ -46,7 +46,7 @@
 
 use crate::eval::Evaluation;
 use crate::relations::Contact;
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::RuleSet;
 use crate::scene::Scene;
 use std::sync::atomic::AtomicBool;
@@ -63,7 +63,7 @@ mod capacity;
 mod driver;
 pub mod emit;
 pub(crate) mod engine;
-mod like;
+mod explain;
 mod lns;
 // The solver-free model: internal, visible to the crate's own differential
 // and emit tests (feature `fuzzing`).
@@ -73,6 +73,8 @@ pub mod model;
 #[cfg(not(feature = "fuzzing"))]
 pub(crate) mod model;
 pub mod report;
+mod resemblance_terms;
+mod solve;
 mod verify;
 mod warm;
 mod weights;
@@ -104,7 +106,7 @@ pub struct SynthOptions {
     pub progress: Option<ProgressFn>,
     /// The second objective (SPEC §12): among the layouts with the best
     /// score, one most like these positions (`synth --like`).
-    pub like: Option<Likeness>,
+    pub like: Option<ResemblanceTarget>,
     /// On an infeasible problem, name a minimal conflicting set of hard
     /// rules ([`SynthResult::conflict`]); off, the result says only
     /// `infeasible` (a probe needs no more, and the shrinking costs one solve
@@ -251,7 +253,7 @@ impl SynthResult {
 /// The second objective's result (the report's `resemblance`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub struct Resemblance {
-    /// The layout's resemblance cost ([`Likeness::cost`]).
+    /// The layout's resemblance cost ([`ResemblanceTarget::cost`]).
     pub cost: u64,
     /// Whether the cost is proven minimal among the layouts whose §6
     /// numerator equals the returned layout's.
@@ -282,7 +284,7 @@ pub enum SynthError {
     },
     /// The resemblance target cannot be built for this problem.
     #[error(transparent)]
-    Likeness(#[from] crate::resemblance::LikenessError),
+    Resemblance(#[from] crate::resemblance::ResemblanceError),
     /// A number of the problem (or derived from it) is too large for the
     /// solver's 32-bit arithmetic; the message names it.
     #[error("{0}")]
@@ -340,7 +342,7 @@ pub const MAX_POSITIONS: i64 = 1 << 18;
 /// numbers are within the solver's bounds ([`MAX_COORD`],
 /// [`MAX_POSITIONS`]). [`synthesize`] checks this first; callers that build
 /// `model::Model`s themselves must too.
-pub fn check_problem(problem: &Scene) -> Result<(), SynthError> {
+pub(crate) fn check_problem(problem: &Scene) -> Result<(), SynthError> {
     problem.validate()?;
     check_ranges(problem)
 }
@@ -474,7 +476,6 @@ pub(crate) fn objective_model_encoded(
     let coefs = weights::integer_weights(&weights).ok_or(SynthError::WeightsTooLarge)?;
     Ok(Some((model, coefs, build)))
 }
-
 /// Synthesise a layout (SPEC §9): place every unplaced object on the grid,
 /// inside the space, without overlap, so that every hard rule holds and the
 /// §6 numerator over all objects is maximal.
@@ -486,18 +487,8 @@ pub fn synthesize(
     rules: &RuleSet,
     opts: &SynthOptions,
 ) -> Result<SynthResult, SynthError> {
-    use backend::{Backend, Limits};
-    use driver::OptOutcome;
-    use engine::Engine;
-    use std::time::Instant;
-
-    let start = Instant::now();
-    let limits = Limits {
-        // A limit past what `Instant` can represent means no deadline.
-        deadline: opts.time_limit.and_then(|t| start.checked_add(t)),
-        node_limit: opts.node_limit,
-        cancel: opts.cancel.clone(),
-    };
+    let start = std::time::Instant::now();
+    let limits = solve::solve_limits(opts, start);
     let mut stats = SolveStats::default();
     // The deadline and Ctrl-C are checked while the model is built.
     let Some((model, coefs, build)) =
@@ -509,63 +500,30 @@ pub fn synthesize(
     if let Some(r) = capacity::infeasible_at_once(problem, opts) {
         return Ok(r);
     }
-    let infeasible = |conflict: Conflict, mut stats: SolveStats| {
-        stats.time_ms = ms(start.elapsed());
-        SynthResult::without_layout(Status::Infeasible, Some(conflict), stats)
+    let s = solve::Solve {
+        problem,
+        rules,
+        opts,
+        model: &model,
+        coefs: &coefs,
+        build,
+        limits: &limits,
+        start,
     };
     if !model.too_large.is_empty() {
-        return Ok(infeasible(
-            Conflict {
-                objects_cannot_fit: true,
-                ..Conflict::default()
-            },
-            stats,
-        ));
+        let conflict = Conflict {
+            objects_cannot_fit: true,
+            ..Conflict::default()
+        };
+        return Ok(s.without_layout(Status::Infeasible, Some(conflict), stats));
     }
-    let like_terms = match &opts.like {
-        Some(like) => {
-            // The engine refuses costs past its 32-bit arithmetic.
-            let terms = like::like_terms(&model, problem, like)?;
-            Some(terms)
-        }
-        None => None,
-    };
-    let t_model = start.elapsed();
-    let Some(mut engine) = Engine::with_like_stop(
-        &model,
-        opts.seed,
-        false,
-        Some(&coefs),
-        like_terms.as_deref().unwrap_or(&[]),
-        &limits,
-    )?
-    else {
+    // The engine refuses costs past its 32-bit arithmetic.
+    let resemblance_terms = (opts.like.as_ref())
+        .map(|like| resemblance_terms::resemblance_terms(&model, problem, like))
+        .transpose()?;
+    let Some(mut engine) = s.post_engine(resemblance_terms.as_deref())? else {
         // The time limit struck while the model was being posted.
-        stats.time_ms = ms(start.elapsed());
-        return Ok(SynthResult::without_layout(Status::Unknown, None, stats));
-    };
-    log::debug!(
-        "model {:.1} ms ({} vars, {} bools, {} clauses), engine {:.1} ms",
-        ms(t_model),
-        model.vars.len(),
-        model.bools.len(),
-        model.clauses.len(),
-        ms(start.elapsed() - t_model)
-    );
-    let mut first: Option<Duration> = None;
-    let mut best: Option<Duration> = None;
-    let mut on_incumbent = |vals: &[i64]| {
-        let t = start.elapsed();
-        first.get_or_insert(t);
-        best = Some(t);
-        if let Some(p) = &opts.progress {
-            let s = model.scene(problem, vals);
-            let e = crate::eval::evaluate(&s, rules, opts.contact);
-            (p.0)(&Progress {
-                score: e.score,
-                elapsed: t,
-            });
-        }
+        return Ok(s.without_layout(Status::Unknown, None, stats));
     };
     let ws: Vec<i64> = engine.objective_coefs().unwrap_or(&[]).to_vec();
     let value = |v: &[i64]| model.objective_value(&coefs, v);
@@ -573,233 +531,25 @@ pub fn synthesize(
         coefs: &ws,
         value: &value,
     };
-    let hint = warm::hint_values(&model, problem, &opts.warm_start);
-    if let Some(h) = &hint {
-        engine.hint(h);
-    }
-    let mut outcome = match driver::first_solution(&mut engine, &limits) {
-        Err(o) => o,
-        Ok(first) => {
-            on_incumbent(&first);
-            let movable = model.vars.len() / 2;
-            match opts.lns.filter(|l| movable >= l.min_objects) {
-                Some(lopts) => {
-                    let search = lns::Lns {
-                        problem,
-                        rules,
-                        model: &model,
-                        build,
-                        coefs: &coefs,
-                        opts: lopts,
-                        seed: opts.seed,
-                        long_first_phase: hint.is_none() && movable >= 16,
-                    };
-                    let (outcome, r) = search.alternate(
-                        &mut engine,
-                        &objective,
-                        first,
-                        &limits,
-                        opts.strategy,
-                        &mut on_incumbent,
-                    )?;
-                    // Sub-engines' work counts toward the solve's statistics.
-                    stats.nodes += r.nodes;
-                    stats.conflicts += r.conflicts;
-                    log::debug!(
-                        "lns: {} rounds, {} improving, {} nodes; engine {} nodes; {:.1} ms",
-                        r.rounds,
-                        r.improved,
-                        r.nodes,
-                        engine.nodes(),
-                        ms(start.elapsed())
-                    );
-                    outcome
-                }
-                None => driver::optimise_from(
-                    &mut engine,
-                    Some(&objective),
-                    first,
-                    &limits,
-                    opts.strategy,
-                    &mut on_incumbent,
-                ),
-            }
-        }
+    let (mut first, mut best) = (None, None);
+    let mut on_incumbent = |vals: &[i64]| s.found(vals, &mut first, &mut best);
+    let mut outcome = s.maximise_score(&mut engine, &objective, &mut stats, &mut on_incumbent)?;
+    let resemblance = match (&opts.like, &resemblance_terms) {
+        (Some(like), Some(terms)) => s.minimise_resemblance(
+            &mut engine,
+            &objective,
+            like,
+            terms,
+            &mut outcome,
+            &mut on_incumbent,
+        ),
+        _ => None,
     };
-    // The second phase: with the numerator held, the cheapest layout.
-    let mut resemblance = None;
-    if let (Some(like), Some(terms)) = (&opts.like, &like_terms) {
-        if let OptOutcome::Optimal(v) | OptOutcome::Feasible(v) = &mut outcome {
-            let cost = |v: &[i64]| like::total_cost(terms, v);
-            let r = driver::minimise_cost(
-                &mut engine,
-                Some(&objective),
-                &cost,
-                std::mem::take(v),
-                &limits,
-                &mut on_incumbent,
-            );
-            debug_assert_eq!(r.cost, like::total_cost(terms, &r.values));
-            *v = r.values;
-            let cost = like.cost(problem, &model.scene(problem, v));
-            debug_assert_eq!(cost, r.cost);
-            resemblance = Some(Resemblance {
-                cost,
-                proven: r.proven,
-                bound: r.bound,
-            });
-        }
-    }
     stats.nodes += engine.nodes();
     stats.conflicts += engine.conflicts();
     stats.time_to_first_ms = first.map(ms);
     stats.time_to_best_ms = best.map(ms);
-    let score_bound = engine.objective_bound().map(|b| {
-        let constant: i64 = model
-            .soft
-            .iter()
-            .zip(&coefs)
-            .filter(|(t, _)| t.lit == model::Lit::TRUE)
-            .map(|(_, &c)| c)
-            .sum();
-        let total: i64 = coefs.iter().sum();
-        if total <= 0 {
-            1.0
-        } else {
-            (b.saturating_add(constant) as f64 / total as f64).min(1.0)
-        }
-    });
+    let score_bound = backend::Backend::objective_bound(&engine).map(|b| s.score_bound(b));
     drop(engine);
-    let (status, vals) = match outcome {
-        OptOutcome::Optimal(v) => (Status::Optimal, v),
-        OptOutcome::Feasible(v) => (Status::Feasible, v),
-        OptOutcome::Unknown => {
-            stats.time_ms = ms(start.elapsed());
-            return Ok(SynthResult::without_layout(Status::Unknown, None, stats));
-        }
-        OptOutcome::Infeasible if !opts.explain => {
-            stats.time_ms = ms(start.elapsed());
-            return Ok(SynthResult::without_layout(Status::Infeasible, None, stats));
-        }
-        OptOutcome::Infeasible => {
-            let conflict = explain(problem, rules, opts, &limits, &mut stats)?;
-            return Ok(infeasible(conflict, stats));
-        }
-    };
-    let scene = model.scene(problem, &vals);
-    let evaluation = crate::eval::evaluate(&scene, rules, opts.contact);
-    // Every layout is re-checked, in release builds too: a fault here is a
-    // bug, reported as one instead of handed to the robot.
-    verify::verify_solution(problem, &scene, rules, opts.contact)
-        .map_err(SynthError::Unverified)?;
-    stats.time_ms = ms(start.elapsed());
-    let score_bound = match status {
-        Status::Optimal => Some(evaluation.score),
-        _ => score_bound.map(|b| b.max(evaluation.score)),
-    };
-    Ok(SynthResult {
-        status,
-        scene: Some(scene),
-        evaluation: Some(evaluation),
-        conflict: None,
-        stats,
-        resemblance,
-        score_bound,
-    })
-}
-
-/// Why a proved-infeasible problem is infeasible: first whether the objects
-/// fit at all, then a minimal set of hard rules (core under one assumption
-/// per hard rule, shrunk by deletion). When a limit interrupts, the set is
-/// conflicting but perhaps not minimal.
-fn explain(
-    problem: &Scene,
-    rules: &RuleSet,
-    opts: &SynthOptions,
-    limits: &backend::Limits,
-    stats: &mut SolveStats,
-) -> Result<Conflict, SynthError> {
-    use engine::{Engine, Sat};
-    use model::{BuildOptions, Model};
-    let base = BuildOptions {
-        contact: opts.contact,
-        rules: false,
-        symmetry_breaking: opts.symmetry_breaking,
-        redundant: opts.redundant,
-    };
-    if capacity::cannot_fit(problem) {
-        return Ok(Conflict {
-            objects_cannot_fit: true,
-            ..Conflict::default()
-        });
-    }
-    // Building an engine does not look at the clock: past the deadline,
-    // build none (the time limit would otherwise be overshot by up to two
-    // engine builds) and blame nothing.
-    if limits.expired() {
-        return Ok(Conflict {
-            limit_struck: true,
-            ..Conflict::default()
-        });
-    }
-    let m0 = Model::build(problem, rules, base);
-    let mut e0 = Engine::new(&m0, opts.seed, false, None)?;
-    let fit = e0.satisfy(limits);
-    stats.nodes += e0.nodes();
-    stats.conflicts += e0.conflicts();
-    drop(e0);
-    match fit {
-        Sat::Unsat => {
-            return Ok(Conflict {
-                objects_cannot_fit: true,
-                ..Conflict::default()
-            })
-        }
-        // Whether the objects fit is not known: blame nothing (every hard
-        // rule may be harmless).
-        Sat::Unknown => {
-            return Ok(Conflict {
-                limit_struck: true,
-                ..Conflict::default()
-            })
-        }
-        Sat::Solution(_) => {}
-    }
-    // The objects fit, so the hard rules together conflict (the main solve
-    // proved it); past the deadline they are named together, unshrunk.
-    if limits.expired() {
-        return Ok(Conflict {
-            hard_rules: rules
-                .rules
-                .iter()
-                .filter(|r| r.strength.is_hard())
-                .map(|r| r.name.clone())
-                .collect(),
-            limit_struck: true,
-            ..Conflict::default()
-        });
-    }
-    let mg = Model::build(
-        problem,
-        rules,
-        BuildOptions {
-            rules: true,
-            ..base
-        },
-    );
-    let mut eg = Engine::new(&mg, opts.seed, true, None)?;
-    // Deletion through the driver: every solve obeys the limits (a limit
-    // keeps the rule, so the set stays conflicting, perhaps not minimal).
-    let all: Vec<usize> = (0..mg.hard.len()).collect();
-    let (core, minimal) = driver::shrink_conflict(&mut eg, &all, limits);
-    stats.nodes += eg.nodes();
-    stats.conflicts += eg.conflicts();
-    Ok(Conflict {
-        objects_cannot_fit: false,
-        hard_rules: core
-            .iter()
-            .map(|&k| rules.rules[mg.hard[k].rule].name.clone())
-            .collect(),
-        limit_struck: !minimal || core.is_empty(),
-    })
+    s.report(outcome, stats, resemblance, score_bound)
 }

@@ -65,7 +65,7 @@ pub fn bound_text(result: &SynthResult) -> String {
 }
 
 /// Why a problem is infeasible, in words (after `infeasible: `): only
-/// what was proven is blamed (issue 21, item 2).
+/// what was proven is blamed.
 pub fn conflict_text(c: &Conflict) -> String {
     let mut parts = Vec::new();
     if c.objects_cannot_fit {

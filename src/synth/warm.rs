@@ -40,6 +40,9 @@ use std::collections::BTreeMap;
 /// `(class, width, height)`.
 type Key = (String, i64, i64);
 
+/// Usable grid positions per key.
+type Positions = BTreeMap<Key, Vec<(i64, i64)>>;
+
 /// One preferred grid value per variable of `model` (`None`: no
 /// preference), from the placements of the movable objects of `scenes`;
 /// `None` when no scene gives any usable position.
@@ -47,7 +50,18 @@ pub fn hint_values(model: &Model, problem: &Scene, scenes: &[Scene]) -> Option<V
     if scenes.is_empty() {
         return None;
     }
-    // The problem's movable objects per key, in problem order.
+    let wanted = wanted(model, problem);
+    let per_scene: Vec<Positions> = scenes
+        .iter()
+        .map(|s| usable_positions(model, &wanted, s))
+        .collect();
+    let order = scene_order(&per_scene, &wanted);
+    let chosen = mosaic(model, problem, &per_scene, &order, &wanted);
+    assign(model, &wanted, chosen)
+}
+
+/// The problem's movable objects per key, in problem order.
+fn wanted(model: &Model, problem: &Scene) -> BTreeMap<Key, Vec<usize>> {
     let mut wanted: BTreeMap<Key, Vec<usize>> = BTreeMap::new();
     for (o, obj) in problem.objects.iter().enumerate() {
         if let (Coord::Var(_), Coord::Var(_)) = model.coords[o] {
@@ -57,46 +71,50 @@ pub fn hint_values(model: &Model, problem: &Scene, scenes: &[Scene]) -> Option<V
                 .push(o);
         }
     }
-    // Usable positions per scene and key (grid values), in scene order.
-    let usable = |s: &Scene| -> BTreeMap<Key, Vec<(i64, i64)>> {
-        let mut m: BTreeMap<Key, Vec<(i64, i64)>> = BTreeMap::new();
-        for obj in &s.objects {
-            let (Some(x), Some(y)) = (obj.x, obj.y) else {
-                continue;
-            };
-            let key = (obj.class.clone(), obj.width, obj.height);
-            let Some(objs) = wanted.get(&key) else {
-                continue;
-            };
-            if obj.fixed {
-                continue;
-            }
-            // Every object of a key has the same domain (same size).
-            let (Coord::Var(vx), Coord::Var(vy)) = model.coords[objs[0]] else {
-                continue;
-            };
-            let (dx, dy) = (x - model.origin.0, y - model.origin.1);
-            if dx.rem_euclid(model.grid) != 0 || dy.rem_euclid(model.grid) != 0 {
-                continue;
-            }
-            let (gx, gy) = (dx.div_euclid(model.grid), dy.div_euclid(model.grid));
-            if (0..=model.vars[vx].ub).contains(&gx) && (0..=model.vars[vy].ub).contains(&gy) {
-                m.entry(key).or_default().push((gx, gy));
-            }
+    wanted
+}
+
+/// The usable positions of scene `s` per key (grid values on the model's
+/// grid and inside the objects' domains), in scene order.
+fn usable_positions(model: &Model, wanted: &BTreeMap<Key, Vec<usize>>, s: &Scene) -> Positions {
+    let mut m: Positions = BTreeMap::new();
+    for obj in &s.objects {
+        let (Some(x), Some(y)) = (obj.x, obj.y) else {
+            continue;
+        };
+        let key = (obj.class.clone(), obj.width, obj.height);
+        let Some(objs) = wanted.get(&key) else {
+            continue;
+        };
+        if obj.fixed {
+            continue;
         }
-        m
-    };
-    let per_scene: Vec<BTreeMap<Key, Vec<(i64, i64)>>> = scenes.iter().map(usable).collect();
-    // Scenes that can host the most objects first (ties: file order).
-    let hosts = |m: &BTreeMap<Key, Vec<(i64, i64)>>| -> usize {
+        // Every object of a key has the same domain (same size).
+        let (Coord::Var(vx), Coord::Var(vy)) = model.coords[objs[0]] else {
+            continue;
+        };
+        let (dx, dy) = (x - model.origin.0, y - model.origin.1);
+        if dx.rem_euclid(model.grid) != 0 || dy.rem_euclid(model.grid) != 0 {
+            continue;
+        }
+        let (gx, gy) = (dx.div_euclid(model.grid), dy.div_euclid(model.grid));
+        if (0..=model.vars[vx].ub).contains(&gx) && (0..=model.vars[vy].ub).contains(&gy) {
+            m.entry(key).or_default().push((gx, gy));
+        }
+    }
+    m
+}
+
+/// The scenes in the order their positions are handed out: the most
+/// typical first — the one whose positions the other scenes show most
+/// often (a layout only one demonstration used comes late); ties: the one
+/// that hosts the most objects, then file order.
+fn scene_order(per_scene: &[Positions], wanted: &BTreeMap<Key, Vec<usize>>) -> Vec<usize> {
+    let hosts = |m: &Positions| -> usize {
         m.iter()
             .map(|(k, ps)| ps.len().min(wanted.get(k).map_or(0, Vec::len)))
             .sum()
     };
-    // The most typical scene first: the one whose positions the other
-    // scenes show most often (a layout only one demonstration used comes
-    // late); ties: the one that hosts the most objects. The mosaic fills
-    // what the first leaves from the others.
     let typical = |i: usize| -> usize {
         per_scene[i]
             .iter()
@@ -110,11 +128,23 @@ pub fn hint_values(model: &Model, problem: &Scene, scenes: &[Scene]) -> Option<V
             })
             .sum()
     };
-    let mut order: Vec<usize> = (0..scenes.len()).collect();
+    let mut order: Vec<usize> = (0..per_scene.len()).collect();
     order.sort_by_key(|&i| std::cmp::Reverse((typical(i), hosts(&per_scene[i]))));
+    order
+}
 
-    // Rectangles (real units) already taken: the problem's placed objects
-    // and every hinted position.
+/// The mosaic: positions handed out per key, scene by scene in `order`,
+/// each one that overlaps nothing taken so far (the problem's placed
+/// objects and every position chosen before), until the key's objects
+/// all have one.
+fn mosaic(
+    model: &Model,
+    problem: &Scene,
+    per_scene: &[Positions],
+    order: &[usize],
+    wanted: &BTreeMap<Key, Vec<usize>>,
+) -> Positions {
+    // Rectangles (real units) already taken.
     let mut taken: Vec<(i64, i64, i64, i64)> = problem
         .objects
         .iter()
@@ -123,11 +153,8 @@ pub fn hint_values(model: &Model, problem: &Scene, scenes: &[Scene]) -> Option<V
     let overlaps = |a: &(i64, i64, i64, i64), b: &(i64, i64, i64, i64)| {
         a.0 < b.0 + b.2 && b.0 < a.0 + a.2 && a.1 < b.1 + b.3 && b.1 < a.1 + a.3
     };
-    // Positions handed out per key, then given to the key's objects in
-    // problem order sorted by (y, x): the order symmetry breaking imposes
-    // on interchangeable objects, so a hint never fights it.
-    let mut chosen: BTreeMap<Key, Vec<(i64, i64)>> = BTreeMap::new();
-    for &si in &order {
+    let mut chosen: Positions = BTreeMap::new();
+    for &si in order {
         for (key, positions) in &per_scene[si] {
             let room = wanted[key].len();
             for &(gx, gy) in positions {
@@ -149,6 +176,18 @@ pub fn hint_values(model: &Model, problem: &Scene, scenes: &[Scene]) -> Option<V
             }
         }
     }
+    chosen
+}
+
+/// The chosen positions given to each key's objects in problem order,
+/// sorted by (y, x): the order symmetry breaking imposes on
+/// interchangeable objects, so a hint never fights it. `None` when no
+/// object got a position.
+fn assign(
+    model: &Model,
+    wanted: &BTreeMap<Key, Vec<usize>>,
+    chosen: Positions,
+) -> Option<Vec<Option<i64>>> {
     let mut hint: Vec<Option<i64>> = vec![None; model.vars.len()];
     let mut any = false;
     for (key, mut got) in chosen {

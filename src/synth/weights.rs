@@ -172,7 +172,7 @@ mod tests {
     fn integer_weights_exact_and_reduced() {
         assert_eq!(integer_weights(&[1.0, 1.0, 2.0]), Some(vec![1, 1, 2]));
         assert_eq!(integer_weights(&[2.5, 1.0]), Some(vec![5, 2]));
-        // Reduced before the size check (issue 35, item 10).
+        // Reduced before the size check.
         assert_eq!(integer_weights(&[1e9, 2e9, 1e9]), Some(vec![1, 2, 1]));
         let p = [-(1e-8f64).ln(), -(0.001f64).ln()];
         let v = integer_weights(&p).unwrap();

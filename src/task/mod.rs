@@ -27,7 +27,7 @@ pub mod folder;
 pub mod session;
 
 use crate::infer::{InferError, LearnParams, Learned};
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::{check_landmarks, missing_classes, parse_rules, RuleSet, RulesError};
 use crate::scene::{scenes_from_json, Scene, SceneError};
 use crate::synth::{synthesize, SynthError, SynthOptions, SynthResult};
@@ -236,7 +236,7 @@ pub struct Placement {
     pub missing_classes: Vec<String>,
     /// The resemblance target used, if any (e.g. for
     /// [`crate::render::RenderOptions::like`]).
-    pub like: Option<Likeness>,
+    pub like: Option<ResemblanceTarget>,
 }
 
 /// What [`run`] produced.
@@ -264,8 +264,8 @@ pub fn place(
     let missing = missing_classes(rules, problem);
     check_landmarks(rules, problem).map_err(TaskError::Landmark)?;
     let like = match like {
-        Like::Demos => Some(Likeness::new(demos)),
-        Like::Scenes(s) => Some(Likeness::new(s)),
+        Like::Demos => Some(ResemblanceTarget::new(demos)),
+        Like::Scenes(s) => Some(ResemblanceTarget::new(s)),
         Like::Off => None,
     };
     let opts = SynthOptions {

@@ -69,7 +69,7 @@ use super::answers::{Answer, CONFIRMED};
 use super::budget::{Meter, QuestionBudget};
 use super::probe::{Probe, ProbeChecker, ProbeOptions};
 use crate::infer::{InferError, LearnParams, Learned};
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::{print_rule, RuleSet};
 use crate::scene::Scene;
 use crate::synth::SynthError;
@@ -223,7 +223,7 @@ pub struct Asker {
     answers: Vec<Answer>,
     confirmed: BTreeSet<String>,
     /// Resemblance to the demonstrations (accepted probes included).
-    like: Option<Likeness>,
+    like: Option<ResemblanceTarget>,
     known: HashMap<String, Known>,
     /// Which held rule alone implies which (by statement text; `None`: a
     /// limit stopped the check, which counts as "no"), while the held
@@ -356,7 +356,7 @@ impl Asker {
             None,
             None,
         )?;
-        let like = opts.resemble.then(|| Likeness::new(&demos));
+        let like = opts.resemble.then(|| ResemblanceTarget::new(&demos));
         let mut asker = Asker {
             problem,
             demos,
@@ -569,7 +569,7 @@ impl Asker {
                 None,
                 None,
             )?;
-            self.like = self.opts.resemble.then(|| Likeness::new(&demos));
+            self.like = self.opts.resemble.then(|| ResemblanceTarget::new(&demos));
             self.demos = demos;
             self.learned = learned;
             self.known.clear();

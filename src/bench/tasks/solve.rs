@@ -8,7 +8,7 @@ use crate::bench::peers::Peer;
 use crate::bench::thesis::PeerRow;
 use crate::bench::{peers, Solver};
 use crate::relations::Contact;
-use crate::resemblance::Likeness;
+use crate::resemblance::ResemblanceTarget;
 use crate::rules::RuleSet;
 use crate::scene::Scene;
 use crate::synth::{Status, SynthOptions};
@@ -22,7 +22,7 @@ pub fn solve_options(cfg: &TasksConfig, demos: &[Scene], like: bool) -> SynthOpt
         contact: Contact::Point,
         time_limit: Some(cfg.time_limit),
         seed: cfg.seed,
-        like: like.then(|| Likeness::new(demos)),
+        like: like.then(|| ResemblanceTarget::new(demos)),
         ..SynthOptions::default()
     };
     if cfg.warm_start {

@@ -4,12 +4,11 @@
 //!
 //! # Background
 //!
-//! The model used to state this as one clause `DR_N ∨ DR_S ∨ DR_E ∨ DR_W`
-//! per pair, each literal a reified linear constraint: four propagators
-//! per pair, so memory grew with the square of the objects (200 movable
-//! objects took 503 MB, 400 took 2 GB and 13 s to post; issue 35, item 6).
-//! This propagator holds only the objects' sizes and variables, so memory
-//! is linear; the pairs are looked at when it runs.
+//! As clauses, non-overlap is `DR_N ∨ DR_S ∨ DR_E ∨ DR_W` per pair, each
+//! literal a reified linear constraint: four propagators per pair, so
+//! memory grows with the square of the objects. This propagator holds only
+//! the objects' sizes and variables, so memory is linear; the pairs are
+//! looked at when it runs.
 //!
 //! # Propagation
 //!
@@ -22,8 +21,8 @@
 //! rounded to the grid), explained by the other three impossibilities and
 //! the bound it is computed from; when none is, posting the first one
 //! fails, with the same reason: a conflict. This is exactly what unit
-//! propagation did on the pair's clause with bound-consistent reified
-//! literals, so the search is the same as before.
+//! propagation does on the pair's clause with bound-consistent reified
+//! literals, so the search is the same as with the clauses.
 //!
 //! # Practical
 //!

@@ -4,7 +4,7 @@
 //! # Background
 //!
 //! Each object's cost is bounded below by the minimum of its map over its
-//! current box ([`like_map`](super::like_map)). When a problem has more
+//! current box ([`resemblance_map`](super::resemblance_map)). When a problem has more
 //! objects of a class than the demonstrations show positions, every object
 //! can still sit on a shown position *alone*, so the sum of those minima
 //! stays at 0 while every layout costs more: the objects compete for the
@@ -56,7 +56,7 @@ use pumpkin_core::Solver;
 use std::cell::RefCell;
 use std::rc::Rc;
 
-declare_inference_label!(LikeGroup);
+declare_inference_label!(ResemblanceGroup);
 
 /// The static data of a group: its map with blocked cells, and its tile.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -140,7 +140,7 @@ pub(super) struct GroupVars {
 }
 
 /// The groups of a model's resemblance terms, posted with the rest of the
-/// second objective ([`super::like`]).
+/// second objective ([`super::resemblance`]).
 #[derive(Debug, Clone)]
 pub(super) struct CostGroups {
     /// The groups of two or more objects.
@@ -172,7 +172,7 @@ impl CostGroups {
                 g.costs.iter().map(|c| c.scaled(1)).collect();
             terms.push(sum.scaled(-1));
             solver.add_constraint(equals(terms, 0, tag)).post();
-            let _ = solver.add_propagator(LikeGroupArgs {
+            let _ = solver.add_propagator(ResemblanceGroupArgs {
                 xs: g.xs,
                 ys: g.ys,
                 sum,
@@ -188,9 +188,9 @@ impl CostGroups {
     }
 }
 
-/// Posts [`LikeGroupPropagator`].
+/// Posts [`ResemblanceGroupPropagator`].
 #[derive(Debug, Clone)]
-pub(super) struct LikeGroupArgs {
+pub(super) struct ResemblanceGroupArgs {
     xs: Vec<DomainId>,
     ys: Vec<DomainId>,
     /// The group's cost, `Σ cᵢ`.
@@ -199,8 +199,8 @@ pub(super) struct LikeGroupArgs {
     tag: ConstraintTag,
 }
 
-impl PropagatorConstructor for LikeGroupArgs {
-    type PropagatorImpl = LikeGroupPropagator;
+impl PropagatorConstructor for ResemblanceGroupArgs {
+    type PropagatorImpl = ResemblanceGroupPropagator;
 
     fn create(self, ctx: PropagatorConstructorContext) -> PropagatorSpec<Self::PropagatorImpl> {
         let free_above = ctx.upper_bound(&self.sum);
@@ -218,14 +218,14 @@ impl PropagatorConstructor for LikeGroupArgs {
         PropagatorSpec {
             registration: registration.build(),
             checkers: RuntimeCheckers::empty(),
-            propagator: LikeGroupPropagator {
+            propagator: ResemblanceGroupPropagator {
                 xs: self.xs,
                 ys: self.ys,
                 sum: self.sum,
                 map: self.map,
                 boxes: RefCell::new(Vec::new()),
                 free_above,
-                code: InferenceCode::new(self.tag, LikeGroup),
+                code: InferenceCode::new(self.tag, ResemblanceGroup),
             },
         }
     }
@@ -233,7 +233,7 @@ impl PropagatorConstructor for LikeGroupArgs {
 
 /// `Σ cᵢ ≥` the tile bound; see the module documentation.
 #[derive(Debug, Clone)]
-pub(super) struct LikeGroupPropagator {
+pub(super) struct ResemblanceGroupPropagator {
     xs: Vec<DomainId>,
     ys: Vec<DomainId>,
     sum: DomainId,
@@ -244,7 +244,7 @@ pub(super) struct LikeGroupPropagator {
     code: InferenceCode,
 }
 
-impl LikeGroupPropagator {
+impl ResemblanceGroupPropagator {
     /// The bounds of every object that are not at the root.
     fn reason(&self, ctx: &PropagationContext) -> PropositionalConjunction {
         let mut r = PropositionalConjunction::default();
@@ -264,9 +264,9 @@ impl LikeGroupPropagator {
     }
 }
 
-impl Propagator for LikeGroupPropagator {
+impl Propagator for ResemblanceGroupPropagator {
     fn name(&self) -> &str {
-        "LikeGroup"
+        "ResemblanceGroup"
     }
 
     fn priority(&self) -> Priority {

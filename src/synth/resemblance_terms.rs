@@ -9,12 +9,12 @@
 //! choose has a cost.
 
 use super::model::{Coord, Model};
-use crate::resemblance::{DistanceMap, Likeness, LikenessError};
+use crate::resemblance::{DistanceMap, ResemblanceError, ResemblanceTarget};
 use crate::scene::Scene;
 
 /// One object's share of the resemblance cost.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct LikeTerm {
+pub struct ResemblanceTerm {
     /// The object (index into the problem's objects).
     pub object: usize,
     /// Its x grid variable (index into `Model::vars`).
@@ -25,7 +25,7 @@ pub struct LikeTerm {
     pub map: DistanceMap,
 }
 
-impl LikeTerm {
+impl ResemblanceTerm {
     /// The cost at grid values `vals` (one per model variable).
     pub fn cost(&self, vals: &[i64]) -> u64 {
         let (gx, gy) = (vals[self.x], vals[self.y]);
@@ -38,11 +38,11 @@ impl LikeTerm {
 
 /// The terms of every unplaced object of `problem` in `model` (built from
 /// the same problem).
-pub fn like_terms(
+pub fn resemblance_terms(
     model: &Model,
     problem: &Scene,
-    like: &Likeness,
-) -> Result<Vec<LikeTerm>, LikenessError> {
+    like: &ResemblanceTarget,
+) -> Result<Vec<ResemblanceTerm>, ResemblanceError> {
     let mut out = Vec::new();
     // One map per class and size (objects of one class and size share it).
     let mut maps: std::collections::HashMap<(&str, i64, i64), Option<DistanceMap>> =
@@ -63,7 +63,7 @@ pub fn like_terms(
         if let Some(map) = map {
             debug_assert_eq!(map.nx, model.vars[x].ub as u64 + 1);
             debug_assert_eq!(map.ny, model.vars[y].ub as u64 + 1);
-            out.push(LikeTerm {
+            out.push(ResemblanceTerm {
                 object: i,
                 x,
                 y,
@@ -75,7 +75,7 @@ pub fn like_terms(
 }
 
 /// The total cost of grid values `vals`.
-pub fn total_cost(terms: &[LikeTerm], vals: &[i64]) -> u64 {
+pub fn total_cost(terms: &[ResemblanceTerm], vals: &[i64]) -> u64 {
     terms
         .iter()
         .map(|t| t.cost(vals))
@@ -101,7 +101,7 @@ mod tests {
               {"id":"w","class":"W","x":3,"y":-2,"width":5,"height":5,"fixed":true}]}"#,
         )
         .unwrap();
-        let like = Likeness::new(&[Scene::from_json(
+        let like = ResemblanceTarget::new(&[Scene::from_json(
             r#"{"space":{"x":3,"y":-2,"width":40,"height":30},"grid":10,"objects":[
               {"class":"A","x":21,"y":4,"width":10,"height":10},
               {"class":"B","x":3,"y":18,"width":20,"height":10},
@@ -118,7 +118,7 @@ mod tests {
                 redundant: false,
             },
         );
-        let terms = like_terms(&model, &problem, &like).unwrap();
+        let terms = resemblance_terms(&model, &problem, &like).unwrap();
         assert_eq!(terms.iter().map(|t| t.object).collect::<Vec<_>>(), [0, 1]);
         let ub: Vec<i64> = model.vars.iter().map(|v| v.ub).collect();
         let mut vals = vec![0i64; ub.len()];

@@ -1,6 +1,6 @@
 //! The second objective in the engine: per resemblance term a cost
 //! variable bounded below by its distance map, their total, and the group
-//! bounds of [`like_group`](super::like_group).
+//! bounds of [`resemblance_group`](super::resemblance_group).
 //!
 //! # Background
 //!
@@ -16,7 +16,7 @@
 //!
 //! # Practical
 //!
-//! [`PendingLike`] holds the terms (and the group maps, which need the
+//! [`PendingResemblance`] holds the terms (and the group maps, which need the
 //! model) until the engine is told the second phase starts
 //! ([`Backend::start_cost_phase`](crate::synth::backend::Backend), or the
 //! first call that names the cost); then everything is posted at the root
@@ -25,12 +25,12 @@
 //!
 //! # How to extend
 //!
-//! Another bound on the cost is one more constraint in [`PendingLike::post`].
+//! Another bound on the cost is one more constraint in [`PendingResemblance::post`].
 
-use super::like_group::{CostGroups, GroupMap, GroupVars};
-use super::like_map;
-use crate::synth::like::LikeTerm;
+use super::resemblance_group::{CostGroups, GroupMap, GroupVars};
+use super::resemblance_map;
 use crate::synth::model::{Coord, Model};
+use crate::synth::resemblance_terms::ResemblanceTerm;
 use pumpkin_constraints::equals;
 use pumpkin_core::predicate;
 use pumpkin_core::proof::ConstraintTag;
@@ -40,14 +40,14 @@ use std::rc::Rc;
 
 /// The second objective, not yet posted.
 #[derive(Debug, Clone)]
-pub(super) struct PendingLike {
-    terms: Vec<LikeTerm>,
+pub(super) struct PendingResemblance {
+    terms: Vec<ResemblanceTerm>,
     /// Groups of two or more terms (indices into `terms`) with their map.
     groups: Vec<(Vec<usize>, Rc<GroupMap>)>,
 }
 
-/// What [`PendingLike::post`] made.
-pub(super) struct PostedLike {
+/// What [`PendingResemblance::post`] made.
+pub(super) struct PostedResemblance {
     /// The total cost.
     pub(super) total: DomainId,
     /// Every variable it created (for the brancher).
@@ -58,13 +58,13 @@ fn clamp_i32(v: i64) -> i32 {
     i32::try_from(v.clamp(i64::from(i32::MIN), i64::from(i32::MAX))).unwrap_or(i32::MAX)
 }
 
-impl PendingLike {
+impl PendingResemblance {
     /// The terms of `model` (none: no second objective).
-    pub(super) fn new(model: &Model, like: &[LikeTerm]) -> Option<PendingLike> {
+    pub(super) fn new(model: &Model, like: &[ResemblanceTerm]) -> Option<PendingResemblance> {
         if like.is_empty() {
             return None;
         }
-        let groups = like_groups(model, like)
+        let groups = resemblance_groups(model, like)
             .into_iter()
             .filter(|g| g.len() >= 2)
             .map(|g| {
@@ -72,7 +72,7 @@ impl PendingLike {
                 (g, map)
             })
             .collect();
-        Some(PendingLike {
+        Some(PendingResemblance {
             terms: like.to_vec(),
             groups,
         })
@@ -86,16 +86,16 @@ impl PendingLike {
             .fold(0, u64::saturating_add)
     }
 
-    /// Post at the root (the ranges were checked by `like_fits`): per term
+    /// Post at the root (the ranges were checked by `resemblance_fits`): per term
     /// a cost variable with its clauses and bounds propagator
-    /// ([`like_encoding`]), the total their sum, and the group bounds.
+    /// ([`resemblance_encoding`]), the total their sum, and the group bounds.
     pub(super) fn post(
         self,
         solver: &mut Solver,
         vars: &[DomainId],
         tag: ConstraintTag,
-    ) -> PostedLike {
-        let hi_of = |t: &LikeTerm| t.map.cost.iter().copied().max().unwrap_or(0);
+    ) -> PostedResemblance {
+        let hi_of = |t: &ResemblanceTerm| t.map.cost.iter().copied().max().unwrap_or(0);
         let costs: Vec<DomainId> = self
             .terms
             .iter()
@@ -109,19 +109,19 @@ impl PendingLike {
         let total = solver.new_bounded_integer(clamp_i32(lo as i64), clamp_i32(hi as i64));
         let mut created = costs.clone();
         created.push(total);
-        let encoding = like_encoding();
+        let encoding = resemblance_encoding();
         let mut sum: Vec<AffineView<DomainId>> = Vec::with_capacity(costs.len() + 1);
         for (t, &c) in self.terms.iter().zip(&costs) {
-            if encoding != LikeEncoding::Propagator {
+            if encoding != ResemblanceEncoding::Propagator {
                 post_clauses(solver, t, vars[t.x], vars[t.y], c, tag);
             }
-            if encoding != LikeEncoding::Clauses {
+            if encoding != ResemblanceEncoding::Clauses {
                 let cells: Vec<i32> = t.map.cost.iter().map(|&v| clamp_i32(v as i64)).collect();
-                let _ = solver.add_propagator(like_map::LikeMapArgs {
+                let _ = solver.add_propagator(resemblance_map::ResemblanceMapArgs {
                     gx: vars[t.x],
                     gy: vars[t.y],
                     cost: c,
-                    map: Rc::new(like_map::MapIndex::new(
+                    map: Rc::new(resemblance_map::MapIndex::new(
                         t.map.nx as usize,
                         t.map.ny as usize,
                         &cells,
@@ -163,14 +163,14 @@ impl PendingLike {
             };
             created.extend(groups.post(solver, tag));
         }
-        PostedLike { total, created }
+        PostedResemblance { total, created }
     }
 }
 
 /// The resemblance terms in groups of one class and size (same size,
 /// same map), in order of first appearance; every term alone when
 /// `RCCPACK_LIKE_GROUPS=off`.
-fn like_groups(model: &Model, like: &[LikeTerm]) -> Vec<Vec<usize>> {
+fn resemblance_groups(model: &Model, like: &[ResemblanceTerm]) -> Vec<Vec<usize>> {
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let off = std::env::var("RCCPACK_LIKE_GROUPS").is_ok_and(|v| v == "off");
     for (i, t) in like.iter().enumerate() {
@@ -189,7 +189,7 @@ fn like_groups(model: &Model, like: &[LikeTerm]) -> Vec<Vec<usize>> {
 
 /// The group map of term `t`'s object: its distance map with the cells
 /// where it would overlap a fixed (or already placed) object blocked.
-fn group_map(m: &Model, t: &LikeTerm) -> GroupMap {
+fn group_map(m: &Model, t: &ResemblanceTerm) -> GroupMap {
     let (w, h) = m.sizes[t.object];
     let fixed: Vec<(i64, i64, i64, i64)> = m
         .coords
@@ -228,7 +228,7 @@ fn group_map(m: &Model, t: &LikeTerm) -> GroupMap {
 
 /// How a resemblance term is posted: the clauses of [`post_clauses`] (exact
 /// once a coordinate is fixed, value-level pruning under `c ≤ u`), the
-/// bounds propagator of [`like_map`](super::like_map) (raises `c` from the bounds of both
+/// bounds propagator of [`resemblance_map`](super::resemblance_map) (raises `c` from the bounds of both
 /// coordinates), or both (the default: strictly stronger than either).
 ///
 /// Measured on the realistic tasks' `--like` solves that both prove
@@ -239,7 +239,7 @@ fn group_map(m: &Model, t: &LikeTerm) -> GroupMap {
 /// a 20-object task) but found worse layouts when the limit struck on
 /// 31-object tasks (cost 28 against 15), so the clauses stay.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum LikeEncoding {
+pub(crate) enum ResemblanceEncoding {
     /// Clauses only.
     Clauses,
     /// The bounds propagator only.
@@ -251,15 +251,15 @@ pub(crate) enum LikeEncoding {
 #[cfg(test)]
 thread_local! {
     /// The encoding engines built on this thread use (tests compare them).
-    pub(crate) static LIKE_ENCODING: std::cell::Cell<LikeEncoding> =
-        const { std::cell::Cell::new(LikeEncoding::Both) };
+    pub(crate) static RESEMBLANCE_ENCODING: std::cell::Cell<ResemblanceEncoding> =
+        const { std::cell::Cell::new(ResemblanceEncoding::Both) };
 }
 
-pub(super) fn like_encoding() -> LikeEncoding {
+pub(super) fn resemblance_encoding() -> ResemblanceEncoding {
     #[cfg(test)]
-    return LIKE_ENCODING.with(|e| e.get());
+    return RESEMBLANCE_ENCODING.with(|e| e.get());
     #[cfg(not(test))]
-    LikeEncoding::Both
+    ResemblanceEncoding::Both
 }
 
 /// Bound one object's resemblance cost `c` from below by its distance map:
@@ -274,7 +274,7 @@ pub(super) fn like_encoding() -> LikeEncoding {
 /// these clauses take a few milliseconds.
 fn post_clauses(
     solver: &mut Solver,
-    t: &LikeTerm,
+    t: &ResemblanceTerm,
     gx: DomainId,
     gy: DomainId,
     c: DomainId,

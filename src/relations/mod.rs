@@ -44,9 +44,14 @@
 //! [`relation_bits`]; the bit test fails until the fast path agrees with the
 //! table. Seventeen or more relations need a wider mask than `u16`.
 
-use crate::scene::{Rect, Scene};
+use crate::scene::Rect;
 use std::fmt;
-use std::sync::OnceLock;
+
+mod atoms;
+mod bits;
+
+pub use atoms::{ClassAtoms, ClassIndex, TargetCount};
+pub use bits::{holds, implies, order_types, relation_bits};
 
 /// A compass direction; north is +y, east is +x.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -226,7 +231,7 @@ impl Relation {
     }
 
     /// Its entry in [`TABLE`].
-    pub const fn def(self) -> &'static RelationDef {
+    pub(crate) const fn def(self) -> &'static RelationDef {
         &TABLE[self.index()]
     }
 
@@ -345,7 +350,7 @@ impl Edge {
         }
     }
     /// Whether it is the far edge (`x2`, `y2`): the near edge plus the size.
-    pub const fn is_far(self) -> bool {
+    pub(crate) const fn is_far(self) -> bool {
         matches!(self, Edge::X2 | Edge::Y2)
     }
     /// Its value on `r`.
@@ -442,7 +447,7 @@ impl RelationDef {
             .any(|conj| conj.iter().all(|c| c.holds(a, b)))
     }
     /// The English verb phrase with the direction filled in.
-    pub fn verb_phrase(&self) -> String {
+    pub(crate) fn verb_phrase(&self) -> String {
         self.verb.replace("{d}", self.rel.dir.word())
     }
 }
@@ -577,369 +582,3 @@ pub const TABLE: [RelationDef; 16] = {
         def(AL, W, "AL_W", c::AL_W, c::AL_W, ALV),
     ]
 };
-
-/// Every order type of two rectangles: all pairs with coordinates in
-/// `0..4` on each axis (four edge values per axis take at most four distinct
-/// values, and every condition of [`TABLE`] compares edges only).
-pub fn order_types() -> impl Iterator<Item = (Rect, Rect)> {
-    let spans: Vec<(i64, i64)> = (0..4)
-        .flat_map(|lo| (lo + 1..4).map(move |hi| (lo, hi - lo)))
-        .collect();
-    let axis: Vec<((i64, i64), (i64, i64))> = spans
-        .iter()
-        .flat_map(|&a| spans.iter().map(move |&b| (a, b)))
-        .collect();
-    let ys = axis.clone();
-    axis.into_iter().flat_map(move |(ax, bx)| {
-        ys.clone().into_iter().map(move |(ay, by)| {
-            (
-                Rect::new(ax.0, ay.0, ax.1, ay.1),
-                Rect::new(bx.0, by.0, bx.1, by.1),
-            )
-        })
-    })
-}
-
-/// Whether `p(a, b) ⇒ q(a, b)` for every pair of rectangles under
-/// `contact`, computed from [`TABLE`] over every order type.
-pub fn implies(p: Relation, q: Relation, contact: Contact) -> bool {
-    static MATRIX: OnceLock<[[RelBits; 16]; 2]> = OnceLock::new();
-    let m = MATRIX.get_or_init(|| {
-        let mut m = [[RelBits::MAX; 16]; 2];
-        for (ci, contact) in Contact::ALL.into_iter().enumerate() {
-            for (a, b) in order_types() {
-                let bits: RelBits = TABLE
-                    .iter()
-                    .filter(|d| d.holds(&a, &b, contact))
-                    .fold(0, |acc, d| acc | d.rel.bit());
-                for r in Relation::ALL {
-                    if bits & r.bit() != 0 {
-                        m[ci][r.index()] &= bits;
-                    }
-                }
-            }
-        }
-        m
-    });
-    let ci = match contact {
-        Contact::Point => 0,
-        Contact::Edge => 1,
-    };
-    m[ci][p.index()] & q.bit() != 0
-}
-
-/// Whether intervals `[a1, a2]` and `[b1, b2]` meet under `contact`.
-#[inline]
-pub const fn projections_meet(a1: i64, a2: i64, b1: i64, b2: i64, contact: Contact) -> bool {
-    match contact {
-        Contact::Point => a1 <= b2 && b1 <= a2,
-        Contact::Edge => a1 < b2 && b1 < a2,
-    }
-}
-
-/// Whether one of `[a1, a2]`, `[b1, b2]` contains the other.
-#[inline]
-const fn nested(a1: i64, a2: i64, b1: i64, b2: i64) -> bool {
-    (b1 <= a1 && a2 <= b2) || (a1 <= b1 && b2 <= a2)
-}
-
-/// All sixteen relations of `(a, b)` as one mask (bit `Relation::index()`).
-///
-/// The fast path of [`TABLE`]: `tests/relations.rs` checks it against
-/// [`RelationDef::holds`] on every order type, in both contact modes.
-#[inline]
-pub fn relation_bits(a: &Rect, b: &Rect, contact: Contact) -> RelBits {
-    let mut bits: RelBits = 0;
-    let (ax2, ay2, bx2, by2) = (a.x2(), a.y2(), b.x2(), b.y2());
-    if a.y >= by2 {
-        bits |= 1; // DR_N
-    }
-    if ay2 <= b.y {
-        bits |= 1 << 1; // DR_S
-    }
-    if a.x >= bx2 {
-        bits |= 1 << 2; // DR_E
-    }
-    if ax2 <= b.x {
-        bits |= 1 << 3; // DR_W
-    }
-    let xm = projections_meet(a.x, ax2, b.x, bx2, contact);
-    let ym = projections_meet(a.y, ay2, b.y, by2, contact);
-    let xn = nested(a.x, ax2, b.x, bx2);
-    let yn = nested(a.y, ay2, b.y, by2);
-    if a.y == by2 {
-        bits |= (xm as RelBits) << 4 | (xn as RelBits) << 8; // EC_N, FL_N
-    }
-    if ay2 == b.y {
-        bits |= (xm as RelBits) << 5 | (xn as RelBits) << 9; // EC_S, FL_S
-    }
-    if a.x == bx2 {
-        bits |= (ym as RelBits) << 6 | (yn as RelBits) << 10; // EC_E, FL_E
-    }
-    if ax2 == b.x {
-        bits |= (ym as RelBits) << 7 | (yn as RelBits) << 11; // EC_W, FL_W
-    }
-    bits |= ((ay2 == by2) as RelBits) << 12; // AL_N
-    bits |= ((a.y == b.y) as RelBits) << 13; // AL_S
-    bits |= ((ax2 == bx2) as RelBits) << 14; // AL_E
-    bits |= ((a.x == b.x) as RelBits) << 15; // AL_W
-    bits
-}
-
-/// Whether `rel(a, b)` holds.
-#[inline]
-pub fn holds(rel: Relation, a: &Rect, b: &Rect, contact: Contact) -> bool {
-    relation_bits(a, b, contact) & rel.bit() != 0
-}
-
-/// Class names (and landmark ids) interned to dense indices for one
-/// evaluation.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct ClassIndex {
-    names: Vec<String>,
-    landmarks: Vec<String>,
-}
-
-impl ClassIndex {
-    /// The classes of a scene, in order of first appearance.
-    pub fn of_scene(scene: &Scene) -> Self {
-        ClassIndex {
-            names: scene.classes().into_iter().map(String::from).collect(),
-            landmarks: Vec::new(),
-        }
-    }
-    /// Intern a name (adds it when new) and return its index.
-    pub fn intern(&mut self, name: &str) -> usize {
-        match self.get(name) {
-            Some(i) => i,
-            None => {
-                self.names.push(name.to_string());
-                self.names.len() - 1
-            }
-        }
-    }
-    /// Intern a landmark id (adds it when new) and return its index.
-    pub fn intern_landmark(&mut self, id: &str) -> usize {
-        match self.landmarks.iter().position(|n| n == id) {
-            Some(i) => i,
-            None => {
-                self.landmarks.push(id.to_string());
-                self.landmarks.len() - 1
-            }
-        }
-    }
-    /// Index of a class name.
-    pub fn get(&self, name: &str) -> Option<usize> {
-        self.names.iter().position(|n| n == name)
-    }
-    /// Number of classes.
-    pub fn len(&self) -> usize {
-        self.names.len()
-    }
-    /// Whether there are none.
-    pub fn is_empty(&self) -> bool {
-        self.names.is_empty()
-    }
-    /// Name of class `i`.
-    pub fn name(&self, i: usize) -> &str {
-        &self.names[i]
-    }
-    /// All names.
-    pub fn names(&self) -> &[String] {
-        &self.names
-    }
-    /// Interned landmark ids.
-    pub fn landmarks(&self) -> &[String] {
-        &self.landmarks
-    }
-}
-
-/// For one object and one target: how many target objects there are and,
-/// per relation, how many of them the object stands in it with.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct TargetCount {
-    /// `m`: the other placed objects of the target.
-    pub total: u32,
-    /// `c` per relation (index `Relation::index()`).
-    pub hits: [u32; 16],
-}
-
-impl TargetCount {
-    /// Whether `rel(o, Q target)` holds.
-    #[inline]
-    pub fn holds(&self, rel: Relation, quant: Quant) -> bool {
-        quant.holds(self.hits[rel.index()], self.total)
-    }
-    /// The mask of relations whose default lifting holds (the first
-    /// edition's class-atom byte, widened).
-    pub fn default_bits(&self) -> RelBits {
-        Relation::ALL
-            .iter()
-            .filter(|r| self.holds(**r, r.default_quant()))
-            .fold(0, |acc, r| acc | r.bit())
-    }
-    fn add(&mut self, bits: RelBits) {
-        self.total += 1;
-        let mut b = bits;
-        while b != 0 {
-            let i = b.trailing_zeros() as usize;
-            self.hits[i] += 1;
-            b &= b - 1;
-        }
-    }
-}
-
-/// The count of a target with no objects.
-pub const EMPTY_TARGET: TargetCount = TargetCount {
-    total: 0,
-    hits: [0; 16],
-};
-
-/// Per placed object and per target (every class, then `*`), the
-/// [`TargetCount`] of SPEC §4 and §11.2; plus the scene's landmarks.
-///
-/// Object indices are indices into `scene.objects`; unplaced objects have no
-/// row (they take no part in evaluation).
-#[derive(Debug, Clone)]
-pub struct ClassAtoms {
-    /// Number of targets per row = classes + 1 (the last is `*`).
-    stride: usize,
-    /// `row[i]`: row start of object `i` in `counts`, or `usize::MAX` if unplaced.
-    row: Vec<usize>,
-    /// Class index of each object.
-    class_of: Vec<usize>,
-    counts: Vec<TargetCount>,
-    rects: Vec<Option<Rect>>,
-    /// Per interned landmark id: the fixed, placed object with that id.
-    landmarks: Vec<Option<usize>>,
-    contact: Contact,
-}
-
-impl ClassAtoms {
-    /// Build the table for `scene` with the given class index (every class of
-    /// the scene must be in it; extra classes simply have no objects).
-    /// Landmark ids interned in `classes` are resolved to this scene's fixed
-    /// objects.
-    pub fn new(scene: &Scene, classes: &ClassIndex, contact: Contact) -> Self {
-        let n = scene.objects.len();
-        let stride = classes.len() + 1;
-        let class_of: Vec<usize> = scene
-            .objects
-            .iter()
-            .map(|o| classes.get(&o.class).unwrap_or(usize::MAX))
-            .collect();
-        let rects: Vec<Option<Rect>> = scene.objects.iter().map(|o| o.rect()).collect();
-        let mut row = vec![usize::MAX; n];
-        let mut next = 0;
-        for i in 0..n {
-            if rects[i].is_some() {
-                row[i] = next;
-                next += stride;
-            }
-        }
-        let mut counts = vec![EMPTY_TARGET; next];
-        for i in 0..n {
-            let Some(a) = rects[i] else { continue };
-            let base = row[i];
-            for j in 0..n {
-                if i == j {
-                    continue;
-                }
-                let Some(b) = rects[j] else { continue };
-                let bits = relation_bits(&a, &b, contact);
-                if class_of[j] < stride - 1 {
-                    counts[base + class_of[j]].add(bits);
-                }
-                counts[base + stride - 1].add(bits);
-            }
-        }
-        let landmarks = classes
-            .landmarks()
-            .iter()
-            .map(|id| {
-                scene
-                    .objects
-                    .iter()
-                    .position(|o| o.fixed && o.is_placed() && &o.id == id)
-            })
-            .collect();
-        ClassAtoms {
-            stride,
-            row,
-            class_of,
-            counts,
-            rects,
-            landmarks,
-            contact,
-        }
-    }
-
-    /// The counts of object `obj` against `target` (`None` = `*`), or
-    /// `None` when the object is unplaced.
-    #[inline]
-    pub fn count(&self, obj: usize, target: Option<usize>) -> Option<&TargetCount> {
-        let r = *self.row.get(obj)?;
-        if r == usize::MAX {
-            return None;
-        }
-        let t = match target {
-            None => self.stride - 1,
-            Some(t) if t < self.stride - 1 => t,
-            // A class the table does not know has no objects.
-            Some(_) => return Some(&EMPTY_TARGET),
-        };
-        Some(&self.counts[r + t])
-    }
-
-    /// The counts of object `obj` against landmark `lm` (an index of
-    /// [`ClassIndex::landmarks`]): one target object, or none when the
-    /// landmark is missing from the scene or is `obj` itself. `None` when
-    /// `obj` is unplaced.
-    pub fn landmark_count(&self, obj: usize, lm: usize) -> Option<TargetCount> {
-        let a = (*self.rects.get(obj)?)?;
-        let mut c = EMPTY_TARGET;
-        if let Some(Some(l)) = self.landmarks.get(lm) {
-            if *l != obj {
-                if let Some(b) = self.rects[*l] {
-                    c.add(relation_bits(&a, &b, self.contact));
-                }
-            }
-        }
-        Some(c)
-    }
-
-    /// The default-lifted bits of `obj` against `target` (§4: `DR` every,
-    /// the others some), or `None` when unplaced.
-    pub fn bits(&self, obj: usize, target: Option<usize>) -> Option<RelBits> {
-        self.count(obj, target).map(TargetCount::default_bits)
-    }
-
-    /// Whether the class atom `rel(obj's class, target)` with its default
-    /// quantifier holds for `obj`. Unplaced objects satisfy nothing.
-    #[inline]
-    pub fn holds(&self, obj: usize, rel: Relation, target: Option<usize>) -> bool {
-        self.count(obj, target)
-            .is_some_and(|c| c.holds(rel, rel.default_quant()))
-    }
-
-    /// Class index of object `obj` (`usize::MAX` for a class the index does
-    /// not know).
-    pub fn class_of(&self, obj: usize) -> usize {
-        self.class_of[obj]
-    }
-
-    /// Whether object `obj` is placed.
-    pub fn is_placed(&self, obj: usize) -> bool {
-        self.row.get(obj).is_some_and(|&r| r != usize::MAX)
-    }
-
-    /// The rectangle of object `obj` (`None` when unplaced).
-    pub fn rect(&self, obj: usize) -> Option<Rect> {
-        self.rects.get(obj).copied().flatten()
-    }
-
-    /// The contact mode the table was built with.
-    pub fn contact(&self) -> Contact {
-        self.contact
-    }
-}

@@ -4,7 +4,7 @@
 //! # Background
 //!
 //! The second phase minimises `Σ cᵢ`, each `cᵢ` bounded below by a table
-//! over the object's grid position. The clauses of `post_like` raise `cᵢ`
+//! over the object's grid position. The clauses of `post_resemblance` raise `cᵢ`
 //! only once a coordinate is *fixed* (a column, a row, a cell); the
 //! default brancher mostly narrows bounds (`[gx ≥ k]`), so most of the
 //! search ran with `cᵢ` at its root minimum and the sum could not fail
@@ -26,7 +26,7 @@
 //!
 //! # How to extend
 //!
-//! Holes in the domains are ignored (bounds only); `post_like`'s clauses
+//! Holes in the domains are ignored (bounds only); `post_resemblance`'s clauses
 //! remain for value-level pruning. A propagator over the *sum* (objects of
 //! one class competing for the same shown positions) would be the next
 //! strengthening.
@@ -44,7 +44,7 @@ use pumpkin_core::state::{EmptyDomainConflict, PropagationStatusCP};
 use pumpkin_core::variables::DomainId;
 use std::rc::Rc;
 
-declare_inference_label!(LikeMap);
+declare_inference_label!(ResemblanceMap);
 
 /// Range minima over one axis of a table: `level[k][i] = min(v[i..i+2^k])`.
 #[derive(Debug, Clone)]
@@ -121,9 +121,9 @@ impl MapIndex {
     }
 }
 
-/// Posts [`LikeMapPropagator`].
+/// Posts [`ResemblanceMapPropagator`].
 #[derive(Debug, Clone)]
-pub(super) struct LikeMapArgs {
+pub(super) struct ResemblanceMapArgs {
     pub(super) gx: DomainId,
     pub(super) gy: DomainId,
     pub(super) cost: DomainId,
@@ -131,8 +131,8 @@ pub(super) struct LikeMapArgs {
     pub(super) tag: ConstraintTag,
 }
 
-impl PropagatorConstructor for LikeMapArgs {
-    type PropagatorImpl = LikeMapPropagator;
+impl PropagatorConstructor for ResemblanceMapArgs {
+    type PropagatorImpl = ResemblanceMapPropagator;
 
     fn create(self, _: PropagatorConstructorContext) -> PropagatorSpec<Self::PropagatorImpl> {
         let registration = EventsToRegister::builder()
@@ -143,12 +143,12 @@ impl PropagatorConstructor for LikeMapArgs {
         PropagatorSpec {
             registration,
             checkers: RuntimeCheckers::empty(),
-            propagator: LikeMapPropagator {
+            propagator: ResemblanceMapPropagator {
                 gx: self.gx,
                 gy: self.gy,
                 cost: self.cost,
                 map: self.map,
-                code: InferenceCode::new(self.tag, LikeMap),
+                code: InferenceCode::new(self.tag, ResemblanceMap),
             },
         }
     }
@@ -156,7 +156,7 @@ impl PropagatorConstructor for LikeMapArgs {
 
 /// `cost ≥ map(gx, gy)` on bounds; see the module documentation.
 #[derive(Debug, Clone)]
-pub(super) struct LikeMapPropagator {
+pub(super) struct ResemblanceMapPropagator {
     gx: DomainId,
     gy: DomainId,
     cost: DomainId,
@@ -173,7 +173,7 @@ struct Box2 {
     uy: usize,
 }
 
-impl LikeMapPropagator {
+impl ResemblanceMapPropagator {
     fn bounds(&self, ctx: &PropagationContext) -> Option<Box2> {
         let clamp = |v: i32, n: usize| (v.max(0) as usize).min(n.saturating_sub(1));
         let (lx, ux) = (ctx.lower_bound(&self.gx), ctx.upper_bound(&self.gx));
@@ -218,9 +218,9 @@ impl LikeMapPropagator {
     }
 }
 
-impl Propagator for LikeMapPropagator {
+impl Propagator for ResemblanceMapPropagator {
     fn name(&self) -> &str {
-        "LikeMap"
+        "ResemblanceMap"
     }
 
     fn priority(&self) -> Priority {
@@ -260,7 +260,7 @@ enum Axis {
     Y,
 }
 
-impl LikeMapPropagator {
+impl ResemblanceMapPropagator {
     /// Under `cost ≤ u`, move the bounds of `axis`'s variable in to the
     /// first and last line (column for x, row for y) of the box holding a
     /// cell of cost `≤ u`; whether a bound moved.

@@ -1,0 +1,205 @@
+//! Building a model: the grid variables of the unplaced objects, then
+//! non-overlap, symmetry breaking, the redundant relaxations and the rules,
+//! under an [`Encoding`] that never changes what the model means.
+
+use super::bools::floor_div;
+use super::{BuildOptions, Connectivity, Coord, HardRule, IntVar, Model};
+use crate::relations::Axis;
+use crate::rules::RuleSet;
+use crate::scene::Scene;
+use std::collections::HashMap;
+
+/// Most pairs of objects (at least one movable) whose non-overlap the model
+/// states as one clause each (four reified pair literals, about 16 KB in
+/// the engine per pair); past it the engine's non-overlap propagator holds
+/// them all in linear memory. 2 000 pairs is about 64 objects.
+pub(crate) const PAIRWISE_NO_OVERLAP_PAIRS: usize = 2_000;
+
+/// `RCCPACK_NO_OVERLAP=clauses|propagator` forces one non-overlap encoding
+/// for every model (to run the differential tests and fuzz corpora through
+/// the propagator); unset, the number of pairs decides.
+fn forced_encoding() -> Option<bool> {
+    static FORCED: std::sync::OnceLock<Option<bool>> = std::sync::OnceLock::new();
+    *FORCED.get_or_init(|| match std::env::var("RCCPACK_NO_OVERLAP").as_deref() {
+        Ok("clauses") => Some(true),
+        Ok("propagator") => Some(false),
+        _ => None,
+    })
+}
+
+/// `RCCPACK_CONNECTIVITY=circuit` builds every model's group statements
+/// as circuits (to compare the encodings in `bench tasks` and to run the
+/// differential tests through both); otherwise the propagator.
+fn default_connectivity() -> Connectivity {
+    static FORCED: std::sync::OnceLock<Connectivity> = std::sync::OnceLock::new();
+    *FORCED.get_or_init(|| match std::env::var("RCCPACK_CONNECTIVITY").as_deref() {
+        Ok("circuit") => Connectivity::Circuit,
+        _ => Connectivity::Propagator,
+    })
+}
+
+/// How a model is encoded, beyond [`BuildOptions`]: choices that change
+/// the model's Booleans but never what it means.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Encoding {
+    /// Non-overlap: `Some(true)` pairwise clauses, `Some(false)` the
+    /// engine's propagator, `None` by the number of pairs.
+    pub(crate) pairwise: Option<bool>,
+    /// Group statements' connectivity.
+    pub(crate) connectivity: Connectivity,
+}
+
+impl Encoding {
+    /// The encoding chosen by the environment (`RCCPACK_NO_OVERLAP`,
+    /// `RCCPACK_CONNECTIVITY`), else the defaults.
+    pub(crate) fn from_env() -> Encoding {
+        Encoding {
+            pairwise: forced_encoding(),
+            connectivity: default_connectivity(),
+        }
+    }
+}
+
+impl Model {
+    /// Build the model of `problem` with `rules`.
+    ///
+    /// The problem must be a valid scene (see [`Scene::validate`]).
+    pub fn build(problem: &Scene, rules: &RuleSet, opts: BuildOptions) -> Model {
+        Self::build_until(problem, rules, opts, &|| false).expect("never stopped")
+    }
+
+    /// [`Model::build_until`] with the encoding chosen by the caller (for
+    /// non-overlap, `None` decides by the number of pairs, see
+    /// [`PAIRWISE_NO_OVERLAP_PAIRS`]).
+    pub(crate) fn build_encoded(
+        problem: &Scene,
+        rules: &RuleSet,
+        opts: BuildOptions,
+        stop: &dyn Fn() -> bool,
+        encoding: Encoding,
+    ) -> Option<Model> {
+        let pairwise = encoding.pairwise;
+        let movable = problem.objects.iter().filter(|o| !o.is_placed()).count();
+        let n = problem.objects.len();
+        // Pairs with at least one movable object.
+        let pairs =
+            n * (n.saturating_sub(1)) / 2 - (n - movable) * (n - movable).saturating_sub(1) / 2;
+        let pairwise = pairwise.unwrap_or(pairs <= PAIRWISE_NO_OVERLAP_PAIRS);
+        let mut m = Self::build_core(problem, rules, opts, stop, pairwise, encoding.connectivity)?;
+        m.pairwise_no_overlap = pairwise || !m.too_large.is_empty();
+        Some(m)
+    }
+
+    /// [`Model::build`], given up (`None`) as soon as `stop` says so
+    /// (checked per rule and every 256 subject objects: a deadline or
+    /// Ctrl-C while a large model is built).
+    pub fn build_until(
+        problem: &Scene,
+        rules: &RuleSet,
+        opts: BuildOptions,
+        stop: &dyn Fn() -> bool,
+    ) -> Option<Model> {
+        Self::build_encoded(problem, rules, opts, stop, Encoding::from_env())
+    }
+
+    pub(super) fn build_core(
+        problem: &Scene,
+        rules: &RuleSet,
+        opts: BuildOptions,
+        stop: &dyn Fn() -> bool,
+        pairwise: bool,
+        connectivity: Connectivity,
+    ) -> Option<Model> {
+        let sp = problem.space;
+        let g = problem.grid;
+        let mut m = Model {
+            origin: (sp.x, sp.y),
+            grid: g,
+            vars: Vec::new(),
+            coords: Vec::new(),
+            sizes: Vec::new(),
+            bools: Vec::new(),
+            clauses: Vec::new(),
+            hard: Vec::new(),
+            soft: Vec::new(),
+            symmetry: Vec::new(),
+            cumulative: Vec::new(),
+            too_large: Vec::new(),
+            pairwise_no_overlap: false,
+            connectivity,
+            interned: HashMap::new(),
+        };
+        for (i, o) in problem.objects.iter().enumerate() {
+            m.sizes.push((o.width, o.height));
+            match (o.x, o.y) {
+                (Some(x), Some(y)) => m.coords.push((Coord::Const(x), Coord::Const(y))),
+                _ => {
+                    let ux = floor_div(sp.width - o.width, g);
+                    let uy = floor_div(sp.height - o.height, g);
+                    if ux < 0 || uy < 0 {
+                        m.too_large.push(i);
+                    }
+                    let vx = m.vars.len();
+                    m.vars.push(IntVar {
+                        object: i,
+                        axis: Axis::X,
+                        ub: ux.max(0),
+                    });
+                    m.vars.push(IntVar {
+                        object: i,
+                        axis: Axis::Y,
+                        ub: uy.max(0),
+                    });
+                    m.coords.push((Coord::Var(vx), Coord::Var(vx + 1)));
+                }
+            }
+        }
+        if !m.too_large.is_empty() {
+            return Some(m);
+        }
+        // Non-overlap between every pair with at least one variable object:
+        // one clause per pair for a small model (the pair literals also
+        // guide the search), else implicit — the engine posts one
+        // propagator for all pairs (linear memory) and
+        // `add_pairwise_no_overlap` writes the clauses for the peers.
+        if pairwise {
+            m.add_pairwise_no_overlap(opts.contact);
+        }
+        if opts.symmetry_breaking {
+            m.post_symmetry(problem);
+        }
+        if opts.redundant {
+            m.post_cumulative(problem);
+        }
+        if opts.rules && !m.post_rules(problem, rules, opts.contact, stop) {
+            return None;
+        }
+        Some(m)
+    }
+
+    /// A hard "rule" pinning unplaced object `object` at `(x, y)` (its
+    /// index in [`Model::hard`]; `HardRule::rule` is that index too, past
+    /// any rule set's). `None` when the position is not on the object's
+    /// grid domain (or the object is a constant).
+    pub(crate) fn pin(&mut self, object: usize, x: i64, y: i64) -> Option<usize> {
+        let (Coord::Var(vx), Coord::Var(vy)) = self.coords[object] else {
+            return None;
+        };
+        let mut lits = Vec::with_capacity(4);
+        for (v, at, origin) in [(vx, x, self.origin.0), (vy, y, self.origin.1)] {
+            let d = at - origin;
+            if d % self.grid != 0 {
+                return None;
+            }
+            let k = d / self.grid;
+            if k < 0 || k > self.vars[v].ub {
+                return None;
+            }
+            lits.push(self.ge(v, k));
+            lits.push(!self.ge(v, k + 1));
+        }
+        let at = self.hard.len();
+        self.hard.push(HardRule { rule: at, lits });
+        Some(at)
+    }
+}

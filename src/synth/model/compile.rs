@@ -1,0 +1,236 @@
+//! Rules into literals: a pairwise relation read off its entry in
+//! [`crate::relations::TABLE`], class atoms counted by their quantifier,
+//! one literal per (object, rule) or per scene-level rule.
+
+use super::{HardRule, Lit, Model, SoftTerm};
+use crate::relations::{Cmp, Contact, Edge, Op, Quant, Relation, Side};
+use crate::rules::{Formula, RuleSet, Scope, Target};
+use crate::scene::Scene;
+use std::collections::HashMap;
+
+/// Most pairwise relation literals the rules may ask for in one model
+/// ([`Model::pair_literals`]): 120 000, about 1.5 GB at the engine's cost
+/// of about 12.5 KB per literal (measured: `rule t: EC_N(R, *)` over 200
+/// objects, 40 000 literals, 513 MB); past it synthesis is refused before
+/// anything is built instead of running out of memory. A rule against a
+/// landmark costs one literal per subject; `*` or a large target class,
+/// one per pair.
+pub const MAX_PAIR_LITERALS: u128 = 120_000;
+
+/// Atom literals already built: `(object, relation, quantifier, target)`.
+type AtomCache = HashMap<(usize, Relation, Quant, Target), Lit>;
+
+impl Model {
+    /// The pairwise relation `rel(a, b)` between two distinct objects: the
+    /// relation's condition in [`crate::relations::TABLE`], literally.
+    pub fn pair(&mut self, rel: Relation, a: usize, b: usize, contact: Contact) -> Lit {
+        let cond = rel.def().condition(contact);
+        let mut disjuncts = Vec::with_capacity(cond.len());
+        for conj in cond {
+            let mut parts = Vec::with_capacity(conj.len() + 1);
+            for c in conj.iter() {
+                self.cmp(c, a, b, &mut parts);
+            }
+            disjuncts.push(self.and(parts));
+        }
+        self.or(disjuncts)
+    }
+
+    /// The literals whose conjunction is comparison `c` on the pair `(a, b)`.
+    pub(super) fn cmp(&mut self, c: &Cmp, a: usize, b: usize, out: &mut Vec<Lit>) {
+        let obj = |s: Side| match s {
+            Side::A => a,
+            Side::B => b,
+        };
+        let axis = c.lhs.1.axis();
+        let (p, q) = (obj(c.lhs.0), obj(c.rhs.0));
+        let off = |m: &Self, o: usize, e: Edge| if e.is_far() { m.size(o, axis) } else { 0 };
+        // lhs = coord(p) + op, rhs = coord(q) + oq.
+        let (op, oq) = (off(self, p, c.lhs.1), off(self, q, c.rhs.1));
+        match c.op {
+            Op::Ge => out.push(self.diff_ge(axis, p, q, oq - op)),
+            Op::Gt => out.push(self.diff_ge(axis, p, q, oq - op + 1)),
+            Op::Le => out.push(self.diff_ge(axis, q, p, op - oq)),
+            Op::Lt => out.push(self.diff_ge(axis, q, p, op - oq + 1)),
+            Op::Eq => {
+                out.push(self.diff_ge(axis, p, q, oq - op));
+                out.push(self.diff_ge(axis, q, p, op - oq));
+            }
+        }
+    }
+
+    /// Post every rule; `false` when `stop` said so first.
+    pub(super) fn post_rules(
+        &mut self,
+        problem: &Scene,
+        rules: &RuleSet,
+        contact: Contact,
+        stop: &dyn Fn() -> bool,
+    ) -> bool {
+        let mut cache: AtomCache = HashMap::new();
+        for (ri, rule) in rules.rules.iter().enumerate() {
+            if stop() {
+                return false;
+            }
+            let subject = rule.subject();
+            let hard = rule.strength.is_hard();
+            if rule.scope == Scope::Group {
+                let lit = match rule.formula.shape() {
+                    Some((shape, neg)) => {
+                        let objects: Vec<usize> = (0..problem.objects.len())
+                            .filter(|&o| problem.objects[o].class == shape.class)
+                            .collect();
+                        let l = self.shape(shape.kind, &objects, contact);
+                        if neg {
+                            !l
+                        } else {
+                            l
+                        }
+                    }
+                    // Not a shape formula: the evaluator reads it as false.
+                    None => Lit::FALSE,
+                };
+                if hard {
+                    self.hard.push(HardRule {
+                        rule: ri,
+                        lits: vec![lit],
+                    });
+                } else {
+                    self.soft.push(SoftTerm {
+                        rule: ri,
+                        object: None,
+                        lit,
+                        weight: rule.strength.weight(),
+                    });
+                }
+                continue;
+            }
+            let mut lits = Vec::new();
+            let mut objects = Vec::new();
+            for (o, obj) in problem.objects.iter().enumerate() {
+                if obj.class != subject {
+                    continue;
+                }
+                if objects.len() % 256 == 255 && stop() {
+                    return false;
+                }
+                lits.push(self.formula(&rule.formula, o, problem, contact, &mut cache));
+                objects.push(o);
+            }
+            let weight = rule.strength.weight();
+            match rule.scope {
+                Scope::Each if hard => self.hard.push(HardRule { rule: ri, lits }),
+                Scope::Each => {
+                    for (lit, o) in lits.into_iter().zip(objects) {
+                        self.soft.push(SoftTerm {
+                            rule: ri,
+                            object: Some(o),
+                            lit,
+                            weight,
+                        });
+                    }
+                }
+                // Posted above.
+                Scope::Group => {}
+                Scope::Scene(q) => {
+                    let lit = self.quantify(q, lits);
+                    if hard {
+                        self.hard.push(HardRule {
+                            rule: ri,
+                            lits: vec![lit],
+                        });
+                    } else {
+                        self.soft.push(SoftTerm {
+                            rule: ri,
+                            object: None,
+                            lit,
+                            weight,
+                        });
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// How many pairwise relation literals the rules ask for on `problem`
+    /// at most: per rule and atom, subject objects × target objects. The
+    /// model holds a few Booleans and the engine a few propagators per
+    /// pair literal, so this bounds their memory ([`MAX_PAIR_LITERALS`]).
+    pub fn pair_literals(problem: &Scene, rules: &RuleSet) -> u128 {
+        let count =
+            |class: &str| problem.objects.iter().filter(|o| o.class == class).count() as u128;
+        let n = problem.objects.len() as u128;
+        let mut total = 0u128;
+        for rule in &rules.rules {
+            let subjects = count(rule.subject());
+            for atom in rule.formula.atoms() {
+                let targets = match &atom.target {
+                    Target::Any => n.saturating_sub(1),
+                    Target::Class(c) if c == rule.subject() => subjects.saturating_sub(1),
+                    Target::Class(c) => count(c),
+                    Target::Landmark(_) => 1,
+                };
+                total += subjects * targets;
+            }
+        }
+        total
+    }
+
+    pub(super) fn formula(
+        &mut self,
+        f: &Formula,
+        o: usize,
+        problem: &Scene,
+        contact: Contact,
+        cache: &mut AtomCache,
+    ) -> Lit {
+        match f {
+            Formula::Atom(a) => {
+                let key = (o, a.rel, a.quant, a.target.clone());
+                if let Some(&l) = cache.get(&key) {
+                    return l;
+                }
+                let others: Vec<usize> = problem
+                    .objects
+                    .iter()
+                    .enumerate()
+                    .filter(|(b, ob)| {
+                        *b != o
+                            && match &a.target {
+                                Target::Any => true,
+                                Target::Class(c) => &ob.class == c,
+                                Target::Landmark(id) => ob.fixed && &ob.id == id,
+                            }
+                    })
+                    .map(|(b, _)| b)
+                    .collect();
+                let lits: Vec<Lit> = others
+                    .into_iter()
+                    .map(|b| self.pair(a.rel, o, b, contact))
+                    .collect();
+                let l = self.quantify(a.quant, lits);
+                cache.insert(key, l);
+                l
+            }
+            // Only a group rule's whole formula (posted by `post_rules`);
+            // read per object it is false, as in the evaluator.
+            Formula::Shape(_) => Lit::FALSE,
+            Formula::Not(g) => !self.formula(g, o, problem, contact, cache),
+            Formula::And(v) => {
+                let ls = v
+                    .iter()
+                    .map(|g| self.formula(g, o, problem, contact, cache))
+                    .collect();
+                self.and(ls)
+            }
+            Formula::Or(v) => {
+                let ls = v
+                    .iter()
+                    .map(|g| self.formula(g, o, problem, contact, cache))
+                    .collect();
+                self.or(ls)
+            }
+        }
+    }
+}
