@@ -1,4 +1,4 @@
-//! Resemblance benchmark (SPEC §12): `cargo bench --bench like`.
+//! Resemblance benchmark (docs/guide.md#layouts-like-the-demonstrations): `cargo bench --bench like`.
 //!
 //! Problems: for each bundled task (box-packing, shelf), its `problem.json`
 //! and, per demonstration, that demonstration with its movable objects

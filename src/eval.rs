@@ -1,7 +1,7 @@
 //! The evaluator: which placed object satisfies which rule, hard-rule
-//! violations, the grid check and the §6 context score.
+//! violations, the grid check and the context score.
 //!
-//! This is the *one* implementation of SPEC §4 and §6. Learning reports, the
+//! This is the *one* implementation of docs/language.md#class-rules and docs/language.md#the-score. Learning reports, the
 //! solver's re-check, the studio and every test get their truth values and
 //! scores from here.
 //!
@@ -213,7 +213,7 @@ pub struct RuleReport {
     /// How many of them satisfy the rule.
     pub satisfied: usize,
     /// Ids of the subjects that break it, in scene order. For a scene-level
-    /// rule (§11.4): the objects that satisfy the formula when a `no` or
+    /// rule (docs/language.md#scene-rules): the objects that satisfy the formula when a `no` or
     /// `at most` rule fails, none otherwise.
     pub violators: Vec<String>,
     /// Only for a scene-level rule: its quantifier and counts.
@@ -253,7 +253,7 @@ pub struct BlockBox {
     pub fits: bool,
 }
 
-/// The scene-level part of a [`RuleReport`] (§11.4); serialised as
+/// The scene-level part of a [`RuleReport`] (docs/language.md#scene-rules); serialised as
 /// `{quantifier, satisfying, objects}`.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
 pub struct SceneRuleReport {
@@ -273,9 +273,9 @@ pub struct SceneRuleReport {
 pub struct Evaluation {
     /// `satisfied_weight / total_weight`, or 1 when the denominator is 0.
     pub score: f64,
-    /// §6 numerator: Σ over soft rules of weight × satisfied subjects.
+    /// numerator: Σ over soft rules of weight × satisfied subjects.
     pub satisfied_weight: f64,
-    /// §6 denominator: Σ over soft rules of weight × subjects.
+    /// denominator: Σ over soft rules of weight × subjects.
     pub total_weight: f64,
     /// Number of (object, hard rule) pairs that fail (a failing hard
     /// scene-level rule counts once).
@@ -344,7 +344,7 @@ impl<'s> Evaluator<'s> {
         f.eval(&self.atoms, obj)
     }
 
-    /// Evaluate one rule: its report, its §6 numerator and denominator
+    /// Evaluate one rule: its report, its numerator and denominator
     /// terms, and its number of hard violations.
     pub fn evaluate_rule(&self, rule: &Rule) -> RuleReport {
         if rule.is_group() {
@@ -502,7 +502,7 @@ impl<'s> Evaluator<'s> {
     }
 }
 
-/// Evaluate `scene` against `rules` (the §6 score and per-rule reports).
+/// Evaluate `scene` against `rules` (the score and per-rule reports).
 ///
 /// ```
 /// use rccpack::{eval::evaluate, relations::Contact, rules::parse_rules, scene::Scene};

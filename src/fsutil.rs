@@ -1,4 +1,4 @@
-//! The one way the project writes a file (SPEC §15 "Writes"): whole or not
+//! The one way the project writes a file (docs/cli.md#writes "Writes"): whole or not
 //! at all. Used by every writer — the command-line tool (`-o`, `--report`,
 //! `render -o`, `run --out`, `learn -o`, `--emit`, `ask`), the studio's
 //! storage and [`crate::render::render_to_path`].

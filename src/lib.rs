@@ -6,7 +6,7 @@
 //! The data flows one way:
 //!
 //! ```text
-//! scene JSON ─► scene ─► relations ─► rules (.rcc) ─► eval (score, SPEC §6)
+//! scene JSON ─► scene ─► relations ─► rules (.rcc) ─► eval (score, docs/language.md#the-score)
 //!                                          │
 //!                  demos ─► infer ─────────┤ learned .rcc
 //!                                          ▼
@@ -49,7 +49,7 @@
 //!
 //! [`learn`] weighs every statement of the templates (or of a statement
 //! set you give) against a null model of random layouts and keeps the ones
-//! the demonstrations keep far more often than chance (SPEC §7–§8):
+//! the demonstrations keep far more often than chance (docs/guide.md):
 //!
 //! ```
 //! use rccpack::{learn, LearnParams, Scene};
@@ -68,7 +68,7 @@
 //! ## Placing new objects
 //!
 //! [`synthesize`] places every unplaced object of a problem on the grid so
-//! that the hard rules hold and the score is as high as it can be (SPEC §9);
+//! that the hard rules hold and the score is as high as it can be (docs/guide.md#synthesis);
 //! every layout it returns has passed the independent check
 //! [`synth::verify_solution`].
 //!
@@ -102,7 +102,7 @@
 //! A task folder holds `demos.json`, `problem.json` and optionally
 //! `statements.rcc`; [`task::run`] learns, checks the rules against the
 //! problem and places it with the demonstrations as the warm start and the
-//! resemblance target (SPEC §12) — what `rccpack run` does:
+//! resemblance target (docs/guide.md#layouts-like-the-demonstrations) — what `rccpack run` does:
 //!
 //! ```
 //! use rccpack::task::{self, RunOptions, Task};
@@ -127,14 +127,14 @@
 //!   `grammar/rcc.pest`), checks, printer, diagnostics.
 //! - [`shapes`]: group statements (`row(R)`, `column(R)`, `block(G)`,
 //!   `group(B)`): the semantics the evaluator, learning and tests share.
-//! - [`eval`]: the one evaluator and the §6 score.
-//! - [`infer`]: learning (SPEC §7–§8, §11.5).
+//! - [`eval`]: the one evaluator and the score.
+//! - [`infer`]: learning (docs/guide.md#learning).
 //! - [`priors`]: priors per kind of statement learned across a library of
 //!   tasks (`rccpack priors`, `--priors`).
 //! - [`synth`]: synthesis of layouts; [`synth::emit`] writes the same model
 //!   for other solvers.
-//! - [`resemblance`]: SPEC §12, the second objective.
-//! - [`ask`]: the questions of SPEC §13, without I/O.
+//! - [`resemblance`]: docs/guide.md#layouts-like-the-demonstrations, the second objective.
+//! - [`ask`]: the questions of docs/guide.md#questions, without I/O.
 //! - [`task`]: the task folder and the whole pipeline.
 //! - [`mod@sample`]: many distinct layouts that keep the rules (property tests,
 //!   fuzzing); `proptest` strategies and `Arbitrary` impls behind the features
@@ -154,7 +154,7 @@
 //! `cli` add the rest (see the README, "As a library").
 //!
 //! The command-line tool `rccpack` wraps these (`check`, `score`, `render`,
-//! …); see the README.
+//! …); see docs/cli.md.
 #![warn(missing_docs)]
 
 pub mod ask;

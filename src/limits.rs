@@ -1,5 +1,5 @@
 //! The documented limits on user-supplied numbers, in one place, and the
-//! shared validated parsers for them (SPEC §5: no input may panic).
+//! shared validated parsers for them (docs/language.md#syntax: no input may panic).
 //!
 //! | what | limit | where checked |
 //! |---|---|---|

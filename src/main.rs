@@ -1,4 +1,4 @@
-//! The `rccpack` command line (SPEC §10).
+//! The `rccpack` command line (docs/cli.md).
 
 mod cli;
 

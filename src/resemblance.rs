@@ -1,4 +1,4 @@
-//! The resemblance cost of SPEC §12: how far a layout's objects stand from
+//! The resemblance cost of docs/guide.md#layouts-like-the-demonstrations: how far a layout's objects stand from
 //! where the demonstrations put objects of the same class and size.
 //!
 //! # Background
@@ -151,7 +151,7 @@ impl ResemblanceTarget {
 
     /// The resemblance cost of `layout`, a complete placement of `problem`
     /// (same objects in the same order): the sum over the objects that are
-    /// unplaced in `problem` (SPEC §12). Objects still unplaced in `layout`
+    /// unplaced in `problem` (docs/guide.md#layouts-like-the-demonstrations). Objects still unplaced in `layout`
     /// add nothing.
     pub fn cost(&self, problem: &Scene, layout: &Scene) -> u64 {
         problem

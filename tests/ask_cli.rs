@@ -1,5 +1,5 @@
 //! `rccpack ask` on the bundled example with the pilot study's twelve rules
-//! as the oracle (SPEC §13), resuming, aborting, and `score --require`.
+//! as the oracle (docs/guide.md#questions), resuming, aborting, and `score --require`.
 
 use rccpack::ask::negation;
 use rccpack::rules::{parse_rules, Rule, RuleSet, Strength};

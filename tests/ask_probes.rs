@@ -1,4 +1,4 @@
-//! Probes (SPEC §13) against exhaustive enumeration on random tiny problems.
+//! Probes (docs/guide.md#questions) against exhaustive enumeration on random tiny problems.
 //!
 //! A case (seeded: case `i` is `ChaCha8Rng::seed_from_u64(BASE)` on stream
 //! `i`) is a space of at most 40×40 on grid 10 with 2–4 unplaced blocks of

@@ -1,4 +1,4 @@
-//! The question loop (SPEC §13) on generated tasks with a known ground truth.
+//! The question loop (docs/guide.md#questions) on generated tasks with a known ground truth.
 //!
 //! Each task is a box of four fixed walls (class W, ids `w_south`,
 //! `w_north`, `w_west`, `w_east`, interior 60×60) in a 100×100 space on grid
@@ -566,7 +566,7 @@ fn names(v: &[&str]) -> Vec<String> {
 /// on something). The probe for the habit lifts a red off everything and,
 /// keeping only the held rules, leaves no red on the floor: it breaks the
 /// truth's `some_red_on_floor`. The oracle rejects it, and the rejection
-/// confirms the habit (SPEC §13: a rejected probe confirms the rule it
+/// confirms the habit (docs/guide.md#questions: a rejected probe confirms the rule it
 /// asks about), although the truth does not imply it: the truth allows a
 /// red that rests on nothing and only touches another red beside it (the
 /// run prints one: `r1(20,20) r2(30,30) r3(40,30) b1(20,40) b2(30,40)`, r3

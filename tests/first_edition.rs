@@ -1,12 +1,12 @@
 //! Every first-edition file keeps its meaning, its score and its report,
-//! byte for byte (SPEC §11): the outputs under
+//! byte for byte (docs/language.md): the outputs under
 //! `tests/fixtures/first-edition/golden/` were written by the first-edition
 //! binary (commit 3900fd4) and this test runs today's binary on the same
 //! inputs.
 //!
 //! Inputs: the pilot rules, the rules the first edition learned from the
-//! bundled demonstrations, every one of the first edition's 213 §8 template
-//! statements for that task, and a file with every §5 syntax form; scenes:
+//! bundled demonstrations, every one of the first edition's 213 docs/guide.md#learning template
+//! statements for that task, and a file with every docs/language.md#syntax syntax form; scenes:
 //! the 8 demonstrations, the problem (partly placed) and a synthesised
 //! solution; both contact modes.
 

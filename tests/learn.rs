@@ -1,4 +1,4 @@
-//! Learning (SPEC §7): the worked check, the null model against exact
+//! Learning (docs/guide.md#learning): the worked check, the null model against exact
 //! enumeration, determinism across thread counts, the box-packing example
 //! and typed errors for bad input.
 
@@ -24,7 +24,7 @@ fn obj(id: &str, class: &str, x: i64, y: i64, w: i64, h: i64, fixed: bool) -> Ob
     }
 }
 
-/// SPEC §7 worked check: chance rates 0.4 / 0.01 / 0.3 with 4 / 4 / 3
+/// docs/guide.md#learning worked check: chance rates 0.4 / 0.01 / 0.3 with 4 / 4 / 3
 /// objects; only the second rule is learned at cutoff 0.01.
 #[test]
 fn worked_check_of_spec_section_7() {
@@ -213,7 +213,7 @@ fn scene_level_statements() -> RuleSet {
     ])
 }
 
-/// The exact probability, under the null model of §7.2 (a random order of
+/// The exact probability, under the null model of docs/guide.md#learning (a random order of
 /// the movable objects, each at a uniformly random free grid position), that
 /// each scene-level rule of `rules` holds.
 fn exact_scene_rates(demo: &Scene, rules: &RuleSet) -> Vec<f64> {
@@ -267,7 +267,7 @@ fn exact_scene_rates(demo: &Scene, rules: &RuleSet) -> Vec<f64> {
     rates
 }
 
-/// §11.5: the chance rate of a scene-level statement is the fraction of
+/// docs/guide.md#learning: the chance rate of a scene-level statement is the fraction of
 /// null scenes in which it holds — checked against exact enumeration of the
 /// null model on a tiny scene, both through the null model's counts and
 /// through `learn`'s reported `q` (with `n = d`, `p = max(0.5 / d_r, q)`).
@@ -531,7 +531,7 @@ fn learned_file_parses_back() {
 }
 
 /// Generated template names are readable identifiers, unique, with the
-/// §8 shapes present (both editions) and the §11.5 shapes present in the
+/// docs/guide.md#learning shapes present (both editions) and the docs/guide.md#learning shapes present in the
 /// second.
 #[test]
 fn template_names_are_readable() {
@@ -614,7 +614,7 @@ fn template_names_are_readable() {
     }
 }
 
-/// The second edition keeps every first-edition statement (§8: "it must
+/// The second edition keeps every first-edition statement (docs/guide.md#learning: "it must
 /// keep these"), with the same name, scope and formula, in the same
 /// relative order.
 #[test]

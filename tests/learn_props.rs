@@ -1,4 +1,4 @@
-//! Laws of the posterior (SPEC §7.3–§7.6) and of candidate selection, as
+//! Laws of the posterior (docs/guide.md) and of candidate selection, as
 //! property tests with named strategies.
 
 use proptest::prelude::*;
@@ -10,7 +10,7 @@ use rccpack::rules::{Rule, RuleSet};
 use rccpack::scene::{Object, Scene, Space};
 use std::collections::BTreeMap;
 
-/// The smallest posterior written to a `.rcc` file (SPEC §7.6).
+/// The smallest posterior written to a `.rcc` file (docs/guide.md#learning).
 const P_FLOOR: f64 = 1e-300;
 
 /// A chance rate `q ∈ [0, 1]`.

@@ -458,7 +458,7 @@ fn grammar_comment_and_whitespace() {
     assert!(parse_rules("rule x # : \n: DR_N(B, R)").is_err());
 }
 
-// ---- second edition (§11): one test per new grammar rule ------------------
+// ---- second edition (docs/language.md): one test per new grammar rule ------------------
 
 const SECOND: &str = "\
 rule blue_row:        AL_S(B, every B) & (FL_E(B, B) | FL_W(B, B))
@@ -637,7 +637,7 @@ fn grammar_scope_colon() {
 #[test]
 fn grammar_subject() {
     assert_eq!(formula("rule x: FL_N( Blue , R )"), at("FL_N", "Blue", "R"));
-    // `*` and landmarks are parsed but are not subjects (§11.6).
+    // `*` and landmarks are parsed but are not subjects (docs/language.md#syntax).
     let (m, lc) = err("rule x: DR_N(*, R)");
     assert_eq!(m, "expected a class name, found `*`");
     assert_eq!(lc, (1, 14));
@@ -1032,7 +1032,7 @@ fn check_classes_rejects_unknown() {
 }
 
 fn scene_walls() -> Scene {
-    // Ids as written, the §2 default `<class><index>` (W1, R4), an id that is
+    // Ids as written, the docs/scenes.md#fields default `<class><index>` (W1, R4), an id that is
     // no identifier (`w-3`) and a movable object.
     Scene::from_json(
         r#"{"space":{"width":100,"height":100},"objects":[

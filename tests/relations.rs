@@ -1,4 +1,4 @@
-//! Laws of the relation algebra (SPEC §3–§4), each a named property.
+//! Laws of the relation algebra (docs/language.md), each a named property.
 
 use proptest::prelude::*;
 use rccpack::relations::{
@@ -167,7 +167,7 @@ fn an_object_never_relates_to_itself() {
     assert_eq!(t.bits(0, None), Some(0x0F));
 }
 
-// ---- The one table (SPEC §11.1): every derived form agrees with it. ----
+// ---- The one table (docs/language.md#relations): every derived form agrees with it. ----
 
 use rccpack::relations::{implies, order_types, TABLE};
 
@@ -298,7 +298,7 @@ fn implies_knows_the_chain_fl_ec_dr_and_nothing_false() {
     assert!(!implies(ec_n, dr_e, Contact::Point));
 }
 
-// ---- Quantifiers, landmarks and scene-level rules (SPEC §11.2–§11.4). ----
+// ---- Quantifiers, landmarks and scene-level rules (docs/language.md). ----
 
 use rccpack::eval::Evaluator;
 use rccpack::relations::Quant;

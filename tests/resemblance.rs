@@ -1,4 +1,4 @@
-//! Layouts like the demonstrations (SPEC §12): the second objective on the
+//! Layouts like the demonstrations (docs/guide.md#layouts-like-the-demonstrations): the second objective on the
 //! bundled example, under limits, and through the command line.
 
 use rccpack::eval::evaluate;

@@ -194,7 +194,7 @@ fn largest_time_limit_is_accepted() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
 }
 
-/// Usage errors are bad input (exit 1), never clap's 2, which SPEC §10
+/// Usage errors are bad input (exit 1), never clap's 2, which docs/cli.md
 /// reserves for "infeasible"; help and version still exit 0.
 #[test]
 fn usage_errors_exit_1_help_exits_0() {

@@ -1,5 +1,5 @@
 //! The second bundled example, `examples/shelf`: demonstrations that show
-//! what the first edition of the language cannot say (SPEC §11). `run`
+//! what the first edition of the language cannot say (docs/language.md). `run`
 //! must learn those intentions and keep them in a new layout.
 
 use rccpack::eval::evaluate;

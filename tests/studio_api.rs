@@ -484,7 +484,7 @@ async fn synth_on_the_bundled_example() {
     let scene = rccpack::scene::Scene::from_json(&r["scene"].to_string()).unwrap();
     assert!(scene.is_complete());
     assert_eq!(scene.objects.len(), 13);
-    // The saved demonstrations are the like-scenes by default (SPEC §12).
+    // The saved demonstrations are the like-scenes by default (docs/guide.md#layouts-like-the-demonstrations).
     let demos =
         rccpack::scene::scenes_from_json(&std::fs::read_to_string(dir.join("demos.json")).unwrap())
             .unwrap();
@@ -608,7 +608,7 @@ async fn learn_samples_and_synth_time_limit_are_bounded() {
     }
 }
 
-// ---- Check rules (SPEC §13) --------------------------------------------------------
+// ---- Check rules (docs/guide.md#questions) --------------------------------------------------------
 
 fn answers_on_disk(dir: &Path) -> Vec<Value> {
     let v: Value =
@@ -946,7 +946,7 @@ async fn call_with(
 }
 
 /// A page elsewhere cannot change a file or start work
-/// (SPEC §15, trust of the studio).
+/// (docs/studio.md#security-model, trust of the studio).
 #[tokio::test]
 async fn foreign_origins_and_simple_requests_are_refused() {
     let dir = task_dir("origin", true);

@@ -1,5 +1,5 @@
 //! Synthesis tests: every solution is re-checked by `verify_solution`, the
-//! score is the evaluator's, and statuses/conflicts/limits behave as SPEC §9
+//! score is the evaluator's, and statuses/conflicts/limits behave as docs/guide.md#synthesis
 //! says.
 
 use rand::{RngExt, SeedableRng};
@@ -401,7 +401,7 @@ fn directions_are_exact_with_off_grid_sizes() {
     assert_eq!(r.evaluation.unwrap().satisfied_weight, 1.0);
 }
 
-// ---- Second edition (SPEC §11) ----
+// ---- Second edition (docs/language.md) ----
 
 fn qatom(rel: &str, s: &str, q: Quant, t: Target) -> Formula {
     Formula::Atom(Atom::quantified(Relation::from_name(rel).unwrap(), s, q, t))

@@ -6,13 +6,13 @@
 //! reproducible alone; [`random_case`] prints nothing, [`Case::describe`]
 //! gives the whole problem as text).
 //!
-//! **First edition** ([`Language::First`], SPEC §3–§9): a space of at most
+//! **First edition** ([`Language::First`], docs/language.md#relations, docs/guide.md#synthesis): a space of at most
 //! 60×60, grid 10, 2–3 unplaced blocks (10×10 or 20×20) of classes A/B,
-//! optionally one fixed block F, and 1–4 random SPEC §8-shaped rules over
+//! optionally one fixed block F, and 1–4 random docs/guide.md#learning-shaped rules over
 //! random subject/target (`*` included), each soft (weight 0.5, 1, 2 or 2.5)
 //! or hard, in a random contact mode.
 //!
-//! **Second edition** ([`Language::Second`], SPEC §11): the same, plus
+//! **Second edition** ([`Language::Second`], docs/language.md): the same, plus
 //! rectangles (10×20, 20×10), up to two fixed objects `f`, `g` (classes F or
 //! W, any of the four sizes), now and then one or two already-placed movable
 //! objects,
@@ -20,7 +20,7 @@
 //! every target quantifier (`every`, `some`, `no`, `at least K`,
 //! `at most K` with K in 0..=4, around the object count), landmark targets
 //! (`@f`, `@g` — fixed; `@a1` — movable, and `@f` when there is no `f`:
-//! empty targets) and the §11.4 example shapes, about 30 % of them
+//! empty targets) and the docs/language.md#scene-rules example shapes, about 30 % of them
 //! scene-level (`some`, `no`, `at least K`, `at most K` with K in 0..=3),
 //! soft or hard.
 //!
@@ -67,10 +67,10 @@ const BASE_SEED: u64 = 0x5EED_D1FF;
 /// Which rule language a run draws from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Language {
-    /// SPEC §3–§9 only (the generator of the first differential runs,
+    /// docs/language.md#relations, docs/guide.md#synthesis only (the generator of the first differential runs,
     /// unchanged: the same stream gives the same case).
     First,
-    /// Everything of SPEC §11 too.
+    /// Everything of docs/language.md too.
     Second,
     /// The second edition's cases with 3–4 movable blocks, most of class A,
     /// and one or two group statements (`group`, `row`, `column`, `block`,
@@ -124,7 +124,7 @@ fn random_formula(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
     }
 }
 
-/// Second edition: a random formula: a random tree, a SPEC §11.4/§11.5
+/// Second edition: a random formula: a random tree, a docs/language.md#scene-rules/docs/guide.md#learning
 /// shape, or a first-edition shape.
 fn random_formula2(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
     let own = Target::Class(subject.into());
@@ -183,7 +183,7 @@ fn random_formula2(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
             let (a, b) = pick(rng, &[(Dir::E, Dir::W), (Dir::N, Dir::S)]);
             Formula::Or(vec![some(Kind::FL, a, &own), some(Kind::FL, b, &own)])
         }
-        // touches(f) of SPEC §11.5
+        // touches(f) of docs/guide.md#learning
         11 => touches(subject, &Target::Landmark(pick(rng, &["f", "g"]).into())),
         12 => q_atom(Kind::FL, dir, subject, Quant::Some, &target),
         // A count over many objects: `REL(A, at least K *)`,
@@ -577,7 +577,7 @@ fn check_search(
     Ok(bf)
 }
 
-/// Random like-scenes for `case` (SPEC §12): one to four scenes, each
+/// Random like-scenes for `case` (docs/guide.md#layouts-like-the-demonstrations): one to four scenes, each
 /// holding one movable object of a class and size of the problem (or, now
 /// and then, of a size it lacks) at any integer position inside the space,
 /// on the grid or off it (so rounding up matters).

@@ -1,4 +1,4 @@
-//! SPEC §4 on a hand-built context like the thesis's Figure 3-2: two B
+//! docs/language.md#class-rules on a hand-built context like the thesis's Figure 3-2: two B
 //! blocks resting on a row of three R blocks.
 //!
 //! ```text

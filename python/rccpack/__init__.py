@@ -62,7 +62,7 @@ from ._rccpack import (
 
 
 class Status(enum.Enum):
-    """How a solve ended (SPEC §9)."""
+    """How a solve ended (docs/guide.md#synthesis)."""
 
     OPTIMAL = "optimal"
     """Proved optimal."""

@@ -17,7 +17,7 @@ class Error(ValueError):
     """Base class of every rccpack error (the input is at fault)."""
 
 class SceneError(Error):
-    """A scene breaks SPEC §1–§2; `path` names the field (`objects[3].x`)."""
+    """A scene breaks docs/scenes.md; `path` names the field (`objects[3].x`)."""
 
     path: str
     message: str

@@ -36,7 +36,7 @@ __all__ = ["layouts", "scenes", "rule_sets", "formulas", "RELATIONS"]
 _Scenes = Union[rccpack.Scene, Sequence[rccpack.Scene]]
 
 RELATIONS: tuple[str, ...] = tuple(f"{k}_{d}" for k in ("DR", "EC", "FL", "AL") for d in "NSEW")
-"""The sixteen relations of the language (SPEC §3, §11.1)."""
+"""The sixteen relations of the language (docs/language.md#relations)."""
 
 
 def _scene_list(scenes: _Scenes) -> list[rccpack.Scene]:
@@ -116,7 +116,7 @@ def scenes(
     contact: str = "point",
 ) -> st.SearchStrategy[rccpack.Scene]:
     """Scenes from the demonstrations' distribution: the learner's null
-    model (SPEC §7.2) re-places the movable objects of a demonstration at
+    model (docs/guide.md#learning) re-places the movable objects of a demonstration at
     random, each kept with probability about 9/10 (shrinking drops them).
     With `keep`, objects that break those rules are dropped too (and
     scenes whose scene-level rules fail are rejected), so every scene keeps

@@ -116,7 +116,7 @@ impl From<&RuleReport> for PyRuleReport {
     }
 }
 
-/// The §6 score of a scene and one report per rule.
+/// The score of a scene and one report per rule.
 #[pyclass(module = "rccpack", name = "Evaluation", frozen)]
 pub struct PyEvaluation {
     inner: Evaluation,
@@ -161,7 +161,7 @@ impl PyEvaluation {
     }
 }
 
-/// Score `scene` against `rules` (SPEC §6).
+/// Score `scene` against `rules` (docs/language.md#the-score).
 #[pyfunction]
 #[pyo3(signature = (scene, rules, contact = "point"))]
 pub fn evaluate(scene: &PyScene, rules: &PyRuleSet, contact: &str) -> PyResult<PyEvaluation> {
@@ -286,7 +286,7 @@ pub(crate) fn learn_error(e: InferError) -> PyErr {
     LearnError::new_err(e.to_string())
 }
 
-/// Learn rules from demonstrations (SPEC §7). The GIL is released while
+/// Learn rules from demonstrations (docs/guide.md#learning). The GIL is released while
 /// learning; the same seed gives the same rules.
 #[pyfunction]
 #[pyo3(signature = (demos, samples = 1000, cutoff = 0.01, seed = 0, templates = "third",
@@ -433,7 +433,7 @@ fn status_name(s: Status) -> &'static str {
 
 #[pymethods]
 impl PySynthResult {
-    /// `Status.OPTIMAL`, `FEASIBLE`, `INFEASIBLE` or `UNKNOWN` (SPEC §9).
+    /// `Status.OPTIMAL`, `FEASIBLE`, `INFEASIBLE` or `UNKNOWN` (docs/guide.md#synthesis).
     #[getter]
     fn status<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         static STATUS: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
@@ -454,7 +454,7 @@ impl PySynthResult {
             .clone()
             .map(|inner| PyEvaluation { inner })
     }
-    /// The §6 score of `scene` (recomputed by the evaluator).
+    /// The score of `scene` (recomputed by the evaluator).
     #[getter]
     fn score(&self) -> Option<f64> {
         self.inner.evaluation.as_ref().map(|e| e.score)
@@ -522,10 +522,10 @@ pub(crate) fn duration(seconds: Option<f64>) -> PyResult<Option<Duration>> {
     }
 }
 
-/// Place the unplaced objects of `problem` (SPEC §9, §12).
+/// Place the unplaced objects of `problem` (docs/guide.md#synthesis, docs/guide.md#layouts-like-the-demonstrations).
 ///
 /// The GIL is released while solving. Ctrl-C stops the search and returns
-/// the best layout found (`interrupted` is then true); see the README.
+/// the best layout found (`interrupted` is then true); see docs/python.md.
 #[pyfunction]
 #[pyo3(signature = (problem, rules, like = None, time_limit = None, node_limit = None, seed = 0,
                     contact = "point", warm_start = None, progress = None))]

@@ -1,4 +1,4 @@
-//! `ask`: the questions of SPEC §13, answered by a Python function.
+//! `ask`: the questions of docs/guide.md#questions, answered by a Python function.
 
 use crate::api::{contact, learn_error};
 use crate::errors::{guard, AskError as PyAskError, Error, SynthError};
@@ -177,7 +177,7 @@ struct State {
 }
 
 /// A question session on a task folder, one question at a time, with the
-/// files of `rccpack ask` (see the README).
+/// files of `rccpack ask` (see docs/python.md).
 #[pyclass(module = "rccpack", name = "AskSession", frozen)]
 pub struct PyAskSession {
     state: Mutex<State>,
@@ -224,7 +224,7 @@ fn detached<T: Send>(
 
 #[pymethods]
 impl PyAskSession {
-    /// Start or resume the session of `task_dir` (see the README): with
+    /// Start or resume the session of `task_dir` (see docs/python.md): with
     /// `save` (the default) the folder is locked, `answers.json` resumed
     /// and every file written as `rccpack ask` writes it.
     #[new]
@@ -496,7 +496,7 @@ impl PyAskSession {
     }
 }
 
-/// Run the questions of SPEC §13 on the task folder `task_dir` with
+/// Run the questions of docs/guide.md#questions on the task folder `task_dir` with
 /// `oracle(probe) -> bool` answering "is this layout acceptable?": a loop
 /// over `AskSession`. With `save=False` (the default) nothing is read but
 /// the task and nothing is written; with `save=True` it resumes from

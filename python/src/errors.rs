@@ -19,7 +19,7 @@ create_exception!(
     rccpack,
     SceneError,
     Error,
-    "A scene (or a demonstrations list) breaks SPEC §1–§2; `path` names the field."
+    "A scene (or a demonstrations list) breaks docs/scenes.md; `path` names the field."
 );
 create_exception!(
     rccpack,

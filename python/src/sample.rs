@@ -1,4 +1,4 @@
-//! `sample`: distinct layouts that keep the rules (SPEC §14,
+//! `sample`: distinct layouts that keep the rules (docs/guide.md#sampling,
 //! `rccpack_core::sample`), as a Python iterator.
 //!
 //! The core's sampler owns a solver engine that stays on the thread that
@@ -406,7 +406,7 @@ pub(crate) fn add(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// Random scene `index` of the learner's null model (SPEC §7.2) with
+/// Random scene `index` of the learner's null model (docs/guide.md#learning) with
 /// `seed`: a copy of demonstration `index mod len(demos)` with its movable
 /// objects re-placed at random (what `rccpack.strategies.scenes` draws).
 #[pyfunction]

@@ -1,4 +1,4 @@
-//! `Space`, `Object`, `Scene`: the SPEC §1–§2 scene as Python objects, and
+//! `Space`, `Object`, `Scene`: the docs/scenes.md scene as Python objects, and
 //! the conversions to and from plain Python dicts (the JSON form).
 
 use crate::errors::{guard, scene_error};
@@ -377,7 +377,7 @@ fn object_from(v: &Bound<'_, PyAny>, path: &str, index: usize) -> Result<CoreObj
     })
 }
 
-/// A scene from a dict in the SPEC §2 JSON form, validated; errors carry
+/// A scene from a dict in the docs/scenes.md#fields JSON form, validated; errors carry
 /// the field path (`objects[3].x`).
 pub(crate) fn scene_from_dict(v: &Bound<'_, PyAny>) -> Result<CoreScene, SceneError> {
     let d = dict(v, "")?;
@@ -474,7 +474,7 @@ impl PyScene {
         Ok(PyScene { inner: scene })
     }
 
-    /// Parse and validate one scene from JSON text (SPEC §2).
+    /// Parse and validate one scene from JSON text (docs/scenes.md#fields).
     #[staticmethod]
     fn from_json(text: &str) -> PyResult<Self> {
         guard(|| CoreScene::from_json(text))?

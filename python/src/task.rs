@@ -77,7 +77,7 @@ impl<'a, 'py> FromPyObject<'a, 'py> for LikeArg {
 
 const DEMOS: LikeArg = LikeArg(Like::Demos);
 
-/// A task folder (SPEC §10): `demos.json`, `problem.json` and, when
+/// A task folder (docs/cli.md): `demos.json`, `problem.json` and, when
 /// present, `statements.rcc`, read as `rccpack run` reads them.
 #[pyclass(module = "rccpack", name = "Task", frozen)]
 pub struct PyTask {
@@ -120,7 +120,7 @@ impl PyRunOutcome {
     fn scene(&self) -> Option<PyScene> {
         self.result.get().inner.scene.clone().map(PyScene::wrap)
     }
-    /// Classes the rules name that the problem lacks (SPEC §15).
+    /// Classes the rules name that the problem lacks (docs/language.md#classes-a-scene-lacks).
     #[getter]
     fn missing_classes(&self) -> Vec<String> {
         self.missing_classes.clone()

@@ -101,7 +101,7 @@ def test_check_against_a_scene(problem: rccpack.Scene) -> None:
     lm = rccpack.RuleSet.parse("rule a: EC_E(B, @nowhere)\n")
     with pytest.raises(rccpack.RulesError, match="nowhere"):
         lm.check(problem)
-    # evaluating a rule whose landmark is absent is bad input (SPEC §11.3)
+    # evaluating a rule whose landmark is absent is bad input (docs/language.md#landmarks)
     with pytest.raises(rccpack.RulesError, match="nowhere") as e2:
         rccpack.evaluate(problem, lm)
     assert (e2.value.line, e2.value.column) == (1, 9)

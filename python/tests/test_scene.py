@@ -29,7 +29,7 @@ def test_objects_are_attributes() -> None:
     assert (b1.id, b1.cls, b1.x, b1.y, b1.width, b1.height, b1.fixed) == ("b1", "B", 0, 20, 20, 20, False)
     assert b1.placed
     r2 = s.objects[2]
-    assert r2.id == "R2"  # SPEC §2: <class><index>
+    assert r2.id == "R2"  # docs/scenes.md#fields: <class><index>
     assert r2.x is None and r2.y is None and not r2.placed
     assert s.classes == ["B", "R"]
     assert not s.complete

@@ -1,4 +1,4 @@
-//! Questions (SPEC §13): confirm or drop learned rules by showing the person
+//! Questions (docs/guide.md#questions): confirm or drop learned rules by showing the person
 //! probe layouts.
 //!
 //! - `probe`: the layout that breaks one held rule and keeps the others

@@ -1,4 +1,4 @@
-//! Probes (SPEC §13): a layout that breaks one held rule and keeps the rest.
+//! Probes (docs/guide.md#questions): a layout that breaks one held rule and keeps the rest.
 //!
 //! # Background
 //!
@@ -20,7 +20,7 @@
 //! - the objective (soft, weight 1 per subject) is `!φ` for each subject, so
 //!   the probe breaks `r` for as many objects as the other rules allow —
 //!   the most visible break;
-//! - the second objective (SPEC §12) is resemblance to the demonstrations:
+//! - the second objective (docs/guide.md#layouts-like-the-demonstrations) is resemblance to the demonstrations:
 //!   everything the probe does not have to change sits where the person put
 //!   it, so what stands out is the broken rule.
 //!

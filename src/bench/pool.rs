@@ -1,5 +1,5 @@
 //! The statement pool of the runtime study: the 12 pilot-study rules of the
-//! thesis (§4.2) plus the SPEC §8 template statements, built with the
+//! thesis (§4.2) plus the template statements (docs/guide.md#learning), built with the
 //! builders of [`crate::infer::templates`].
 //!
 //! The pool keeps its own names and order (`dr_n_b_r`, `ec_n_b_r`,
@@ -55,7 +55,7 @@ pub fn pilot_rules() -> Vec<Rule> {
     out
 }
 
-/// The SPEC §8 template statements for one subject class over `targets`
+/// The docs/guide.md#learning template statements for one subject class over `targets`
 /// (class names or `*`), named `dr_n_b_r`, `ec_n_b_r`, `not_dr_n_b_r`,
 /// `b_touches_r`, `b_among_r`, `b_corner`.
 pub fn templates(subject: &str, targets: &[&str]) -> Vec<Rule> {

@@ -1,4 +1,4 @@
-//! `rccpack ask DIR`: check learned rules with the person (SPEC §13).
+//! `rccpack ask DIR`: check learned rules with the person (docs/guide.md#questions).
 //!
 //! Reads `DIR/problem.json`, `DIR/demos.json`, optional `DIR/statements.rcc`
 //! and, when resuming, `DIR/answers.json`. Each question writes the probe to
@@ -290,7 +290,7 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
     oracle_verdict(cmd, status, &said)
 }
 
-/// What the oracle's exit status and standard error mean (SPEC §16): 0 is
+/// What the oracle's exit status and standard error mean (docs/guide.md#questions): 0 is
 /// acceptable (what it printed is passed on), 1 with nothing on standard
 /// error not acceptable; 1 with an error (a mistyped rules path, a
 /// crashed script) aborts, so a failure never confirms a rule.
@@ -322,7 +322,7 @@ fn oracle_verdict(
 }
 
 /// Ctrl-C: end the oracle (its process group), remove this process's
-/// temporary files in the task folder, say what is saved, exit 1 (README:
+/// temporary files in the task folder, say what is saved, exit 1 (docs/guide.md#questions:
 /// an abort loses nothing answered; the next run resumes).
 fn on_interrupt(dir: PathBuf, answers: PathBuf) {
     super::signals::on_signal(move || {
@@ -481,7 +481,7 @@ fn start_session(a: &AskArgs, files: &SessionFiles) -> Result<Asker> {
             files.answers.display()
         ))?;
     }
-    // SPEC §15: learned rules about a class today's problem lacks.
+    // docs/language.md#classes-a-scene-lacks: learned rules about a class today's problem lacks.
     let missing = rccpack::rules::missing_classes(asker.held(), &problem_classes);
     if let Some(note) = rccpack::rules::missing_classes_note(&missing) {
         outln(note)?;

@@ -19,7 +19,7 @@ impl std::fmt::Display for Reported {
 
 impl std::error::Error for Reported {}
 
-/// A limit stopped the command before any result (exit 3, SPEC §10); the
+/// A limit stopped the command before any result (exit 3, docs/cli.md); the
 /// text is printed as it is.
 #[derive(Debug)]
 pub struct LimitStruck(pub String);
@@ -106,7 +106,7 @@ pub fn read_rules(path: &Path, scenes: &[Scene]) -> Result<RuleSet> {
 }
 
 /// Whether `.rcc` text was written by `learn`/`ask`/`run` (its header says
-/// so; SPEC §16).
+/// so; docs/language.md#classes-a-scene-lacks).
 fn is_learned(text: &str) -> bool {
     text.trim_start().starts_with("# learned by rccpack")
 }
@@ -117,7 +117,7 @@ fn is_learned(text: &str) -> bool {
 /// rules hold vacuously there, when the file was learned or when the class
 /// is in some scene the command reads (`scenes` and `also`: `--like`,
 /// warm starts); a hand-written file naming a class no such scene has is
-/// refused, naming the closest class (SPEC §16).
+/// refused, naming the closest class (docs/language.md#classes-a-scene-lacks).
 pub fn read_rules_seen(path: &Path, scenes: &[Scene], also: &[Scene]) -> Result<RuleSet> {
     // The size limit while reading, not after (`check /dev/zero`).
     let text = rccpack::task::read_text_at_most(path, rccpack::limits::MAX_RULES_BYTES)

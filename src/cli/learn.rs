@@ -1,4 +1,4 @@
-//! `rccpack learn`: learn rules from demonstrations (SPEC §7).
+//! `rccpack learn`: learn rules from demonstrations (docs/guide.md#learning).
 
 use super::io::{parse_rules_text, read_text};
 use super::{out, read_scenes, write_file, LimitStruck, Reported};

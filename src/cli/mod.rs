@@ -1,6 +1,6 @@
 //! Command-line front end: clap commands, file reading, exit codes.
 //!
-//! Exit codes (SPEC §10): 0 success; 1 bad input; 2 infeasible; 3 a limit
+//! Exit codes (docs/cli.md): 0 success; 1 bad input; 2 infeasible; 3 a limit
 //! stopped the search before any solution.
 
 /// `eprintln!` that never panics: a failed write to standard error
@@ -62,9 +62,9 @@ struct Cli {
 enum Command {
     /// Parse and validate a `.rcc` rule file (optionally against a scene's classes).
     Check(check::CheckArgs),
-    /// Score scenes against rules (SPEC §6): per rule and per object.
+    /// Score scenes against rules (docs/language.md#the-score): per rule and per object.
     Score(score::ScoreArgs),
-    /// Learn rules from demonstrations (SPEC §7).
+    /// Learn rules from demonstrations (docs/guide.md#learning).
     Learn(learn::LearnArgs),
     /// Priors per kind of statement from a library of finished task folders.
     Priors(priors::PriorsArgs),
@@ -73,14 +73,14 @@ enum Command {
     /// Draw a scene as SVG or PNG, optionally marking rule violations.
     Render(render::RenderArgs),
     /// Place the unplaced objects of a problem so that the rules hold as well
-    /// as possible (SPEC §9).
+    /// as possible (docs/guide.md#synthesis).
     Synth(synth::SynthArgs),
-    /// Many distinct layouts that keep the rules, for property tests and data (SPEC §14).
+    /// Many distinct layouts that keep the rules, for property tests and data (docs/guide.md#sampling).
     Sample(sample::SampleArgs),
     /// The whole pipeline on a task folder: learn, synthesise, render.
     Run(run::RunArgs),
     /// Check the learned rules of a task folder with the person: show probe
-    /// layouts that break one rule each, drop or confirm it (SPEC §13).
+    /// layouts that break one rule each, drop or confirm it (docs/guide.md#questions).
     Ask(ask::AskArgs),
     /// Benchmarks: `bench thesis` reproduces the thesis runtime study; `bench tasks` measures realistic learned tasks.
     Bench(bench::BenchArgs),
@@ -113,7 +113,7 @@ fn init_debug_log() {
 pub fn main() -> ExitCode {
     restore_sigpipe();
     init_debug_log();
-    // Usage errors are bad input: exit 1 (SPEC §10 keeps 2 for
+    // Usage errors are bad input: exit 1 (docs/cli.md keeps 2 for
     // "infeasible"); `--help` and `--version` print to stdout and exit 0.
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,

@@ -28,7 +28,7 @@ pub struct RenderArgs {
     #[arg(long, default_value = "point")]
     contact: Contact,
     /// Shade where these scenes (one scene or an array, usually the
-    /// demonstrations) put each class, under the layout (SPEC §12).
+    /// demonstrations) put each class, under the layout (docs/guide.md#layouts-like-the-demonstrations).
     #[arg(long, value_name = "SCENES.json")]
     like: Option<PathBuf>,
 }

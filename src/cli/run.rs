@@ -41,7 +41,7 @@ pub struct RunArgs {
     #[arg(long, default_value = "point")]
     contact: Contact,
     /// Among the best-scoring layouts, prefer the one most like these scenes
-    /// (SPEC §12): by default the task's demonstrations; `none` turns it off.
+    /// (docs/guide.md#layouts-like-the-demonstrations): by default the task's demonstrations; `none` turns it off.
     #[arg(long, value_name = "SCENES.json|none")]
     like: Option<PathBuf>,
     /// Which templates to learn with when there is no `statements.rcc`:

@@ -1,4 +1,4 @@
-//! `rccpack sample`: many distinct layouts that keep the rules (SPEC §14).
+//! `rccpack sample`: many distinct layouts that keep the rules (docs/guide.md#sampling).
 
 use super::{read_rules_seen, read_scene, read_scenes, LimitStruck, Reported};
 use anyhow::Result;

@@ -56,7 +56,7 @@ pub struct SynthArgs {
     #[arg(long)]
     no_redundant: bool,
     /// Among the best-scoring layouts, return one most like these scenes
-    /// (one scene or an array, usually the demonstrations; SPEC §12).
+    /// (one scene or an array, usually the demonstrations; docs/guide.md#layouts-like-the-demonstrations).
     #[arg(long, value_name = "SCENES.json")]
     like: Option<PathBuf>,
     /// Start from a layout assembled from these complete scenes (one scene

@@ -3,7 +3,7 @@
 //! regression file on stable Rust.
 //!
 //! Each harness takes arbitrary bytes and returns normally for every input
-//! on which the program behaves as SPEC says; a panic (including a failed
+//! on which the program behaves as the docs say; a panic (including a failed
 //! assertion here) is a bug. Compiled only with the `fuzzing` feature.
 //!
 //! | harness | input | checks |
@@ -561,7 +561,7 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
     assert!(valid, "an invalid problem was solved");
     let brute = brute_reference(&p, &rules, contact);
     check_result(&p, &rules, contact, &r, brute.as_ref());
-    // A probe (SPEC §13) for one rule, the set as the held rules.
+    // A probe (docs/guide.md#questions) for one rule, the set as the held rules.
     if brute.is_some() && !rules.rules.is_empty() {
         probe_check(u, &p, &rules, contact)?;
     }

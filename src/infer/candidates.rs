@@ -1,11 +1,11 @@
-//! Candidates (SPEC §7.1, §11.5): the statements every demonstration
+//! Candidates (docs/guide.md#learning): the statements every demonstration
 //! satisfies, and for every other statement where it is first broken.
 //!
 //! A per-object statement is broken by an object of its subject class that
 //! does not satisfy it. A scene-level statement (`Q A: φ`) is broken by a
 //! demonstration in which the number of `A` objects satisfying `φ` does not
 //! meet `Q`; the object named then is the one `score` names as a violator
-//! (§11.4): for `no` and `at most`, the first object (in file order) that
+//! (docs/language.md#scene-rules): for `no` and `at most`, the first object (in file order) that
 //! satisfies `φ`; for `some` and `at least`, none — no single object is to
 //! blame for a missing one.
 

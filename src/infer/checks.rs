@@ -82,7 +82,7 @@ pub(super) fn check_statements(set: &RuleSet, classes: &ClassIndex) -> Result<()
 }
 
 /// Landmarks of given statements: every `@ID` must be a fixed, placed
-/// object of every demonstration (SPEC §11.3: evaluating a rule whose
+/// object of every demonstration (docs/language.md#landmarks: evaluating a rule whose
 /// landmark the scene lacks is bad input).
 pub(super) fn check_demo_landmarks(set: &RuleSet, demos: &[Scene]) -> Result<(), InferError> {
     for rule in &set.rules {

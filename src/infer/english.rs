@@ -5,7 +5,7 @@
 //!
 //! A reading is a determiner for the subject ("every B", "no B", "at least
 //! one B", "at least 2 Bs") and a predicate about one object. The predicate
-//! recognises the template shapes (§8, §11.5) by their form, whatever their
+//! recognises the template shapes (docs/guide.md#learning) by their form, whatever their
 //! names (a statement file may use any name): one atom, a negated atom,
 //! "touches some B" (flush or not), "touches no B", "inside the Bs", "lies
 //! flush wherever it touches a B", one row, one column, flush neighbours,

@@ -21,7 +21,7 @@ pub enum InferError {
     /// No demonstrations at all.
     #[error("no demonstrations: the demonstrations file holds an empty array; learning needs at least one complete scene")]
     NoDemonstrations,
-    /// A demonstration breaks SPEC §1.
+    /// A demonstration breaks docs/scenes.md#geometry.
     #[error("demonstration [{demo}] is invalid: {error}")]
     InvalidDemonstration {
         /// Index of the demonstration.

@@ -14,7 +14,7 @@ use crate::scene::Scene;
 use std::borrow::Cow;
 
 /// Learn rules from `demos`. `statements`: the statement set, or `None` for
-/// the templates `params.templates` (§8, §11.5) over the demonstrations'
+/// the templates `params.templates` (docs/guide.md#learning) over the demonstrations'
 /// classes and landmarks. Strengths and comments of given statements are
 /// ignored.
 pub fn learn(
@@ -122,7 +122,7 @@ pub fn learn_with_priors(
         demos, params, &classes, &compiled, &broken, deadline, cancel,
     )?;
     let stats = class_stats(demos, &classes, params);
-    // Scene-level statements (§11.5): q per random scene, n = d.
+    // Scene-level statements (docs/guide.md#learning): q per random scene, n = d.
     let scene_epsilon = params.epsilon.unwrap_or(0.5 / params.samples as f64);
     let numbers = Numbers {
         demos: demos.len(),

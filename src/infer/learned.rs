@@ -28,7 +28,7 @@ pub struct StatementResult {
     pub name: String,
     /// Formula.
     pub formula: Formula,
-    /// Per object, or about the whole scene (§11.4).
+    /// Per object, or about the whole scene (docs/language.md#scene-rules).
     pub scope: Scope,
     /// Subject class.
     pub subject: String,
@@ -38,7 +38,7 @@ pub struct StatementResult {
     /// it.
     pub broken_by: Option<Provenance>,
     /// `n`: subject objects over the demonstrations; for a scene-level
-    /// statement the number of demonstrations `d` (§11.5).
+    /// statement the number of demonstrations `d` (docs/guide.md#learning).
     pub n: u64,
     /// Candidates only: subject objects of the random scenes satisfying it;
     /// for a scene-level statement the random scenes in which it holds.
@@ -65,7 +65,7 @@ pub struct StatementResult {
 pub enum StatementSource {
     /// A statement file.
     Given,
-    /// The §8 templates.
+    /// The docs/guide.md#learning templates.
     Templates,
 }
 

@@ -1,4 +1,4 @@
-//! Learning rules from demonstrations (SPEC §7, thesis §3.2).
+//! Learning rules from demonstrations (docs/guide.md#learning, thesis §3.2).
 //!
 //! # Background
 //!

@@ -1,4 +1,4 @@
-//! The null model of SPEC §7.2: random complete scenes that keep each
+//! The null model of docs/guide.md#learning: random complete scenes that keep each
 //! demonstration's objects but forget where the movable ones were.
 //!
 //! # Background
@@ -21,7 +21,7 @@
 //!   stream `i`, so a sample does not depend on which thread makes it, and
 //!   the per-statement counts are integers summed in any order.
 //! * Counts: a per-object statement counts the subject objects that satisfy
-//!   it, a scene-level statement the scenes in which it holds (§11.5).
+//!   it, a scene-level statement the scenes in which it holds (docs/guide.md#learning).
 //!   Landmarks are resolved by id in each scene's copy of its
 //!   demonstration (fixed objects never move, so every random copy of a
 //!   demonstration has the same landmarks).
@@ -293,7 +293,7 @@ impl<'a> NullModel<'a> {
 
     /// Over `samples` random scenes, per statement: for a per-object
     /// statement, how many subject objects satisfy it; for a scene-level
-    /// statement (§11.5), in how many scenes it holds. `classes` must cover
+    /// statement (docs/guide.md#learning), in how many scenes it holds. `classes` must cover
     /// every class of the demonstrations and every landmark of the
     /// statements (landmarks are resolved per scene, by id).
     ///

@@ -3,7 +3,7 @@
 use super::{InferError, Templates};
 use crate::relations::Contact;
 
-/// Learning parameters (SPEC §7; the defaults are the spec's).
+/// Learning parameters (docs/guide.md#learning; the defaults are the spec's).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LearnParams {
     /// Random scenes in the null model, ≥ 1 (default 1000).
@@ -20,7 +20,7 @@ pub struct LearnParams {
     /// Contact mode of `EC` (default point).
     pub contact: Contact,
     /// The template set used when no statements are given (default: the
-    /// second edition, §11.5).
+    /// second edition, docs/guide.md#learning).
     pub templates: Templates,
 }
 

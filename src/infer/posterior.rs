@@ -1,4 +1,4 @@
-//! Chance rates, likelihoods and posteriors (SPEC §7.3–§7.6), in log space.
+//! Chance rates, likelihoods and posteriors (docs/guide.md), in log space.
 //!
 //! # Background
 //!
@@ -17,7 +17,7 @@
 //! stable log-sum-exp. Only when a value is *written* is it turned back into
 //! a number, floored at [`P_FLOOR`] since a `.rcc` file requires `0 < P`.
 
-/// The smallest posterior written to a `.rcc` file (SPEC §7.6).
+/// The smallest posterior written to a `.rcc` file (docs/guide.md#learning).
 pub(crate) const P_FLOOR: f64 = 1e-300;
 
 /// `p = max(ε, q)`.
@@ -99,7 +99,7 @@ impl Posterior {
 mod tests {
     use super::*;
 
-    /// SPEC §7 worked check.
+    /// docs/guide.md#learning worked check.
     #[test]
     fn worked_check() {
         let cases = [

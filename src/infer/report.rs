@@ -81,7 +81,7 @@ pub struct Report {
     pub source: StatementSource,
     /// Per subject class: `n_A`, `N_A`, `ε`.
     pub classes: Vec<ClassStats>,
-    /// `ε_s` of the scene-level statements (§11.5); absent when there are
+    /// `ε_s` of the scene-level statements (docs/guide.md#learning); absent when there are
     /// none.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub scene_epsilon: Option<f64>,

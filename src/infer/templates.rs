@@ -1,13 +1,13 @@
-//! Statement templates (SPEC §8, §11.5): the statement set used when the user
+//! Statement templates (docs/guide.md#learning): the statement set used when the user
 //! gives none, generated from the classes (and fixed objects) of the
 //! demonstrations.
 //!
 //! # Background
 //!
-//! The first edition (§8) instantiates, per movable subject class `A` and
+//! The first edition (docs/guide.md#learning) instantiates, per movable subject class `A` and
 //! target `B`, the single atoms `DR_d`, `EC_d`, `!DR_d`, "touches some B" and
 //! "among the Bs", plus "in a corner" per subject. The second edition
-//! (§11.5) keeps all of these and adds flush contact, "touches no B", rows,
+//! (docs/guide.md#learning) keeps all of these and adds flush contact, "touches no B", rows,
 //! columns, flush neighbours and, per fixed object `f`, the scene-level
 //! statements `some A: touches(f)` and `no A: touches(f)`.
 //!
@@ -53,7 +53,7 @@ use std::fmt;
 /// Which template set to generate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Templates {
-    /// The first edition's set (SPEC §8), exactly.
+    /// The first edition's set (docs/guide.md#learning), exactly.
     First,
     /// The second edition's set: the first edition's and more.
     Second,
@@ -270,7 +270,7 @@ impl Template {
 
 const EACH: Scope = Scope::Each;
 
-/// Templates over a subject class and a target (§8).
+/// Templates over a subject class and a target (docs/guide.md#learning).
 pub const PAIR_TEMPLATES: &[Template] = &[
     Template {
         name: "{A}_dr_{d}_{B}",
@@ -299,7 +299,7 @@ pub const PAIR_TEMPLATES: &[Template] = &[
     },
 ];
 
-/// Second-edition templates over a subject class and a target (§11.5).
+/// Second-edition templates over a subject class and a target (docs/guide.md#learning).
 pub const FLUSH_PAIR_TEMPLATES: &[Template] = &[
     Template {
         name: "{A}_fl_{d}_{B}",
@@ -324,7 +324,7 @@ pub const FLUSH_PAIR_TEMPLATES: &[Template] = &[
 ];
 
 /// Second-edition templates about a subject class and its own objects
-/// (§11.5, `B = A`).
+/// (docs/guide.md#learning, `B = A`).
 pub const SELF_TEMPLATES: &[Template] = &[
     Template {
         name: "{A}_row",
@@ -348,7 +348,7 @@ pub const SELF_TEMPLATES: &[Template] = &[
     },
 ];
 
-/// Templates over a subject class alone (§8).
+/// Templates over a subject class alone (docs/guide.md#learning).
 pub const SUBJECT_TEMPLATES: &[Template] = &[Template {
     // Contact on two adjacent sides: NW | WS | SE | EN.
     name: "{A}_corner",
@@ -357,7 +357,7 @@ pub const SUBJECT_TEMPLATES: &[Template] = &[Template {
 }];
 
 /// Second-edition scene-level templates over a subject class and a landmark
-/// `f` (§11.5): `some A: touches(f)` and `no A: touches(f)`.
+/// `f` (docs/guide.md#learning): `some A: touches(f)` and `no A: touches(f)`.
 pub const LANDMARK_TEMPLATES: &[Template] = &[
     Template {
         name: "{A}_some_touch_{B}",
@@ -450,7 +450,7 @@ pub fn is_identifier(s: &str) -> bool {
         && c.all(|x| x.is_ascii_alphanumeric() || x == '_')
 }
 
-/// The landmarks the templates use (§11.5): the ids of the first
+/// The landmarks the templates use (docs/guide.md#learning): the ids of the first
 /// demonstration's fixed, placed objects that every demonstration has as a
 /// fixed, placed object, whose id is an identifier; in the first
 /// demonstration's order.

@@ -1,6 +1,6 @@
 //! Relations lifted to classes: class names and landmark ids interned for
 //! one evaluation, and per placed object and target how many target
-//! objects stand in each relation with it (SPEC §4, §11.2).
+//! objects stand in each relation with it (docs/language.md#class-rules, docs/language.md#quantifiers).
 
 use super::{relation_bits, Contact, Quant, RelBits, Relation};
 use crate::scene::{Rect, Scene};
@@ -109,7 +109,7 @@ const EMPTY_TARGET: TargetCount = TargetCount {
 };
 
 /// Per placed object and per target (every class, then `*`), the
-/// [`TargetCount`] of SPEC §4 and §11.2; plus the scene's landmarks.
+/// [`TargetCount`] of docs/language.md#class-rules and docs/language.md#quantifiers; plus the scene's landmarks.
 ///
 /// Object indices are indices into `scene.objects`; unplaced objects have no
 /// row (they take no part in evaluation).
@@ -221,7 +221,7 @@ impl ClassAtoms {
         Some(c)
     }
 
-    /// The default-lifted bits of `obj` against `target` (§4: `DR` every,
+    /// The default-lifted bits of `obj` against `target` (docs/language.md#class-rules: `DR` every,
     /// the others some), or `None` when unplaced.
     pub fn bits(&self, obj: usize, target: Option<usize>) -> Option<RelBits> {
         self.count(obj, target).map(TargetCount::default_bits)

@@ -1,6 +1,6 @@
 //! The sixteen directional relations between rectangles, defined once in
 //! [`TABLE`], and their lifting to classes with target quantifiers
-//! (SPEC §3–§4, §11.1–§11.3).
+//! (docs/language.md).
 //!
 //! # Background
 //!
@@ -33,7 +33,7 @@
 //! ([`relation_bits`], bit `Relation::index()`). A [`ClassAtoms`] table holds,
 //! per placed object and per target (a class or `*`), how many target
 //! objects there are and, per relation, how many of them stand in it
-//! ([`TargetCount`]); every quantifier of §11.2 is then one comparison.
+//! ([`TargetCount`]); every quantifier of docs/language.md#quantifiers is then one comparison.
 //! Landmark targets (`@ID`) are resolved per scene to an object index and
 //! read the pair's bits directly.
 //!
@@ -134,8 +134,8 @@ impl Kind {
     }
 }
 
-/// A quantifier over the target objects of an atom (§11.2) or over the
-/// subject objects of a scene-level rule (§11.4).
+/// A quantifier over the target objects of an atom (docs/language.md#quantifiers) or over the
+/// subject objects of a scene-level rule (docs/language.md#scene-rules).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Quant {
     /// `every`: all of them (true when there is none).
@@ -150,7 +150,7 @@ pub enum Quant {
     AtMost(u32),
 }
 
-/// The largest `K` of `at least K` / `at most K` (SPEC §11.6).
+/// The largest `K` of `at least K` / `at most K` (docs/language.md#syntax).
 pub const MAX_COUNT: u32 = 65_535;
 
 impl Quant {
@@ -244,7 +244,7 @@ impl Relation {
         }
     }
 
-    /// The default quantifier of the class lifting (§11.2): `every` for
+    /// The default quantifier of the class lifting (docs/language.md#quantifiers): `every` for
     /// `DR`, `some` for the others.
     pub const fn default_quant(self) -> Quant {
         self.def().default_quant
@@ -420,7 +420,7 @@ pub struct RelationDef {
     pub rel: Relation,
     /// Its `.rcc` name.
     pub name: &'static str,
-    /// The quantifier an atom without one uses (§11.2).
+    /// The quantifier an atom without one uses (docs/language.md#quantifiers).
     pub default_quant: Quant,
     /// The condition under `point` contact.
     pub point: Condition,
@@ -554,7 +554,7 @@ const fn def(
 }
 
 /// Every relation, in bit order: the one place a relation's meaning is
-/// written (SPEC §3 and §11.1).
+/// written (docs/language.md#relations and docs/language.md#relations).
 pub const TABLE: [RelationDef; 16] = {
     use conditions as c;
     use Dir::{E, N, S, W};

@@ -43,7 +43,7 @@ pub struct RenderOptions {
     pub scale: f64,
     /// A title written above the table (e.g. the scene's file name).
     pub title: Option<String>,
-    /// Positions shown in like-scenes (SPEC §12), drawn faintly under the
+    /// Positions shown in like-scenes (docs/guide.md#layouts-like-the-demonstrations), drawn faintly under the
     /// layout in each class's colour: a heat map of where each class was
     /// shown.
     pub like: Option<ResemblanceTarget>,

@@ -1,5 +1,5 @@
 //! The rule AST: formulas over class-relation atoms, rules with modifiers,
-//! rule sets (SPEC §4–§5, §11).
+//! rule sets (docs/language.md).
 //!
 //! Formulas carry no source spans, so two rule sets compare equal when they
 //! mean the same text-independent thing; spans live beside them in
@@ -27,7 +27,7 @@ impl Span {
 }
 
 /// The target of an atom: a class, `*` (every object of any class) or a
-/// landmark `@ID` (one fixed object, §11.3).
+/// landmark `@ID` (one fixed object, docs/language.md#landmarks).
 #[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Target {
     /// A named class.
@@ -51,7 +51,7 @@ impl fmt::Display for Target {
 /// A class-relation atom `REL(subject, [Q] target)`.
 ///
 /// The quantifier is always stored resolved: an atom written without one
-/// holds the relation's default (§11.2), so `DR_N(B, R)` and
+/// holds the relation's default (docs/language.md#quantifiers), so `DR_N(B, R)` and
 /// `DR_N(B, every R)` are the same atom. A landmark target always has the
 /// default quantifier (a written one is an error).
 #[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -256,7 +256,7 @@ impl Default for Strength {
 }
 
 impl Strength {
-    /// The weight in the §6 score (0 for hard rules, which are constraints).
+    /// The weight in the score (0 for hard rules, which are constraints).
     pub fn weight(&self) -> f64 {
         match *self {
             Strength::Weight(w) => w,
@@ -270,7 +270,7 @@ impl Strength {
     }
 }
 
-/// Who a rule is about (§11.4).
+/// Who a rule is about (docs/language.md#scene-rules).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Scope {
     /// The ordinary rule: every object of the subject class must satisfy

@@ -25,7 +25,7 @@ pub fn check_classes(rules: &RuleSet, scene: &Scene) -> Result<(), RulesError> {
 }
 
 /// Check that every class named by `rules` exists in at least one of
-/// `scenes` (SPEC §16: a class some scene the command reads has is
+/// `scenes` (docs/language.md#classes-a-scene-lacks: a class some scene the command reads has is
 /// ordinary, its rules hold vacuously where it is absent; a class no scene
 /// has is the likely misspelling). Each error names the closest class the
 /// scenes have.
@@ -163,7 +163,7 @@ fn edit_distance(a: &str, b: &str) -> usize {
 
 /// The classes named by `rules` (as subject or target) that `scene` has no
 /// object of, in order of first mention. For *learned* rules this is
-/// ordinary (SPEC §15: no blue blocks today) and their rules hold as §4
+/// ordinary (docs/language.md#group-statements: no blue blocks today) and their rules hold as docs/language.md#class-rules
 /// says; [`check_classes`] guards hand-written rules instead.
 pub fn missing_classes(rules: &RuleSet, scene: &Scene) -> Vec<String> {
     let classes = scene.classes();
@@ -184,7 +184,7 @@ pub fn missing_classes(rules: &RuleSet, scene: &Scene) -> Vec<String> {
     out
 }
 
-/// The note a command prints for [`missing_classes`] (SPEC §15), or `None`.
+/// The note a command prints for [`missing_classes`] (docs/language.md#classes-a-scene-lacks), or `None`.
 /// Shared with the command line (a separate crate); not part of the API.
 #[doc(hidden)]
 pub fn missing_classes_note(missing: &[String]) -> Option<String> {
@@ -201,9 +201,9 @@ pub fn missing_classes_note(missing: &[String]) -> Option<String> {
 }
 
 /// Check that every landmark `@ID` named by `rules` is a fixed object of
-/// `scene` (SPEC §11.3, §11.6).
+/// `scene` (docs/language.md#landmarks, docs/language.md#syntax).
 ///
-/// Ids are as written in the scene or the §2 default `<class><index>`
+/// Ids are as written in the scene or the docs/scenes.md#fields default `<class><index>`
 /// (already filled in by [`Scene::from_json`]); an object whose id is not
 /// an identifier cannot be a landmark. Reports every atom naming a missing
 /// or movable object, at the atom's span when the rule was parsed, naming

@@ -1,4 +1,4 @@
-//! The `.rcc` rule language (SPEC §5): AST, parser, semantic checks,
+//! The `.rcc` rule language (docs/language.md#syntax): AST, parser, semantic checks,
 //! pretty-printer and diagnostics.
 //!
 //! The grammar in `grammar/rcc.pest` is the single source of truth for the

@@ -1,10 +1,10 @@
-//! Sampling many distinct layouts that keep the rules (SPEC §14): for
+//! Sampling many distinct layouts that keep the rules (docs/guide.md#sampling): for
 //! property tests, fuzzing and data.
 //!
 //! # What is drawn
 //!
 //! [`sample`] returns a [`Sampler`], an iterator of complete scenes of one
-//! problem. Every scene is valid in the SPEC §9 sense (on the grid, inside
+//! problem. Every scene is valid in the docs/guide.md#synthesis sense (on the grid, inside
 //! the space, no overlap, fixed and already-placed objects unmoved, every
 //! hard rule kept) and meets the [`Quality`] asked for: the optimum score
 //! (default), score 1 ([`Quality::AllRules`]) or at least a given score
@@ -76,14 +76,14 @@ pub mod strategy;
 /// Which layouts count as good enough.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Quality {
-    /// The optimum score: the §6 numerator that synthesis proves (or at
+    /// The optimum score: the numerator that synthesis proves (or at
     /// least the best it found, when a limit stopped it; see
     /// [`Sampler::target_proven`]).
     #[default]
     Optimum,
     /// Score 1: every soft rule kept by every object.
     AllRules,
-    /// A §6 score of at least this (0 to 1).
+    /// A score of at least this (0 to 1).
     MinScore(f64),
 }
 
@@ -152,7 +152,7 @@ pub enum SampleError {
     /// A minimum score outside 0..=1 (or not a number).
     #[error("minimum score {0} is not a number from 0 to 1")]
     BadMinScore(f64),
-    /// No layout keeps the hard requirements (SPEC §9).
+    /// No layout keeps the hard requirements (docs/guide.md#synthesis).
     #[error("infeasible: no layout keeps every hard requirement")]
     Infeasible(Conflict),
     /// Layouts exist, but none of the quality asked for.
@@ -323,7 +323,7 @@ impl Sampler {
         }
     }
 
-    /// The §6 integer numerator to reach, the engine, the hint tables.
+    /// The docs/language.md#the-score integer numerator to reach, the engine, the hint tables.
     fn prepare(&mut self) -> Result<(), SampleError> {
         let var_total: i64 = self
             .model
@@ -582,7 +582,7 @@ pub type LayoutKey = Vec<(String, i64, i64, Vec<(i64, i64)>)>;
 /// The layout of `scene` (a complete scene of `problem`) up to swapping
 /// interchangeable objects: per group of unplaced objects of `problem` with
 /// the same class and size, their positions, sorted. Two scenes are the
-/// same layout (SPEC §14) iff their keys are equal.
+/// same layout (docs/guide.md#sampling) iff their keys are equal.
 pub fn canonical_key(problem: &Scene, scene: &Scene) -> LayoutKey {
     let mut groups: BTreeMap<(String, i64, i64), Vec<(i64, i64)>> = BTreeMap::new();
     for (p, s) in problem.objects.iter().zip(&scene.objects) {

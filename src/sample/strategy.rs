@@ -1,7 +1,7 @@
 //! Strategies for property tests (`--features proptest`).
 //!
 //! * [`demo_scenes`] — (a) scenes from the demonstrations' distribution:
-//!   the learner's null model (SPEC §7.2) re-places the movable objects of
+//!   the learner's null model (docs/guide.md#learning) re-places the movable objects of
 //!   a demonstration at random; optionally only the objects that keep given
 //!   rules stay.
 //! * [`layouts`] — (b) layouts of one problem that keep given rules, drawn
@@ -40,8 +40,8 @@ use proptest::prelude::*;
 
 // ---- (a) scenes like the demonstrations ----------------------------------
 
-/// Scenes from the demonstrations' distribution (the null model of SPEC
-/// §7.2; see the module documentation for shrinking). With `keep`, only
+/// Scenes from the demonstrations' distribution (the null model of
+/// docs/guide.md#learning; see the module documentation for shrinking). With `keep`, only
 /// objects that keep those rules (evaluated with that contact mode) stay,
 /// and scenes whose scene-level hard rules fail are rejected.
 ///
@@ -140,7 +140,7 @@ pub fn layouts(
 
 // ---- (c) rule sets ----------------------------------------------------------
 
-/// Classes, including the quantifier words, which are not reserved (§11.6).
+/// Classes, including the quantifier words, which are not reserved (docs/language.md#syntax).
 pub const CLASSES: [&str; 10] = [
     "B", "R", "G", "W", "no", "some", "every", "at", "least", "most",
 ];

@@ -1,4 +1,4 @@
-//! Scenes: the space, the grid and the objects (SPEC §1–§2).
+//! Scenes: the space, the grid and the objects (docs/scenes.md).
 //!
 //! A [`Scene`] is parsed from JSON with [`Scene::from_json`] (one scene) or
 //! [`scenes_from_json`] (a demonstrations array), both of which validate the
@@ -140,9 +140,9 @@ impl Object {
     }
 }
 
-/// A scene: space, grid step and objects (SPEC §1).
+/// A scene: space, grid step and objects (docs/scenes.md#geometry).
 ///
-/// Serde reads and writes the SPEC §2 form (defaults filled in, the scene
+/// Serde reads and writes the docs/scenes.md#fields form (defaults filled in, the scene
 /// validated), so a scene can be a field of other JSON files
 /// (`answers.json`).
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -157,7 +157,7 @@ pub struct Scene {
     pub objects: Vec<Object>,
 }
 
-/// What rule of SPEC §1–§2 a scene breaks ([`SceneError::kind`]).
+/// What rule of docs/scenes.md a scene breaks ([`SceneError::kind`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum SceneErrorKind {
@@ -200,7 +200,7 @@ pub enum SceneError {
         /// What is wrong, with line and column.
         message: String,
     },
-    /// The scene parsed but breaks a rule of SPEC §1.
+    /// The scene parsed but breaks a rule of docs/scenes.md#geometry.
     #[error("{path}: {message}")]
     Invalid {
         /// Which rule.

@@ -1,4 +1,4 @@
-//! Scene validation (SPEC §1): each rule a named check, run in a fixed
+//! Scene validation (docs/scenes.md#geometry): each rule a named check, run in a fixed
 //! order so the first error reported is always the same.
 
 use super::{Object, Rect, Scene, SceneError, SceneErrorKind};
@@ -6,7 +6,7 @@ use crate::limits::{cut, MAX_COORD, MAX_OBJECTS};
 use std::collections::HashSet;
 
 impl Scene {
-    /// Check SPEC §1: coordinates, sizes and grid within
+    /// Check docs/scenes.md#geometry: coordinates, sizes and grid within
     /// [`crate::limits::MAX_COORD`], sizes ≥ 1, grid ≥ 1, unique ids, class
     /// names that are identifiers, fixed objects placed, `x` and `y` given
     /// together, placed objects inside the space, no two interiors

@@ -65,7 +65,7 @@ pub(crate) struct AppState {
     /// Synthesis jobs by id (the most recent few).
     pub jobs: std::sync::Mutex<std::collections::BTreeMap<u64, api::SynthJob>>,
     pub next_job: std::sync::atomic::AtomicU64,
-    /// The open "Check rules" session (SPEC §13), if any. Held across the
+    /// The open "Check rules" session (docs/guide.md#questions), if any. Held across the
     /// probe search, which runs on a blocking thread.
     pub ask: Arc<tokio::sync::Mutex<Option<api::AskSession>>>,
     /// Bumped (under `write_lock`) whenever demos.json changes or learning

@@ -2,11 +2,11 @@
 //! checks only).
 //!
 //! [`solve`] enumerates every assignment of grid positions to the unplaced
-//! objects — each object wholly inside the space, on the grid of SPEC §9 —
+//! objects — each object wholly inside the space, on the grid of docs/guide.md#synthesis —
 //! skips assignments in which two interiors overlap (fixed and already-placed
 //! objects included), and asks the evaluator ([`crate::eval::Evaluator`], the
-//! one implementation of §4 and §6) whether every hard rule holds and what the
-//! §6 numerator over **all** placed objects is. It keeps the largest
+//! one implementation of docs/language.md#class-rules and docs/language.md#the-score) whether every hard rule holds and what the
+//! numerator over **all** placed objects is. It keeps the largest
 //! numerator.
 //!
 //! There is no pruning by rules and no symmetry breaking: the point is to be
@@ -34,13 +34,13 @@ pub struct BruteResult {
     /// Some layout places every object without overlap and keeps every hard
     /// rule.
     pub feasible: bool,
-    /// The largest §6 numerator (`satisfied_weight`) over feasible layouts;
+    /// The largest numerator (`satisfied_weight`) over feasible layouts;
     /// `f64::NEG_INFINITY` when infeasible.
     pub best_numerator: f64,
     /// One optimal complete scene, when feasible.
     pub best: Option<Scene>,
     /// With like-scenes: the smallest resemblance cost among the layouts of
-    /// the best numerator (the lexicographic optimum of SPEC §12); 0
+    /// the best numerator (the lexicographic optimum of docs/guide.md#layouts-like-the-demonstrations); 0
     /// without.
     pub best_cost: u64,
     /// Complete non-overlapping layouts handed to the evaluator.
@@ -60,7 +60,7 @@ pub enum BruteError {
         /// The limit in force.
         limit: u128,
     },
-    /// The problem scene is not valid (SPEC §1).
+    /// The problem scene is not valid (docs/scenes.md#geometry).
     #[error("bad problem: {0}")]
     BadProblem(String),
 }
@@ -102,8 +102,8 @@ pub fn solve(
     solve_with_limit(problem, rules, contact, MAX_LAYOUTS)
 }
 
-/// Exhaustively solve `problem` for the lexicographic objective of SPEC
-/// §12: the largest numerator, then the smallest resemblance cost
+/// Exhaustively solve `problem` for the lexicographic objective of
+/// docs/guide.md#layouts-like-the-demonstrations: the largest numerator, then the smallest resemblance cost
 /// ([`ResemblanceTarget::cost`], the one resemblance function).
 pub fn solve_like(
     problem: &Scene,

@@ -18,7 +18,7 @@
 //!   the study set); pure bisection was 10× slower on the near-satisfiable
 //!   24-object problem. [`Strategy::ImproveFromFirst`] asks for
 //!   `obj ≥ best + 1` after each solution until refuted.
-//! - [`minimise_cost`] — the second objective (SPEC §12): with the
+//! - [`minimise_cost`] — the second objective (docs/guide.md#layouts-like-the-demonstrations): with the
 //!   numerator held at least the first phase's, bisect the resemblance
 //!   cost between the proven lower bound and the incumbent.
 //! - [`shrink_conflict`] — a minimal set of hard rules that conflict, by
@@ -201,7 +201,7 @@ pub fn optimise_from(
     }
 }
 
-/// The second phase (SPEC §12): keep the numerator at least that of `best`
+/// The second phase (docs/guide.md#layouts-like-the-demonstrations): keep the numerator at least that of `best`
 /// (the first phase's layout) and minimise the resemblance `cost`, by
 /// bisection between the proven lower bound and the incumbent. A layout
 /// with a larger numerator, should one turn up (only when a limit stopped

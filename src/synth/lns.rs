@@ -32,7 +32,7 @@
 //! - A phase stops when the incumbent reaches the root bound, after
 //!   `patience` fruitless rounds at the largest window, or when as many
 //!   nodes as the last proof attempt's budget pass without an improvement.
-//! - Measured on `bench tasks` (README, Performance): on the tasks `learn`
+//! - Measured on `bench tasks` (docs/performance.md): on the tasks `learn`
 //!   writes, LNS before the proof cost more than it brought at 16–40
 //!   objects (the optimum was usually one the engine reaches directly from
 //!   the warm start) and kept the scores up at 30–60; alternating keeps

@@ -1,5 +1,5 @@
-//! Synthesis (SPEC §9): place every unplaced object on the grid so that hard
-//! rules hold and the §6 numerator is as large as possible.
+//! Synthesis (docs/guide.md#synthesis): place every unplaced object on the grid so that hard
+//! rules hold and the numerator is as large as possible.
 //!
 //! This file fixes the public API ([`synthesize`], its options and result,
 //! [`verify_solution`], the [`emit`]ted model); the rest lives in private
@@ -21,7 +21,7 @@
 //! - `weights`, `resemblance_terms`, `warm`, `capacity` — integer objective weights, the second
 //!   objective's terms, the warm start, the area test before any engine.
 //!
-//! # Second-edition rules (SPEC §11)
+//! # Second-edition rules (docs/language.md)
 //!
 //! Quantified atoms, landmarks and scene-level rules are compiled by
 //! `model` into the same kind of literals as first-edition rules, so
@@ -29,7 +29,7 @@
 //!
 //! - a soft scene-level rule (`some A: φ`, `no A: φ`, `at least K A: φ`,
 //!   `at most K A: φ`) is **one** objective term `w·[holds]`
-//!   (`SoftTerm::object` is `None`), exactly the §11.4 score;
+//!   (`SoftTerm::object` is `None`), exactly the docs/language.md#scene-rules score;
 //! - a hard scene-level rule is one hard literal; under core extraction it
 //!   has one assumption like every hard rule;
 //! - an infeasibility [`Conflict`] names hard **rules**, never objects. A
@@ -42,7 +42,7 @@
 //! - a landmark `@ID` that names no fixed object of the problem (a movable
 //!   object, or none) is an empty target, as in the evaluator: the default
 //!   quantifier decides (`DR` true; `EC`, `FL`, `AL` false). The command
-//!   line rejects such rules before synthesis (SPEC §11.3).
+//!   line rejects such rules before synthesis (docs/language.md#landmarks).
 
 use crate::eval::Evaluation;
 use crate::relations::Contact;
@@ -104,7 +104,7 @@ pub struct SynthOptions {
     pub strategy: Strategy,
     /// Called with every improving layout (e.g. to print progress).
     pub progress: Option<ProgressFn>,
-    /// The second objective (SPEC §12): among the layouts with the best
+    /// The second objective (docs/guide.md#layouts-like-the-demonstrations): among the layouts with the best
     /// score, one most like these positions (`synth --like`).
     pub like: Option<ResemblanceTarget>,
     /// On an infeasible problem, name a minimal conflicting set of hard
@@ -128,7 +128,7 @@ pub struct SynthOptions {
 /// An improving layout found during the search.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Progress {
-    /// Its §6 score (from the evaluator).
+    /// Its score (from the evaluator).
     pub score: f64,
     /// Time since the solve started.
     pub elapsed: Duration,
@@ -164,7 +164,7 @@ impl Default for SynthOptions {
     }
 }
 
-/// How a solve ended (SPEC §9).
+/// How a solve ended (docs/guide.md#synthesis).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Status {
@@ -186,7 +186,7 @@ pub struct Conflict {
     pub objects_cannot_fit: bool,
     /// Names of hard rules whose conjunction (with the geometry) is
     /// impossible; minimal: dropping any one makes the rest satisfiable.
-    /// Scene-level rules (§11.4) appear by name like the others.
+    /// Scene-level rules (docs/language.md#scene-rules) appear by name like the others.
     pub hard_rules: Vec<String>,
     /// A limit struck before the conflict was explained: nothing is blamed
     /// that was not proven. With `hard_rules` empty (and not
@@ -228,7 +228,7 @@ pub struct SynthResult {
     pub stats: SolveStats,
     /// With [`SynthOptions::like`] and a layout: its resemblance cost.
     pub resemblance: Option<Resemblance>,
-    /// An upper bound on the §6 score of any layout, proven by the search
+    /// An upper bound on the score of any layout, proven by the search
     /// (the score itself when `optimal`; for `feasible`, how far the layout
     /// returned may be from the optimum). Computed from the integer
     /// objective, so exact up to the weights' scaling (`weights`).
@@ -255,7 +255,7 @@ impl SynthResult {
 pub struct Resemblance {
     /// The layout's resemblance cost ([`ResemblanceTarget::cost`]).
     pub cost: u64,
-    /// Whether the cost is proven minimal among the layouts whose §6
+    /// Whether the cost is proven minimal among the layouts whose docs/language.md#the-score
     /// numerator equals the returned layout's.
     pub proven: bool,
     /// A proven lower bound on the resemblance cost of every layout whose
@@ -270,7 +270,7 @@ pub struct Resemblance {
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum SynthError {
-    /// The problem is not a valid scene (SPEC §1); the error names the field.
+    /// The problem is not a valid scene (docs/scenes.md#geometry); the error names the field.
     #[error(transparent)]
     Scene(#[from] crate::scene::SceneError),
     /// A rule built in code has a weight that is not a finite positive
@@ -338,7 +338,7 @@ pub const MAX_COORD: i64 = 1 << 28;
 /// one propagation (a fuzzed 54×2^28 space with grid 5 took gigabytes).
 pub const MAX_POSITIONS: i64 = 1 << 18;
 
-/// Whether `problem` is usable for synthesis: a valid scene (SPEC §1) whose
+/// Whether `problem` is usable for synthesis: a valid scene (docs/scenes.md#geometry) whose
 /// numbers are within the solver's bounds ([`MAX_COORD`],
 /// [`MAX_POSITIONS`]). [`synthesize`] checks this first; callers that build
 /// `model::Model`s themselves must too.
@@ -476,9 +476,9 @@ pub(crate) fn objective_model_encoded(
     let coefs = weights::integer_weights(&weights).ok_or(SynthError::WeightsTooLarge)?;
     Ok(Some((model, coefs, build)))
 }
-/// Synthesise a layout (SPEC §9): place every unplaced object on the grid,
+/// Synthesise a layout (docs/guide.md#synthesis): place every unplaced object on the grid,
 /// inside the space, without overlap, so that every hard rule holds and the
-/// §6 numerator over all objects is maximal.
+/// numerator over all objects is maximal.
 ///
 /// The returned score is the evaluator's, recomputed from the output scene.
 /// Errors are reserved for unusable input; infeasibility is a [`Status`].

@@ -1,4 +1,4 @@
-//! The second objective in the solver-free model (SPEC §12): one term per
+//! The second objective in the solver-free model (docs/guide.md#layouts-like-the-demonstrations): one term per
 //! object that synthesis places and whose class and size the like-scenes
 //! showed, holding the object's grid variables and its distance map.
 //!

@@ -220,7 +220,7 @@ impl Solve<'_> {
         })
     }
 
-    /// The §6 score bound of the engine's proven objective bound `b`.
+    /// The score bound of the engine's proven objective bound `b`.
     pub(super) fn score_bound(&self, b: i64) -> f64 {
         let constant: i64 = self
             .model

@@ -1,4 +1,4 @@
-//! An independent checker for synthesis output (SPEC §9), shared by the
+//! An independent checker for synthesis output (docs/guide.md#synthesis), shared by the
 //! synthesis tests and the differential tests against the brute-force
 //! solver.
 
@@ -119,7 +119,7 @@ pub enum VerifyError {
 /// inside the space; previously placed objects (fixed or not) unmoved;
 /// newly placed objects on the grid; no two interiors overlapping; every
 /// hard rule holding for every subject, and every hard scene-level rule
-/// (§11.4) holding in the scene (by the evaluator).
+/// (docs/language.md#scene-rules) holding in the scene (by the evaluator).
 ///
 /// The error names the first problem found.
 pub fn verify_solution(

@@ -1,4 +1,4 @@
-//! The files of a task folder (SPEC §10): fixed names only, atomic writes,
+//! The files of a task folder (docs/cli.md): fixed names only, atomic writes,
 //! content versions. Shared by `rccpack run`/`ask` and the studio, so a name
 //! is written once.
 
@@ -23,7 +23,7 @@ pub const SOLUTION_PNG: &str = "solution.png";
 /// The probe pictures of a question session.
 pub const PROBES: &str = "probes";
 
-/// The answered questions of "Check rules" (SPEC §13), as `rccpack ask`
+/// The answered questions of "Check rules" (docs/guide.md#questions), as `rccpack ask`
 /// keeps them.
 pub const ANSWERS: &str = "answers.json";
 /// The previous `learned.rcc`, kept when a first question replaces it.
@@ -74,7 +74,7 @@ pub fn version(content: Option<&str>) -> String {
     }
 }
 
-/// The writes that start (or resume) a question session (SPEC §13), shared
+/// The writes that start (or resume) a question session (docs/guide.md#questions), shared
 /// by `rccpack ask` and the studio: `demos.json` when `Asker::new` added an
 /// accepted probe an abort had kept out of it (`demos_read` is how many
 /// scenes the file held), then `learned.rcc`; a different `learned.rcc` of a
@@ -101,7 +101,7 @@ pub fn write_session_start(
     Ok(backup)
 }
 
-/// The writes after an answer (SPEC §13), in journal order, each atomic:
+/// The writes after an answer (docs/guide.md#questions), in journal order, each atomic:
 /// `answers.json`, then `demos.json` (only when the probe was accepted),
 /// then `learned.rcc`. An abort between two of them loses nothing:
 /// `Asker::new` reconciles the demonstrations with the journal.
@@ -121,7 +121,7 @@ pub fn write_after_answer(
     atomic_write(dir, LEARNED, &asker.learned_rcc()).map_err(|e| (LEARNED, e))
 }
 
-/// Names of the rules marked `# confirmed` (SPEC §13) in `.rcc` text: the
+/// Names of the rules marked `# confirmed` (docs/guide.md#questions) in `.rcc` text: the
 /// comment lines right above a `rule` line belong to it.
 pub fn confirmed_names(text: &str) -> Vec<String> {
     let mark = format!("# {}", crate::ask::CONFIRMED);

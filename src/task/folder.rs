@@ -86,7 +86,7 @@ pub struct Written {
     /// The line it prints on standard error (infeasible, unknown).
     pub stderr: Option<String>,
     /// Its exit code: 0 a layout, 2 infeasible, 3 a limit before any
-    /// layout (SPEC §10).
+    /// layout (docs/cli.md).
     pub exit_code: u8,
     /// The files written, in order.
     pub files: Vec<PathBuf>,
@@ -151,8 +151,8 @@ pub fn write_outcome(
     let mut written = Vec::new();
     write_learned(out, learned, rules, &mut stdout, &mut written)?;
     let result = &placement.result;
-    // Learned rules about a class today's problem lacks hold as SPEC §4
-    // says (SPEC §15): a note, then a layout.
+    // Learned rules about a class today's problem lacks hold as docs/language.md#class-rules
+    // says (docs/language.md#classes-a-scene-lacks): a note, then a layout.
     if let Some(note) = missing_classes_note(&placement.missing_classes) {
         stdout.push(note);
     }

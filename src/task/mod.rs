@@ -1,4 +1,4 @@
-//! A task folder and the whole pipeline on it (SPEC §10 `run`): learn rules
+//! A task folder and the whole pipeline on it (docs/cli.md `run`): learn rules
 //! from the demonstrations, check them against the problem, and place the
 //! problem's objects with the demonstrations as the like-scenes and the warm
 //! start.
@@ -196,7 +196,7 @@ impl Task {
     }
 }
 
-/// Which scenes the layout should resemble (SPEC §12).
+/// Which scenes the layout should resemble (docs/guide.md#layouts-like-the-demonstrations).
 #[derive(Debug, Clone, Default)]
 #[non_exhaustive]
 pub enum Like {
@@ -231,8 +231,8 @@ pub struct RunOptions {
 pub struct Placement {
     /// The synthesis result (status, layout, evaluation, conflict, stats).
     pub result: SynthResult,
-    /// Classes the rules name that the problem lacks (SPEC §15: noted, and
-    /// the rules about them hold as SPEC §4 says).
+    /// Classes the rules name that the problem lacks (docs/language.md#classes-a-scene-lacks: noted, and
+    /// the rules about them hold as docs/language.md#class-rules says).
     pub missing_classes: Vec<String>,
     /// The resemblance target used, if any (e.g. for
     /// [`crate::render::RenderOptions::like`]).

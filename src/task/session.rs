@@ -1,4 +1,4 @@
-//! A question session on a task folder (SPEC §13) with the files of
+//! A question session on a task folder (docs/guide.md#questions) with the files of
 //! `rccpack ask`: the folder lock for the whole session, `answers.json`
 //! read to resume, every probe written to `probes/probe-N.json` and `.png`
 //! before it is shown, and after every answer `answers.json`, `demos.json`
@@ -273,7 +273,7 @@ impl Session {
     }
 
     /// Whether the start kept a different `learned.rcc` as
-    /// `learned.rcc.bak` (a first session, SPEC §13).
+    /// `learned.rcc.bak` (a first session, docs/guide.md#questions).
     pub fn backup_written(&self) -> bool {
         self.backup
     }
@@ -315,7 +315,7 @@ impl Session {
         }))
     }
 
-    /// Answer the open question (SPEC §13): accepted → the probe becomes a
+    /// Answer the open question (docs/guide.md#questions): accepted → the probe becomes a
     /// demonstration and learning is redone; rejected → the rule is
     /// confirmed. Then (when saving) `answers.json`, `demos.json` (accepted
     /// only) and `learned.rcc` are written, in that order, each atomically.

@@ -168,7 +168,7 @@ try {
   assert.match(await page.locator('#toast').textContent(), /changed on disk/);
   assert.match(fs.readFileSync(path.join(task, 'learned.rcc'), 'utf8'), /# my note/);
 
-  // Check rules (SPEC §13): answer two questions, one of each kind. The two
+  // Check rules (docs/guide.md#questions): answer two questions, one of each kind. The two
   // recorded demonstrations pin every learned rule (each follows from the
   // others: nothing to ask), so the example's eight varied ones take their
   // place in the task folder.
@@ -278,7 +278,7 @@ try {
 
   // A page on another origin (a second local server, another port) tries a
   // "simple" fetch, a JSON fetch, a PUT and a form post: no file changes
-  // (issue 21, item 1; SPEC §15, trust of the studio).
+  // (issue 21, item 1; docs/studio.md#security-model, trust of the studio).
   {
     const http = await import('node:http');
     const demosPath = path.join(task, 'demos.json');

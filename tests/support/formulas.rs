@@ -105,7 +105,7 @@ pub fn random_target(rng: &mut ChaCha8Rng, voc: &Vocabulary) -> Target {
 }
 
 /// One random atom of `subject` (a landmark keeps the default quantifier,
-/// SPEC §11.3).
+/// docs/language.md#landmarks).
 pub fn random_atom(rng: &mut ChaCha8Rng, voc: &Vocabulary, subject: &str) -> Formula {
     let rel = pick(rng, &Relation::ALL);
     let target = random_target(rng, voc);

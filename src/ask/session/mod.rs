@@ -1,4 +1,4 @@
-//! The question loop (SPEC §13), without I/O: which rule to ask about next,
+//! The question loop (docs/guide.md#questions), without I/O: which rule to ask about next,
 //! and what an answer does. The command line and the studio drive it and
 //! save what it returns.
 //!
@@ -170,7 +170,7 @@ pub struct AskOptions {
     /// Probe search settings (`like` is filled from the demonstrations when
     /// `resemble` is on).
     pub probe: ProbeOptions,
-    /// Probes resemble the demonstrations (SPEC §12).
+    /// Probes resemble the demonstrations (docs/guide.md#layouts-like-the-demonstrations).
     pub resemble: bool,
     /// Reuse what earlier checks found (on by default): a layout a solve
     /// found answers later checks it decides (evaluated, no solve), a
@@ -549,7 +549,7 @@ impl Asker {
         }
     }
 
-    /// Apply the person's answer to question `q` (SPEC §13): accepted → the
+    /// Apply the person's answer to question `q` (docs/guide.md#questions): accepted → the
     /// probe becomes a demonstration and learning is redone; rejected → the
     /// rule is confirmed. Returns the answer to save.
     pub fn answer(&mut self, q: &Question, accepted: bool) -> Result<&Answer, AskError> {

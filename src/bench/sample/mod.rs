@@ -3,7 +3,7 @@
 //!
 //! * [`enumerate`] — every layout of a **tiny** problem by brute force
 //!   (every grid position of every unplaced object, overlaps skipped, hard
-//!   rules and the §6 numerator from the evaluator), one per canonical
+//!   rules and the numerator from the evaluator), one per canonical
 //!   layout ([`crate::sample::canonical_key`]);
 //! * [`uniformity`] — the first layout drawn with each of `draws` seeds,
 //!   counted per layout and compared with uniform by a chi-square test;

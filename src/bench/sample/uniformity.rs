@@ -12,7 +12,7 @@ use crate::scene::Scene;
 use crate::synth::brute_force::grid_positions;
 use std::collections::{BTreeMap, BTreeSet};
 
-/// Every layout of `problem` that keeps the hard rules, with its §6
+/// Every layout of `problem` that keeps the hard rules, with its docs/language.md#the-score
 /// numerator, one per canonical layout; `None` when more than `limit`
 /// assignments would have to be tried.
 pub fn enumerate(
@@ -246,7 +246,7 @@ pub fn uniformity(
     })
 }
 
-/// Some complete scene of `problem` (for the §6 denominator, which does
+/// Some complete scene of `problem` (for the denominator, which does
 /// not depend on the positions).
 fn problem_filled(problem: &Scene, all: &[(Key, f64)]) -> Option<Scene> {
     let (key, _) = all.first()?;

@@ -20,8 +20,9 @@
 //!    total area at `max(3, largest size)` times `M_c` blocks per class,
 //!    aspect 1, 1.25 or 1.5 (wide or tall), every side long enough for a
 //!    band; free table around the box about as wide as the box. The
-//!    demonstrations and every problem of the task share this box, so SPEC
-//!    §12's absolute resemblance positions mean the same in both.
+//!    demonstrations and every problem of the task share this box, so the
+//!    absolute positions of resemblance (docs/guide.md#layouts-like-the-demonstrations)
+//!    mean the same in both.
 //! 4. **Demonstrations.** 3–5 complete scenes; per class 2..=`M_c` blocks
 //!    (one demonstration shows `M_c`), placed procedurally by the class's
 //!    habit with random offsets (where along the wall, which shape of
@@ -41,7 +42,7 @@
 //! # Solving
 //!
 //! Every problem is solved with the engine in two modes: score only, and
-//! with `like` = the demonstrations (SPEC §12). Both get
+//! with `like` = the demonstrations (docs/guide.md#layouts-like-the-demonstrations). Both get
 //! `SynthOptions::warm_start` = the demonstrations unless the configuration
 //! says otherwise. Every layout is re-checked by the checker. Peers solve
 //! the emitted (score-only) model and are compared with the score-only run.

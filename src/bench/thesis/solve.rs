@@ -34,9 +34,9 @@ pub struct Row {
     pub conflicts: u64,
     /// Evaluator score of the solution.
     pub score: Option<f64>,
-    /// §6 numerator of the solution.
+    /// numerator of the solution.
     pub satisfied_weight: Option<f64>,
-    /// §6 denominator of the solution.
+    /// denominator of the solution.
     pub total_weight: Option<f64>,
     /// Whether the solution passed the checker (`None`: no solution).
     pub verified: Option<bool>,

@@ -1,4 +1,4 @@
-//! `/api/ask`: the "Check rules" questions (SPEC §13). One session per
+//! `/api/ask`: the "Check rules" questions (docs/guide.md#questions). One session per
 //! folder, read from the files as `rccpack ask` reads them; each answer is
 //! written as `rccpack ask` writes it (the journal first), and never over a
 //! file changed outside the studio since the question was asked.

@@ -34,7 +34,7 @@ pub(crate) async fn local_host_only(
 }
 
 /// Refuse every request that changes a file or starts work (any method but
-/// `GET`/`HEAD`) unless it comes from the studio's own page (SPEC §15
+/// `GET`/`HEAD`) unless it comes from the studio's own page (docs/studio.md#security-model
 /// "Trust of the studio"): an `Origin` header, when sent, must be this
 /// server's own (`http://` + the `Host` header; `null` and every other
 /// origin are refused); a `Sec-Fetch-Site` header, when sent, must be

@@ -76,7 +76,7 @@ pub(super) fn learned_value(st: &AppState, text: Option<&str>) -> LearnedView {
             Ok(set)
         }) {
             Ok(set) => {
-                // SPEC §15: a class today's problem lacks is ordinary.
+                // docs/language.md#classes-a-scene-lacks: a class today's problem lacks is ordinary.
                 v.note = missing_classes_note(&missing_classes(&set, &st.problem));
                 v.rules = Some(rule_summary(&set, &files::confirmed_names(t)));
             }
@@ -132,7 +132,7 @@ pub(super) async fn parse_checked(
         let set = parse_rules(&text).map_err(|e| rules_error(file, &text, e))?;
         check_landmarks(&set, &st.problem).map_err(|e| rules_error(file, &text, e))?;
         // A class of neither the problem nor the demonstrations is a typo;
-        // one only the demonstrations have is ordinary (SPEC §15: noted).
+        // one only the demonstrations have is ordinary (docs/language.md#classes-a-scene-lacks: noted).
         let mut known = st.problem.clone();
         for d in read_demos(&st).unwrap_or_default() {
             known.objects.extend(d.objects);

@@ -37,7 +37,7 @@ struct SynthBody {
     /// Seconds (default 30, at most 600).
     time_limit: Option<f64>,
     seed: Option<u64>,
-    /// Prefer layouts like the saved demonstrations (SPEC §12; default
+    /// Prefer layouts like the saved demonstrations (docs/guide.md#layouts-like-the-demonstrations; default
     /// true).
     like: Option<bool>,
 }
@@ -50,7 +50,7 @@ const STUDIO_MAX_TIME_LIMIT_SECS: u64 = 600;
 pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
     let b: SynthBody = parse_body(&body)?;
     let (set, _) = parse_checked(&st, CHOSEN, b.rules).await?;
-    // SPEC §15: the chosen rules are learned ones; a class the problem
+    // docs/language.md#classes-a-scene-lacks: the chosen rules are learned ones; a class the problem
     // lacks is noted, not refused.
     let note = missing_classes_note(&missing_classes(&set, &st.problem));
     let secs = b.time_limit.unwrap_or(30.0);

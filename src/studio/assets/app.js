@@ -24,7 +24,7 @@ const state = {
 async function api(method, url, body) {
   const init = { method, headers: {} };
   // Every request that changes something is JSON: the studio refuses any
-  // other content type (SPEC §15, trust of the studio).
+  // other content type (docs/studio.md#security-model, trust of the studio).
   if (method !== 'GET') init.headers['content-type'] = 'application/json';
   if (body !== undefined) {
     init.body = typeof body === 'string' ? body : JSON.stringify(body);
@@ -511,7 +511,7 @@ async function anotherLayout() {
 
 function fmtW(w) { return Number.isInteger(w) ? String(w) : w.toFixed(2); }
 
-// ---- check rules pane (SPEC §13) ----------------------------------------------------
+// ---- check rules pane (docs/guide.md#questions) ----------------------------------------------------
 
 function setAskState(s) { document.body.dataset.ask = s; }
 

@@ -121,7 +121,7 @@ fn header(s: &mut String, e: &Emitted) {
     );
     let _ = writeln!(
         s,
-        "% Contact mode `{}`. Only the score objective is written (not the resemblance objective of SPEC §12).",
+        "% Contact mode `{}`. Only the score objective is written (not the resemblance objective of docs/guide.md#layouts-like-the-demonstrations).",
         e.contact
     );
     if !m.cumulative.is_empty() {

@@ -12,9 +12,9 @@
 //! (`super::weights::integer_weights`). It must stay in step with
 //! `synthesize`.
 //!
-//! - **Only the first objective** (the §6 score numerator, scaled to
+//! - **Only the first objective** (the score numerator, scaled to
 //!   integers) is written. The second objective of `--like`
-//!   ([`SynthOptions::like`], SPEC §12) is *not*: a peer maximises the score
+//!   ([`SynthOptions::like`], docs/guide.md#layouts-like-the-demonstrations) is *not*: a peer maximises the score
 //!   and nothing else.
 //! - The objective is `constant + Σ coef_i·[lit_i]` over the soft terms
 //!   whose literal is a model Boolean; soft terms whose literal is the

@@ -83,7 +83,7 @@ pub struct Engine {
     counters: Counters,
     tag: ConstraintTag,
     first_phase: Rc<Cell<bool>>,
-    /// The resemblance total-cost variable (SPEC §12).
+    /// The resemblance total-cost variable (docs/guide.md#layouts-like-the-demonstrations).
     resemblance_total: Option<DomainId>,
     /// The second objective until the second phase starts ([`resemblance`]).
     pending_resemblance: Option<PendingResemblance>,

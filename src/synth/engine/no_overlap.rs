@@ -1,4 +1,4 @@
-//! One propagator for the non-overlap of every pair of objects (SPEC §9):
+//! One propagator for the non-overlap of every pair of objects (docs/guide.md#synthesis):
 //! of any two objects, at least one that is to be placed, one lies wholly
 //! west, east, south or north of the other.
 //!

@@ -1,5 +1,5 @@
 //! A propagator for one resemblance term: `c ≥ map(gx, gy)` over the
-//! object's distance map (SPEC §12), on the bounds of all three variables.
+//! object's distance map (docs/guide.md#layouts-like-the-demonstrations), on the bounds of all three variables.
 //!
 //! # Background
 //!

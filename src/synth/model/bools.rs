@@ -140,7 +140,7 @@ impl Model {
         }
     }
 
-    /// The literal of quantifier `q` over `lits` (§11.2's table).
+    /// The literal of quantifier `q` over `lits` (the table of docs/language.md#quantifiers).
     pub fn quantify(&mut self, q: Quant, lits: Vec<Lit>) -> Lit {
         match q {
             Quant::Every => self.and(lits),

@@ -1,4 +1,4 @@
-//! The solver-independent synthesis model (SPEC §3, §4, §6, §9).
+//! The solver-independent synthesis model (docs/language.md#relations, docs/language.md#class-rules, docs/language.md#the-score, docs/guide.md#synthesis).
 //!
 //! # Variables
 //!
@@ -29,7 +29,7 @@
 //!
 //! - `AtLeast { lits, k }`: at least `k` of `lits` hold (a reified count).
 //!
-//! # Relations (SPEC §3, §11.1)
+//! # Relations (docs/language.md#relations)
 //!
 //! A pairwise relation literal is read straight off the relation's entry in
 //! [`crate::relations::TABLE`]: its condition is a disjunction of
@@ -41,7 +41,7 @@
 //! Non-overlap of a pair is the clause `DR_N ∨ DR_S ∨ DR_E ∨ DR_W` over the
 //! same literals.
 //!
-//! # Rules (SPEC §4, §6, §11)
+//! # Rules (docs/language.md#class-rules, docs/language.md#the-score, docs/language.md)
 //!
 //! A class atom `REL(o, Q B)` of object `o` counts the pair literals
 //! `REL(o, b)` over every other object `b` of the target (all objects
