@@ -40,7 +40,7 @@ enum Which {
     /// (n up to 96, k = 3 and 5). Prints a table; writes `thesis.json` and
     /// PNG charts to `--out`.
     Thesis(ThesisArgs),
-    /// Realistic tasks (issue 20): seeded tasks made the way users make
+    /// Realistic tasks: seeded tasks made the way users make
     /// them — a box of four walls (`W`), 2–4 block classes, 3–5
     /// demonstrations following a hidden style (bands against a wall,
     /// corners, stacks, clusters, one class north of another) — rules
@@ -52,11 +52,11 @@ enum Which {
     /// by the peers on the score-only model. Prints a table per size;
     /// writes `tasks.json` to `--out`.
     Tasks(TasksArgs),
-    /// Sampling (issue 24): uniformity on tiny problems against brute force,
+    /// Sampling: uniformity on tiny problems against brute force,
     /// diversity and speed on the bundled example and generated tasks,
     /// optionally against CP-SAT with randomised search.
     Sample(super::sample::BenchSampleArgs),
-    /// Priors learned across tasks (issue 30): a seeded population of
+    /// Priors learned across tasks: a seeded population of
     /// demonstrators (class names varying, styles far from uniform), a
     /// library of finished tasks and held-out tasks of 4 demonstrations,
     /// each learned with the uniform prior, priors from the library, a

@@ -247,7 +247,7 @@ try {
     await page.waitForTimeout(300);
     await page.screenshot({ path: path.join(out, 'studio-synth.png') });
 
-    // "Another layout like this" (issue 24): the next sample, at least as good.
+    // "Another layout like this": the next sample, at least as good.
     await page.click('#btn-another');
     await page.waitForFunction(() => /another layout of score/.test(document.getElementById('synth-result').textContent), null, { timeout: 60000 });
     assert.equal(await page.locator('#board .obj:not(.fixed)').count(), 9);
@@ -278,7 +278,7 @@ try {
 
   // A page on another origin (a second local server, another port) tries a
   // "simple" fetch, a JSON fetch, a PUT and a form post: no file changes
-  // (issue 21, item 1; docs/studio.md#security-model, trust of the studio).
+  // (docs/studio.md#security-model).
   {
     const http = await import('node:http');
     const demosPath = path.join(task, 'demos.json');
