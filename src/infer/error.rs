@@ -10,7 +10,7 @@ pub enum InferError {
     /// A parameter is out of its range.
     #[error("learning parameter `{param}` is {value}; expected {expected}")]
     BadParameter {
-        /// The parameter's name, as in [`LearnParams`] (`samples`,
+        /// The parameter's name, as in [`LearnParams`](super::LearnParams) (`samples`,
         /// `cutoff`, `prior`, `epsilon`).
         param: &'static str,
         /// The value given.
@@ -112,7 +112,7 @@ pub enum InferError {
         /// The samples asked for.
         samples: usize,
     },
-    /// Learning was cancelled ([`learn_cancellable`]: the studio's client
+    /// Learning was cancelled ([`learn_cancellable`](super::learn_cancellable): the studio's client
     /// left, or a newer request replaced it).
     #[error("learning was cancelled; nothing was learned")]
     Cancelled,

@@ -54,7 +54,7 @@ pub struct StatementResult {
     pub implied_by: Option<String>,
     /// One-line English reading.
     pub english: String,
-    /// With priors ([`learn_with_priors`]): the statement's prior and
+    /// With priors ([`learn_with_priors`](super::learn_with_priors)): the statement's prior and
     /// where it came from; `None` without.
     pub prior: Option<crate::priors::StatementPrior>,
 }
@@ -69,7 +69,7 @@ pub enum StatementSource {
     Templates,
 }
 
-/// The result of [`learn`].
+/// The result of [`learn`](super::learn).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Learned {
     /// The parameters used.

@@ -12,7 +12,7 @@
 //! # Practical
 //!
 //! [`learn`] runs the whole pipeline: [`templates::generate`] (when no
-//! statements are given), [`candidates::find_candidates`],
+//! statements are given), `candidates::find_candidates`,
 //! [`null_model::NullModel::count`] (parallel, deterministic for a seed) and
 //! [`posterior::Posterior`] (log space). Truth values come from
 //! [`crate::relations::ClassAtoms`] and [`crate::eval::CompiledFormula`], the
