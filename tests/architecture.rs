@@ -165,7 +165,7 @@ fn processes_only_where_allowed() {
         &[
             "src/bench/peers.rs",
             "src/bench/chart.rs",
-            "src/bench/sample.rs",
+            "src/bench/sample/diversity.rs",
             "src/cli/",
             "src/main.rs",
         ],
