@@ -164,7 +164,7 @@ fn processes_only_where_allowed() {
         &["std::process::Command", "Command::new", "process::exit"],
         &[
             "src/bench/peers.rs",
-            "src/bench/sample/",
+            "src/bench/sample/diversity.rs",
             "src/cli/",
             "src/main.rs",
         ],

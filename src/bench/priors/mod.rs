@@ -23,7 +23,7 @@
 //! # Ground truth
 //!
 //! A task's style is demonstrated [`PriorsBenchConfig::truth_demos`] times
-//! (default 40). Its **truth** is what [`learn`] keeps from all of them
+//! (default 40). Its **truth** is what [`learn`](crate::infer::learn) keeps from all of them
 //! with the default parameters and the uniform prior: with 40
 //! demonstrations a chance habit (the cluster happened to touch the west
 //! wall in the three scenes shown) is broken by some scene and vanishes,

@@ -18,7 +18,7 @@ mod uniformity;
 
 use crate::relations::Contact;
 use crate::rules::RuleSet;
-/// A canonical layout key (see [`canonical_key`]).
+/// A canonical layout key (see [`canonical_key`](crate::sample::canonical_key)).
 pub use crate::sample::LayoutKey as Key;
 use crate::sample::{Quality, Repair, SampleOptions};
 use crate::scene::Scene;

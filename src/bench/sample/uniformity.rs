@@ -180,7 +180,7 @@ pub struct Uniformity {
 
 /// Draw the first layout of `draws_per_layout × layouts` seeds (0, 1, …)
 /// and compare the frequencies with uniform over every layout of the optimum score found by
-/// brute force (`random`: [`Repair::Random`], else [`Repair::Activity`]);
+/// brute force (`random`: [`Repair::Random`](crate::sample::Repair::Random), else [`Repair::Activity`](crate::sample::Repair::Activity));
 /// also run the sampler to the end once and check that it
 /// returns exactly those layouts. `None` when the problem is too large for
 /// brute force or has no layout.

@@ -28,7 +28,7 @@
 //!    habit with random offsets (where along the wall, which shape of
 //!    corner cluster, where the stack stands, …). Every demonstration is on
 //!    the grid, inside the box and overlap-free ([`Scene::validate`]).
-//! 5. **Rules.** [`learn`] with [`LearnParams::default`] (second-edition
+//! 5. **Rules.** [`learn`](crate::infer::learn) with [`LearnParams::default`](crate::infer::LearnParams::default) (second-edition
 //!    templates, 1000 samples, cutoff 0.01).
 //! 6. **Problems.** For every size `m` in the configuration, `⌈m·M_c⌉`
 //!    unplaced blocks of each class in the task's box.

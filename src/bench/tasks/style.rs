@@ -65,7 +65,7 @@ pub enum Habit {
         /// Index of the other class.
         class: usize,
     },
-    /// Group tasks ([`groups`]): one row anywhere in the box.
+    /// Group tasks ([`groups`](super::groups)): one row anywhere in the box.
     Row,
     /// Group tasks: one column, against a wall (`W` or `E`) or anywhere.
     Column {

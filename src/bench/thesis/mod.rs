@@ -2,7 +2,7 @@
 //! generator.
 //!
 //! 1. **Viable sets.** Draw 5 rules per class (R, G, B) at random from
-//!    [`pool_for`]; keep the draw when 2 objects per class can reach score 1
+//!    [`pool_for`](super::pool::pool_for); keep the draw when 2 objects per class can reach score 1
 //!    in the box (solved by the engine within the time limit). Repeat until
 //!    `sets` viable sets are found (or `max_draws` draws were tried).
 //! 2. **Pilot grid.** For every set, every `n` in `ns` (objects) and every `k`
