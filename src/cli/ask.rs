@@ -17,7 +17,7 @@ use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
 use rccpack::render::{render_to_path, RenderOptions};
 use rccpack::rules::RuleSet;
-use rccpack::task::files as storage;
+use rccpack::task;
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
@@ -328,7 +328,7 @@ fn on_interrupt(dir: PathBuf, answers: PathBuf) {
     super::signals::on_signal(move || {
         kill_group(ORACLE_GROUP.load(Ordering::SeqCst));
         rccpack::fsutil::remove_own_temp_files(&dir);
-        rccpack::fsutil::remove_own_temp_files(&dir.join(storage::PROBES));
+        rccpack::fsutil::remove_own_temp_files(&dir.join(task::files::PROBES));
         ewriteln!(
             "error: interrupted (Ctrl-C); every answer given is saved in {}, run again to resume",
             answers.display()
@@ -352,12 +352,12 @@ impl SessionFiles {
     fn new(dir: &Path) -> Self {
         SessionFiles {
             dir: dir.to_path_buf(),
-            problem: dir.join(storage::PROBLEM),
-            demos: dir.join(storage::DEMOS),
-            answers: dir.join(storage::ANSWERS),
-            learned: dir.join(storage::LEARNED),
-            statements: dir.join(storage::STATEMENTS),
-            probes: dir.join(storage::PROBES),
+            problem: dir.join(task::files::PROBLEM),
+            demos: dir.join(task::files::DEMOS),
+            answers: dir.join(task::files::ANSWERS),
+            learned: dir.join(task::files::LEARNED),
+            statements: dir.join(task::files::STATEMENTS),
+            probes: dir.join(task::files::PROBES),
         }
     }
 
@@ -465,14 +465,14 @@ fn start_session(a: &AskArgs, files: &SessionFiles) -> Result<Asker> {
         };
         Reported(format!("error: {}: {text}", file.display()))
     })?;
-    if storage::write_session_start(&files.dir, &asker, n_demos, resumed)
+    if task::files::write_session_start(&files.dir, &asker, n_demos, resumed)
         .map_err(|e| files.io_error(e))?
     {
         outln(format!(
             "note: {} was not learned from {} with these settings; kept as {}",
             files.learned.display(),
             files.demos.display(),
-            files.dir.join(storage::LEARNED_BACKUP).display()
+            files.dir.join(task::files::LEARNED_BACKUP).display()
         ))?;
     }
     if resumed > 0 {
@@ -555,7 +555,8 @@ fn question_loop(a: &AskArgs, files: &SessionFiles, mut asker: Asker) -> Result<
         asker = after;
         next = upcoming;
         asked_now += 1;
-        storage::write_after_answer(&files.dir, &asker, accepted).map_err(|e| files.io_error(e))?;
+        task::files::write_after_answer(&files.dir, &asker, accepted)
+            .map_err(|e| files.io_error(e))?;
     }
     Ok(LoopEnd {
         asker,
