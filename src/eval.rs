@@ -39,7 +39,7 @@ pub enum CompiledFormula {
         target: CompiledTarget,
     },
     /// A group statement's shape (decided for the whole class by
-    /// [`CompiledRule::group_check`]; false read per object).
+    /// `CompiledRule::group_check`; false read per object).
     Shape(ShapeKind),
     /// Negation.
     Not(Box<CompiledFormula>),

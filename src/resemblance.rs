@@ -18,11 +18,11 @@
 //!
 //! [`ResemblanceTarget::cost`] is *the* resemblance function: reports, the studio,
 //! tests and the brute-force reference all call it, as every score comes
-//! from `eval`. For the engine, [`ResemblanceTarget::distance_map`] precomputes, per
+//! from `eval`. For the engine, `ResemblanceTarget::distance_map` precomputes, per
 //! class and size, the cost of every grid position of the problem (a table,
 //! not geometry): row-major over the object's grid-index domain
 //! `gx ∈ 0..nx`, `gy ∈ 0..ny` with `x = space.x + grid·gx`. A test checks
-//! the table against [`ResemblanceTarget::object_cost`] cell by cell.
+//! the table against `ResemblanceTarget::object_cost` cell by cell.
 //!
 //! Arithmetic is done in `i128` and saturates at `u64::MAX`, so no
 //! coordinate, however far out, can wrap.
@@ -30,7 +30,7 @@
 use crate::scene::{Object, Scene};
 use std::collections::BTreeMap;
 
-/// The largest distance map [`ResemblanceTarget::distance_map`] builds (cells).
+/// The largest distance map `ResemblanceTarget::distance_map` builds (cells).
 pub const MAX_MAP_CELLS: u64 = 4_000_000;
 
 /// Why a distance map cannot be built.

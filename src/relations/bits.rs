@@ -74,7 +74,7 @@ const fn nested(a1: i64, a2: i64, b1: i64, b2: i64) -> bool {
 /// All sixteen relations of `(a, b)` as one mask (bit `Relation::index()`).
 ///
 /// The fast path of [`TABLE`]: `tests/relations.rs` checks it against
-/// [`RelationDef::holds`] on every order type, in both contact modes.
+/// [`RelationDef::holds`](super::RelationDef::holds) on every order type, in both contact modes.
 #[inline]
 pub fn relation_bits(a: &Rect, b: &Rect, contact: Contact) -> RelBits {
     let mut bits: RelBits = 0;

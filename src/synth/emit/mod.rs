@@ -5,7 +5,7 @@
 //!
 //! # What is written
 //!
-//! [`emitted`] runs the checks of [`super::synthesize`] ([`super::check_problem`],
+//! [`emitted`] runs the checks of [`super::synthesize`] (`check_problem`,
 //! the weight check) and builds the same `Model` (same `BuildOptions`:
 //! contact mode, rules, symmetry breaking and redundant cumulatives as in
 //! the [`SynthOptions`]) and the same integer objective coefficients
