@@ -15,7 +15,6 @@ use clap::Args;
 use rccpack::ask::{AnswersFile, AskOptions, Asker, ProbeOptions, Question};
 use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
-use rccpack::render::{render_to_path, RenderOptions};
 use rccpack::rules::RuleSet;
 use rccpack::task;
 use std::io::BufRead;
@@ -345,7 +344,6 @@ struct SessionFiles {
     answers: PathBuf,
     learned: PathBuf,
     statements: PathBuf,
-    probes: PathBuf,
 }
 
 impl SessionFiles {
@@ -357,7 +355,6 @@ impl SessionFiles {
             answers: dir.join(task::files::ANSWERS),
             learned: dir.join(task::files::LEARNED),
             statements: dir.join(task::files::STATEMENTS),
-            probes: dir.join(task::files::PROBES),
         }
     }
 
@@ -569,7 +566,7 @@ fn question_loop(a: &AskArgs, files: &SessionFiles, mut asker: Asker) -> Result<
 
 /// Write question `number`'s probe as `probes/probe-N.json` and its
 /// picture `probes/probe-N.png` (the rule it breaks, the moved objects
-/// outlined); their paths.
+/// outlined), as the library's question sessions do; their paths.
 fn write_probe(
     a: &AskArgs,
     files: &SessionFiles,
@@ -577,47 +574,8 @@ fn write_probe(
     q: &Question,
     number: usize,
 ) -> Result<(PathBuf, PathBuf)> {
-    let probes = &files.probes;
-    std::fs::create_dir_all(probes).map_err(|e| {
-        Reported(format!(
-            "error: {}: cannot create folder: {e}",
-            probes.display()
-        ))
-    })?;
-    let json = probes.join(format!("probe-{number}.json"));
-    let png = probes.join(format!("probe-{number}.png"));
-    write(&json, &q.probe.scene.to_json())?;
-    let rule = asker
-        .held()
-        .rules
-        .iter()
-        .find(|r| r.name == q.rule)
-        .cloned()
-        .expect("the question's rule is held");
-    let ropts = RenderOptions {
-        contact: a.contact,
-        scale: 1.0,
-        title: Some(format!(
-            "question {number}: is this acceptable? (breaks {})",
-            q.rule
-        )),
-        like: None,
-        moved: q
-            .probe
-            .edit
-            .iter()
-            .flat_map(|e| &e.moved)
-            .map(|m| (m.id.clone(), m.x, m.y))
-            .collect(),
-    };
-    render_to_path(
-        &q.probe.scene,
-        Some(&RuleSet::new(vec![rule])),
-        &ropts,
-        &png,
-    )
-    .map_err(|e| Reported(format!("error: {}: {e}", png.display())))?;
-    Ok((json, png))
+    task::session::write_probe_files(&files.dir, asker.held(), q, number, a.contact)
+        .map_err(|e| Reported(format!("error: {e}")).into())
 }
 
 /// The session's summary line, the unasked rules (when it ran to the
