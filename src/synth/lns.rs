@@ -616,7 +616,7 @@ mod tests {
     /// reaches the optimum of an unlimited solve.
     #[test]
     fn engine_resumes_after_every_limit() {
-        let mut objects: Vec<Object> = (0..5)
+        let mut objects: Vec<Object> = (0..7)
             .map(|i| Object {
                 id: format!("a{i}"),
                 class: if i % 2 == 0 { "A" } else { "B" }.into(),

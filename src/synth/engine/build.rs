@@ -238,6 +238,9 @@ impl<'m> Builder<'m> {
     pub(super) fn post_definitions(&mut self) -> Result<(), SynthError> {
         let model = self.model;
         let tag = self.tag;
+        let mut pairs: std::collections::BTreeMap<(usize, usize), Vec<(i32, Literal)>> =
+            std::collections::BTreeMap::new();
+        let by_pair = difference_propagator();
         for (i, def) in model.bools.iter().enumerate() {
             if i % 4096 == 4095 && self.late() {
                 return Ok(());
@@ -245,6 +248,18 @@ impl<'m> Builder<'m> {
             let l = self.lits[i];
             match def {
                 BoolDef::Ge { .. } => {}
+                BoolDef::DiffGe { a, b, k } if by_pair => {
+                    // One propagator per pair (see `difference`): the pair
+                    // in order, a reversed literal as the negation of
+                    // `a − b ≥ 1 − k`.
+                    let (pair, k, l) = if a < b {
+                        ((*a, *b), *k, l)
+                    } else {
+                        ((*b, *a), 1i64.saturating_sub(*k), !l)
+                    };
+                    let k = i32_of(k, || "a distance bound".into())?;
+                    pairs.entry(pair).or_default().push((k, l));
+                }
                 BoolDef::DiffGe { a, b, k } => {
                     // a − b ≥ k  ⇔  b − a ≤ −k
                     let rhs = i32_of(k.saturating_neg(), || "a distance bound".into())?;
@@ -296,6 +311,16 @@ impl<'m> Builder<'m> {
                     let _ = self.solver.add_propagator(args);
                 }
             }
+        }
+        for ((a, b), lits) in pairs {
+            let args = super::difference::DifferenceArgs {
+                a: self.vars[a],
+                b: self.vars[b],
+                lits,
+                tag,
+            };
+            // As above: a root failure surfaces at the first solve.
+            let _ = self.solver.add_propagator(args);
         }
         Ok(())
     }
@@ -476,4 +501,11 @@ impl<'m> Builder<'m> {
             dead: false,
         }
     }
+}
+
+/// Whether `DiffGe` Booleans share one propagator per pair of variables
+/// (`difference`); `RCCPACK_DIFFERENCE=off` posts one reified linear
+/// constraint each instead (for comparison).
+fn difference_propagator() -> bool {
+    std::env::var("RCCPACK_DIFFERENCE").map_or(true, |v| v != "off")
 }

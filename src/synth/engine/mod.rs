@@ -8,7 +8,9 @@
 //!
 //! - grid variables: `new_bounded_integer(0, ub)`;
 //! - `Ge` Booleans: `new_literal_for_predicate([v ≥ k])` (no propagator);
-//! - `DiffGe` Booleans: a fresh literal reifying the linear `b − a ≤ −k`;
+//! - `DiffGe` Booleans: a fresh literal; the literals of one pair of
+//!   variables share one `difference` propagator (the reified linear
+//!   `b − a ≤ −k` each with `RCCPACK_DIFFERENCE=off`);
 //! - `And` Booleans: the usual clauses `l → lᵢ` and `⋀lᵢ → l`;
 //! - `AtLeast` Booleans: a fresh literal reifying the linear
 //!   `Σ −mᵢ·[lᵢ] ≤ −k` over the distinct counted literals `lᵢ` (each a 0/1
@@ -46,6 +48,7 @@ use resemblance::{ResemblanceEncoding, RESEMBLANCE_ENCODING};
 mod brancher;
 mod build;
 mod connected;
+mod difference;
 mod no_overlap;
 mod resemblance;
 mod resemblance_group;

@@ -318,6 +318,6 @@ impl NoOverlapPropagator {
 
 /// A grid bound as the engine's `i32` (bounds past a domain only make it
 /// empty: clamping keeps that).
-fn clamp(k: i64) -> i32 {
+pub(super) fn clamp(k: i64) -> i32 {
     k.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
