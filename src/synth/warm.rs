@@ -312,6 +312,27 @@ mod tests {
         }
     }
 
+    /// The hinted grid positions of `problem`'s objects, sorted.
+    fn hinted(problem: &Scene, demo: Scene) -> Vec<(i64, i64)> {
+        let rules = parse_rules("rule r: EC_E(R, *) | !EC_E(R, *)\n").unwrap();
+        let opts = BuildOptions {
+            contact: Contact::Point,
+            rules: true,
+            symmetry_breaking: true,
+            redundant: true,
+        };
+        let model = Model::build(problem, &rules, opts);
+        let hint = hint_values(&model, problem, &[demo]).unwrap();
+        let mut at: Vec<(i64, i64)> = (0..problem.objects.len())
+            .map(|o| match model.coords[o] {
+                (Coord::Var(x), Coord::Var(y)) => (hint[x].unwrap(), hint[y].unwrap()),
+                _ => panic!("object {o} is not movable"),
+            })
+            .collect();
+        at.sort_unstable();
+        at
+    }
+
     /// A demonstrated column of two blocks, a problem with four: the hint
     /// is the column grown to four, flush, every position free.
     #[test]
@@ -325,23 +346,7 @@ mod tests {
                 .map(|i| Object::movable(&format!("r{i}"), "R", 20, 20))
                 .collect(),
         );
-        let rules = parse_rules("rule r: EC_E(R, *) | !EC_E(R, *)\n").unwrap();
-        let opts = BuildOptions {
-            contact: Contact::Point,
-            rules: true,
-            symmetry_breaking: true,
-            redundant: true,
-        };
-        let model = Model::build(&problem, &rules, opts);
-        let hint = hint_values(&model, &problem, &[demo]).unwrap();
-        let mut at: Vec<(i64, i64)> = (0..4)
-            .map(|o| match model.coords[o] {
-                (Coord::Var(x), Coord::Var(y)) => (hint[x].unwrap(), hint[y].unwrap()),
-                _ => panic!("object {o} is not movable"),
-            })
-            .collect();
-        at.sort_unstable();
-        assert_eq!(at, vec![(8, 0), (8, 2), (8, 4), (8, 6)]);
+        assert_eq!(hinted(&problem, demo), vec![(8, 0), (8, 2), (8, 4), (8, 6)]);
     }
 
     /// A demonstrated row that meets the box's edge grows the other way.
@@ -356,22 +361,6 @@ mod tests {
                 .map(|i| Object::movable(&format!("g{i}"), "G", 20, 10))
                 .collect(),
         );
-        let rules = parse_rules("rule r: EC_E(G, *) | !EC_E(G, *)\n").unwrap();
-        let opts = BuildOptions {
-            contact: Contact::Point,
-            rules: true,
-            symmetry_breaking: true,
-            redundant: true,
-        };
-        let model = Model::build(&problem, &rules, opts);
-        let hint = hint_values(&model, &problem, &[demo]).unwrap();
-        let mut at: Vec<(i64, i64)> = (0..3)
-            .map(|o| match model.coords[o] {
-                (Coord::Var(x), Coord::Var(y)) => (hint[x].unwrap(), hint[y].unwrap()),
-                _ => panic!("object {o} is not movable"),
-            })
-            .collect();
-        at.sort_unstable();
-        assert_eq!(at, vec![(4, 9), (6, 9), (8, 9)]);
+        assert_eq!(hinted(&problem, demo), vec![(4, 9), (6, 9), (8, 9)]);
     }
 }
