@@ -20,7 +20,9 @@
 //!   `obj ≥ best + 1` after each solution until refuted.
 //! - [`minimise_cost`] — the second objective (docs/guide.md#layouts-like-the-demonstrations): with the
 //!   numerator held at least the first phase's, bisect the resemblance
-//!   cost between the proven lower bound and the incumbent.
+//!   cost between the proven lower bound and the incumbent, each probe
+//!   with a node budget; when a probe runs out, step down from the
+//!   incumbent while that finds cheaper layouts.
 //! - [`shrink_conflict`] — a minimal set of hard rules that conflict, by
 //!   deletion, using the backend's cores when it gives them.
 //!
@@ -43,6 +45,11 @@ use super::weights::SubsetSums;
 /// How many times [`Strategy::UpperBoundFirst`] asks for the proven upper
 /// bound itself before it bisects between incumbent and bound.
 const UPPER_BOUND_PROBES: u32 = 2;
+
+/// The first node budget of a probe of [`minimise_cost`]: on the realistic
+/// 1.5× and 2× tasks of `bench tasks`, a budget of as many nodes as the
+/// first phase took (at least this) measured no better.
+const COST_PROBE_NODES: u64 = 2_000;
 
 /// How to optimise.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -209,6 +216,14 @@ pub fn optimise_from(
 /// the score is never traded for resemblance. `on_incumbent` is called with
 /// every improving layout. Without a cost bound (no second objective in the
 /// backend) `best` is returned as proven.
+///
+/// Every probe has a node budget, [`COST_PROBE_NODES`] at first. A
+/// bisection probe that runs out of it is followed by probes for
+/// `best − 1` (an improvement is usually quick to find where a refutation
+/// is not) for as long as they succeed; when one runs out, the budget
+/// doubles and bisection resumes. The backend keeps what it learned across
+/// probes; every budget is in nodes, so a node limit keeps the run
+/// deterministic.
 pub fn minimise_cost(
     backend: &mut dyn Backend,
     objective: Option<&Objective<'_>>,
@@ -258,13 +273,35 @@ pub fn minimise_cost(
     let mut best = best;
     // Bisection: measured against stepping down from the incumbent and
     // against asking for the bound first, on the ten 1.5× tasks of `bench
-    // tasks` (seed 0, 15 s): neither was faster overall.
+    // tasks` (seed 0, 15 s): neither was faster overall; the budgets and
+    // the steps down keep a hard refutation from holding up the rest.
+    let mut budget = COST_PROBE_NODES;
+    let mut step_down = false;
+    let out_of_limits =
+        |b: &dyn Backend| limits.expired() || limits.node_limit.is_some_and(|n| b.nodes() >= n);
     while lo < best_cost {
-        let mid = lo + (best_cost - lo - 1) / 2;
+        if out_of_limits(&*backend) {
+            return CostOutcome {
+                values: best,
+                cost: best_cost,
+                proven: false,
+                bound: lo,
+            };
+        }
+        let mid = if step_down {
+            best_cost - 1
+        } else {
+            lo + (best_cost - lo - 1) / 2
+        };
+        let cap = backend.nodes().saturating_add(budget);
+        let probe_limits = Limits {
+            node_limit: Some(limits.node_limit.map_or(cap, |n| cap.min(n))),
+            ..limits.clone()
+        };
         let t0 = std::time::Instant::now();
-        let verdict = backend.solve(&[Assumption::CostAtMost(mid)], limits);
+        let verdict = backend.solve(&[Assumption::CostAtMost(mid)], &probe_limits);
         log::debug!(
-            "cost ≤ {mid} (floor {lo}, best {best_cost}): {} in {:.1} ms",
+            "cost ≤ {mid} (floor {lo}, best {best_cost}, budget {budget}): {} in {:.1} ms",
             match &verdict {
                 Verdict::Solution(v) => format!("cost {}", cost(v)),
                 Verdict::Infeasible(_) => "none".to_string(),
@@ -284,19 +321,33 @@ pub fn minimise_cost(
                     // it still holds (fewer layouts now).
                     backend.add(Fact::ObjectiveAtLeast(best_num));
                 }
+                // After a step down succeeded, the next step down is
+                // usually quick too: keep stepping until one runs out.
             }
             Verdict::Infeasible(_) => {
                 backend.add(Fact::CostAtLeast(mid + 1));
                 lo = mid + 1;
+                step_down = false;
             }
             Verdict::Unknown => {
-                let bound = lo.max(backend.cost_bound().unwrap_or(lo)).min(best_cost);
-                return CostOutcome {
-                    values: best,
-                    cost: best_cost,
-                    proven: bound >= best_cost,
-                    bound,
-                };
+                // Below the probe's cap, something other than its budget
+                // stopped the engine: end as at a limit.
+                if out_of_limits(&*backend) || backend.nodes() < cap {
+                    let bound = lo.max(backend.cost_bound().unwrap_or(lo)).min(best_cost);
+                    return CostOutcome {
+                        values: best,
+                        cost: best_cost,
+                        proven: bound >= best_cost,
+                        bound,
+                    };
+                }
+                if !(step_down || mid + 1 == best_cost) {
+                    step_down = true;
+                    continue;
+                }
+                // The engine found nothing cheaper within the budget.
+                budget = budget.saturating_mul(2);
+                step_down = false;
             }
         }
         lo = lo.max(backend.cost_bound().unwrap_or(lo));
@@ -387,6 +438,11 @@ mod tests {
         budget: Option<u32>,
         calls: u32,
         give_cores: bool,
+        /// Nodes a refutation of `cost ≤ k` takes (0: free); a call whose
+        /// node limit leaves fewer ends `Unknown` at the limit.
+        refute_cost_nodes: u64,
+        /// Nodes spent by refutations.
+        spent: u64,
         facts: Vec<Fact>,
         asked: Vec<Vec<Assumption>>,
     }
@@ -402,6 +458,8 @@ mod tests {
                 budget: None,
                 calls: 0,
                 give_cores: false,
+                refute_cost_nodes: 0,
+                spent: 0,
                 facts: Vec::new(),
                 asked: Vec::new(),
             }
@@ -419,11 +477,21 @@ mod tests {
     }
 
     impl Backend for MockBackend {
-        fn solve(&mut self, a: &[Assumption], _: &Limits) -> Verdict {
+        fn solve(&mut self, a: &[Assumption], limits: &Limits) -> Verdict {
             self.calls += 1;
             self.asked.push(a.to_vec());
             if self.budget.is_some_and(|b| self.calls > b) {
                 return Verdict::Unknown;
+            }
+            let refutes_cost = a.iter().any(|x| matches!(x, Assumption::CostAtMost(_)))
+                && !self.cands.iter().any(|c| self.allowed(c, a));
+            if refutes_cost && self.refute_cost_nodes > 0 {
+                let cap = limits.node_limit.unwrap_or(u64::MAX);
+                if self.nodes() + self.refute_cost_nodes > cap {
+                    self.spent += cap.saturating_sub(self.nodes());
+                    return Verdict::Unknown;
+                }
+                self.spent += self.refute_cost_nodes;
             }
             // The first allowed candidate in list order: like a real
             // backend, not necessarily the best one.
@@ -470,7 +538,7 @@ mod tests {
             self.with_cost.then_some(self.cost_min)
         }
         fn nodes(&self) -> u64 {
-            u64::from(self.calls)
+            u64::from(self.calls) + self.spent
         }
     }
 
@@ -682,6 +750,54 @@ mod tests {
             &mut |_| {},
         );
         assert_eq!((r.cost, r.proven, m.calls), (9, true, 0));
+    }
+
+    /// A refutation too long for the probe budget: the driver steps down
+    /// from the incumbent while that succeeds, then doubles the budget and
+    /// bisects again, and proves the minimum; under a node limit it ends
+    /// unproven with the refuted bound.
+    #[test]
+    fn minimise_cost_steps_down_when_a_probe_runs_out() {
+        let value = |v: &[i64]| v[0];
+        let cost = |v: &[i64]| v[1] as u64;
+        let obj = Objective {
+            coefs: &COEFS,
+            value: &value,
+        };
+        let cands = vec![cand(5, 8), cand(5, 7), cand(5, 6)];
+        let mut m = MockBackend::new(cands.clone());
+        m.refute_cost_nodes = 3 * COST_PROBE_NODES / 2;
+        let r = minimise_cost(
+            &mut m,
+            Some(&obj),
+            &cost,
+            vec![5, 9],
+            &Limits::default(),
+            &mut |_| {},
+        );
+        assert_eq!((r.cost, r.proven, r.bound), (6, true, 6));
+        let probes: Vec<u64> = m
+            .asked
+            .iter()
+            .map(|a| match a[..] {
+                [Assumption::CostAtMost(k)] => k,
+                _ => panic!("unexpected assumptions {a:?}"),
+            })
+            .collect();
+        // 4 runs out; 8, 7, 6 step down; 5 runs out; with twice the budget
+        // 2, 4 and 5 are refuted.
+        assert_eq!(probes, vec![4, 8, 7, 6, 5, 2, 4, 5]);
+        // Under a node limit that the first refutation exhausts.
+        let mut m = MockBackend::new(cands);
+        m.refute_cost_nodes = 3 * COST_PROBE_NODES / 2;
+        let limits = Limits {
+            node_limit: Some(COST_PROBE_NODES + 5),
+            ..Limits::default()
+        };
+        let r = minimise_cost(&mut m, Some(&obj), &cost, vec![5, 9], &limits, &mut |_| {});
+        assert!(!r.proven);
+        assert!(r.cost <= 8 && r.bound == 0, "{r:?}");
+        assert!(m.nodes() <= COST_PROBE_NODES + 5);
     }
 
     /// Conflicts: rules {0, 1, 2, 3}; candidates satisfy {0,1,3}, {0,2,3},
