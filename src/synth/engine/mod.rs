@@ -487,7 +487,9 @@ mod tests {
 
     /// The resemblance encodings — clauses, the bounds propagator, both —
     /// each reach brute force's lexicographic optimum (numerator, then
-    /// cost) on small problems with random like-scenes, and prove it.
+    /// cost) on small problems with random like-scenes, and prove it; so
+    /// does the second phase when its probes run out of their node budget
+    /// at once (budgets of 1 and 4 nodes: steps down, doubling).
     #[test]
     fn like_encodings_agree_with_brute_force() {
         use crate::resemblance::ResemblanceTarget;
@@ -546,12 +548,15 @@ mod tests {
             let like = ResemblanceTarget::new(&scenes);
             let bf = brute_force::solve_like(&problem, &rules, Contact::Point, &like, 10_000_000)
                 .unwrap();
-            for enc in [
-                ResemblanceEncoding::Clauses,
-                ResemblanceEncoding::Propagator,
-                ResemblanceEncoding::Both,
+            for (enc, budget) in [
+                (ResemblanceEncoding::Clauses, 2_000),
+                (ResemblanceEncoding::Propagator, 2_000),
+                (ResemblanceEncoding::Both, 2_000),
+                (ResemblanceEncoding::Both, 1),
+                (ResemblanceEncoding::Both, 4),
             ] {
                 RESEMBLANCE_ENCODING.with(|e| e.set(enc));
+                crate::synth::driver::COST_PROBE_NODES_HERE.with(|n| n.set(budget));
                 let r = synthesize(
                     &problem,
                     &rules,
@@ -562,13 +567,14 @@ mod tests {
                 )
                 .unwrap();
                 RESEMBLANCE_ENCODING.with(|e| e.set(ResemblanceEncoding::Both));
+                crate::synth::driver::COST_PROBE_NODES_HERE.with(|n| n.set(2_000));
                 let res = r.resemblance.expect("a resemblance");
                 let ev = r.evaluation.expect("an evaluation");
-                assert!(res.proven, "case {case}, {enc:?}: cost not proven");
-                assert_eq!(res.cost, bf.best_cost, "case {case}, {enc:?}");
+                assert!(res.proven, "case {case}, {enc:?}/{budget}: cost not proven");
+                assert_eq!(res.cost, bf.best_cost, "case {case}, {enc:?}/{budget}");
                 assert!(
                     (ev.satisfied_weight - bf.best_numerator).abs() < 1e-9,
-                    "case {case}, {enc:?}"
+                    "case {case}, {enc:?}/{budget}"
                 );
             }
         }
