@@ -19,10 +19,10 @@
 //!   24-object problem. [`Strategy::ImproveFromFirst`] asks for
 //!   `obj ≥ best + 1` after each solution until refuted.
 //! - [`minimise_cost`] — the second objective (docs/guide.md#layouts-like-the-demonstrations): with the
-//!   numerator held at least the first phase's, bisect the resemblance
-//!   cost between the proven lower bound and the incumbent, each probe
-//!   with a node budget; when a probe runs out, step down from the
-//!   incumbent while that finds cheaper layouts.
+//!   numerator held at least the first phase's, ask for one step below
+//!   the incumbent's resemblance cost, each probe with a node budget; when
+//!   a step runs out, ask for halfway between the proven lower bound and
+//!   the incumbent; when that runs out too, double the budget.
 //! - [`shrink_conflict`] — a minimal set of hard rules that conflict, by
 //!   deletion, using the backend's cores when it gives them.
 //!
@@ -47,8 +47,8 @@ use super::weights::SubsetSums;
 const UPPER_BOUND_PROBES: u32 = 2;
 
 /// The first node budget of a probe of [`minimise_cost`]: on the realistic
-/// 1.5× and 2× tasks of `bench tasks`, a budget of as many nodes as the
-/// first phase took (at least this) measured no better.
+/// 1.5× and 2× tasks of `bench tasks`, a first budget of as many nodes as
+/// the first phase took (at least this) measured no better.
 const COST_PROBE_NODES: u64 = 2_000;
 
 #[cfg(test)]
@@ -224,21 +224,20 @@ pub fn optimise_from(
 }
 
 /// The second phase (docs/guide.md#layouts-like-the-demonstrations): keep the numerator at least that of `best`
-/// (the first phase's layout) and minimise the resemblance `cost`, by
-/// bisection between the proven lower bound and the incumbent. A layout
+/// (the first phase's layout) and minimise the resemblance `cost`. A layout
 /// with a larger numerator, should one turn up (only when a limit stopped
 /// the first phase), replaces the incumbent and raises the numerator floor:
 /// the score is never traded for resemblance. `on_incumbent` is called with
 /// every improving layout. Without a cost bound (no second objective in the
 /// backend) `best` is returned as proven.
 ///
-/// Every probe has a node budget, [`COST_PROBE_NODES`] at first. A
-/// bisection probe that runs out of it is followed by probes for
-/// `best − 1` (an improvement is usually quick to find where a refutation
-/// is not) for as long as they succeed; when one runs out, the budget
-/// doubles and bisection resumes. The backend keeps what it learned across
-/// probes; every budget is in nodes, so a node limit keeps the run
-/// deterministic.
+/// Each probe asks for `cost ≤ best − 1` (a refutation proves `best`
+/// minimal) with a node budget, [`COST_PROBE_NODES`] at first. When a step
+/// down runs out of it, one probe asks for halfway between the proven
+/// lower bound and `best` with the same budget (its refutation raises the
+/// bound a limit reports); when that runs out too, the budget doubles and
+/// stepping down resumes. The backend keeps what it learned across probes;
+/// every budget is in nodes, so a node limit keeps the run deterministic.
 pub fn minimise_cost(
     backend: &mut dyn Backend,
     objective: Option<&Objective<'_>>,
@@ -286,12 +285,14 @@ pub fn minimise_cost(
         backend.add(Fact::ObjectiveAtLeast(best_num));
     }
     let mut best = best;
-    // Bisection: measured against stepping down from the incumbent and
-    // against asking for the bound first, on the ten 1.5× tasks of `bench
-    // tasks` (seed 0, 15 s): neither was faster overall; the budgets and
-    // the steps down keep a hard refutation from holding up the rest.
+    // Measured on the ten 1.5× and 2× tasks of `bench tasks` (seed 0,
+    // 30 s; docs/performance.md): stepping down first took a median of
+    // 1.5 s at 1.5× where bisection first took 1.9 s; the budgets keep one
+    // hard refutation from taking the whole limit.
     let mut budget = first_probe_budget().max(1);
-    let mut step_down = false;
+    // Step down from the incumbent first; bisect when a step down runs
+    // out of its budget.
+    let mut step_down = true;
     let out_of_limits =
         |b: &dyn Backend| limits.expired() || limits.node_limit.is_some_and(|n| b.nodes() >= n);
     while lo < best_cost {
@@ -336,13 +337,12 @@ pub fn minimise_cost(
                     // it still holds (fewer layouts now).
                     backend.add(Fact::ObjectiveAtLeast(best_num));
                 }
-                // After a step down succeeded, the next step down is
-                // usually quick too: keep stepping until one runs out.
+                step_down = true;
             }
             Verdict::Infeasible(_) => {
                 backend.add(Fact::CostAtLeast(mid + 1));
                 lo = mid + 1;
-                step_down = false;
+                step_down = true;
             }
             Verdict::Unknown => {
                 // Below the probe's cap, something other than its budget
@@ -356,13 +356,15 @@ pub fn minimise_cost(
                         bound,
                     };
                 }
-                if !(step_down || mid + 1 == best_cost) {
-                    step_down = true;
+                let halfway = lo + (best_cost - lo - 1) / 2;
+                if step_down && halfway + 1 < best_cost {
+                    // The step down ran out: try halfway with the same budget.
+                    step_down = false;
                     continue;
                 }
-                // The engine found nothing cheaper within the budget.
+                // Both ran out: twice the budget, stepping down again.
                 budget = budget.saturating_mul(2);
-                step_down = false;
+                step_down = true;
             }
         }
         lo = lo.max(backend.cost_bound().unwrap_or(lo));
@@ -456,6 +458,8 @@ mod tests {
         /// Nodes a refutation of `cost ≤ k` takes (0: free); a call whose
         /// node limit leaves fewer ends `Unknown` at the limit.
         refute_cost_nodes: u64,
+        /// Refutations of `cost ≤ k` with `k` below this are free.
+        cheap_below: u64,
         /// Nodes spent by refutations.
         spent: u64,
         facts: Vec<Fact>,
@@ -474,6 +478,7 @@ mod tests {
                 calls: 0,
                 give_cores: false,
                 refute_cost_nodes: 0,
+                cheap_below: 0,
                 spent: 0,
                 facts: Vec::new(),
                 asked: Vec::new(),
@@ -498,7 +503,9 @@ mod tests {
             if self.budget.is_some_and(|b| self.calls > b) {
                 return Verdict::Unknown;
             }
-            let refutes_cost = a.iter().any(|x| matches!(x, Assumption::CostAtMost(_)))
+            let refutes_cost = a
+                .iter()
+                .any(|x| matches!(x, Assumption::CostAtMost(k) if *k >= self.cheap_below))
                 && !self.cands.iter().any(|c| self.allowed(c, a));
             if refutes_cost && self.refute_cost_nodes > 0 {
                 let cap = limits.node_limit.unwrap_or(u64::MAX);
@@ -739,11 +746,14 @@ mod tests {
             &mut |_| {},
         );
         assert_eq!((r.cost, r.proven, r.bound), (9, false, 0));
-        // A limit after a refutation: the refuted half is the reported
-        // bound (candidates 5/9 and 5/3 at cost floor 0: `cost ≤ 4` finds
-        // 3; then `cost ≤ 1` is refuted; then the limit).
-        let mut m = MockBackend::new(vec![cand(5, 9), cand(5, 3)]);
-        m.budget = Some(2);
+        // A limit after a refutation: the refuted bound is the reported
+        // one (candidates 5/9 and 5/6: `cost ≤ 8` finds 6; `cost ≤ 5` runs
+        // out of its budget; halfway, `cost ≤ 2`, is refuted at once; then
+        // the limit).
+        let mut m = MockBackend::new(vec![cand(5, 9), cand(5, 6)]);
+        m.refute_cost_nodes = 3 * COST_PROBE_NODES / 2;
+        m.cheap_below = 3;
+        m.budget = Some(3);
         let r = minimise_cost(
             &mut m,
             Some(&obj),
@@ -752,7 +762,7 @@ mod tests {
             &Limits::default(),
             &mut |_| {},
         );
-        assert_eq!((r.cost, r.proven, r.bound), (3, false, 2));
+        assert_eq!((r.cost, r.proven, r.bound), (6, false, 3));
         // No second objective: the input, proven.
         let mut m = MockBackend::new(vec![cand(5, 3)]);
         m.with_cost = false;
@@ -768,9 +778,9 @@ mod tests {
     }
 
     /// A refutation too long for the probe budget: the driver steps down
-    /// from the incumbent while that succeeds, then doubles the budget and
-    /// bisects again, and proves the minimum; under a node limit it ends
-    /// unproven with the refuted bound.
+    /// from the incumbent while that succeeds, tries halfway when a step
+    /// runs out, then doubles the budget, and proves the minimum; under a
+    /// node limit it ends unproven with the proven bound.
     #[test]
     fn minimise_cost_steps_down_when_a_probe_runs_out() {
         let value = |v: &[i64]| v[0];
@@ -799,9 +809,9 @@ mod tests {
                 _ => panic!("unexpected assumptions {a:?}"),
             })
             .collect();
-        // 4 runs out; 8, 7, 6 step down; 5 runs out; with twice the budget
-        // 2, 4 and 5 are refuted.
-        assert_eq!(probes, vec![4, 8, 7, 6, 5, 2, 4, 5]);
+        // 8, 7, 6 step down; 5 runs out, and so does halfway (2); with
+        // twice the budget 5 is refuted.
+        assert_eq!(probes, vec![8, 7, 6, 5, 2, 5]);
         // Under a node limit that the first refutation exhausts.
         let mut m = MockBackend::new(cands);
         m.refute_cost_nodes = 3 * COST_PROBE_NODES / 2;
