@@ -690,26 +690,25 @@ mod tests {
         );
     }
 
-    /// The second phase: the cheapest layout among those keeping the
-    /// numerator; the numerator floor is a fact; a better numerator found
-    /// on the way raises it.
-    #[test]
-    fn minimise_cost_keeps_the_score() {
+    /// [`minimise_cost`] from the layout `[5, 9]` (numerator 5, cost 9) of
+    /// a mock whose values are `[numerator, cost]`.
+    fn minimise_from_9(m: &mut MockBackend, limits: &Limits) -> CostOutcome {
         let value = |v: &[i64]| v[0];
         let cost = |v: &[i64]| v[1] as u64;
         let obj = Objective {
             coefs: &COEFS,
             value: &value,
         };
+        minimise_cost(m, Some(&obj), &cost, vec![5, 9], limits, &mut |_| {})
+    }
+
+    /// The second phase: the cheapest layout among those keeping the
+    /// numerator; the numerator floor is a fact; a better numerator found
+    /// on the way raises it.
+    #[test]
+    fn minimise_cost_keeps_the_score() {
         let mut m = MockBackend::new(vec![cand(5, 9), cand(4, 0), cand(5, 3), cand(6, 7)]);
-        let r = minimise_cost(
-            &mut m,
-            Some(&obj),
-            &cost,
-            vec![5, 9],
-            &Limits::default(),
-            &mut |_| {},
-        );
+        let r = minimise_from_9(&mut m, &Limits::default());
         // cost 0 needs numerator 4 < 5: refused; cost 3 at numerator 5.
         assert_eq!(
             r,
@@ -723,28 +722,14 @@ mod tests {
         assert!(m.facts.contains(&Fact::ObjectiveAtLeast(5)));
         // Numerator 6 turns up under `cost ≤ 7`: the floor rises to 6.
         let mut m = MockBackend::new(vec![cand(6, 7), cand(5, 9)]);
-        let r = minimise_cost(
-            &mut m,
-            Some(&obj),
-            &cost,
-            vec![5, 9],
-            &Limits::default(),
-            &mut |_| {},
-        );
+        let r = minimise_from_9(&mut m, &Limits::default());
         assert_eq!(r.values, vec![6, 7]);
         assert!(r.proven);
         assert!(m.facts.contains(&Fact::ObjectiveAtLeast(6)));
         // A limit: not proven.
         let mut m = MockBackend::new(vec![cand(5, 3), cand(5, 9)]);
         m.budget = Some(0);
-        let r = minimise_cost(
-            &mut m,
-            Some(&obj),
-            &cost,
-            vec![5, 9],
-            &Limits::default(),
-            &mut |_| {},
-        );
+        let r = minimise_from_9(&mut m, &Limits::default());
         assert_eq!((r.cost, r.proven, r.bound), (9, false, 0));
         // A limit after a refutation: the refuted bound is the reported
         // one (candidates 5/9 and 5/6: `cost ≤ 8` finds 6; `cost ≤ 5` runs
@@ -754,26 +739,12 @@ mod tests {
         m.refute_cost_nodes = 3 * COST_PROBE_NODES / 2;
         m.cheap_below = 3;
         m.budget = Some(3);
-        let r = minimise_cost(
-            &mut m,
-            Some(&obj),
-            &cost,
-            vec![5, 9],
-            &Limits::default(),
-            &mut |_| {},
-        );
+        let r = minimise_from_9(&mut m, &Limits::default());
         assert_eq!((r.cost, r.proven, r.bound), (6, false, 3));
         // No second objective: the input, proven.
         let mut m = MockBackend::new(vec![cand(5, 3)]);
         m.with_cost = false;
-        let r = minimise_cost(
-            &mut m,
-            Some(&obj),
-            &cost,
-            vec![5, 9],
-            &Limits::default(),
-            &mut |_| {},
-        );
+        let r = minimise_from_9(&mut m, &Limits::default());
         assert_eq!((r.cost, r.proven, m.calls), (9, true, 0));
     }
 
@@ -783,23 +754,10 @@ mod tests {
     /// node limit it ends unproven with the proven bound.
     #[test]
     fn minimise_cost_steps_down_when_a_probe_runs_out() {
-        let value = |v: &[i64]| v[0];
-        let cost = |v: &[i64]| v[1] as u64;
-        let obj = Objective {
-            coefs: &COEFS,
-            value: &value,
-        };
         let cands = vec![cand(5, 8), cand(5, 7), cand(5, 6)];
         let mut m = MockBackend::new(cands.clone());
         m.refute_cost_nodes = 3 * COST_PROBE_NODES / 2;
-        let r = minimise_cost(
-            &mut m,
-            Some(&obj),
-            &cost,
-            vec![5, 9],
-            &Limits::default(),
-            &mut |_| {},
-        );
+        let r = minimise_from_9(&mut m, &Limits::default());
         assert_eq!((r.cost, r.proven, r.bound), (6, true, 6));
         let probes: Vec<u64> = m
             .asked
@@ -819,7 +777,7 @@ mod tests {
             node_limit: Some(COST_PROBE_NODES + 5),
             ..Limits::default()
         };
-        let r = minimise_cost(&mut m, Some(&obj), &cost, vec![5, 9], &limits, &mut |_| {});
+        let r = minimise_from_9(&mut m, &limits);
         assert!(!r.proven);
         assert!(r.cost <= 8 && r.bound == 0, "{r:?}");
         assert!(m.nodes() <= COST_PROBE_NODES + 5);
