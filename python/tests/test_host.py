@@ -7,6 +7,7 @@ import os
 import signal
 import threading
 import time
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -91,8 +92,20 @@ def test_two_solves_in_two_threads(demos: list[rccpack.Scene], problem: rccpack.
     assert results[0].scene == results[1].scene
 
 
+@pytest.fixture
+def sigint_raises() -> Iterator[None]:
+    """SIGINT raises KeyboardInterrupt during the test, as in an interactive
+    Python: a shell without job control starts background jobs with SIGINT
+    ignored, and Python then installs no handler of its own."""
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)
+
+
 @pytest.mark.skipif(not hasattr(signal, "SIGINT"), reason="needs SIGINT")
-def test_ctrl_c_returns_the_best_layout() -> None:
+def test_ctrl_c_returns_the_best_layout(sigint_raises: None) -> None:
     """Ctrl-C (SIGINT → KeyboardInterrupt in the main thread) stops the
     search: the best layout found is returned with status FEASIBLE and
     `interrupted` set; no KeyboardInterrupt escapes."""
@@ -174,7 +187,7 @@ def test_learn_errors(demos: list[rccpack.Scene], problem: rccpack.Scene) -> Non
 
 
 @pytest.mark.skipif(not hasattr(signal, "SIGINT"), reason="needs SIGINT")
-def test_ctrl_c_stops_learning(demos: list[rccpack.Scene]) -> None:
+def test_ctrl_c_stops_learning(demos: list[rccpack.Scene], sigint_raises: None) -> None:
     """Ctrl-C during `learn` stops the null model's draws (the core's
     cancel flag) and raises KeyboardInterrupt at once, not when the
     learning would have ended (1 000 000 samples: about 20 s)."""
