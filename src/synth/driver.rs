@@ -295,19 +295,14 @@ pub fn minimise_cost(
     let mut step_down = true;
     let out_of_limits =
         |b: &dyn Backend| limits.expired() || limits.node_limit.is_some_and(|n| b.nodes() >= n);
+    let halfway = |lo: u64, best_cost: u64| lo + (best_cost - lo - 1) / 2;
+    // A spent limit needs no check here: the backend answers `Unknown` at
+    // once, and that arm ends the phase.
     while lo < best_cost {
-        if out_of_limits(&*backend) {
-            return CostOutcome {
-                values: best,
-                cost: best_cost,
-                proven: false,
-                bound: lo,
-            };
-        }
         let mid = if step_down {
             best_cost - 1
         } else {
-            lo + (best_cost - lo - 1) / 2
+            halfway(lo, best_cost)
         };
         let cap = backend.nodes().saturating_add(budget);
         let probe_limits = Limits {
@@ -356,8 +351,7 @@ pub fn minimise_cost(
                         bound,
                     };
                 }
-                let halfway = lo + (best_cost - lo - 1) / 2;
-                if step_down && halfway + 1 < best_cost {
+                if step_down && halfway(lo, best_cost) + 1 < best_cost {
                     // The step down ran out: try halfway with the same budget.
                     step_down = false;
                     continue;
