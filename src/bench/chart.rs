@@ -102,75 +102,87 @@ fn draw_png(path: &Path, title: &str, lines: &[Line]) -> Result<(), String> {
     } else {
         (0.0, 1.0)
     };
-    const NODE_FLOOR: f64 = 1.0;
-    const MS_FLOOR: f64 = 0.01;
     for (pi, panel) in panels.iter().enumerate() {
-        let (caption, ydesc, floor) = if pi == 0 {
-            ("Median search nodes", "nodes (log)", NODE_FLOOR)
-        } else {
-            ("Median wall time", "milliseconds (log)", MS_FLOOR)
-        };
-        let pick = |p: &(f64, f64, f64)| if pi == 0 { p.1 } else { p.2 };
-        let yr = log_range(lines.iter().flat_map(|l| l.points.iter().map(pick)), floor);
-        let mut chart = ChartBuilder::on(panel)
-            .caption(caption, ("sans-serif", 20))
-            .margin(18)
-            .x_label_area_size(45)
-            .y_label_area_size(80)
-            .build_cartesian_2d(xmin..xmax, yr.log_scale())
-            .map_err(|x| e(&x))?;
-        chart
-            .configure_mesh()
-            .x_desc("objects to place")
-            .y_desc(ydesc)
-            .x_labels(((xmax - xmin).round() as usize + 1).min(30))
-            .x_label_formatter(&|x| {
-                if (x - x.round()).abs() < 1e-6 {
-                    format!("{x:.0}")
-                } else {
-                    String::new()
-                }
-            })
-            .y_label_formatter(&|y| {
-                if *y >= 1.0 {
-                    format!("{y:.0}")
-                } else {
-                    format!("{y}")
-                }
-            })
-            .label_style(("sans-serif", 14))
-            .axis_desc_style(("sans-serif", 16))
-            .draw()
-            .map_err(|x| e(&x))?;
-        for (i, l) in lines.iter().enumerate() {
-            let color = COLORS[i % COLORS.len()];
-            let pts: Vec<(f64, f64)> = l
-                .points
-                .iter()
-                .map(|p| (p.0, pick(p).max(floor)))
-                .filter(|p| p.1.is_finite())
-                .collect();
-            chart
-                .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
-                .map_err(|x| e(&x))?
-                .label(l.label.clone())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-            chart
-                .draw_series(pts.iter().map(|p| Circle::new(*p, 4, color.filled())))
-                .map_err(|x| e(&x))?;
-        }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 14))
-            .position(SeriesLabelPosition::UpperLeft)
-            .draw()
-            .map_err(|x| e(&x))?;
+        draw_panel(panel, pi == 0, lines, (xmin, xmax)).map_err(|x| e(&x))?;
     }
     root.present().map_err(|x| e(&x))?;
+    Ok(())
+}
+
+/// One panel of [`draw_png`]: median nodes (`nodes`) or median time.
+fn draw_panel(
+    panel: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    nodes: bool,
+    lines: &[Line],
+    (xmin, xmax): (f64, f64),
+) -> Result<(), String> {
+    const NODE_FLOOR: f64 = 1.0;
+    const MS_FLOOR: f64 = 0.01;
+    let e = |x: &dyn std::fmt::Display| x.to_string();
+    let (caption, ydesc, floor) = if nodes {
+        ("Median search nodes", "nodes (log)", NODE_FLOOR)
+    } else {
+        ("Median wall time", "milliseconds (log)", MS_FLOOR)
+    };
+    let pick = |p: &(f64, f64, f64)| if nodes { p.1 } else { p.2 };
+    let yr = log_range(lines.iter().flat_map(|l| l.points.iter().map(pick)), floor);
+    let mut chart = ChartBuilder::on(panel)
+        .caption(caption, ("sans-serif", 20))
+        .margin(18)
+        .x_label_area_size(45)
+        .y_label_area_size(80)
+        .build_cartesian_2d(xmin..xmax, yr.log_scale())
+        .map_err(|x| e(&x))?;
+    chart
+        .configure_mesh()
+        .x_desc("objects to place")
+        .y_desc(ydesc)
+        .x_labels(((xmax - xmin).round() as usize + 1).min(30))
+        .x_label_formatter(&|x| {
+            if (x - x.round()).abs() < 1e-6 {
+                format!("{x:.0}")
+            } else {
+                String::new()
+            }
+        })
+        .y_label_formatter(&|y| {
+            if *y >= 1.0 {
+                format!("{y:.0}")
+            } else {
+                format!("{y}")
+            }
+        })
+        .label_style(("sans-serif", 14))
+        .axis_desc_style(("sans-serif", 16))
+        .draw()
+        .map_err(|x| e(&x))?;
+    for (i, l) in lines.iter().enumerate() {
+        let color = COLORS[i % COLORS.len()];
+        let pts: Vec<(f64, f64)> = l
+            .points
+            .iter()
+            .map(|p| (p.0, pick(p).max(floor)))
+            .filter(|p| p.1.is_finite())
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
+            .map_err(|x| e(&x))?
+            .label(l.label.clone())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+        chart
+            .draw_series(pts.iter().map(|p| Circle::new(*p, 4, color.filled())))
+            .map_err(|x| e(&x))?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 14))
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()
+        .map_err(|x| e(&x))?;
     Ok(())
 }
 

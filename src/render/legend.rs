@@ -97,24 +97,25 @@ pub(super) fn text(
 /// The legend's score lines and one line per rule (with its violators);
 /// per violating object, whether it breaks a hard rule.
 pub(super) fn rule_lines(ev: &Evaluation) -> (Vec<Line>, HashMap<&str, bool>) {
-    let mut lines = Vec::new();
+    let mut lines = score_lines(ev);
     let mut hard_of: HashMap<&str, bool> = HashMap::new();
-    let any_soft = ev.rules.iter().any(|r| !r.hard);
+    for r in &ev.rules {
+        for v in &r.violators {
+            let hard = hard_of.entry(v.as_str()).or_insert(false);
+            *hard |= r.hard;
+        }
+        push_rule_lines(r, &mut lines);
+    }
     lines.push(Line {
-        dy: 18.0,
-        parts: vec![text(
-            0.0,
-            16.0,
-            true,
-            "#222222",
-            false,
-            if any_soft {
-                format!("score {:.3}", ev.score)
-            } else {
-                "score 1 (no soft rules)".into()
-            },
-        )],
+        dy: 10.0,
+        parts: vec![],
     });
+    (lines, hard_of)
+}
+
+/// The score, the weights (and hard violations) and the "rules" heading.
+fn score_lines(ev: &Evaluation) -> Vec<Line> {
+    let any_soft = ev.rules.iter().any(|r| !r.hard);
     let mut sub = format!(
         "weight {} of {}",
         n(ev.satisfied_weight),
@@ -123,72 +124,82 @@ pub(super) fn rule_lines(ev: &Evaluation) -> (Vec<Line>, HashMap<&str, bool>) {
     if ev.rules.iter().any(|r| r.hard) {
         let _ = write!(sub, " · hard violations {}", ev.hard_violations);
     }
-    lines.push(Line {
-        dy: 17.0,
-        parts: vec![text(0.0, 11.0, false, "#666666", false, sub)],
-    });
-    lines.push(Line {
-        dy: 26.0,
-        parts: vec![text(0.0, 13.0, true, "#333333", false, "rules".into())],
-    });
-    for r in &ev.rules {
-        for v in &r.violators {
-            let hard = hard_of.entry(v.as_str()).or_insert(false);
-            *hard |= r.hard;
-        }
-        // A scene-level or group rule can fail with no object to blame
-        // (`some R: …` with none, `not column(R)` with one column).
-        let ok = r.violators.is_empty() && r.satisfied == r.subjects;
-        let mut name = truncate(&r.name, 34);
-        if r.hard {
-            name.push_str("  [hard]");
-        }
-        lines.push(Line {
+    vec![
+        Line {
             dy: 18.0,
-            parts: vec![
-                text(
-                    0.0,
-                    12.0,
-                    true,
-                    if ok { "#3c8d40" } else { "#d35400" },
-                    false,
-                    if ok { "✓" } else { "✗" }.into(),
-                ),
-                text(
-                    16.0,
-                    12.0,
-                    false,
-                    if r.hard { "#7a4f00" } else { "#222222" },
-                    false,
-                    name,
-                ),
-                text(
-                    0.0,
-                    12.0,
-                    false,
-                    "#222222",
-                    true,
-                    format!("{}/{}", r.satisfied, r.subjects),
-                ),
-            ],
-        });
-        if !r.violators.is_empty() {
-            let ids = truncate(&r.violators.join(", "), 40);
-            let what = match &r.group {
-                Some(g) => format!("off the main {}: {ids}", g.shape),
-                None => format!("broken by {ids}"),
-            };
-            lines.push(Line {
-                dy: 14.0,
-                parts: vec![text(16.0, 10.5, false, "#8a8a8a", false, what)],
-            });
-        }
+            parts: vec![text(
+                0.0,
+                16.0,
+                true,
+                "#222222",
+                false,
+                if any_soft {
+                    format!("score {:.3}", ev.score)
+                } else {
+                    "score 1 (no soft rules)".into()
+                },
+            )],
+        },
+        Line {
+            dy: 17.0,
+            parts: vec![text(0.0, 11.0, false, "#666666", false, sub)],
+        },
+        Line {
+            dy: 26.0,
+            parts: vec![text(0.0, 13.0, true, "#333333", false, "rules".into())],
+        },
+    ]
+}
+
+/// One rule's line (mark, name, count) and, when broken, its violators.
+fn push_rule_lines(r: &crate::eval::RuleReport, lines: &mut Vec<Line>) {
+    // A scene-level or group rule can fail with no object to blame
+    // (`some R: …` with none, `not column(R)` with one column).
+    let ok = r.violators.is_empty() && r.satisfied == r.subjects;
+    let mut name = truncate(&r.name, 34);
+    if r.hard {
+        name.push_str("  [hard]");
     }
     lines.push(Line {
-        dy: 10.0,
-        parts: vec![],
+        dy: 18.0,
+        parts: vec![
+            text(
+                0.0,
+                12.0,
+                true,
+                if ok { "#3c8d40" } else { "#d35400" },
+                false,
+                if ok { "✓" } else { "✗" }.into(),
+            ),
+            text(
+                16.0,
+                12.0,
+                false,
+                if r.hard { "#7a4f00" } else { "#222222" },
+                false,
+                name,
+            ),
+            text(
+                0.0,
+                12.0,
+                false,
+                "#222222",
+                true,
+                format!("{}/{}", r.satisfied, r.subjects),
+            ),
+        ],
     });
-    (lines, hard_of)
+    if !r.violators.is_empty() {
+        let ids = truncate(&r.violators.join(", "), 40);
+        let what = match &r.group {
+            Some(g) => format!("off the main {}: {ids}", g.shape),
+            None => format!("broken by {ids}"),
+        };
+        lines.push(Line {
+            dy: 14.0,
+            parts: vec![text(16.0, 10.5, false, "#8a8a8a", false, what)],
+        });
+    }
 }
 
 /// The legend's class key: one line per class (and colour), with counts.

@@ -143,49 +143,7 @@ pub fn verify_solution(
     let space = solution.space.rect();
     let mut rects = Vec::with_capacity(solution.objects.len());
     for (i, (p, s)) in problem.objects.iter().zip(&solution.objects).enumerate() {
-        if p.id != s.id || p.class != s.class || p.width != s.width || p.height != s.height {
-            return Err(VerifyError::ObjectChanged {
-                index: i,
-                was: format!("`{}` ({} {}x{})", p.id, p.class, p.width, p.height),
-                now: format!("`{}` ({} {}x{})", s.id, s.class, s.width, s.height),
-            });
-        }
-        if p.fixed != s.fixed {
-            return Err(VerifyError::FixedChanged {
-                index: i,
-                id: p.id.clone(),
-            });
-        }
-        let Some(r) = s.rect() else {
-            return Err(VerifyError::Unplaced {
-                index: i,
-                id: s.id.clone(),
-            });
-        };
-        if p.is_placed() {
-            if p.x != s.x || p.y != s.y {
-                return Err(VerifyError::Moved {
-                    index: i,
-                    id: p.id.clone(),
-                    from: (p.x.unwrap_or_default(), p.y.unwrap_or_default()),
-                    to: (r.x, r.y),
-                });
-            }
-        } else if !solution.on_grid(s) {
-            return Err(VerifyError::OffGrid {
-                index: i,
-                id: s.id.clone(),
-                at: (r.x, r.y),
-            });
-        }
-        if !r.inside(&space) {
-            return Err(VerifyError::Outside {
-                index: i,
-                id: s.id.clone(),
-                at: (r.x, r.y),
-            });
-        }
-        rects.push(r);
+        rects.push(check_object(i, p, s, solution, &space)?);
     }
     for a in 0..rects.len() {
         for b in a + 1..rects.len() {
@@ -197,6 +155,69 @@ pub fn verify_solution(
             }
         }
     }
+    check_hard_rules(solution, rules, contact)
+}
+
+/// Object `i` of the solution against the problem's: the same object,
+/// placed, where the problem placed it (or on the grid), inside the space.
+fn check_object(
+    i: usize,
+    p: &crate::scene::Object,
+    s: &crate::scene::Object,
+    solution: &Scene,
+    space: &crate::scene::Rect,
+) -> Result<crate::scene::Rect, VerifyError> {
+    if p.id != s.id || p.class != s.class || p.width != s.width || p.height != s.height {
+        return Err(VerifyError::ObjectChanged {
+            index: i,
+            was: format!("`{}` ({} {}x{})", p.id, p.class, p.width, p.height),
+            now: format!("`{}` ({} {}x{})", s.id, s.class, s.width, s.height),
+        });
+    }
+    if p.fixed != s.fixed {
+        return Err(VerifyError::FixedChanged {
+            index: i,
+            id: p.id.clone(),
+        });
+    }
+    let Some(r) = s.rect() else {
+        return Err(VerifyError::Unplaced {
+            index: i,
+            id: s.id.clone(),
+        });
+    };
+    if p.is_placed() {
+        if p.x != s.x || p.y != s.y {
+            return Err(VerifyError::Moved {
+                index: i,
+                id: p.id.clone(),
+                from: (p.x.unwrap_or_default(), p.y.unwrap_or_default()),
+                to: (r.x, r.y),
+            });
+        }
+    } else if !solution.on_grid(s) {
+        return Err(VerifyError::OffGrid {
+            index: i,
+            id: s.id.clone(),
+            at: (r.x, r.y),
+        });
+    }
+    if !r.inside(space) {
+        return Err(VerifyError::Outside {
+            index: i,
+            id: s.id.clone(),
+            at: (r.x, r.y),
+        });
+    }
+    Ok(r)
+}
+
+/// Every hard rule holds for every subject (by the evaluator).
+fn check_hard_rules(
+    solution: &Scene,
+    rules: &RuleSet,
+    contact: Contact,
+) -> Result<(), VerifyError> {
     let e = evaluate(solution, rules, contact);
     for r in &e.rules {
         // `satisfied < subjects`, not "has violators": a failing scene-level

@@ -163,90 +163,96 @@ pub fn summarize(rows: &[TaskRow]) -> Vec<TasksSummary> {
                 .iter()
                 .filter(|r| r.series == series && r.size_index == si)
                 .collect();
-            let times: Vec<f64> = cell.iter().map(|r| r.score_only.time_ms).collect();
-            let scores: Vec<f64> = cell.iter().filter_map(|r| r.score_only.score).collect();
-            let likes: Vec<&SolveRow> = cell.iter().filter_map(|r| r.like.as_ref()).collect();
-            let like_times: Vec<f64> = likes.iter().map(|l| l.time_ms).collect();
-            let solves = || {
-                cell.iter()
-                    .flat_map(|r| std::iter::once(&r.score_only).chain(r.like.as_ref()))
-            };
-            let mut peer_names: Vec<String> = cell
+            summarize_cell(series, si, &cell)
+        })
+        .collect()
+}
+
+/// The problems of one (series, size).
+fn summarize_cell(series: TaskSeries, si: usize, cell: &[&TaskRow]) -> TasksSummary {
+    let times: Vec<f64> = cell.iter().map(|r| r.score_only.time_ms).collect();
+    let scores: Vec<f64> = cell.iter().filter_map(|r| r.score_only.score).collect();
+    let likes: Vec<&SolveRow> = cell.iter().filter_map(|r| r.like.as_ref()).collect();
+    let like_times: Vec<f64> = likes.iter().map(|l| l.time_ms).collect();
+    let solves = || {
+        cell.iter()
+            .flat_map(|r| std::iter::once(&r.score_only).chain(r.like.as_ref()))
+    };
+    let so_median = median(&times);
+    let sum_kept = |rows: &mut dyn Iterator<Item = &SolveRow>| {
+        rows.filter_map(|s| s.shapes_kept)
+            .reduce(|a, b| [a[0] + b[0], a[1] + b[1]])
+    };
+    let like_median = (!likes.is_empty()).then(|| median(&like_times));
+    TasksSummary {
+        series,
+        size_index: si,
+        size: cell[0].size.clone(),
+        problems: cell.len(),
+        movable_min: cell.iter().map(|r| r.movable).min().unwrap_or(0),
+        movable_max: cell.iter().map(|r| r.movable).max().unwrap_or(0),
+        rules_min: cell.iter().map(|r| r.rules).min().unwrap_or(0),
+        rules_max: cell.iter().map(|r| r.rules).max().unwrap_or(0),
+        proven: cell
+            .iter()
+            .filter(|r| r.score_only.status == Some(Status::Optimal))
+            .count(),
+        median_ms: so_median,
+        max_ms: times.iter().copied().fold(0.0, f64::max),
+        median_score: (!scores.is_empty()).then(|| median(&scores)),
+        min_score: scores.iter().copied().reduce(f64::min),
+        like_proven: (!likes.is_empty()).then(|| {
+            likes
                 .iter()
-                .flat_map(|r| r.peers.iter().map(|p| p.peer.clone()))
+                .filter(|l| l.status == Some(Status::Optimal) && l.cost_proven == Some(true))
+                .count()
+        }),
+        like_median_ms: like_median,
+        like_ratio: like_median.map(|m| m / so_median),
+        errors: solves().filter(|s| s.status.is_none()).count(),
+        check_failures: solves().filter(|s| s.verified == Some(false)).count(),
+        peers: peer_cells(cell),
+        shapes_kept: sum_kept(&mut cell.iter().map(|r| &r.score_only)),
+        like_shapes_kept: sum_kept(&mut likes.iter().copied()),
+    }
+}
+
+/// One [`PeerCell`] per peer that ran on the problems of `cell`, by name.
+fn peer_cells(cell: &[&TaskRow]) -> Vec<PeerCell> {
+    let mut peer_names: Vec<String> = cell
+        .iter()
+        .flat_map(|r| r.peers.iter().map(|p| p.peer.clone()))
+        .collect();
+    peer_names.sort();
+    peer_names.dedup();
+    let score = |s: Option<f64>| s.unwrap_or(f64::NEG_INFINITY);
+    peer_names
+        .into_iter()
+        .map(|peer| {
+            let pc: Vec<(&TaskRow, &PeerRow)> = cell
+                .iter()
+                .filter_map(|r| r.peers.iter().find(|p| p.peer == peer).map(|p| (*r, p)))
                 .collect();
-            peer_names.dedup();
-            peer_names.sort();
-            peer_names.dedup();
-            let score = |s: Option<f64>| s.unwrap_or(f64::NEG_INFINITY);
-            let peers = peer_names
-                .into_iter()
-                .map(|peer| {
-                    let pc: Vec<(&TaskRow, &PeerRow)> = cell
-                        .iter()
-                        .filter_map(|r| r.peers.iter().find(|p| p.peer == peer).map(|p| (*r, p)))
-                        .collect();
-                    let pt: Vec<f64> = pc.iter().map(|(_, p)| p.time_ms).collect();
-                    PeerCell {
-                        proven: pc
-                            .iter()
-                            .filter(|(_, p)| p.status == Some(PeerStatus::Optimal))
-                            .count(),
-                        median_ms: median(&pt),
-                        rccpack_below: pc
-                            .iter()
-                            .filter(|(r, p)| score(r.score_only.score) < score(p.score) - 1e-9)
-                            .count(),
-                        rccpack_above: pc
-                            .iter()
-                            .filter(|(r, p)| score(p.score) < score(r.score_only.score) - 1e-9)
-                            .count(),
-                        failures: pc
-                            .iter()
-                            .filter(|(_, p)| p.status.is_none() || p.verified == Some(false))
-                            .count(),
-                        peer,
-                    }
-                })
-                .collect();
-            let so_median = median(&times);
-            let sum_kept = |rows: &mut dyn Iterator<Item = &SolveRow>| {
-                rows.filter_map(|s| s.shapes_kept)
-                    .reduce(|a, b| [a[0] + b[0], a[1] + b[1]])
-            };
-            let like_median = (!likes.is_empty()).then(|| median(&like_times));
-            TasksSummary {
-                series,
-                size_index: si,
-                size: cell[0].size.clone(),
-                problems: cell.len(),
-                movable_min: cell.iter().map(|r| r.movable).min().unwrap_or(0),
-                movable_max: cell.iter().map(|r| r.movable).max().unwrap_or(0),
-                rules_min: cell.iter().map(|r| r.rules).min().unwrap_or(0),
-                rules_max: cell.iter().map(|r| r.rules).max().unwrap_or(0),
-                proven: cell
+            let pt: Vec<f64> = pc.iter().map(|(_, p)| p.time_ms).collect();
+            PeerCell {
+                proven: pc
                     .iter()
-                    .filter(|r| r.score_only.status == Some(Status::Optimal))
+                    .filter(|(_, p)| p.status == Some(PeerStatus::Optimal))
                     .count(),
-                median_ms: so_median,
-                max_ms: times.iter().copied().fold(0.0, f64::max),
-                median_score: (!scores.is_empty()).then(|| median(&scores)),
-                min_score: scores.iter().copied().reduce(f64::min),
-                like_proven: (!likes.is_empty()).then(|| {
-                    likes
-                        .iter()
-                        .filter(|l| {
-                            l.status == Some(Status::Optimal) && l.cost_proven == Some(true)
-                        })
-                        .count()
-                }),
-                like_median_ms: like_median,
-                like_ratio: like_median.map(|m| m / so_median),
-                errors: solves().filter(|s| s.status.is_none()).count(),
-                check_failures: solves().filter(|s| s.verified == Some(false)).count(),
-                peers,
-                shapes_kept: sum_kept(&mut cell.iter().map(|r| &r.score_only)),
-                like_shapes_kept: sum_kept(&mut likes.iter().copied()),
+                median_ms: median(&pt),
+                rccpack_below: pc
+                    .iter()
+                    .filter(|(r, p)| score(r.score_only.score) < score(p.score) - 1e-9)
+                    .count(),
+                rccpack_above: pc
+                    .iter()
+                    .filter(|(r, p)| score(p.score) < score(r.score_only.score) - 1e-9)
+                    .count(),
+                failures: pc
+                    .iter()
+                    .filter(|(_, p)| p.status.is_none() || p.verified == Some(false))
+                    .count(),
+                peer,
             }
         })
         .collect()

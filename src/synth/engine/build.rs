@@ -268,48 +268,9 @@ impl<'m> Builder<'m> {
                         .add_constraint(less_than_or_equals(terms, rhs, tag))
                         .reify(l);
                 }
-                BoolDef::And(children) => {
-                    let cs: Vec<Literal> = children.iter().map(|&c| self.lit(c)).collect();
-                    for &c in &cs {
-                        self.solver
-                            .add_clause([(!l).get_true_predicate(), c.get_true_predicate()], tag);
-                    }
-                    let mut big: Vec<Predicate> = vec![l.get_true_predicate()];
-                    big.extend(cs.iter().map(|c| (!*c).get_true_predicate()));
-                    self.solver.add_clause(big, tag);
-                }
-                BoolDef::AtLeast { lits: counted, k } => {
-                    // l ⇔ Σ counted ≥ k  ⇔  Σ −[counted] ≤ −k. A literal
-                    // counted m times is one term with coefficient −m (the
-                    // model keeps one polarity per Boolean), so no solver
-                    // variable appears twice in the sum.
-                    let terms: Vec<AffineView<DomainId>> = counted
-                        .chunk_by(|a, b| a == b)
-                        .map(|g| {
-                            // (counts fit: at most one term per object)
-                            let m = i32::try_from(g.len()).unwrap_or(i32::MAX);
-                            self.lit(g[0]).get_integer_variable().scaled(-m)
-                        })
-                        .collect();
-                    let rhs = i32_of(-i64::from(*k), || "a count bound".into())?;
-                    self.solver
-                        .add_constraint(less_than_or_equals(terms, rhs, tag))
-                        .reify(l);
-                }
-                BoolDef::Connected { nodes, edges } => {
-                    let args = super::connected::ConnectedArgs {
-                        out: l,
-                        nodes: *nodes as usize,
-                        edges: edges
-                            .iter()
-                            .map(|&(a, b, e)| (a as usize, b as usize, self.lit(e)))
-                            .collect(),
-                        tag,
-                    };
-                    // A root failure surfaces as "infeasible" at the first
-                    // solve, as for the other propagators.
-                    let _ = self.solver.add_propagator(args);
-                }
+                BoolDef::And(children) => self.post_and(l, children),
+                BoolDef::AtLeast { lits: counted, k } => self.post_at_least(l, counted, *k)?,
+                BoolDef::Connected { nodes, edges } => self.post_connected(l, *nodes, edges),
             }
         }
         for ((a, b), lits) in pairs {
@@ -323,6 +284,54 @@ impl<'m> Builder<'m> {
             let _ = self.solver.add_propagator(args);
         }
         Ok(())
+    }
+
+    /// `l ⇔ ∧ children`: one clause per child and one back.
+    fn post_and(&mut self, l: Literal, children: &[Lit]) {
+        let tag = self.tag;
+        let cs: Vec<Literal> = children.iter().map(|&c| self.lit(c)).collect();
+        for &c in &cs {
+            self.solver
+                .add_clause([(!l).get_true_predicate(), c.get_true_predicate()], tag);
+        }
+        let mut big: Vec<Predicate> = vec![l.get_true_predicate()];
+        big.extend(cs.iter().map(|c| (!*c).get_true_predicate()));
+        self.solver.add_clause(big, tag);
+    }
+
+    /// `l ⇔ Σ counted ≥ k`  ⇔  `Σ −[counted] ≤ −k`. A literal counted m
+    /// times is one term with coefficient −m (the model keeps one polarity
+    /// per Boolean), so no solver variable appears twice in the sum.
+    fn post_at_least(&mut self, l: Literal, counted: &[Lit], k: u32) -> Result<(), SynthError> {
+        let terms: Vec<AffineView<DomainId>> = counted
+            .chunk_by(|a, b| a == b)
+            .map(|g| {
+                // (counts fit: at most one term per object)
+                let m = i32::try_from(g.len()).unwrap_or(i32::MAX);
+                self.lit(g[0]).get_integer_variable().scaled(-m)
+            })
+            .collect();
+        let rhs = i32_of(-i64::from(k), || "a count bound".into())?;
+        self.solver
+            .add_constraint(less_than_or_equals(terms, rhs, self.tag))
+            .reify(l);
+        Ok(())
+    }
+
+    /// `l ⇔` the chosen edges connect the nodes (see `connected`).
+    fn post_connected(&mut self, l: Literal, nodes: u32, edges: &[(u32, u32, Lit)]) {
+        let args = super::connected::ConnectedArgs {
+            out: l,
+            nodes: nodes as usize,
+            edges: edges
+                .iter()
+                .map(|&(a, b, e)| (a as usize, b as usize, self.lit(e)))
+                .collect(),
+            tag: self.tag,
+        };
+        // A root failure surfaces as "infeasible" at the first solve, as
+        // for the other propagators.
+        let _ = self.solver.add_propagator(args);
     }
 
     /// Non-overlap of every pair with a variable object: one propagator
