@@ -11,11 +11,15 @@
 //! * [`tasks`] — realistic tasks: demonstrations that follow a hidden
 //!   style, rules learned from them, problems larger than the
 //!   demonstrations, and the bundled example scaled;
+//! * [`noisy`] — demonstrations as recorded (`rccpack bench noisy`):
+//!   jitter, a slipped block, both, rough positions, learned and compared
+//!   with the exact demonstrations' rules;
 //! * [`priors`] — priors learned across tasks on a seeded population of
 //!   demonstrators (`rccpack bench priors`): uniform, learned, shuffled and
 //!   true-frequency priors on held-out tasks.
 
 pub mod chart;
+pub mod noisy;
 pub mod peers;
 pub mod pool;
 pub mod priors;

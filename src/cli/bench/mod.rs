@@ -1,13 +1,15 @@
 //! `rccpack bench`: one file per bench command (`thesis.rs`, `tasks.rs`,
-//! `priors.rs`; `sample` lives beside `rccpack sample`), and what they share
+//! `priors.rs`, `noisy.rs`; `sample` lives beside `rccpack sample`), and what they share
 //! (the independent check, the peers asked for).
 
+mod noisy;
 mod priors;
 mod tasks;
 mod thesis;
 
 use anyhow::Result;
 use clap::{Args, Subcommand};
+use noisy::{run_noisy, NoisyArgs};
 use priors::{run_priors, PriorsBenchArgs};
 use rccpack::bench::peers::{self, Peer};
 use rccpack::synth::verify_solution;
@@ -65,6 +67,12 @@ enum Which {
     /// (recall, rare-rule recall, spurious rules; questions `ask` needs
     /// with a truth oracle).
     Priors(PriorsBenchArgs),
+    /// Demonstrations as they are recorded: the generated tasks and the
+    /// bundled example learned from their exact demonstrations and from
+    /// four recorded variants (every block jittered ±3 px, one slipped
+    /// block, both, rough positions); prints per task the exact rules kept
+    /// and the rules added, and whether the slip is named a suspect.
+    Noisy(NoisyArgs),
 }
 
 pub fn run(a: BenchArgs) -> Result<ExitCode> {
@@ -73,6 +81,7 @@ pub fn run(a: BenchArgs) -> Result<ExitCode> {
         Which::Tasks(t) => run_tasks(t),
         Which::Sample(t) => crate::cli::sample::run_bench(t),
         Which::Priors(t) => run_priors(t),
+        Which::Noisy(t) => run_noisy(t),
     }
 }
 
