@@ -79,8 +79,12 @@ pub struct BenchReport {
     pub problems: Vec<ProblemRow>,
 }
 
-/// Run the bench; `note` hears what is being measured.
-pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
+/// The uniformity test on every tiny problem, with activity and random
+/// search.
+fn uniformity_rows(
+    cfg: &BenchConfig,
+    note: &mut dyn FnMut(&str),
+) -> Vec<(String, Option<Uniformity>)> {
     let mut uniformity_rows = Vec::new();
     for (name, problem, rules) in tiny_problems() {
         for random in [false, true] {
@@ -96,6 +100,12 @@ pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
             uniformity_rows.push((name, u));
         }
     }
+    uniformity_rows
+}
+
+/// The problems of the diversity measurement: the bundled example at 3
+/// and 5 per class, and the first problem of each generated task.
+fn diversity_problems(cfg: &BenchConfig) -> Vec<(String, Scene, RuleSet, Quality, bool)> {
     let mut problems: Vec<(String, Scene, RuleSet, Quality, bool)> = Vec::new();
     if let Ok(t) = super::tasks::example_task(&[3, 5], Default::default()) {
         for p in &t.problems {
@@ -126,6 +136,13 @@ pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
             }
         }
     }
+    problems
+}
+
+/// Run the bench; `note` hears what is being measured.
+pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
+    let uniformity_rows = uniformity_rows(cfg, note);
+    let problems = diversity_problems(cfg);
     let mut rows = Vec::new();
     for (name, problem, rules, quality, random_search) in problems {
         note(&format!("diversity: {name}"));

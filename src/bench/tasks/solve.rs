@@ -204,6 +204,70 @@ pub enum TasksEvent {
     },
 }
 
+/// How far [`run_tasks`] is.
+#[derive(Clone, Copy)]
+struct Progress {
+    done: usize,
+    total: usize,
+}
+
+/// One problem of task `t`: score only, with `like` (`opts` in that
+/// order), and by each peer.
+fn solve_problem(
+    engine: Solver<'_>,
+    cfg: &TasksConfig,
+    t: &BenchTask,
+    p: &super::TaskProblem,
+    [score_opts, like_opts]: [&SynthOptions; 2],
+    at: Progress,
+    progress: &mut dyn FnMut(&TasksEvent),
+) -> TaskRow {
+    let label = |what: &str| TasksEvent::Solving {
+        done: at.done,
+        total: at.total,
+        label: format!("{} {what}", p.name),
+    };
+    let kept = |mut row: SolveRow, opts: &SynthOptions| {
+        if t.series == TaskSeries::Groups {
+            row.shapes_kept = row.layout.as_ref().map(|l| {
+                let (k, n) = groups::shapes_kept(t, l, opts.contact);
+                [k, n]
+            });
+        }
+        row.layout = None;
+        row
+    };
+    progress(&label("score-only"));
+    let score_only = kept(
+        solve_once(engine, &p.scene, &t.rules, score_opts),
+        score_opts,
+    );
+    let like = cfg.like.then(|| {
+        progress(&label("like"));
+        kept(solve_once(engine, &p.scene, &t.rules, like_opts), like_opts)
+    });
+    let peers = cfg
+        .peers
+        .iter()
+        .map(|&peer| {
+            progress(&label(peer.name()));
+            solve_peer(engine, cfg, &p.scene, &t.rules, peer)
+        })
+        .collect();
+    TaskRow {
+        series: t.series,
+        task: t.index,
+        size_index: p.size_index,
+        size: p.size.clone(),
+        name: p.name.clone(),
+        movable: p.movable,
+        rules: t.rules.rules.len(),
+        score_only,
+        like,
+        peers,
+    }
+}
+
 /// Solve every problem of `tasks` (score only, with `like`, peers), one
 /// solver at a time.
 pub fn run_tasks(
@@ -218,56 +282,13 @@ pub fn run_tasks(
         let score_opts = solve_options(cfg, &t.demos, false);
         let like_opts = solve_options(cfg, &t.demos, true);
         for p in &t.problems {
-            let done = rows.len();
-            let label = |what: &str| TasksEvent::Solving {
-                done,
+            let at = Progress {
+                done: rows.len(),
                 total,
-                label: format!("{} {what}", p.name),
             };
-            let kept = |mut row: SolveRow, opts: &SynthOptions| {
-                if t.series == TaskSeries::Groups {
-                    row.shapes_kept = row.layout.as_ref().map(|l| {
-                        let (k, n) = groups::shapes_kept(t, l, opts.contact);
-                        [k, n]
-                    });
-                }
-                row.layout = None;
-                row
-            };
-            progress(&label("score-only"));
-            let score_only = kept(
-                solve_once(engine, &p.scene, &t.rules, &score_opts),
-                &score_opts,
-            );
-            let like = cfg.like.then(|| {
-                progress(&label("like"));
-                kept(
-                    solve_once(engine, &p.scene, &t.rules, &like_opts),
-                    &like_opts,
-                )
-            });
-            let peers = cfg
-                .peers
-                .iter()
-                .map(|&peer| {
-                    progress(&label(peer.name()));
-                    solve_peer(engine, cfg, &p.scene, &t.rules, peer)
-                })
-                .collect();
-            let row = TaskRow {
-                series: t.series,
-                task: t.index,
-                size_index: p.size_index,
-                size: p.size.clone(),
-                name: p.name.clone(),
-                movable: p.movable,
-                rules: t.rules.rules.len(),
-                score_only,
-                like,
-                peers,
-            };
+            let row = solve_problem(engine, cfg, t, p, [&score_opts, &like_opts], at, progress);
             progress(&TasksEvent::Solved {
-                done: done + 1,
+                done: at.done + 1,
                 total,
                 line: row_line(&row),
             });
