@@ -3,14 +3,14 @@
 //!
 //! | what | limit | where checked |
 //! |---|---|---|
-//! | coordinates `x`, `y`, `space.x`, `space.y` | `|v| ≤` [`MAX_COORD`] (10^15) | [`crate::scene::Scene::validate`] |
-//! | sizes `width`, `height`, `grid` | `1 ≤ v ≤` [`MAX_COORD`] | [`crate::scene::Scene::validate`] |
+//! | coordinates `x`, `y`, `space.x`, `space.y` | `|v| ≤` [`MAX_SCENE_COORD`] (10^15) | [`crate::scene::Scene::validate`] |
+//! | sizes `width`, `height`, `grid` | `1 ≤ v ≤` [`MAX_SCENE_COORD`] | [`crate::scene::Scene::validate`] |
 //! | time limits (`--time-limit`, studio `time_limit`) | finite, `0 ≤ t ≤` [`MAX_TIME_LIMIT_SECS`] | [`time_limit`] |
 //! | null-model samples (`--samples`, studio `samples`) | `1 ≤ n ≤` [`MAX_SAMPLES`] | [`check_samples`] |
 //! | statements weighed by one learning run | at most [`MAX_STATEMENTS`] | `infer::learn` |
 //! | `.rcc` rule text | at most [`MAX_RULES_BYTES`] (16 MiB) | `rules::parse_rules` |
 //! | values echoed in error messages | cut past [`MAX_ECHO`] characters | [`cut`] |
-//! | synthesis coordinates | `|v| ≤ 2^28` (the engine works in `i32`) | `synth::synthesize` ([`crate::synth::MAX_COORD`]) |
+//! | synthesis coordinates | `|v| ≤ 2^28` (the engine works in `i32`) | `synth::synthesize` ([`crate::synth::MAX_SYNTH_COORD`]) |
 //! | synthesis grid positions per object and axis | `≤ 2^18` | `synth::synthesize` ([`crate::synth::MAX_POSITIONS`]) |
 //! | synthesis: pairs of objects the rules relate | at most 120 000 | `synth::synthesize` (`synth::model::MAX_PAIR_LITERALS`) |
 //!
@@ -22,7 +22,7 @@ use std::time::Duration;
 
 /// Largest absolute value of a coordinate, and largest size or grid step,
 /// in a scene (10^15).
-pub const MAX_COORD: i64 = 1_000_000_000_000_000;
+pub const MAX_SCENE_COORD: i64 = 1_000_000_000_000_000;
 
 /// Largest time limit accepted anywhere, in seconds (10^6 s, about 11.6
 /// days).

@@ -7,7 +7,7 @@ use rccpack::relations::Contact;
 use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::scene::Scene;
 use rccpack::synth::verify_solution;
-use rccpack::synth::{synthesize, Status, SynthError, SynthOptions, MAX_COORD, MAX_POSITIONS};
+use rccpack::synth::{synthesize, Status, SynthError, SynthOptions, MAX_SYNTH_COORD, MAX_POSITIONS};
 use std::time::Duration;
 
 fn problem(x: i64, y: i64, w: i64, h: i64, grid: i64, objects: &str) -> Scene {
@@ -54,7 +54,7 @@ fn symmetry_term_in_a_huge_space_does_not_overflow() {
 /// past i32 (nine full-height objects): solved and verified.
 #[test]
 fn synthesis_at_the_coordinate_bound() {
-    let m = MAX_COORD;
+    let m = MAX_SYNTH_COORD;
     let g = m / MAX_POSITIONS; // 1024
     let p = problem(0, 0, m, m, g, TWO_BLOCKS);
     let rules = parse_rules("rule north: DR_N(B, B) | DR_S(B, B)\n").unwrap();
@@ -100,7 +100,7 @@ fn synthesis_at_the_coordinate_bound() {
 /// Just past the bound: a typed error naming the value, never a panic.
 #[test]
 fn synthesis_past_the_coordinate_bound_is_refused() {
-    let m = MAX_COORD;
+    let m = MAX_SYNTH_COORD;
     let cases = [
         (problem(0, 0, m + 1, 100, 1, TWO_BLOCKS), "space.width"),
         (problem(0, -m - 1, 100, 100, 1, TWO_BLOCKS), "space.y"),

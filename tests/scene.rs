@@ -153,30 +153,30 @@ fn on_grid_is_relative_to_the_space_origin() {
 /// bound itself is accepted.
 #[test]
 fn coordinates_at_and_past_the_documented_bound() {
-    use rccpack::limits::MAX_COORD;
+    use rccpack::limits::MAX_SCENE_COORD;
     let scene =
         |space: &str, obj: &str| format!(r#"{{"space":{space},"grid":1,"objects":[{obj}]}}"#);
     // At the bound: accepted.
     let at = scene(
         &format!(
-            r#"{{"x":{},"y":{},"width":{MAX_COORD},"height":{MAX_COORD}}}"#,
-            -MAX_COORD, -MAX_COORD
+            r#"{{"x":{},"y":{},"width":{MAX_SCENE_COORD},"height":{MAX_SCENE_COORD}}}"#,
+            -MAX_SCENE_COORD, -MAX_SCENE_COORD
         ),
         &format!(
-            r#"{{"class":"R","x":{},"y":-1,"width":{MAX_COORD},"height":1}}"#,
-            -MAX_COORD
+            r#"{{"class":"R","x":{},"y":-1,"width":{MAX_SCENE_COORD},"height":1}}"#,
+            -MAX_SCENE_COORD
         ),
     );
     Scene::from_json(&at).expect("the bound itself is accepted");
-    // The space's corner plus its size reaches 2·MAX_COORD; still fine.
+    // The space's corner plus its size reaches 2·MAX_SCENE_COORD; still fine.
     let far = scene(
-        &format!(r#"{{"x":{MAX_COORD},"y":{MAX_COORD},"width":{MAX_COORD},"height":{MAX_COORD}}}"#),
+        &format!(r#"{{"x":{MAX_SCENE_COORD},"y":{MAX_SCENE_COORD},"width":{MAX_SCENE_COORD},"height":{MAX_SCENE_COORD}}}"#),
         &format!(
-            r#"{{"class":"R","x":{},"y":{MAX_COORD},"width":{MAX_COORD},"height":1}}"#,
-            MAX_COORD
+            r#"{{"class":"R","x":{},"y":{MAX_SCENE_COORD},"width":{MAX_SCENE_COORD},"height":1}}"#,
+            MAX_SCENE_COORD
         ),
     );
-    Scene::from_json(&far).expect("edges up to 2·MAX_COORD are fine");
+    Scene::from_json(&far).expect("edges up to 2·MAX_SCENE_COORD are fine");
     let cases: Vec<(String, &str)> = vec![
         (
             scene(r#"{"x":9223372036854775807,"width":10,"height":10}"#, ""),
@@ -184,7 +184,7 @@ fn coordinates_at_and_past_the_documented_bound() {
         ),
         (
             scene(
-                &format!(r#"{{"x":{},"width":10,"height":10}}"#, MAX_COORD + 1),
+                &format!(r#"{{"x":{},"width":10,"height":10}}"#, MAX_SCENE_COORD + 1),
                 "",
             ),
             "space.x",
@@ -198,7 +198,7 @@ fn coordinates_at_and_past_the_documented_bound() {
             "space.width",
         ),
         (
-            scene(&format!(r#"{{"width":10,"height":{}}}"#, MAX_COORD + 1), ""),
+            scene(&format!(r#"{{"width":10,"height":{}}}"#, MAX_SCENE_COORD + 1), ""),
             "space.height",
         ),
         (

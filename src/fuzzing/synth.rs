@@ -11,8 +11,8 @@ use arbitrary::{Result as AResult, Unstructured};
 
 /// Coordinates: mostly small, sometimes at or past the documented bounds.
 fn coord(u: &mut Unstructured, small: i64) -> AResult<i64> {
-    use crate::limits::MAX_COORD as SCENE_MAX;
-    use crate::synth::MAX_COORD as SYNTH_MAX;
+    use crate::limits::MAX_SCENE_COORD as SCENE_MAX;
+    use crate::synth::MAX_SYNTH_COORD as SYNTH_MAX;
     Ok(if u.ratio(7, 8)? {
         u.int_in_range(0..=small)?
     } else {
@@ -36,9 +36,9 @@ fn size(u: &mut Unstructured, small: i64) -> AResult<i64> {
         u.int_in_range(1..=small)?
     } else {
         *u.choose(&[
-            crate::synth::MAX_COORD,
-            crate::synth::MAX_COORD + 1,
-            crate::limits::MAX_COORD,
+            crate::synth::MAX_SYNTH_COORD,
+            crate::synth::MAX_SYNTH_COORD + 1,
+            crate::limits::MAX_SCENE_COORD,
             i64::MAX,
             0,
             -5,
@@ -94,7 +94,7 @@ fn problem(u: &mut Unstructured) -> AResult<Scene> {
 
 /// Whether every number is within synthesis's documented bound.
 fn within_synth_bound(p: &Scene) -> bool {
-    let m = crate::synth::MAX_COORD;
+    let m = crate::synth::MAX_SYNTH_COORD;
     let ok = |v: i64| v.unsigned_abs() <= m.unsigned_abs();
     let sp = p.space;
     ok(sp.x)

@@ -166,7 +166,7 @@ pub enum SceneErrorKind {
     Json,
     /// More objects than [`crate::limits::MAX_OBJECTS`].
     TooManyObjects,
-    /// A coordinate or size beyond [`crate::limits::MAX_COORD`].
+    /// A coordinate or size beyond [`crate::limits::MAX_SCENE_COORD`].
     OutOfRange,
     /// A width or height below 1 (the space's or an object's).
     BadSize,

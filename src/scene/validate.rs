@@ -2,12 +2,12 @@
 //! order so the first error reported is always the same.
 
 use super::{Object, Rect, Scene, SceneError, SceneErrorKind};
-use crate::limits::{cut, MAX_COORD, MAX_OBJECTS};
+use crate::limits::{cut, MAX_SCENE_COORD, MAX_OBJECTS};
 use std::collections::HashSet;
 
 impl Scene {
     /// Check docs/scenes.md#geometry: coordinates, sizes and grid within
-    /// [`crate::limits::MAX_COORD`], sizes ≥ 1, grid ≥ 1, unique ids, class
+    /// [`crate::limits::MAX_SCENE_COORD`], sizes ≥ 1, grid ≥ 1, unique ids, class
     /// names that are identifiers, fixed objects placed, `x` and `y` given
     /// together, placed objects inside the space, no two interiors
     /// overlapping.
@@ -39,26 +39,26 @@ impl Scene {
         Ok(())
     }
 
-    /// Every coordinate within ±[`MAX_COORD`], every size and the grid
-    /// step at most [`MAX_COORD`].
+    /// Every coordinate within ±[`MAX_SCENE_COORD`], every size and the grid
+    /// step at most [`MAX_SCENE_COORD`].
     fn check_ranges(&self) -> Result<(), SceneError> {
         let coord = |path: &str, what: &str, v: i64| -> Result<(), SceneError> {
-            if (-MAX_COORD..=MAX_COORD).contains(&v) {
+            if (-MAX_SCENE_COORD..=MAX_SCENE_COORD).contains(&v) {
                 Ok(())
             } else {
                 Err(SceneError::invalid(
                     SceneErrorKind::OutOfRange,
                     path,
-                    format!("{what} {v} is out of range; expected an integer from -{MAX_COORD} to {MAX_COORD}"),
+                    format!("{what} {v} is out of range; expected an integer from -{MAX_SCENE_COORD} to {MAX_SCENE_COORD}"),
                 ))
             }
         };
         let size = |path: &str, what: &str, v: i64| -> Result<(), SceneError> {
-            if v > MAX_COORD {
+            if v > MAX_SCENE_COORD {
                 Err(SceneError::invalid(
                     SceneErrorKind::OutOfRange,
                     path,
-                    format!("{what} {v} is too large; expected an integer from 1 to {MAX_COORD}"),
+                    format!("{what} {v} is too large; expected an integer from 1 to {MAX_SCENE_COORD}"),
                 ))
             } else {
                 Ok(())

@@ -326,7 +326,7 @@ pub enum SynthError {
 /// The engine still converts every value with a checked conversion
 /// ([`SynthError::TooLarge`] if one ever failed), so a mistake in this
 /// argument is an error, never a panic or a wrapped number.
-pub const MAX_COORD: i64 = 1 << 28;
+pub const MAX_SYNTH_COORD: i64 = 1 << 28;
 
 /// Most grid positions an unplaced object may have along one axis,
 /// `(space size − object size) / grid + 1` (2^18 = 262 144).
@@ -339,7 +339,7 @@ pub const MAX_COORD: i64 = 1 << 28;
 pub const MAX_POSITIONS: i64 = 1 << 18;
 
 /// Whether `problem` is usable for synthesis: a valid scene (docs/scenes.md#geometry) whose
-/// numbers are within the solver's bounds ([`MAX_COORD`],
+/// numbers are within the solver's bounds ([`MAX_SYNTH_COORD`],
 /// [`MAX_POSITIONS`]). [`synthesize`] checks this first; callers that build
 /// `model::Model`s themselves must too.
 pub(crate) fn check_problem(problem: &Scene) -> Result<(), SynthError> {
@@ -366,12 +366,12 @@ fn check_ranges(problem: &Scene) -> Result<(), SynthError> {
             vals.push((format!("objects[{i}].y"), y));
         }
     }
-    let max = MAX_COORD.unsigned_abs();
+    let max = MAX_SYNTH_COORD.unsigned_abs();
     for (what, v) in vals {
         // `unsigned_abs`: `i64::MIN.abs()` would wrap and pass.
         if v.unsigned_abs() > max {
             return Err(SynthError::TooLarge(format!(
-                "{what} = {v} is too large for synthesis; expected at most {MAX_COORD} in absolute value"
+                "{what} = {v} is too large for synthesis; expected at most {MAX_SYNTH_COORD} in absolute value"
             )));
         }
     }
@@ -379,7 +379,7 @@ fn check_ranges(problem: &Scene) -> Result<(), SynthError> {
         let far = corner.saturating_add(size);
         if far.unsigned_abs() > max {
             return Err(SynthError::TooLarge(format!(
-                "the space reaches {axis} = {far} (space.{axis} + size), too far for synthesis; expected at most {MAX_COORD} in absolute value"
+                "the space reaches {axis} = {far} (space.{axis} + size), too far for synthesis; expected at most {MAX_SYNTH_COORD} in absolute value"
             )));
         }
     }

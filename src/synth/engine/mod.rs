@@ -112,7 +112,7 @@ impl Engine {
     ///
     /// Every number handed to Pumpkin goes through a checked conversion to
     /// `i32`; one that does not fit is a [`SynthError::TooLarge`] naming it
-    /// (see [`super::MAX_COORD`] for why that cannot happen on a problem
+    /// (see [`super::MAX_SYNTH_COORD`] for why that cannot happen on a problem
     /// that passed the range check).
     pub fn new(
         model: &Model,
