@@ -7,7 +7,9 @@ use rccpack::relations::Contact;
 use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::scene::Scene;
 use rccpack::synth::verify_solution;
-use rccpack::synth::{synthesize, Status, SynthError, SynthOptions, MAX_SYNTH_COORD, MAX_POSITIONS};
+use rccpack::synth::{
+    synthesize, Status, SynthError, SynthOptions, MAX_POSITIONS, MAX_SYNTH_COORD,
+};
 use std::time::Duration;
 
 fn problem(x: i64, y: i64, w: i64, h: i64, grid: i64, objects: &str) -> Scene {

@@ -170,7 +170,9 @@ fn coordinates_at_and_past_the_documented_bound() {
     Scene::from_json(&at).expect("the bound itself is accepted");
     // The space's corner plus its size reaches 2·MAX_SCENE_COORD; still fine.
     let far = scene(
-        &format!(r#"{{"x":{MAX_SCENE_COORD},"y":{MAX_SCENE_COORD},"width":{MAX_SCENE_COORD},"height":{MAX_SCENE_COORD}}}"#),
+        &format!(
+            r#"{{"x":{MAX_SCENE_COORD},"y":{MAX_SCENE_COORD},"width":{MAX_SCENE_COORD},"height":{MAX_SCENE_COORD}}}"#
+        ),
         &format!(
             r#"{{"class":"R","x":{},"y":{MAX_SCENE_COORD},"width":{MAX_SCENE_COORD},"height":1}}"#,
             MAX_SCENE_COORD
@@ -198,7 +200,10 @@ fn coordinates_at_and_past_the_documented_bound() {
             "space.width",
         ),
         (
-            scene(&format!(r#"{{"width":10,"height":{}}}"#, MAX_SCENE_COORD + 1), ""),
+            scene(
+                &format!(r#"{{"width":10,"height":{}}}"#, MAX_SCENE_COORD + 1),
+                "",
+            ),
             "space.height",
         ),
         (

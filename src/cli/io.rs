@@ -99,6 +99,51 @@ pub fn read_scenes(path: &Path) -> Result<(Vec<Scene>, bool)> {
     Ok((scenes, is_array))
 }
 
+/// Read demonstrations as measured (docs/scenes.md#demonstrations-as-measured):
+/// snapped to the grid with `tolerance` (`None`: four tenths of the grid
+/// step), a note on standard error saying what moved. A given tolerance is
+/// checked against every demonstration's grid (`--tolerance` named).
+pub fn read_demos(path: &Path, tolerance: Option<f64>) -> Result<scene::measured::Measured> {
+    let text = read_text(path)?;
+    let m =
+        scene::measured::measured_from_json(&text, tolerance).map_err(|e| scene_error(path, e))?;
+    if let Some(t) = tolerance {
+        scene::measured::check_tolerance(t, &m.scenes)
+            .map_err(|e| Reported(format!("error: --tolerance: {e}")))?;
+    }
+    if !m.moves.is_empty() {
+        let objects: std::collections::BTreeSet<(usize, usize)> = m
+            .moves
+            .iter()
+            .map(|mv| (mv.demonstration, mv.index))
+            .collect();
+        ewriteln!(
+            "{} demonstrations as measured: {} objects moved by at most {} px to the grid",
+            m.scenes.len(),
+            objects.len(),
+            rccpack::limits::number((m.largest_move() * 10.0).round() / 10.0)
+        );
+        for mv in m.moves.iter().filter(|mv| {
+            let t = tolerance.unwrap_or_else(|| {
+                scene::measured::default_tolerance(m.scenes[mv.demonstration].grid)
+            });
+            mv.distance > t + 1e-9
+        }) {
+            ewriteln!(
+                "note: demonstration {}: `{}` measured at ({}, {}) moved {} px to ({}, {}), more than the tolerance — a slip?",
+                mv.demonstration,
+                mv.object,
+                rccpack::limits::number(mv.from.0),
+                rccpack::limits::number(mv.from.1),
+                rccpack::limits::number((mv.distance * 10.0).round() / 10.0),
+                mv.to.0,
+                mv.to.1
+            );
+        }
+    }
+    Ok(m)
+}
+
 /// Read and check a `.rcc` file against the scenes it applies to (see
 /// [`read_rules_seen`]).
 pub fn read_rules(path: &Path, scenes: &[Scene]) -> Result<RuleSet> {

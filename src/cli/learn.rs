@@ -1,12 +1,13 @@
 //! `rccpack learn`: learn rules from demonstrations (docs/guide.md#learning).
 
 use super::io::{parse_rules_text, read_text};
-use super::{out, read_scenes, write_file, LimitStruck, Reported};
+use super::{out, write_file, LimitStruck, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::infer::{learn_with_priors, InferError, LearnParams, Learned, Templates};
 use rccpack::relations::Contact;
 use rccpack::rules::{Diagnostic, DiagnosticKind, RulesError};
+use rccpack::scene::measured::{Measured, Move};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -55,6 +56,23 @@ pub struct LearnArgs {
     /// statement gets its kind's prior; ruled-out kinds are left out.
     #[arg(long, value_name = "PRIORS.json")]
     priors: Option<PathBuf>,
+    /// Demonstrations as measured: every position goes to the grid, moving
+    /// at most about this many px (below half the grid step; default: four
+    /// tenths of it; 0: exact, fractions and overlaps refused).
+    #[arg(long, value_name = "PX", value_parser = tolerance_arg)]
+    tolerance: Option<f64>,
+}
+
+/// Clap value parser for `--tolerance PX`: a finite number, at least 0
+/// (checked against the grid once the demonstrations are read).
+pub fn tolerance_arg(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err(format!(
+            "`{}` is not a number of pixels; expected a number from 0 to below half the grid step",
+            rccpack::limits::cut(text)
+        )),
+    }
 }
 
 pub fn run(a: LearnArgs) -> Result<ExitCode> {
@@ -80,8 +98,9 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
     };
     let progress = std::io::stderr().is_terminal();
     let priors = super::priors::read_priors_opt(a.priors.as_deref())?;
-    let learned = learn_files(
+    let (learned, measured) = learn_files(
         &a.demos,
+        a.tolerance,
         a.statements.as_deref(),
         &params,
         priors.as_ref(),
@@ -99,7 +118,7 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
         None => out(&rcc)?,
     }
     if let Some(p) = &a.report {
-        write_file(p, learned.report_json(), "report")?;
+        write_file(p, report_with_moves(&learned, &measured.moves), "report")?;
         if progress {
             ewriteln!("wrote {}", p.display());
         }
@@ -107,26 +126,58 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Read demonstrations (and optionally a statement file), learn, and turn
-/// every error into a message naming the file (with a caret for statement
-/// files). Shared by `learn` and `run`.
+/// The learn report, with every move of demonstrations read as measured
+/// (`"measured"`: the demonstration, object, measured and snapped position,
+/// distance) when something moved; otherwise the report as the library
+/// writes it.
+pub fn report_with_moves(learned: &Learned, moves: &[Move]) -> String {
+    let json = learned.report_json();
+    if moves.is_empty() {
+        return json;
+    }
+    let Ok(serde_json::Value::Object(mut map)) = serde_json::from_str(&json) else {
+        return json;
+    };
+    let list: Vec<serde_json::Value> = moves
+        .iter()
+        .map(|m| {
+            serde_json::json!({
+                "demonstration": m.demonstration,
+                "object": m.object,
+                "from": [m.from.0, m.from.1],
+                "to": [m.to.0, m.to.1],
+                "distance": (m.distance * 1000.0).round() / 1000.0,
+            })
+        })
+        .collect();
+    map.insert("measured".into(), serde_json::json!({ "moves": list }));
+    serde_json::to_string_pretty(&serde_json::Value::Object(map)).unwrap_or(json) + "\n"
+}
+
+/// Read demonstrations as measured (snapped to the grid with `tolerance`)
+/// and optionally a statement file, learn, and turn every error into a
+/// message naming the file (with a caret for statement files). Shared by
+/// `learn` and `run`.
+#[allow(clippy::too_many_arguments)]
 pub fn learn_files(
     demos_path: &Path,
+    tolerance: Option<f64>,
     statements_path: Option<&Path>,
     params: &LearnParams,
     priors: Option<&rccpack::priors::Priors>,
     progress: bool,
     deadline: Option<Instant>,
-) -> Result<Learned> {
+) -> Result<(Learned, Measured)> {
     params
         .validate()
         .map_err(|e| Reported(format!("error: {}", super::learn_error_text(&e))))?;
-    let (demos, _) = read_scenes(demos_path)?;
+    let measured = super::io::read_demos(demos_path, tolerance)?;
+    let demos = &measured.scenes;
     let (statements, text) = match statements_path {
         Some(p) => {
             let text = read_text(p)?;
             let set = parse_rules_text(p, &text)?;
-            for demo in &demos {
+            for demo in demos {
                 rccpack::rules::check_landmarks(&set, demo).map_err(|e| {
                     Reported(e.render(
                         &p.display().to_string(),
@@ -147,7 +198,7 @@ pub fn learn_files(
         );
     }
     let start = Instant::now();
-    let learned = learn_with_priors(&demos, statements.as_ref(), params, priors, deadline, None)
+    let learned = learn_with_priors(demos, statements.as_ref(), params, priors, deadline, None)
         .map_err(|e| {
             if let InferError::TimeLimit { .. } = e {
                 return anyhow::Error::new(LimitStruck(format!("unknown: {e}")));
@@ -195,5 +246,5 @@ pub fn learn_files(
             start.elapsed().as_secs_f64()
         );
     }
-    Ok(learned)
+    Ok((learned, measured))
 }

@@ -51,6 +51,10 @@ pub struct RunArgs {
     /// Priors learned across tasks (`rccpack priors`).
     #[arg(long, value_name = "PRIORS.json")]
     priors: Option<PathBuf>,
+    /// Demonstrations as measured: every position goes to the grid, moving
+    /// at most about this many px (see `learn`).
+    #[arg(long, value_name = "PX", value_parser = super::learn::tolerance_arg)]
+    tolerance: Option<f64>,
 }
 
 pub fn run(a: RunArgs) -> Result<ExitCode> {
@@ -72,7 +76,6 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         Some(p) => Like::Scenes(read_scenes(p)?.0),
         None => Like::Demos,
     };
-    let demos = read_scenes(&a.dir.join(files::DEMOS))?.0;
     let priors = super::priors::read_priors_opt(a.priors.as_deref())?;
     let statements = a.dir.join(files::STATEMENTS);
     let statements = statements.exists().then_some(statements);
@@ -88,8 +91,9 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     // 3, nothing learned), synthesis gets what is left.
     let start = std::time::Instant::now();
     let deadline = start.checked_add(a.time_limit);
-    let learned = learn_files(
+    let (learned, measured) = learn_files(
         &a.dir.join(files::DEMOS),
+        a.tolerance,
         statements.as_deref(),
         &params,
         priors.as_ref(),
@@ -103,7 +107,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         seed: a.seed,
         ..SynthOptions::default()
     };
-    let placement = task::place(&problem, &rules, &demos, &like, &opts).map_err(|e| {
+    let placement = task::place(&problem, &rules, &measured.scenes, &like, &opts).map_err(|e| {
         Reported(format!(
             "error: {}: {}",
             problem_path.display(),

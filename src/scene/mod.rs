@@ -9,6 +9,7 @@
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
+pub mod measured;
 mod validate;
 
 /// An axis-aligned rectangle with integer min corner and size.

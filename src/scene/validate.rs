@@ -2,7 +2,7 @@
 //! order so the first error reported is always the same.
 
 use super::{Object, Rect, Scene, SceneError, SceneErrorKind};
-use crate::limits::{cut, MAX_SCENE_COORD, MAX_OBJECTS};
+use crate::limits::{cut, MAX_OBJECTS, MAX_SCENE_COORD};
 use std::collections::HashSet;
 
 impl Scene {
@@ -58,7 +58,9 @@ impl Scene {
                 Err(SceneError::invalid(
                     SceneErrorKind::OutOfRange,
                     path,
-                    format!("{what} {v} is too large; expected an integer from 1 to {MAX_SCENE_COORD}"),
+                    format!(
+                        "{what} {v} is too large; expected an integer from 1 to {MAX_SCENE_COORD}"
+                    ),
                 ))
             } else {
                 Ok(())

@@ -29,10 +29,13 @@ pub(super) struct NoisyArgs {
     json: Option<PathBuf>,
 }
 
-/// What `rccpack learn` does with the demonstrations, with its defaults.
+/// What `rccpack learn` does with the demonstrations, with its defaults:
+/// read as measured (snapped to the grid), then learned.
 fn learn(demos: &Value) -> Result<(RuleSet, Vec<Suspect>), String> {
     let text = demos.to_string();
-    let scenes = rccpack::scene::scenes_from_json(&text).map_err(|e| e.to_string())?;
+    let scenes = rccpack::scene::measured::measured_from_json(&text, None)
+        .map_err(|e| e.to_string())?
+        .scenes;
     let learned = rccpack::infer::learn(&scenes, None, &rccpack::infer::LearnParams::default())
         .map_err(|e| e.to_string())?;
     Ok((learned.rules(), Vec::new()))
