@@ -22,6 +22,7 @@ mod hardening2;
 mod learn;
 mod learn_cli;
 mod learn_props;
+mod measured;
 mod parser;
 mod priors;
 mod priors_bench;

@@ -80,6 +80,9 @@ impl NoisyConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Variant {
+    /// The exact demonstrations, learned by the learner measured (the
+    /// reference is the thesis's learner on them).
+    Exact,
     /// Every movable block jittered.
     Jitter,
     /// One slipped block.
@@ -92,7 +95,8 @@ pub enum Variant {
 
 impl Variant {
     /// Every variant, in table order.
-    pub const ALL: [Variant; 4] = [
+    pub const ALL: [Variant; 5] = [
+        Variant::Exact,
         Variant::Jitter,
         Variant::Slip,
         Variant::Both,
@@ -102,6 +106,7 @@ impl Variant {
     /// Its name in the table.
     pub fn name(self) -> &'static str {
         match self {
+            Variant::Exact => "exact",
             Variant::Jitter => "jitter",
             Variant::Slip => "slip",
             Variant::Both => "both",
@@ -151,7 +156,7 @@ pub struct VariantRow {
 pub struct NoisyRow {
     /// `task03` or `example`.
     pub name: String,
-    /// Rules learned from the exact demonstrations.
+    /// Rules the reference learner learns from the exact demonstrations.
     pub exact: usize,
     /// Suspects named on the exact demonstrations (should be none).
     pub exact_suspects: usize,
@@ -395,10 +400,10 @@ pub fn run_task(
     index: usize,
     task: &BenchTask,
     cfg: &NoisyConfig,
-    learn: LearnFn,
+    [reference, learn]: [LearnFn; 2],
 ) -> Result<NoisyRow, NoisyError> {
     let exact_json = Value::Array(to_values(&task.demos));
-    let (exact_rules, exact_suspects) = learn(&exact_json).map_err(|error| NoisyError::Exact {
+    let (exact_rules, _) = reference(&exact_json).map_err(|error| NoisyError::Exact {
         task: name.to_string(),
         error,
     })?;
@@ -409,6 +414,7 @@ pub fn run_task(
     for (k, variant) in Variant::ALL.into_iter().enumerate() {
         let mut rng = rng_for(cfg.seed, index, k as u64 + 1);
         let (demos, sl) = match variant {
+            Variant::Exact => (exact_json.clone(), None),
             Variant::Jitter => (
                 jittered(&to_values(&task.demos), cfg.jitter, 0.0, &mut rng),
                 None,
@@ -455,17 +461,22 @@ pub fn run_task(
     Ok(NoisyRow {
         name: name.to_string(),
         exact: exact.len(),
-        exact_suspects: exact_suspects.len(),
+        exact_suspects: variants
+            .iter()
+            .find(|v| v.variant == Variant::Exact)
+            .map_or(0, |v| v.suspects.len()),
         slip: slipped.map(|(_, s)| s),
         variants,
         run_kept,
     })
 }
 
-/// The whole benchmark; `progress` is told each task as it ends.
+/// The whole benchmark: the exact rules from `reference` (the thesis's
+/// learner), every variant from `learn`; `progress` is told each task as
+/// it ends.
 pub fn run(
     cfg: &NoisyConfig,
-    learn: LearnFn,
+    learn: [LearnFn; 2],
     progress: &dyn Fn(&NoisyRow),
 ) -> Result<NoisyReport, NoisyError> {
     let tcfg = TasksConfig {
@@ -505,7 +516,7 @@ fn pct(a: usize, b: usize) -> String {
 /// kept/exact, `+extra`, the slip's rank among the suspects), then the
 /// totals against the targets.
 pub fn table_markdown(r: &NoisyReport) -> String {
-    let mut s = String::from("| task | exact | jitter | slip | both | rough | slip named | run keeps |\n|---|---|---|---|---|---|---|---|\n");
+    let mut s = String::from("| task | reference | exact | jitter | slip | both | rough | slip named | run keeps |\n|---|---|---|---|---|---|---|---|---|\n");
     for row in &r.rows {
         let cell = |v: Variant| {
             row.variants
@@ -528,9 +539,10 @@ pub fn table_markdown(r: &NoisyReport) -> String {
             });
         let run = row.run_kept.map_or("-".into(), |(b, n)| format!("{n}/{b}"));
         s.push_str(&format!(
-            "| {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
             row.name,
             row.exact,
+            cell(Variant::Exact),
             cell(Variant::Jitter),
             cell(Variant::Slip),
             cell(Variant::Both),

@@ -59,8 +59,13 @@ pub struct LearnArgs {
     /// Demonstrations as measured: every position goes to the grid, moving
     /// at most about this many px (below half the grid step; default: four
     /// tenths of it; 0: exact, fractions and overlaps refused).
-    #[arg(long, value_name = "PX", value_parser = tolerance_arg)]
+    #[arg(long, value_name = "PX", value_parser = tolerance_arg, allow_hyphen_values = true)]
     tolerance: Option<f64>,
+    /// The chance that one object of a demonstration is a slip, in [0,
+    /// 0.5): a statement broken in one demonstration only (of at least
+    /// three) is weighed with it; 0 is the thesis's model.
+    #[arg(long = "slip-rate", default_value_t = rccpack::infer::DEFAULT_SLIP_RATE, allow_hyphen_values = true)]
+    slip_rate: f64,
 }
 
 /// Clap value parser for `--tolerance PX`: a finite number, at least 0
@@ -95,6 +100,7 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
         seed: a.seed,
         contact: a.contact,
         templates: a.templates,
+        slip_rate: a.slip_rate,
     };
     let progress = std::io::stderr().is_terminal();
     let priors = super::priors::read_priors_opt(a.priors.as_deref())?;
@@ -107,6 +113,7 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
         progress,
         None,
     )?;
+    print_suspects(&learned, &measured.scenes);
     let rcc = learned.to_rcc();
     match &a.output {
         Some(p) => {
@@ -124,6 +131,40 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// One line on standard error per suspect (docs/guide.md#slips): the
+/// demonstration, the object and where it stands, the rules it breaks.
+pub fn print_suspects(learned: &Learned, demos: &[rccpack::Scene]) {
+    for s in learned.suspects() {
+        let at = demos
+            .get(s.demonstration)
+            .and_then(|d| d.objects.iter().find(|o| o.id == s.object))
+            .and_then(|o| o.x.zip(o.y))
+            .map_or(String::new(), |(x, y)| format!(" at ({x}, {y})"));
+        let who = if s.object.is_empty() {
+            "it".to_string()
+        } else {
+            format!("`{}`{at}", s.object)
+        };
+        let mut names = s
+            .breaks
+            .iter()
+            .take(3)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join(", ");
+        if s.breaks.len() > 3 {
+            names.push_str(", …");
+        }
+        ewriteln!(
+            "demonstration {}: {who} breaks {} rule{} the other {} keep ({names}) — a slip?",
+            s.demonstration,
+            s.breaks.len(),
+            if s.breaks.len() == 1 { "" } else { "s" },
+            learned.demos.saturating_sub(1)
+        );
+    }
 }
 
 /// The learn report, with every move of demonstrations read as measured

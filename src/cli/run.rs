@@ -53,7 +53,7 @@ pub struct RunArgs {
     priors: Option<PathBuf>,
     /// Demonstrations as measured: every position goes to the grid, moving
     /// at most about this many px (see `learn`).
-    #[arg(long, value_name = "PX", value_parser = super::learn::tolerance_arg)]
+    #[arg(long, value_name = "PX", value_parser = super::learn::tolerance_arg, allow_hyphen_values = true)]
     tolerance: Option<f64>,
 }
 

@@ -85,3 +85,81 @@ pub fn find_candidates(
     }
     out
 }
+
+/// A statement broken in one demonstration only: a slip, perhaps
+/// (docs/guide.md#slips).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Exception {
+    /// The demonstration that breaks it (0-based).
+    pub demo: usize,
+    /// The objects that break it there: for a per-object statement every
+    /// subject object that does not satisfy it; for a scene-level or group
+    /// statement the object [`find_candidates`] names, if any.
+    pub objects: Vec<String>,
+}
+
+impl Exception {
+    /// `f`, the exceptions counted against the statement: the breaking
+    /// objects of a per-object statement, one demonstration otherwise.
+    pub fn count(&self, scope: Scope) -> u64 {
+        match scope {
+            Scope::Each => self.objects.len().max(1) as u64,
+            Scope::Scene(_) | Scope::Group => 1,
+        }
+    }
+}
+
+/// For each statement broken in exactly one of at least three
+/// demonstrations (`broken` from [`find_candidates`]), that demonstration
+/// and the objects breaking it; `None` for every other statement.
+pub fn find_exceptions(
+    demos: &[Scene],
+    classes: &ClassIndex,
+    rules: &[CompiledRule],
+    contact: Contact,
+    broken: &[Option<Provenance>],
+) -> Vec<Option<Exception>> {
+    let mut out: Vec<Option<Exception>> = vec![None; rules.len()];
+    if demos.len() < 3 {
+        return out;
+    }
+    let atoms: Vec<ClassAtoms> = demos
+        .iter()
+        .map(|s| ClassAtoms::new(s, classes, contact))
+        .collect();
+    for (k, r) in rules.iter().enumerate() {
+        let Some(first) = &broken[k] else {
+            continue;
+        };
+        let d = first.demo;
+        let holds_elsewhere = (d + 1..demos.len()).all(|e| {
+            let scene = &demos[e];
+            let a = &atoms[e];
+            match r.scope {
+                Scope::Each => (0..scene.objects.len())
+                    .filter(|&i| a.is_placed(i) && a.class_of(i) == r.subject)
+                    .all(|i| r.formula.eval(a, i)),
+                Scope::Group => r.scene_holds(a, scene.objects.len()),
+                Scope::Scene(q) => {
+                    let (c, m) = r.count(a, scene.objects.len());
+                    q.holds(c, m)
+                }
+            }
+        });
+        if !holds_elsewhere {
+            continue;
+        }
+        let scene = &demos[d];
+        let a = &atoms[d];
+        let objects: Vec<String> = match r.scope {
+            Scope::Each => (0..scene.objects.len())
+                .filter(|&i| a.is_placed(i) && a.class_of(i) == r.subject)
+                .filter(|&i| !r.formula.eval(a, i))
+                .map(|i| scene.objects[i].id.clone())
+                .collect(),
+            Scope::Scene(_) | Scope::Group => first.object.iter().cloned().collect(),
+        };
+        out[k] = Some(Exception { demo: d, objects });
+    }
+    out
+}

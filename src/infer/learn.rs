@@ -4,8 +4,8 @@
 
 use super::checks::{check_demo_landmarks, check_demos, check_statements};
 use super::{
-    english, find_candidates, templates, ClassStats, InferError, LearnParams, Learned, NullModel,
-    Posterior, Provenance, StatementResult, StatementSource,
+    english, find_candidates, find_exceptions, templates, ClassStats, Exception, InferError,
+    LearnParams, Learned, NullModel, Posterior, Provenance, StatementResult, StatementSource,
 };
 use crate::eval::CompiledRule;
 use crate::relations::{ClassIndex, Contact};
@@ -118,8 +118,16 @@ pub fn learn_with_priors(
     debug_assert!(subjects.iter().all(|&c| c < classes.len()), "checked");
 
     let broken = find_candidates(demos, &classes, &compiled, params.contact);
+    let exceptions = if params.slip_rate > 0.0 {
+        find_exceptions(demos, &classes, &compiled, params.contact, &broken)
+    } else {
+        vec![None; compiled.len()]
+    };
+    let weighed: Vec<bool> = (0..compiled.len())
+        .map(|k| broken[k].is_none() || exceptions[k].is_some())
+        .collect();
     let counts = chance_counts(
-        demos, params, &classes, &compiled, &broken, deadline, cancel,
+        demos, params, &classes, &compiled, &weighed, deadline, cancel,
     )?;
     let stats = class_stats(demos, &classes, params);
     // Scene-level statements (docs/guide.md#learning): q per random scene, n = d.
@@ -132,7 +140,7 @@ pub fn learn_with_priors(
         scene_epsilon,
         priors: st.priors.as_deref(),
     };
-    let mut results = weigh(set, &broken, &counts, &numbers);
+    let mut results = weigh(set, &broken, &exceptions, &counts, &numbers);
     let order = rank(&mut results, params.contact);
     let used: Vec<bool> = (0..classes.len()).map(|c| subjects.contains(&c)).collect();
     Ok(Learned {
@@ -215,7 +223,8 @@ fn statement_set<'a>(
     Ok(st)
 }
 
-/// Per candidate (statements with `broken[k]` none), in order: how many
+/// Per weighed statement (candidates, and with slips the statements
+/// broken in one demonstration only), in order: how many
 /// subject objects (scene-level: random scenes) of the null model's
 /// random scenes satisfy it.
 fn chance_counts(
@@ -223,12 +232,12 @@ fn chance_counts(
     params: &LearnParams,
     classes: &ClassIndex,
     compiled: &[CompiledRule],
-    broken: &[Option<Provenance>],
+    weighed: &[bool],
     deadline: Option<std::time::Instant>,
     cancel: Option<&std::sync::atomic::AtomicBool>,
 ) -> Result<Vec<u64>, InferError> {
     let cand: Vec<CompiledRule> = (0..compiled.len())
-        .filter(|&k| broken[k].is_none())
+        .filter(|&k| weighed[k])
         .map(|k| compiled[k].clone())
         .collect();
     if cand.is_empty() {
@@ -291,6 +300,7 @@ struct Numbers<'a> {
 fn weigh(
     set: &RuleSet,
     broken: &[Option<Provenance>],
+    exceptions: &[Option<Exception>],
     counts: &[u64],
     x: &Numbers,
 ) -> Vec<StatementResult> {
@@ -313,6 +323,7 @@ fn weigh(
             subject: rule.subject().to_string(),
             candidate: broken[k].is_none(),
             broken_by: broken[k].clone(),
+            exception: exceptions[k].clone(),
             n,
             satisfied: None,
             q: None,
@@ -322,12 +333,13 @@ fn weigh(
             english: english::statement_reading(rule.scope, &rule.formula),
             prior: x.priors.map(|p| p[k].clone()),
         };
-        if r.candidate {
+        if r.candidate || r.exception.is_some() {
             let sat = counts[ci];
             ci += 1;
             let q = sat as f64 / trials.max(1) as f64;
             let prior = x.priors.map_or(params.prior, |p| 1.0 - p[k].prior);
-            let post = Posterior::new(q, epsilon, r.n, prior);
+            let f = r.exception.as_ref().map_or(0, |e| e.count(rule.scope));
+            let post = Posterior::with_slips(q, epsilon, r.n, f, params.slip_rate, prior);
             r.satisfied = Some(sat);
             r.q = Some(q);
             r.learned = post.learned(params.cutoff);

@@ -37,6 +37,11 @@ pub struct StatementResult {
     /// For a non-candidate, the first demonstration (and object) breaking
     /// it.
     pub broken_by: Option<Provenance>,
+    /// With a slip rate above 0: a statement broken in one demonstration
+    /// only, that demonstration and the objects breaking it there; weighed
+    /// like a candidate, with the slip rate per exception
+    /// (docs/guide.md#slips).
+    pub exception: Option<super::candidates::Exception>,
     /// `n`: subject objects over the demonstrations; for a scene-level
     /// statement the number of demonstrations `d` (docs/guide.md#learning).
     pub n: u64,
@@ -108,7 +113,59 @@ fn short(v: f64) -> String {
     }
 }
 
+/// A demonstration's object that breaks rules the other demonstrations
+/// keep: a slip, perhaps (docs/guide.md#slips).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Suspect {
+    /// The demonstration (0-based, as in the demonstrations file).
+    pub demonstration: usize,
+    /// The object's id (empty when a scene-level rule names no object).
+    pub object: String,
+    /// The learned rules it breaks, strongest first.
+    pub breaks: Vec<String>,
+}
+
 impl Learned {
+    /// The suspects: per demonstration and object, the learned rules held
+    /// with an exception there; most rules broken first (then by
+    /// demonstration and object).
+    pub fn suspects(&self) -> Vec<Suspect> {
+        let mut by: std::collections::BTreeMap<(usize, String), Vec<String>> =
+            std::collections::BTreeMap::new();
+        for &k in &self.order {
+            let st = &self.statements[k];
+            let Some(e) = &st.exception else {
+                continue;
+            };
+            if e.objects.is_empty() {
+                by.entry((e.demo, String::new()))
+                    .or_default()
+                    .push(st.name.clone());
+            }
+            for o in &e.objects {
+                by.entry((e.demo, o.clone()))
+                    .or_default()
+                    .push(st.name.clone());
+            }
+        }
+        let mut out: Vec<Suspect> = by
+            .into_iter()
+            .map(|((demonstration, object), breaks)| Suspect {
+                demonstration,
+                object,
+                breaks,
+            })
+            .collect();
+        out.sort_by(|a, b| {
+            b.breaks
+                .len()
+                .cmp(&a.breaks.len())
+                .then(a.demonstration.cmp(&b.demonstration))
+                .then(a.object.cmp(&b.object))
+        });
+        out
+    }
+
     /// The learned rules, strongest first, each with `p P` and comments (the
     /// English reading, `q`, `n`, `log10 L`, and the stronger rule implying
     /// it, if any).
@@ -145,6 +202,15 @@ impl Learned {
                         ),
                     };
                     let mut comments = vec![s.english.clone(), numbers];
+                    if let Some(e) = &s.exception {
+                        comments.push(format!(
+                            "kept by {} of {} demonstrations; demonstration {} breaks it ({})",
+                            self.demos - 1,
+                            self.demos,
+                            e.demo,
+                            e.objects.join(", ")
+                        ));
+                    }
                     if let Some(by) = &s.implied_by {
                         comments.push(format!("implied by {by}"));
                     }

@@ -22,7 +22,21 @@ pub struct LearnParams {
     /// The template set used when no statements are given (default: the
     /// second edition, docs/guide.md#learning).
     pub templates: Templates,
+    /// Slip rate `η` in [0, 0.5): the chance that one object of a
+    /// demonstration is not where the demonstrator meant it
+    /// (docs/guide.md#slips). A statement broken in one demonstration only
+    /// (of at least three) stays a candidate, weighed with this noise; 0 is
+    /// the thesis's model, exactly (default [`DEFAULT_SLIP_RATE`]).
+    pub slip_rate: f64,
 }
+
+/// The default slip rate: 0, the thesis's model (docs/guide.md#slips says
+/// why; `--slip-rate 0.01` is the setting for recorded demonstrations).
+pub const DEFAULT_SLIP_RATE: f64 = 0.0;
+
+/// The slip rate suggested for demonstrations recorded by a camera or a
+/// hand (`bench noisy`'s default).
+pub const SUGGESTED_SLIP_RATE: f64 = 0.01;
 
 impl Default for LearnParams {
     fn default() -> Self {
@@ -34,6 +48,7 @@ impl Default for LearnParams {
             seed: 0,
             contact: Contact::Point,
             templates: Templates::Third,
+            slip_rate: DEFAULT_SLIP_RATE,
         }
     }
 }
@@ -71,6 +86,13 @@ impl LearnParams {
         open_unit("prior", self.prior)?;
         if let Some(e) = self.epsilon {
             open_unit("epsilon", e)?;
+        }
+        if !(self.slip_rate >= 0.0 && self.slip_rate < 0.5) {
+            return Err(InferError::BadParameter {
+                param: "slip_rate",
+                value: crate::limits::number(self.slip_rate),
+                expected: "a number from 0 to below 0.5",
+            });
         }
         Ok(())
     }

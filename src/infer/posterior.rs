@@ -71,7 +71,49 @@ pub struct Posterior {
     pub log10_posterior: f64,
 }
 
+/// `log10` of the posterior that a statement is not meant when `f` of its
+/// `n` subjects break it, with slip rate `η` (docs/guide.md#slips): by
+/// chance each subject keeps it with `p` and breaks it with `1 − p`; meant,
+/// each keeps it with `1 − η + η·p` and breaks it with `η·(1 − p)` (a slip
+/// lands at random). `η = 0, f = 0` is the thesis's `log10 P`; with `η = 0`
+/// a statement some subject breaks is never meant (the caller does not ask).
+pub(crate) fn log10_posterior_with_slips(p: f64, n: u64, f: u64, eta: f64, prior: f64) -> f64 {
+    let kept = n.saturating_sub(f) as f64;
+    let f = f as f64;
+    let l0 = kept * p.log10() + if f > 0.0 { f * (1.0 - p).log10() } else { 0.0 };
+    let keep1 = 1.0 - eta + eta * p;
+    let l1 = kept * keep1.log10()
+        + if f > 0.0 {
+            f * (eta * (1.0 - p)).log10()
+        } else {
+            0.0
+        };
+    let a = prior.log10() + l0;
+    let b = (1.0 - prior).log10() + l1;
+    a - log10_sum(a, b)
+}
+
 impl Posterior {
+    /// With slips ([`log10_posterior_with_slips`]): `f` of the `n`
+    /// subjects break the statement, slip rate `eta`; `log10_likelihood`
+    /// is the chance likelihood of what was seen. A statement nothing
+    /// breaks (`f = 0`) is weighed exactly as [`Posterior::new`] weighs it,
+    /// whatever `eta`: what every demonstration keeps is learned as before,
+    /// and slips only enter for statements with exceptions.
+    pub fn with_slips(q: f64, epsilon: f64, n: u64, f: u64, eta: f64, prior: f64) -> Self {
+        if f == 0 {
+            return Posterior::new(q, epsilon, n, prior);
+        }
+        let p = chance_p(q, epsilon).min(1.0 - 1e-12);
+        let kept = n.saturating_sub(f);
+        let log10_likelihood = log10_likelihood(p, kept) + f as f64 * (1.0 - p).log10();
+        Posterior {
+            p,
+            log10_likelihood,
+            log10_posterior: log10_posterior_with_slips(p, n, f, eta, prior),
+        }
+    }
+
     /// Compute from the chance rate `q`, the floor `ε`, the object count `n`
     /// and the prior `π`.
     pub fn new(q: f64, epsilon: f64, n: u64, prior: f64) -> Self {
@@ -139,6 +181,45 @@ mod tests {
             let b = (a * f).min(1.0 - 1e-9);
             proptest::prop_assume!(b > a);
             proptest::prop_assert!(log10_posterior(log10_l, a) < log10_posterior(log10_l, b));
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig { cases: 256, ..Default::default() })]
+
+        /// Law: at slip rate 0 with nothing broken, the thesis's posterior
+        /// exactly.
+        #[test]
+        fn slips_at_rate_zero_are_the_thesis(q in 1e-6..1.0f64, n in 1u64..500, prior in 0.01..0.99f64) {
+            let a = Posterior::new(q, 1e-6, n, prior);
+            let b = Posterior::with_slips(q, 1e-6, n, 0, 0.0, prior);
+            proptest::prop_assert_eq!(a, b);
+        }
+
+        /// Law: every further exception makes "not meant" more likely
+        /// (monotone in the number of exceptions).
+        #[test]
+        fn more_exceptions_raise_the_posterior(p in 0.01..0.99f64, n in 4u64..300, eta in 0.001..0.4f64, prior in 0.05..0.95f64) {
+            let mut last = f64::NEG_INFINITY;
+            for f in 0..4u64.min(n) {
+                let now = log10_posterior_with_slips(p, n, f, eta, prior);
+                proptest::prop_assert!(now >= last - 1e-12, "f {f}: {now} < {last}");
+                last = now;
+            }
+        }
+
+        /// Law: the per-subject probabilities of each hypothesis sum to 1
+        /// (the likelihoods are normalised), and the posterior is a
+        /// probability.
+        #[test]
+        fn slip_likelihoods_are_normalised(p in 0.0..1.0f64, eta in 0.0..0.5f64, n in 1u64..100, f in 0u64..3, prior in 0.01..0.99f64) {
+            let meant = (1.0 - eta + eta * p) + eta * (1.0 - p);
+            let chance = p + (1.0 - p);
+            proptest::prop_assert!((meant - 1.0).abs() < 1e-12 && (chance - 1.0).abs() < 1e-12);
+            let f = f.min(n);
+            proptest::prop_assume!(p > 0.0 && p < 1.0 && (eta > 0.0 || f == 0));
+            let post = log10_posterior_with_slips(p, n, f, eta, prior);
+            proptest::prop_assert!(post <= 1e-12, "{post}");
         }
     }
 

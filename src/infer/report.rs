@@ -57,8 +57,10 @@ impl Learned {
                     rank: self.order.iter().position(|&k| k == s.index),
                     implied_by: s.implied_by.clone(),
                     prior: s.prior.clone(),
+                    exception: s.exception.clone(),
                 })
                 .collect(),
+            suspects: self.suspects(),
         }
     }
 
@@ -90,6 +92,10 @@ pub struct Report {
     pub priors: Option<crate::priors::PriorsUsed>,
     /// Every statement, in statement order.
     pub statements: Vec<ReportStatement>,
+    /// With a slip rate: the objects that break rules the other
+    /// demonstrations keep (docs/guide.md#slips); absent when none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub suspects: Vec<super::learned::Suspect>,
 }
 
 /// Parameters in the report.
@@ -158,4 +164,8 @@ pub struct ReportStatement {
     /// With priors: the statement's prior and its source.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub prior: Option<crate::priors::StatementPrior>,
+    /// With a slip rate: broken in one demonstration only, that
+    /// demonstration and the objects breaking it there.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exception: Option<super::Exception>,
 }

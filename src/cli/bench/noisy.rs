@@ -24,21 +24,33 @@ pub(super) struct NoisyArgs {
     /// Time limit of each solve of the slip check.
     #[arg(long, value_name = "SECONDS", default_value = "10", value_parser = crate::cli::time_limit_arg, allow_hyphen_values = true)]
     time_limit: Duration,
+    /// The slip rate of the learner measured (the reference learns with
+    /// 0, the thesis's model).
+    #[arg(long = "slip-rate", default_value_t = rccpack::infer::SUGGESTED_SLIP_RATE)]
+    slip_rate: f64,
     /// Also write the whole report (per task, per variant) as JSON here.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
 }
 
-/// What `rccpack learn` does with the demonstrations, with its defaults:
+/// What `rccpack learn --slip-rate ETA` does with the demonstrations:
 /// read as measured (snapped to the grid), then learned.
-fn learn(demos: &Value) -> Result<(RuleSet, Vec<Suspect>), String> {
+fn learn(demos: &Value, slip_rate: f64) -> Result<(RuleSet, Vec<Suspect>), String> {
     let text = demos.to_string();
     let scenes = rccpack::scene::measured::measured_from_json(&text, None)
         .map_err(|e| e.to_string())?
         .scenes;
-    let learned = rccpack::infer::learn(&scenes, None, &rccpack::infer::LearnParams::default())
-        .map_err(|e| e.to_string())?;
-    Ok((learned.rules(), Vec::new()))
+    let params = rccpack::infer::LearnParams {
+        slip_rate,
+        ..rccpack::infer::LearnParams::default()
+    };
+    let learned = rccpack::infer::learn(&scenes, None, &params).map_err(|e| e.to_string())?;
+    let suspects = learned
+        .suspects()
+        .into_iter()
+        .map(|s| (s.demonstration, s.object))
+        .collect();
+    Ok((learned.rules(), suspects))
 }
 
 pub(super) fn run_noisy(a: NoisyArgs) -> Result<ExitCode> {
@@ -57,13 +69,16 @@ pub(super) fn run_noisy(a: NoisyArgs) -> Result<ExitCode> {
             row.exact
         );
     };
-    let report = noisy::run(&cfg, &learn, &progress)?;
+    let reference = |d: &Value| learn(d, 0.0);
+    let measured = |d: &Value| learn(d, a.slip_rate);
+    let report = noisy::run(&cfg, [&reference, &measured], &progress)?;
     outln(format!(
-        "rccpack bench noisy --seed {} --tasks {}{} --time-limit {}",
+        "rccpack bench noisy --seed {} --tasks {}{} --time-limit {} --slip-rate {}",
         cfg.seed,
         cfg.tasks,
         if cfg.example { "" } else { " --no-example" },
-        cfg.time_limit.as_secs_f64()
+        cfg.time_limit.as_secs_f64(),
+        a.slip_rate
     ))?;
     outln("")?;
     out(noisy::table_markdown(&report))?;

@@ -1,0 +1,275 @@
+//! Demonstrations as recorded (docs/guide.md#real-demonstrations): measured
+//! positions snapped to the grid, slips weighed, suspects named.
+
+use crate::support::{rccpack, scratch, stderr, write_file};
+use rand::SeedableRng;
+use rccpack::bench::noisy;
+use rccpack::bench::tasks::{generate_task, TasksConfig};
+use rccpack::infer::{learn, LearnParams};
+use std::time::Duration;
+
+fn box_demos() -> String {
+    std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/box-packing/demos.json"
+    ))
+    .unwrap()
+}
+
+/// The bundled demonstrations with every movable block moved by up to
+/// ±3 px in tenths (deterministic).
+fn jittered_box_demos() -> String {
+    let v: serde_json::Value = serde_json::from_str(&box_demos()).unwrap();
+    let exact: Vec<serde_json::Value> = v.as_array().unwrap().clone();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+    noisy::jittered(&exact, 3.0, 0.0, &mut rng).to_string()
+}
+
+#[test]
+fn jittered_demonstrations_learn_what_the_exact_ones_learn() {
+    let dir = scratch("measured-jittered");
+    let jit = write_file(&dir, "jit.json", &jittered_box_demos());
+    let exact = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/box-packing/demos.json"
+    );
+    let a = rccpack(&["learn", exact, "--samples", "200"]);
+    let b = rccpack(&[
+        "learn",
+        &jit,
+        "--samples",
+        "200",
+        "--report",
+        dir.join("r.json").to_str().unwrap(),
+    ]);
+    assert!(a.status.success() && b.status.success(), "{}", stderr(&b));
+    assert_eq!(a.stdout, b.stdout, "the same learned.rcc, byte for byte");
+    let err = stderr(&b);
+    assert!(err.contains("8 demonstrations as measured:"), "{err}");
+    assert!(err.contains("objects moved by at most"), "{err}");
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("r.json")).unwrap()).unwrap();
+    let moves = r["measured"]["moves"].as_array().expect("moves listed");
+    assert!(!moves.is_empty());
+    for m in moves {
+        assert!(
+            m["distance"].as_f64().unwrap() <= 3.0 * 2f64.sqrt() + 1e-9,
+            "{m}"
+        );
+    }
+    // Exact demonstrations: nothing printed, no `measured` in the report.
+    assert!(stderr(&a).is_empty(), "{}", stderr(&a));
+}
+
+#[test]
+fn tolerance_zero_reads_exactly_and_refuses_fractions() {
+    let dir = scratch("measured-tolerance-zero");
+    let jit = write_file(&dir, "jit.json", &jittered_box_demos());
+    let o = rccpack(&["learn", &jit, "--samples", "50", "--tolerance", "0"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    assert!(
+        err.contains("jit.json") && err.contains("floating point"),
+        "{err}"
+    );
+}
+
+#[test]
+fn bad_measured_input_names_file_demonstration_objects_and_value() {
+    let dir = scratch("measured-bad");
+    let scene = |objects: &str| {
+        format!(r#"[{{"space":{{"width":100,"height":100}},"objects":[{objects}]}}]"#)
+    };
+    // Two blocks recorded on top of each other: beyond any tolerance.
+    let f = write_file(
+        &dir,
+        "overlap.json",
+        &scene(
+            r#"{"id":"a","class":"R","x":10,"y":0,"width":10,"height":10},{"id":"b","class":"R","x":10.4,"y":0,"width":10,"height":10}"#,
+        ),
+    );
+    let o = rccpack(&["learn", &f, "--samples", "50"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    for want in ["overlap.json", "demonstration 0", "`a`", "`b`", "9.6 px"] {
+        assert!(err.contains(want), "{want}: {err}");
+    }
+    // A string as a coordinate.
+    let f = write_file(
+        &dir,
+        "string.json",
+        &scene(r#"{"class":"R","x":"12.5","y":0,"width":10,"height":10}"#),
+    );
+    let o = rccpack(&["learn", &f, "--samples", "50"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = stderr(&o);
+    assert!(
+        err.contains("string.json") && err.contains("[0].objects[0].x"),
+        "{err}"
+    );
+    // Not a number JSON can hold.
+    let f = write_file(
+        &dir,
+        "nan.json",
+        &scene(r#"{"class":"R","x":NaN,"y":0,"width":10,"height":10}"#),
+    );
+    let o = rccpack(&["learn", &f, "--samples", "50"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("nan.json"), "{}", stderr(&o));
+    // A tolerance at or past half the grid step, or negative.
+    let ok = write_file(
+        &dir,
+        "ok.json",
+        &scene(r#"{"class":"R","x":10.5,"y":0,"width":10,"height":10}"#),
+    );
+    for (t, want) in [
+        ("5", "below half the grid step"),
+        ("-1", "not a number of pixels"),
+        ("inf", "not a number of pixels"),
+    ] {
+        let o = rccpack(&["learn", &ok, "--samples", "50", "--tolerance", t]);
+        assert_eq!(o.status.code(), Some(1), "--tolerance {t}");
+        let err = stderr(&o);
+        assert!(
+            err.contains("--tolerance") && err.contains(want),
+            "--tolerance {t}: {err}"
+        );
+    }
+}
+
+fn task0() -> rccpack::bench::tasks::BenchTask {
+    let cfg = TasksConfig {
+        tasks: 1,
+        sizes: vec![1.0],
+        ..TasksConfig::quick(0, Duration::from_secs(1))
+    };
+    generate_task(&cfg, 0).unwrap()
+}
+
+#[test]
+fn a_slip_keeps_its_rules_and_is_the_first_suspect() {
+    let task = task0();
+    let params = LearnParams::default();
+    let exact = learn(&task.demos, None, &params).unwrap();
+    let exact_rules = exact.rules();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+    rng.set_stream(1);
+    let (slipped, sl) = noisy::slip(&task.demos, &exact_rules, &mut rng).expect("a slip");
+    // Today's model (slip rate 0, the default): the rules the slip breaks
+    // are lost, and nobody is suspected.
+    let today = learn(&slipped, None, &params).unwrap();
+    let today_names: Vec<String> = today.rules().rules.iter().map(|r| r.name.clone()).collect();
+    assert!(
+        sl.breaks.iter().all(|b| !today_names.contains(b)),
+        "{:?}",
+        sl.breaks
+    );
+    assert!(today.suspects().is_empty());
+    // With slips: most rules it breaks are kept again (a rule the slip
+    // breaks for several objects may not be), nine in ten exact rules at
+    // least, and the slip is the first suspect.
+    let with = LearnParams {
+        slip_rate: rccpack::infer::SUGGESTED_SLIP_RATE,
+        ..params
+    };
+    let learned = learn(&slipped, None, &with).unwrap();
+    let names: Vec<String> = learned
+        .rules()
+        .rules
+        .iter()
+        .map(|r| r.name.clone())
+        .collect();
+    let kept = sl.breaks.iter().filter(|b| names.contains(b)).count();
+    assert!(
+        2 * kept >= sl.breaks.len() && kept >= 1,
+        "{kept} of {:?}",
+        sl.breaks
+    );
+    let exact_names: Vec<String> = exact_rules.rules.iter().map(|r| r.name.clone()).collect();
+    let recall = exact_names.iter().filter(|n| names.contains(n)).count();
+    assert!(
+        recall * 10 >= exact_names.len() * 9,
+        "{recall} of {}",
+        exact_names.len()
+    );
+    let first = learned.suspects().into_iter().next().expect("a suspect");
+    assert_eq!(
+        (first.demonstration, first.object.as_str()),
+        (sl.demonstration, sl.object.as_str())
+    );
+    // The learned file marks the exception.
+    let rcc = learned.to_rcc();
+    assert!(
+        rcc.contains(&format!(
+            "demonstration {} breaks it ({})",
+            sl.demonstration, sl.object
+        )),
+        "{rcc}"
+    );
+    // The report carries the suspects.
+    let r: serde_json::Value = serde_json::from_str(&learned.report_json()).unwrap();
+    assert_eq!(r["suspects"][0]["demonstration"], sl.demonstration);
+    assert_eq!(r["suspects"][0]["object"], sl.object.as_str());
+}
+
+#[test]
+fn slip_rate_zero_is_todays_output_byte_for_byte() {
+    let task = task0();
+    let a = learn(&task.demos, None, &LearnParams::default()).unwrap();
+    let b = learn(
+        &task.demos,
+        None,
+        &LearnParams {
+            slip_rate: 0.0,
+            ..LearnParams::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(a.to_rcc(), b.to_rcc());
+    assert_eq!(a.report_json(), b.report_json());
+    assert!(!a.report_json().contains("suspects"));
+    assert!(!a.report_json().contains("exception"));
+}
+
+#[test]
+fn a_slip_is_named_on_the_command_line() {
+    let task = task0();
+    let exact = learn(&task.demos, None, &LearnParams::default()).unwrap();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+    rng.set_stream(1);
+    let (slipped, sl) = noisy::slip(&task.demos, &exact.rules(), &mut rng).expect("a slip");
+    let dir = scratch("measured-slip-cli");
+    let f = write_file(
+        &dir,
+        "demos.json",
+        &rccpack::scene::scenes_to_json(&slipped),
+    );
+    let o = rccpack(&[
+        "learn",
+        &f,
+        "--slip-rate",
+        "0.01",
+        "-o",
+        dir.join("l.rcc").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    let line = format!(
+        "demonstration {}: `{}` at ({}, {})",
+        sl.demonstration, sl.object, sl.to.0, sl.to.1
+    );
+    assert!(
+        err.lines().next().unwrap_or("").starts_with(&line),
+        "{line}\n{err}"
+    );
+    assert!(err.contains("— a slip?"), "{err}");
+    for bad in ["-0.1", "0.5", "nan"] {
+        let o = rccpack(&["learn", &f, "--slip-rate", bad]);
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "--slip-rate {bad}: {}",
+            stderr(&o)
+        );
+    }
+}
