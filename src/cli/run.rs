@@ -55,6 +55,10 @@ pub struct RunArgs {
     /// at most about this many px (see `learn`).
     #[arg(long, value_name = "PX", value_parser = super::learn::tolerance_arg, allow_hyphen_values = true)]
     tolerance: Option<f64>,
+    /// The chance that one object of a demonstration is a slip (see
+    /// `learn`); 0 is the thesis's model.
+    #[arg(long = "slip-rate", default_value_t = rccpack::infer::DEFAULT_SLIP_RATE, allow_hyphen_values = true)]
+    slip_rate: f64,
 }
 
 pub fn run(a: RunArgs) -> Result<ExitCode> {
@@ -85,6 +89,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         seed: a.seed,
         contact: a.contact,
         templates: a.templates,
+        slip_rate: a.slip_rate,
         ..LearnParams::default()
     };
     // The time limit covers the whole command: learning stops at it (exit
