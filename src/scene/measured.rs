@@ -351,18 +351,20 @@ fn repair(
             return Err((a, b));
         }
         let group = neighbourhood(snaps, a, b);
-        if group.len() > MAX_REPAIR || !search(snaps, chosen, &group, inside) {
+        if group.is_empty() || !search(snaps, chosen, &group, inside) {
             return Err((a, b));
         }
     }
     Ok(())
 }
 
-/// The objects near the conflict: every object whose options could touch
-/// the conflicting ones, up to [`MAX_REPAIR`].
+/// The objects near the conflict that can move (more than one option):
+/// those of the conflict, then every object whose options could touch a
+/// member's, the nearest [`MAX_REPAIR`] in breadth-first order. Objects with one option (on
+/// the grid as measured, or fixed walls) stay where they are.
 fn neighbourhood(snaps: &[Snapping], a: usize, b: Option<usize>) -> Vec<usize> {
-    let mut group = vec![a];
-    group.extend(b);
+    let movable = |k: &usize| snaps[*k].options.len() > 1;
+    let mut group: Vec<usize> = std::iter::once(a).chain(b).filter(movable).collect();
     let reach = |k: usize| -> Rect {
         let xs = snaps[k].options.iter().map(|o| o.0);
         let ys = snaps[k].options.iter().map(|o| o.1);
@@ -383,6 +385,8 @@ fn neighbourhood(snaps: &[Snapping], a: usize, b: Option<usize>) -> Vec<usize> {
         }
         i += 1;
     }
+    // The nearest first (breadth-first order): at most `MAX_REPAIR`.
+    group.truncate(MAX_REPAIR);
     group
 }
 
