@@ -94,7 +94,7 @@ pub struct Exception {
     pub demo: usize,
     /// The objects that break it there: for a per-object statement every
     /// subject object that does not satisfy it; for a scene-level or group
-    /// statement the object [`find_candidates`] names, if any.
+    /// statement the object first named as breaking it, if any.
     pub objects: Vec<String>,
 }
 

@@ -94,7 +94,7 @@ pub(crate) fn log10_posterior_with_slips(p: f64, n: u64, f: u64, eta: f64, prior
 }
 
 impl Posterior {
-    /// With slips ([`log10_posterior_with_slips`]): `f` of the `n`
+    /// With slips (docs/guide.md#slips): `f` of the `n`
     /// subjects break the statement, slip rate `eta`; `log10_likelihood`
     /// is the chance likelihood of what was seen. A statement nothing
     /// breaks (`f = 0`) is weighed exactly as [`Posterior::new`] weighs it,
