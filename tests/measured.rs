@@ -273,3 +273,14 @@ fn a_slip_is_named_on_the_command_line() {
         );
     }
 }
+
+#[test]
+fn a_task_folder_reads_its_demonstrations_as_measured() {
+    let dir = scratch("measured-task-folder");
+    let src = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing");
+    std::fs::copy(format!("{src}/problem.json"), dir.join("problem.json")).unwrap();
+    std::fs::write(dir.join("demos.json"), jittered_box_demos()).unwrap();
+    let measured = rccpack::task::Task::load(&dir).unwrap();
+    let exact = rccpack::task::Task::load(src).unwrap();
+    assert_eq!(measured.demos, exact.demos);
+}

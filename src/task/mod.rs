@@ -150,6 +150,18 @@ pub fn read_scenes(path: &Path) -> Result<Vec<Scene>, TaskError> {
     })
 }
 
+/// Read a demonstrations file as measured
+/// ([`crate::scene::measured`]): positions snapped to the grid with the
+/// default tolerance, exact on-grid files read as they are.
+pub fn read_demos(path: &Path) -> Result<Vec<Scene>, TaskError> {
+    crate::scene::measured::measured_from_json(&read_text(path)?, None)
+        .map(|m| m.scenes)
+        .map_err(|source| TaskError::Scene {
+            path: path.to_path_buf(),
+            source,
+        })
+}
+
 /// Read one scene.
 pub fn read_scene(path: &Path) -> Result<Scene, TaskError> {
     Scene::from_json(&read_text(path)?).map_err(|source| TaskError::Scene {
@@ -176,11 +188,11 @@ pub fn read_statements(path: &Path, demos: &[Scene]) -> Result<RuleSet, TaskErro
 }
 
 impl Task {
-    /// Read a task folder: `demos.json`, `problem.json` and, when present,
-    /// `statements.rcc` ([`files`]).
+    /// Read a task folder: `demos.json` (as measured: [`read_demos`]),
+    /// `problem.json` and, when present, `statements.rcc` ([`files`]).
     pub fn load(dir: impl AsRef<Path>) -> Result<Task, TaskError> {
         let dir = dir.as_ref();
-        let demos = read_scenes(&dir.join(files::DEMOS))?;
+        let demos = read_demos(&dir.join(files::DEMOS))?;
         let statements_path = dir.join(files::STATEMENTS);
         let statements = if statements_path.exists() {
             Some(read_statements(&statements_path, &demos)?)
