@@ -317,6 +317,7 @@ pub fn learn_py(
         seed,
         contact: self::contact(contact)?,
         templates: self::templates(templates)?,
+        ..LearnParams::default()
     };
     let set = statements.map(|s| s.inner.clone());
     learn_interruptible(py, &demos, set.as_ref(), &params, priors.as_deref(), None)

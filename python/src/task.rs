@@ -220,6 +220,7 @@ impl PyTask {
             seed,
             contact: self::contact(contact)?,
             templates: self::templates(templates)?,
+            ..LearnParams::default()
         };
         let deadline = duration(time_limit)?.and_then(|t| std::time::Instant::now().checked_add(t));
         learn_interruptible(
