@@ -19,6 +19,7 @@ mod first_edition;
 mod fuzz_replay;
 mod hardening;
 mod hardening2;
+mod hardening3;
 mod learn;
 mod learn_cli;
 mod learn_props;

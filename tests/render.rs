@@ -286,3 +286,38 @@ fn like_scenes_are_shaded_under_the_layout() {
     let plain = render_svg(&problem, None, &RenderOptions::default());
     assert!(!plain.contains("class=\"shown\""));
 }
+
+/// The PNG size error names the limit hit: a side (a 100 000 × 10 table),
+/// or the pixels in all (9 000 × 9 000); drawn to fit, both fit.
+#[test]
+fn png_too_large_names_the_limit_hit() {
+    let wide = Scene::from_json(r#"{"space":{"width":100000,"height":10},"objects":[]}"#).unwrap();
+    let e = render_png(&wide, None, &RenderOptions::default()).unwrap_err();
+    assert!(e.to_string().contains("at most 32000 pixels a side"), "{e}");
+    let square =
+        Scene::from_json(r#"{"space":{"width":9000,"height":9000},"objects":[]}"#).unwrap();
+    let e = render_png(&square, None, &RenderOptions::default()).unwrap_err();
+    assert!(
+        e.to_string().contains("at most 67108864 pixels in all"),
+        "{e}"
+    );
+    for s in [&wide, &square] {
+        let (png, scale) =
+            rccpack::render::render_png_to_fit(s, None, &RenderOptions::default()).unwrap();
+        assert!(scale < 1.0, "{scale}");
+        let be = |i: usize| {
+            u64::from(u32::from_be_bytes([
+                png[i],
+                png[i + 1],
+                png[i + 2],
+                png[i + 3],
+            ]))
+        };
+        let (w, h) = (be(16), be(20));
+        assert!(w <= 32_000 && h <= 32_000 && w * h <= 64 << 20, "{w}x{h}");
+        assert!(
+            w * h > 16 << 20 || w > 16_000,
+            "not shrunk more than needed: {w}x{h}"
+        );
+    }
+}

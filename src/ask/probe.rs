@@ -309,6 +309,7 @@ impl ProbeChecker {
             }
         }
         let set = RuleSet::new(rules);
+        crate::synth::check_pairs(problem, &set)?;
         let model = Model::build(
             problem,
             &set,

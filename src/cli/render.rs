@@ -83,8 +83,19 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
         like: like.as_deref().map(ResemblanceTarget::new),
         ..RenderOptions::default()
     };
-    render_to_path(&scene, rules.as_ref(), &opts, &a.output)
+    let drawn = render_to_path(&scene, rules.as_ref(), &opts, &a.output)
         .map_err(|e| anyhow::anyhow!("{}: {e}", a.output.display()))?;
-    ewriteln!("wrote {}", a.output.display());
+    if drawn < a.scale {
+        ewriteln!(
+            "wrote {} at scale {} (scale {} would pass the PNG limits: {} pixels a side, {} in all)",
+            a.output.display(),
+            rccpack::limits::number(drawn),
+            rccpack::limits::number(a.scale),
+            rccpack::render::MAX_PNG_SIDE,
+            rccpack::render::MAX_PNG_PIXELS
+        );
+    } else {
+        ewriteln!("wrote {}", a.output.display());
+    }
     Ok(ExitCode::SUCCESS)
 }

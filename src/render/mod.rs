@@ -29,7 +29,7 @@ mod png;
 mod style;
 
 #[cfg(feature = "png")]
-pub use png::render_png;
+pub use png::{render_png, render_png_to_fit, MAX_PNG_PIXELS, MAX_PNG_SIDE};
 pub use style::class_colours;
 
 /// How to draw a scene.
@@ -79,14 +79,15 @@ pub enum RenderError {
     #[error("scale {0} is invalid; expected a finite number greater than 0")]
     Scale(f64),
     /// The picture would be too large to rasterise.
-    #[error("picture of {width}x{height} pixels is too large for PNG (at most {max} pixels); lower the scale")]
+    #[error("picture of {width}x{height} pixels is too large for PNG ({limit}); lower the scale")]
     TooLarge {
         /// Width in pixels.
         width: u64,
         /// Height in pixels.
         height: u64,
-        /// The largest pixel count accepted.
-        max: u64,
+        /// The limit the picture passes, in words (a side, or the pixels
+        /// in all).
+        limit: String,
     },
     /// resvg could not read the generated SVG (a bug).
     #[error("internal SVG error: {0}")]
@@ -141,13 +142,16 @@ pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) 
 }
 
 /// Render to `path`, choosing the format by its extension (`.svg` or `.png`,
-/// case-insensitive). Any other extension is an error naming it.
+/// case-insensitive). Any other extension is an error naming it. A PNG
+/// past the PNG limits is drawn scaled to fit ([`render_png_to_fit`]):
+/// returns the scale the table was drawn at (`opts.scale` unless a PNG
+/// had to shrink).
 pub fn render_to_path(
     scene: &Scene,
     rules: Option<&RuleSet>,
     opts: &RenderOptions,
     path: &Path,
-) -> Result<(), RenderError> {
+) -> Result<f64, RenderError> {
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -159,7 +163,11 @@ pub fn render_to_path(
             crate::fsutil::atomic_write(path, render_svg(scene, rules, opts))?;
         }
         #[cfg(feature = "png")]
-        Some("png") => crate::fsutil::atomic_write(path, render_png(scene, rules, opts)?)?,
+        Some("png") => {
+            let (bytes, scale) = render_png_to_fit(scene, rules, opts)?;
+            crate::fsutil::atomic_write(path, bytes)?;
+            return Ok(scale);
+        }
         #[cfg(not(feature = "png"))]
         Some("png") => return Err(RenderError::PngUnavailable),
         Some(other) => {
@@ -173,7 +181,7 @@ pub fn render_to_path(
             })
         }
     }
-    Ok(())
+    Ok(opts.scale)
 }
 
 #[cfg(all(test, not(feature = "png")))]

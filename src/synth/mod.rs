@@ -347,6 +347,24 @@ pub(crate) fn check_problem(problem: &Scene) -> Result<(), SynthError> {
     check_ranges(problem)
 }
 
+/// Whether the rules relate few enough pairs of `problem`'s objects for a
+/// model to fit in memory ([`model::MAX_PAIR_LITERALS`]), counting every
+/// form of rule (per object, scene-level, group statements). Checked
+/// before anything is built, by [`synthesize`] and by every caller that
+/// builds a `model::Model` from user rules.
+pub(crate) fn check_pairs(problem: &Scene, rules: &RuleSet) -> Result<(), SynthError> {
+    let pairs = model::Model::pair_literals(problem, rules);
+    if pairs > model::MAX_PAIR_LITERALS {
+        return Err(SynthError::TooLarge(format!(
+            "the rules relate {pairs} pairs of objects (subject objects × target objects, summed over the rules' relations; \
+             a group statement: pairs of its class's objects × its shape's relations), \
+             more than the {} the solver can hold in memory; expected fewer objects, or rules about a landmark or a smaller class",
+            model::MAX_PAIR_LITERALS
+        )));
+    }
+    Ok(())
+}
+
 fn check_ranges(problem: &Scene) -> Result<(), SynthError> {
     let sp = problem.space;
     let mut vals: Vec<(String, i64)> = vec![
@@ -442,14 +460,7 @@ pub(crate) fn objective_model_encoded(
     encoding: model::Encoding,
 ) -> Result<Option<(model::Model, Vec<i64>, model::BuildOptions)>, SynthError> {
     check_problem(problem)?;
-    let pairs = model::Model::pair_literals(problem, rules);
-    if pairs > model::MAX_PAIR_LITERALS {
-        return Err(SynthError::TooLarge(format!(
-            "the rules relate {pairs} pairs of objects (subject objects × target objects, summed over the rules' relations), \
-             more than the {} the solver can hold in memory; expected fewer objects, or rules about a landmark or a smaller class",
-            model::MAX_PAIR_LITERALS
-        )));
-    }
+    check_pairs(problem, rules)?;
     let build = model::BuildOptions {
         contact: opts.contact,
         rules: true,

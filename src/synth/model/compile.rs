@@ -154,7 +154,9 @@ impl Model {
     }
 
     /// How many pairwise relation literals the rules ask for on `problem`
-    /// at most: per rule and atom, subject objects × target objects. The
+    /// at most: per rule and atom, subject objects × target objects; per
+    /// group statement, the unordered pairs of its class's objects × the
+    /// relations of the shape's adjacency (four for `group`). The
     /// model holds a few Booleans and the engine a few propagators per
     /// pair literal, so this bounds their memory ([`MAX_PAIR_LITERALS`]).
     pub fn pair_literals(problem: &Scene, rules: &RuleSet) -> u128 {
@@ -164,6 +166,15 @@ impl Model {
         let mut total = 0u128;
         for rule in &rules.rules {
             let subjects = count(rule.subject());
+            // A group statement relates every pair of its class's objects,
+            // once per relation of the shape's adjacency (`Model::shape`).
+            if let (Scope::Group, Some((shape, _))) = (rule.scope, rule.formula.shape()) {
+                let m = count(&shape.class);
+                let (contacts, align) = shape.kind.adjacency();
+                let per_pair = contacts.len() as u128 + u128::from(align.is_some());
+                total += m * m.saturating_sub(1) / 2 * per_pair;
+                continue;
+            }
             for atom in rule.formula.atoms() {
                 let targets = match &atom.target {
                     Target::Any => n.saturating_sub(1),
