@@ -326,11 +326,18 @@ impl PyTask {
         let (ran, signal) =
             run_interruptible(py, &cancel, || folder::run_folder(t, dir, o, &opts))?;
         let (ran, interrupted) = settle(py, ran, signal, folder_error)?;
+        let said = folder::summary(&ran);
         let mut summary = String::new();
-        for line in &ran.stdout {
+        for line in &said.stdout {
             summary.push_str(line);
             summary.push('\n');
         }
+        // The exit codes of `rccpack run` (docs/cli.md).
+        let exit_code = match ran.ending() {
+            folder::Ending::Layout => 0,
+            folder::Ending::Infeasible => 2,
+            _ => 3,
+        };
         Ok(PyRunOutcome {
             learned: Py::new(
                 py,
@@ -347,8 +354,8 @@ impl PyTask {
             )?,
             missing_classes: ran.outcome.placement.missing_classes,
             summary,
-            message: ran.stderr,
-            exit_code: ran.exit_code,
+            message: said.stderr,
+            exit_code,
             files: ran.files.iter().map(|p| p.display().to_string()).collect(),
         })
     }

@@ -214,7 +214,38 @@ pub fn learn_files(
         .map_err(|e| Reported(format!("error: {}", super::learn_error_text(&e))))?;
     let measured = super::io::read_demos(demos_path, tolerance)?;
     let demos = &measured.scenes;
-    let (statements, text) = match statements_path {
+    let (statements, text) = read_statements(statements_path, demos)?;
+    if progress {
+        ewriteln!(
+            "learning from {} demonstrations with {} random scenes…",
+            demos.len(),
+            params.samples
+        );
+    }
+    let start = Instant::now();
+    let learned = learn_with_priors(demos, statements.as_ref(), params, priors, deadline, None)
+        .map_err(|e| learn_error(e, demos_path, statements_path, &text))?;
+    if progress {
+        let candidates = learned.statements.iter().filter(|s| s.candidate).count();
+        ewriteln!(
+            "{} statements, {} candidates, {} learned in {:.1} s",
+            learned.statements.len(),
+            candidates,
+            learned.order.len(),
+            start.elapsed().as_secs_f64()
+        );
+    }
+    Ok((learned, measured))
+}
+
+/// Read a statement file (when given) and check that every landmark it
+/// names is a fixed object of every demonstration; its text is kept for
+/// [`learn_error`]'s carets.
+pub fn read_statements(
+    statements_path: Option<&Path>,
+    demos: &[rccpack::scene::Scene],
+) -> Result<(Option<rccpack::rules::RuleSet>, String)> {
+    Ok(match statements_path {
         Some(p) => {
             let text = read_text(p)?;
             let set = parse_rules_text(p, &text)?;
@@ -230,62 +261,51 @@ pub fn learn_files(
             (Some(set), text)
         }
         None => (None, String::new()),
-    };
-    if progress {
-        ewriteln!(
-            "learning from {} demonstrations with {} random scenes…",
-            demos.len(),
-            params.samples
-        );
+    })
+}
+
+/// A learning error in the command line's words: a time limit is exit 3
+/// (`unknown: …`), a class or landmark of the statement file gets a caret
+/// under it (`text` is the file's), anything else names the
+/// demonstrations.
+pub fn learn_error(
+    e: InferError,
+    demos_path: &Path,
+    statements_path: Option<&Path>,
+    text: &str,
+) -> anyhow::Error {
+    if let InferError::TimeLimit { .. } = e {
+        return anyhow::Error::new(LimitStruck(format!("unknown: {e}")));
     }
-    let start = Instant::now();
-    let learned = learn_with_priors(demos, statements.as_ref(), params, priors, deadline, None)
-        .map_err(|e| {
-            if let InferError::TimeLimit { .. } = e {
-                return anyhow::Error::new(LimitStruck(format!("unknown: {e}")));
+    match (&e, statements_path) {
+        (
+            InferError::UnknownClass {
+                span: Some(span), ..
             }
-            match (&e, statements_path) {
-                (
-                    InferError::UnknownClass {
-                        span: Some(span), ..
-                    }
-                    | InferError::UnknownLandmark {
-                        span: Some(span), ..
-                    },
-                    Some(path),
-                ) => {
-                    let kind = match e {
-                        InferError::UnknownClass { .. } => DiagnosticKind::UnknownClass,
-                        _ => DiagnosticKind::UnknownLandmark,
-                    };
-                    let diag = RulesError::new(vec![Diagnostic::new(kind, *span, e.to_string())]);
-                    Reported(diag.render(
-                        &path.display().to_string(),
-                        &text,
-                        std::io::stderr().is_terminal(),
-                    ))
-                }
-                (
-                    InferError::UnknownClass { .. } | InferError::UnknownLandmark { .. },
-                    Some(path),
-                ) => Reported(format!("error: {}: {e}", path.display())),
-                _ => Reported(format!(
-                    "error: {}: {}",
-                    demos_path.display(),
-                    super::learn_error_text(&e)
-                )),
-            }
-            .into()
-        })?;
-    if progress {
-        let candidates = learned.statements.iter().filter(|s| s.candidate).count();
-        ewriteln!(
-            "{} statements, {} candidates, {} learned in {:.1} s",
-            learned.statements.len(),
-            candidates,
-            learned.order.len(),
-            start.elapsed().as_secs_f64()
-        );
+            | InferError::UnknownLandmark {
+                span: Some(span), ..
+            },
+            Some(path),
+        ) => {
+            let kind = match e {
+                InferError::UnknownClass { .. } => DiagnosticKind::UnknownClass,
+                _ => DiagnosticKind::UnknownLandmark,
+            };
+            let diag = RulesError::new(vec![Diagnostic::new(kind, *span, e.to_string())]);
+            Reported(diag.render(
+                &path.display().to_string(),
+                text,
+                std::io::stderr().is_terminal(),
+            ))
+        }
+        (InferError::UnknownClass { .. } | InferError::UnknownLandmark { .. }, Some(path)) => {
+            Reported(format!("error: {}: {e}", path.display()))
+        }
+        _ => Reported(format!(
+            "error: {}: {}",
+            demos_path.display(),
+            super::learn_error_text(&e)
+        )),
     }
-    Ok((learned, measured))
+    .into()
 }

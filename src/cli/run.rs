@@ -5,16 +5,18 @@
 //! rules → `OUT/solution.json`, `OUT/solution.png` (and `OUT/learn-report.json`); a
 //! short summary on stdout. `OUT` defaults to `DIR`.
 
-use super::learn::learn_files;
+use super::learn::{learn_error, read_statements};
 use super::{outln, read_scene, read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
 use rccpack::synth::SynthOptions;
-use rccpack::task::{self, files, folder, Like};
+use rccpack::task::folder::{self, Ending, FolderError};
+use rccpack::task::{files, Like, RunOptions, Task, TaskError};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::time::Duration;
 
 /// `rccpack run DIR [--out OUT] [--samples N] [--seed S] [--time-limit SECONDS]`
@@ -63,15 +65,9 @@ pub struct RunArgs {
 
 pub fn run(a: RunArgs) -> Result<ExitCode> {
     let out = a.out.clone().unwrap_or_else(|| a.dir.clone());
-    std::fs::create_dir_all(&out).map_err(|e| {
-        Reported(format!(
-            "error: {}: cannot create folder: {e}",
-            out.display()
-        ))
-    })?;
     // The folder `run` writes is locked as `ask` and the studio lock it:
     // nothing is written while another session writes there.
-    let _lock = super::io::lock_folder(&out)?;
+    let lock = folder::lock(&out).map_err(|e| Reported(format!("error: {e}")))?;
     // Every input is read and checked before anything is written.
     let problem_path = a.dir.join(files::PROBLEM);
     let problem = read_scene(&problem_path)?;
@@ -80,9 +76,11 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         Some(p) => Like::Scenes(read_scenes(p)?.0),
         None => Like::Demos,
     };
+    let demos_path = a.dir.join(files::DEMOS);
+    let demos = super::io::read_demos(&demos_path, a.tolerance)?.scenes;
     let priors = super::priors::read_priors_opt(a.priors.as_deref())?;
     let statements = a.dir.join(files::STATEMENTS);
-    let statements = statements.exists().then_some(statements);
+    let statements_path = statements.exists().then_some(statements.as_path());
     let params = LearnParams {
         samples: a.samples,
         cutoff: a.cutoff,
@@ -92,47 +90,61 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         slip_rate: a.slip_rate,
         ..LearnParams::default()
     };
-    // The time limit covers the whole command: learning stops at it (exit
-    // 3, nothing learned), synthesis gets what is left.
-    let start = std::time::Instant::now();
-    let deadline = start.checked_add(a.time_limit);
-    let (learned, measured) = learn_files(
-        &a.dir.join(files::DEMOS),
-        a.tolerance,
-        statements.as_deref(),
-        &params,
-        priors.as_ref(),
-        false,
-        deadline,
-    )?;
-    let rules = learned.rules();
-    let opts = SynthOptions {
-        contact: a.contact,
-        time_limit: Some(a.time_limit.saturating_sub(start.elapsed())),
-        seed: a.seed,
-        ..SynthOptions::default()
+    params
+        .validate()
+        .map_err(|e| Reported(format!("error: {}", super::learn_error_text(&e))))?;
+    let (statements, text) = read_statements(statements_path, &demos)?;
+    let task = Task {
+        demos,
+        statements,
+        problem,
     };
-    let placement = task::place(&problem, &rules, &measured.scenes, &like, &opts).map_err(|e| {
-        Reported(format!(
-            "error: {}: {}",
-            problem_path.display(),
-            super::task_error_text(&e)
-        ))
-    })?;
-    // The files and the summary are the library's (`rccpack::task::folder`,
-    // also behind Python's `Task.run`): a curated learned.rcc (confirmed by
-    // `ask` or the studio, or edited) is never lost — confirmed marks carry
-    // over to the rules learned again unchanged, and a file that would
-    // still change is kept as a backup.
-    let written = folder::write_outcome(
-        &a.dir, &out, &problem, &learned, &rules, placement, a.contact,
-    )
-    .map_err(|e| Reported(format!("error: {e}")))?;
-    for line in &written.stdout {
+    let opts = RunOptions {
+        learn: params,
+        synth: SynthOptions {
+            contact: a.contact,
+            time_limit: Some(a.time_limit),
+            seed: a.seed,
+            ..SynthOptions::default()
+        },
+        like,
+        priors: priors.map(Arc::new),
+    };
+    // The time limit covers the whole command: learning stops at it (exit
+    // 3, nothing learned), synthesis gets what is left. A curated
+    // learned.rcc (confirmed by `ask` or the studio, or edited) is never
+    // lost: confirmed marks carry over to the rules learned again
+    // unchanged, and a file that would still change is kept as a backup.
+    let start = std::time::Instant::now();
+    let ran =
+        folder::run_locked(&lock, start, &task, &a.dir, &out, &opts).map_err(|e| match e {
+            FolderError::Task(TaskError::Learn(e)) => {
+                learn_error(e, &demos_path, statements_path, &text)
+            }
+            FolderError::Task(e) => Reported(format!(
+                "error: {}: {}",
+                problem_path.display(),
+                super::task_error_text(&e)
+            ))
+            .into(),
+            e => Reported(format!("error: {e}")).into(),
+        })?;
+    let said = folder::summary(&ran);
+    for line in &said.stdout {
         outln(line)?;
     }
-    if let Some(line) = &written.stderr {
+    if let Some(line) = &said.stderr {
         ewriteln!("{line}");
     }
-    Ok(ExitCode::from(written.exit_code))
+    Ok(ExitCode::from(exit_code(ran.ending())))
+}
+
+/// The exit code of a run (docs/cli.md): 0 a layout, 2 infeasible, 3 a
+/// limit before any layout.
+pub fn exit_code(ending: Ending) -> u8 {
+    match ending {
+        Ending::Layout => 0,
+        Ending::Infeasible => 2,
+        _ => 3,
+    }
 }

@@ -337,7 +337,15 @@ pub fn learn_with_priors(
 /// The whole pipeline: [`learn`], then [`place`] with what is left of the
 /// time limit.
 pub fn run(task: &Task, opts: &RunOptions) -> Result<Outcome, TaskError> {
-    let start = Instant::now();
+    run_from(Instant::now(), task, opts)
+}
+
+/// [`run`] with its time limit counted from `start`.
+pub(crate) fn run_from(
+    start: Instant,
+    task: &Task,
+    opts: &RunOptions,
+) -> Result<Outcome, TaskError> {
     let deadline = opts
         .synth
         .time_limit
