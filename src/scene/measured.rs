@@ -200,6 +200,83 @@ fn depth(a: &Snapping, b: &Snapping) -> f64 {
     ox.min(oy).max(0.0)
 }
 
+/// The placed objects of a scene with their grid options, nearest first
+/// (a coordinate's other grid line only within `reach` px).
+fn snappings(objects: &[Value], (sx, sy): (i64, i64), grid: i64, reach: f64) -> Vec<Snapping> {
+    let mut snaps: Vec<Snapping> = Vec::new();
+    for (i, o) in objects.iter().enumerate() {
+        let num = |k: &str| o.get(k).and_then(Value::as_f64).filter(|v| v.is_finite());
+        let size = |k: &str| o.get(k).and_then(Value::as_i64);
+        let (Some(x), Some(y), Some(w), Some(h)) =
+            (num("x"), num("y"), size("width"), size("height"))
+        else {
+            continue;
+        };
+        let near = |v: f64, l: &i64| (*l as f64 - v).abs() <= reach + 1e-9;
+        let xs: Vec<i64> = lines(x, sx, grid)
+            .into_iter()
+            .filter(|l| near(x, l))
+            .collect();
+        let ys: Vec<i64> = lines(y, sy, grid)
+            .into_iter()
+            .filter(|l| near(y, l))
+            .collect();
+        let mut options: Vec<(i64, i64)> = xs
+            .iter()
+            .flat_map(|&a| ys.iter().map(move |&b| (a, b)))
+            .collect();
+        let s = Snapping {
+            index: i,
+            measured: (x, y),
+            size: (w, h),
+            options: Vec::new(),
+        };
+        options.sort_by(|a, b| s.distance(*a).total_cmp(&s.distance(*b)));
+        snaps.push(Snapping { options, ..s });
+    }
+    snaps
+}
+
+/// The error for a conflict no repair resolves: both objects and the
+/// measured overlap, or the object outside the space.
+fn unresolved(
+    d: usize,
+    single: bool,
+    objects: &[Value],
+    snaps: &[Snapping],
+    (a, b): (usize, Option<usize>),
+) -> SceneError {
+    let prefix = if single {
+        String::new()
+    } else {
+        format!("[{d}].")
+    };
+    let (sa, sb) = (&snaps[a], &snaps[b.unwrap_or(a)]);
+    let name = |s: &Snapping| {
+        objects[s.index]
+            .get("id")
+            .and_then(Value::as_str)
+            .map_or(format!("objects[{}]", s.index), |id| format!("`{id}`"))
+    };
+    let message = match b {
+        Some(_) => format!(
+            "demonstration {d}: objects {} and {} overlap by {} px as measured, and no placement on the grid near the measured positions separates them",
+            name(sa),
+            name(sb),
+            crate::limits::number((depth(sa, sb) * 10.0).round() / 10.0)
+        ),
+        None => format!(
+            "demonstration {d}: object {} lies outside the space as measured, and no grid position near it is inside",
+            name(sa)
+        ),
+    };
+    SceneError::Invalid {
+        kind: SceneErrorKind::Overlap,
+        path: format!("{prefix}objects[{}]", sa.index),
+        message,
+    }
+}
+
 /// Snap the placed objects of one scene (a JSON value) in place.
 fn snap_scene(
     d: usize,
@@ -230,69 +307,14 @@ fn snap_scene(
     let Some(objects) = scene.get_mut("objects").and_then(Value::as_array_mut) else {
         return Ok(());
     };
-    let mut snaps: Vec<Snapping> = Vec::new();
-    for (i, o) in objects.iter().enumerate() {
-        let num = |k: &str| o.get(k).and_then(Value::as_f64).filter(|v| v.is_finite());
-        let size = |k: &str| o.get(k).and_then(Value::as_i64);
-        let (Some(x), Some(y), Some(w), Some(h)) =
-            (num("x"), num("y"), size("width"), size("height"))
-        else {
-            continue;
-        };
-        let reach = grid as f64 / 2.0 + tolerance.unwrap_or_else(|| default_tolerance(grid));
-        let near = |v: f64, l: &i64| (*l as f64 - v).abs() <= reach + 1e-9;
-        let xs: Vec<i64> = lines(x, sx, grid)
-            .into_iter()
-            .filter(|l| near(x, l))
-            .collect();
-        let ys: Vec<i64> = lines(y, sy, grid)
-            .into_iter()
-            .filter(|l| near(y, l))
-            .collect();
-        let mut options: Vec<(i64, i64)> = xs
-            .iter()
-            .flat_map(|&a| ys.iter().map(move |&b| (a, b)))
-            .collect();
-        let s = Snapping {
-            index: i,
-            measured: (x, y),
-            size: (w, h),
-            options: Vec::new(),
-        };
-        options.sort_by(|a, b| s.distance(*a).total_cmp(&s.distance(*b)));
-        snaps.push(Snapping { options, ..s });
-    }
+    let reach = grid as f64 / 2.0 + tolerance.unwrap_or_else(|| default_tolerance(grid));
+    let snaps = snappings(objects, (sx, sy), grid, reach);
     let inside = |at: (i64, i64), size: (i64, i64)| {
         at.0 >= sx && at.1 >= sy && at.0 + size.0 <= sx + sw && at.1 + size.1 <= sy + sh
     };
     let mut chosen: Vec<usize> = vec![0; snaps.len()];
-    repair(&snaps, &mut chosen, &inside).map_err(|(a, b)| {
-        let prefix = if single { String::new() } else { format!("[{d}].") };
-        let (sa, sb) = (&snaps[a], &snaps[b.unwrap_or(a)]);
-        let name = |s: &Snapping| {
-            objects[s.index]
-                .get("id")
-                .and_then(Value::as_str)
-                .map_or(format!("objects[{}]", s.index), |id| format!("`{id}`"))
-        };
-        let message = match b {
-            Some(_) => format!(
-                "demonstration {d}: objects {} and {} overlap by {} px as measured, and no placement on the grid near the measured positions separates them",
-                name(sa),
-                name(sb),
-                crate::limits::number((depth(sa, sb) * 10.0).round() / 10.0)
-            ),
-            None => format!(
-                "demonstration {d}: object {} lies outside the space as measured, and no grid position near it is inside",
-                name(sa)
-            ),
-        };
-        SceneError::Invalid {
-            kind: SceneErrorKind::Overlap,
-            path: format!("{prefix}objects[{}]", sa.index),
-            message,
-        }
-    })?;
+    repair(&snaps, &mut chosen, &inside)
+        .map_err(|(a, b)| unresolved(d, single, objects, &snaps, (a, b)))?;
     for (s, &c) in snaps.iter().zip(&chosen) {
         let at = s.options[c];
         let o = &mut objects[s.index];
