@@ -202,7 +202,7 @@ pub fn learn_error(
             let diag = RulesError::new(vec![Diagnostic::new(kind, *span, e.to_string())]);
             Reported(diag.render(
                 &path.display().to_string(),
-                &text,
+                text,
                 std::io::stderr().is_terminal(),
             ))
         }
