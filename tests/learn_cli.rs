@@ -251,3 +251,47 @@ fn templates_third_is_the_default() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("fourth"), "{}", stderr(&o));
 }
+
+/// The `[default: …]` `--help` shows for `flag` (the text from the flag to
+/// the next option, in case the help is wrapped).
+fn help_default(help: &str, flag: &str) -> Option<String> {
+    let at = help.find(&format!("--{flag} <"))?;
+    let rest = &help[at..];
+    let end = rest[2..].find("\n  ").map_or(rest.len(), |e| e + 2);
+    let item = &rest[..end];
+    let d = item.find("[default: ")? + "[default: ".len();
+    Some(item[d..d + item[d..].find(']')?].to_string())
+}
+
+#[test]
+fn learning_flags_default_to_the_library_defaults() {
+    let p = rccpack::infer::LearnParams::default();
+    let expected = [
+        ("samples", p.samples.to_string()),
+        ("cutoff", p.cutoff.to_string()),
+        ("prior", p.prior.to_string()),
+        ("seed", p.seed.to_string()),
+        ("contact", p.contact.to_string()),
+        ("templates", p.templates.to_string()),
+    ];
+    for command in ["learn", "run", "ask"] {
+        let o = rccpack(&[command, "--help"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let help = String::from_utf8(o.stdout).unwrap();
+        let mut seen = 0;
+        for (flag, value) in &expected {
+            // `--prior` is `learn`'s alone.
+            if *flag == "prior" && command != "learn" {
+                assert_eq!(help_default(&help, flag), None, "{command} --{flag}");
+                continue;
+            }
+            assert_eq!(
+                help_default(&help, flag).as_deref(),
+                Some(value.as_str()),
+                "`rccpack {command} --{flag}` shows another default than LearnParams::default()\n{help}"
+            );
+            seen += 1;
+        }
+        assert!(seen >= 5, "{command}: {seen} flags checked");
+    }
+}

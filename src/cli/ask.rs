@@ -43,13 +43,13 @@ pub struct AskArgs {
     #[arg(long, value_name = "SECONDS", default_value = "600", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
     oracle_timeout: Duration,
     /// Random scenes in the null model.
-    #[arg(long, default_value_t = 1000)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().samples)]
     samples: usize,
     /// Learn candidates whose posterior is below this, in (0, 1).
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().cutoff)]
     cutoff: f64,
     /// Seed for learning and probes.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().seed)]
     seed: u64,
     /// Stop each probe search or check after this many seconds: a safety
     /// net (what it stops depends on the machine's speed; the node budgets
@@ -84,10 +84,10 @@ pub struct AskArgs {
     #[arg(long)]
     no_lookahead: bool,
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
-    #[arg(long, default_value = "point")]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().contact)]
     contact: Contact,
     /// Which templates to learn with when there is no `statements.rcc`.
-    #[arg(long, default_value = "third", value_name = "first|second|third")]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().templates, value_name = "first|second|third")]
     templates: Templates,
     /// Priors learned across tasks (`rccpack priors`) for every learning
     /// run of the session.

@@ -26,25 +26,25 @@ pub struct LearnArgs {
     /// second edition's and the group shapes: one row, column, block),
     /// `second` (flush contact, alignment, landmarks) or `first` (exactly
     /// the first edition's set).
-    #[arg(long, default_value = "third", value_name = "first|second|third")]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().templates, value_name = "first|second|third")]
     templates: Templates,
     /// Random scenes in the null model (at least 1).
-    #[arg(long, default_value_t = 1000)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().samples)]
     samples: usize,
     /// Learn candidates whose posterior is below this, in (0, 1).
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().cutoff)]
     cutoff: f64,
     /// Prior that a statement is not intended, in (0, 1).
-    #[arg(long, default_value_t = 0.5)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().prior)]
     prior: f64,
     /// Floor of the chance rate, in (0, 1) [default: 0.5 / N_A per class].
     #[arg(long)]
     epsilon: Option<f64>,
     /// Seed of the null model; the same seed gives the same output.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().seed)]
     seed: u64,
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
-    #[arg(long, default_value = "point")]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().contact)]
     contact: Contact,
     /// Write the learned rules here (default: standard output).
     #[arg(short = 'o', long = "output")]

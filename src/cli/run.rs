@@ -28,19 +28,19 @@ pub struct RunArgs {
     #[arg(long)]
     out: Option<PathBuf>,
     /// Random scenes in the null model.
-    #[arg(long, default_value_t = 1000)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().samples)]
     samples: usize,
     /// Learn candidates whose posterior is below this, in (0, 1).
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().cutoff)]
     cutoff: f64,
     /// Seed for learning and synthesis.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().seed)]
     seed: u64,
     /// Stop the layout search after this many seconds, keeping the best found.
     #[arg(long, value_name = "SECONDS", default_value = "60", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
     time_limit: Duration,
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
-    #[arg(long, default_value = "point")]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().contact)]
     contact: Contact,
     /// Among the best-scoring layouts, prefer the one most like these scenes
     /// (docs/guide.md#layouts-like-the-demonstrations): by default the task's demonstrations; `none` turns it off.
@@ -48,7 +48,7 @@ pub struct RunArgs {
     like: Option<PathBuf>,
     /// Which templates to learn with when there is no `statements.rcc`:
     /// `third` (with group shapes), `second` or `first` (see `learn`).
-    #[arg(long, default_value = "third", value_name = "first|second|third")]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().templates, value_name = "first|second|third")]
     templates: Templates,
     /// Priors learned across tasks (`rccpack priors`).
     #[arg(long, value_name = "PRIORS.json")]
