@@ -84,3 +84,43 @@ fn run_learns_and_places_the_bundled_example() {
     assert!(out.placement.like.is_some() && r.resemblance.is_some());
     assert!(out.placement.missing_classes.is_empty());
 }
+
+/// The one question session (`task::session::Session`): the open question
+/// is asked again unchanged, an answer about another rule is refused, and
+/// a file edited by hand since the session wrote it is never overwritten.
+#[test]
+fn a_session_never_overwrites_a_file_changed_on_disk() {
+    use rccpack::task::session::{Session, SessionError, SessionOptions};
+    let d = copy_example("session-changed");
+    let mut opts = SessionOptions::default();
+    opts.ask.learn.samples = 200;
+    let mut s = Session::open(&d, opts).unwrap();
+    let shown = s.next_question().unwrap().expect("a question");
+    let again = s.next_question().unwrap().expect("the same question");
+    assert_eq!(
+        (again.number, &again.question.rule),
+        (shown.number, &shown.question.rule)
+    );
+    match s.answer("no_such_rule", false) {
+        Err(SessionError::NotOpen { rule, open }) => {
+            assert_eq!(rule, "no_such_rule");
+            assert_eq!(open.as_deref(), Some(shown.question.rule.as_str()));
+        }
+        r => panic!("expected NotOpen, got {r:?}"),
+    }
+    std::fs::write(d.join(files::LEARNED), "# edited by hand\n").unwrap();
+    match s.answer(&shown.question.rule, false) {
+        Err(SessionError::Changed { dir }) => assert_eq!(dir, d),
+        r => panic!("expected Changed, got {r:?}"),
+    }
+    assert_eq!(
+        std::fs::read_to_string(d.join(files::LEARNED)).unwrap(),
+        "# edited by hand\n"
+    );
+    assert!(!d.join(files::ANSWERS).exists(), "nothing journaled");
+    // Still open: the person can answer once the file is put back.
+    assert_eq!(
+        s.open_question().map(|o| o.question.rule.clone()),
+        Some(shown.question.rule.clone())
+    );
+}

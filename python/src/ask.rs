@@ -8,8 +8,8 @@ use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use rccpack_core::ask::{
-    AnswersFile, AskError, AskOptions, ProbeOptions, Question as CoreQuestion, QuestionBudget,
-    DEFAULT_CHECK_NODES, DEFAULT_PROBE_NODES, DEFAULT_QUESTION_NODES,
+    AnswersFile, AskError, AskOptions, ProbeOptions, QuestionBudget, DEFAULT_CHECK_NODES,
+    DEFAULT_PROBE_NODES, DEFAULT_QUESTION_NODES,
 };
 use rccpack_core::infer::{LearnParams, Templates};
 use rccpack_core::task::session::{Session, SessionError, SessionOptions, Shown};
@@ -286,6 +286,7 @@ impl PyAskSession {
             },
             max_questions,
             save,
+            ..SessionOptions::default()
         };
         let dir = task_dir.clone();
         let session = py
@@ -339,8 +340,8 @@ impl PyAskSession {
                 }
             };
             let session = Self::open_session(state)?;
-            let q: CoreQuestion = shown.question.clone();
-            detached(py, session, move |s| s.answer(&q, accepted).map(|_| ()))?;
+            let rule = shown.question.rule.clone();
+            detached(py, session, move |s| s.answer(&rule, accepted).map(|_| ()))?;
             state.open = None;
             let answered = PyQuestion::new(py, &shown, Some(accepted))?;
             state.questions.push(answered.clone_ref(py));

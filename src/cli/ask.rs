@@ -9,14 +9,14 @@
 //! abort (end of input, `q`, an oracle failure, Ctrl-C) loses nothing
 //! already answered; running again resumes.
 
-use super::{out, outln, read_rules, read_scene, read_scenes, read_text, write_file, Reported};
+use super::{out, outln, read_rules, read_scene, read_scenes, Reported};
 use anyhow::Result;
 use clap::Args;
-use rccpack::ask::{AnswersFile, AskOptions, Asker, ProbeOptions, Question};
+use rccpack::ask::{AskOptions, Asker, ProbeOptions, Question};
 use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
-use rccpack::rules::RuleSet;
 use rccpack::task;
+use rccpack::task::session::{Locking, Session, SessionError, SessionInputs, SessionOptions};
 use std::io::BufRead;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
@@ -93,19 +93,6 @@ pub struct AskArgs {
     /// run of the session.
     #[arg(long, value_name = "PRIORS.json")]
     priors: Option<PathBuf>,
-}
-
-fn write(path: &Path, contents: &str) -> Result<()> {
-    write_file(path, contents, "file")
-}
-
-/// Write `answers.json` with the answer to `q` appended, before the
-/// answer is applied: what [`Asker::answer`] will journal, so a resumed
-/// session replays it.
-fn journal_answer(path: &Path, asker: &Asker, q: &Question, accepted: bool) -> Result<()> {
-    let mut answers = asker.answers().to_vec();
-    answers.push(asker.answer_record(q, accepted));
-    write(path, &AnswersFile { answers }.to_json())
 }
 
 enum Verdict {
@@ -336,70 +323,51 @@ fn on_interrupt(dir: PathBuf, answers: PathBuf) {
     });
 }
 
-/// The files of a task folder a session reads and writes.
-struct SessionFiles {
-    dir: PathBuf,
-    problem: PathBuf,
-    demos: PathBuf,
-    answers: PathBuf,
-    learned: PathBuf,
-    statements: PathBuf,
-}
-
-impl SessionFiles {
-    fn new(dir: &Path) -> Self {
-        SessionFiles {
-            dir: dir.to_path_buf(),
-            problem: dir.join(task::files::PROBLEM),
-            demos: dir.join(task::files::DEMOS),
-            answers: dir.join(task::files::ANSWERS),
-            learned: dir.join(task::files::LEARNED),
-            statements: dir.join(task::files::STATEMENTS),
-        }
-    }
-
-    /// A write into the folder failed.
-    fn io_error(&self, (file, e): (&str, std::io::Error)) -> Reported {
-        Reported(format!(
-            "error: {}: cannot write: {e}",
-            self.dir.join(file).display()
-        ))
-    }
-
-    /// The problem could not be used for a question.
-    fn problem_error(&self, e: rccpack::ask::AskError) -> Reported {
-        Reported(format!("error: {}: {e}", self.problem.display()))
-    }
-}
-
 /// How the question loop ended.
 struct LoopEnd {
-    /// The session after the last answer.
-    asker: Asker,
-    /// Questions asked in this run.
-    asked_now: usize,
     /// Per question, ms from the answer before it until it was ready.
     times: Vec<f64>,
     /// Why the session was aborted, if it was.
     aborted: Option<String>,
-    /// Stopped at `--max-questions`.
-    out_of_budget: bool,
 }
 
-/// Run a question session in the task folder (see the module doc).
+/// Run a question session in the task folder (see the module doc): the
+/// library's [`Session`] asks; this adapter shows the questions, takes the
+/// verdicts and prints.
 pub fn run(a: AskArgs) -> Result<ExitCode> {
-    let files = SessionFiles::new(&a.dir);
-    // One session per task folder (the studio takes the same lock to write).
-    let _lock = super::io::lock_folder(&files.dir)?;
-    on_interrupt(files.dir.clone(), files.answers.clone());
-    let asker = start_session(&a, &files)?;
-    let end = question_loop(&a, &files, asker)?;
-    finish(&a, &files, end)
+    // One session per task folder (the studio takes the same lock to
+    // write), held by this adapter for the whole run.
+    let _lock = super::io::lock_folder(&a.dir)?;
+    on_interrupt(a.dir.clone(), a.dir.join(task::files::ANSWERS));
+    let inputs = read_inputs(&a.dir)?;
+    let opts = session_options(&a)?;
+    let mut session = Session::open_with(&a.dir, inputs, opts).map_err(session_error)?;
+    say_start(&session)?;
+    let end = question_loop(&a, &mut session)?;
+    finish(&a, &session, end)
+}
+
+/// The task's problem, demonstrations and statements, read with the
+/// command line's errors (a `.rcc` error drawn at its place).
+fn read_inputs(dir: &Path) -> Result<SessionInputs> {
+    let problem = read_scene(&dir.join(task::files::PROBLEM))?;
+    let (demos, _) = read_scenes(&dir.join(task::files::DEMOS))?;
+    let statements_path = dir.join(task::files::STATEMENTS);
+    let statements = if statements_path.exists() {
+        Some(read_rules(&statements_path, &demos)?)
+    } else {
+        None
+    };
+    Ok(SessionInputs {
+        problem,
+        demos,
+        statements,
+    })
 }
 
 /// The options of the session from the flags (reads `--priors`).
-fn ask_options(a: &AskArgs) -> Result<AskOptions> {
-    Ok(AskOptions {
+fn session_options(a: &AskArgs) -> Result<SessionOptions> {
+    let ask = AskOptions {
         learn: LearnParams {
             samples: a.samples,
             cutoff: a.cutoff,
@@ -424,99 +392,86 @@ fn ask_options(a: &AskArgs) -> Result<AskOptions> {
         edits: !a.no_edits,
         priors: super::priors::read_priors_opt(a.priors.as_deref())?.map(std::sync::Arc::new),
         ..AskOptions::default()
+    };
+    Ok(SessionOptions {
+        ask,
+        max_questions: Some(a.max_questions),
+        // The folder lock is this adapter's (see `run`).
+        locking: Locking::Caller,
+        lookahead_threads: if a.no_lookahead {
+            1
+        } else {
+            std::thread::available_parallelism().map_or(1, |n| n.get())
+        },
+        ..SessionOptions::default()
     })
 }
 
-/// Read the folder (problem, demonstrations, statements, answers of
-/// earlier runs), start or resume the session and record its start; say
-/// what was kept, what is resumed and which learned rules are about a
-/// class the problem lacks.
-fn start_session(a: &AskArgs, files: &SessionFiles) -> Result<Asker> {
-    let problem = read_scene(&files.problem)?;
-    let (demos, _) = read_scenes(&files.demos)?;
-    let statements: Option<RuleSet> = if files.statements.exists() {
-        Some(read_rules(&files.statements, &demos)?)
-    } else {
-        None
-    };
-    let answers = if files.answers.exists() {
-        AnswersFile::from_json(&read_text(&files.answers)?)
-            .map_err(|e| Reported(format!("error: {}: {e}", files.answers.display())))?
-            .answers
-    } else {
-        Vec::new()
-    };
-    let resumed = answers.len();
-    let opts = ask_options(a)?;
-    let n_demos = demos.len();
-    let problem_classes = problem.clone();
-    let asker = Asker::new(problem, demos, statements, answers, opts).map_err(|e| {
-        let file = match e {
-            rccpack::ask::AskError::BadAnswer { .. } => &files.answers,
-            rccpack::ask::AskError::Synth(_) => &files.problem,
-            _ => &files.demos,
-        };
-        let text = match &e {
-            rccpack::ask::AskError::Learn(e) => super::learn_error_text(e),
+/// A session's error in the command line's words: the file at fault, and
+/// learning's errors as `learn` words them.
+fn session_error(e: SessionError) -> anyhow::Error {
+    let text = match &e {
+        SessionError::Ask { path, source } => match source.as_ref() {
+            rccpack::ask::AskError::Learn(l) => {
+                format!("{}: {}", path.display(), super::learn_error_text(l))
+            }
             _ => e.to_string(),
-        };
-        Reported(format!("error: {}: {text}", file.display()))
-    })?;
-    if task::files::write_session_start(&files.dir, &asker, n_demos, resumed)
-        .map_err(|e| files.io_error(e))?
-    {
+        },
+        _ => e.to_string(),
+    };
+    Reported(format!("error: {text}")).into()
+}
+
+/// Say what the start kept, what is resumed and which learned rules are
+/// about a class the problem lacks.
+fn say_start(session: &Session) -> Result<()> {
+    let dir = session.dir();
+    if session.backup_written() {
         outln(format!(
             "note: {} was not learned from {} with these settings; kept as {}",
-            files.learned.display(),
-            files.demos.display(),
-            files.dir.join(task::files::LEARNED_BACKUP).display()
+            dir.join(task::files::LEARNED).display(),
+            dir.join(task::files::DEMOS).display(),
+            dir.join(task::files::LEARNED_BACKUP).display()
         ))?;
     }
-    if resumed > 0 {
+    if session.resumed() > 0 {
         outln(format!(
-            "resuming: {resumed} answers in {}",
-            files.answers.display()
+            "resuming: {} answers in {}",
+            session.resumed(),
+            dir.join(task::files::ANSWERS).display()
         ))?;
     }
     // docs/language.md#classes-a-scene-lacks: learned rules about a class today's problem lacks.
-    let missing = rccpack::rules::missing_classes(asker.held(), &problem_classes);
+    let missing = rccpack::rules::missing_classes(session.asker().held(), session.problem());
     if let Some(note) = rccpack::rules::missing_classes_note(&missing) {
         outln(note)?;
     }
-    Ok(asker)
+    Ok(())
 }
 
 /// Ask until no question is left, `--max-questions` is reached or the
-/// person (or the oracle) aborts; every answer journaled before it is
-/// applied, and the folder's files written after it.
-fn question_loop(a: &AskArgs, files: &SessionFiles, mut asker: Asker) -> Result<LoopEnd> {
-    let mut asked_now = 0usize;
+/// person (or the oracle) aborts.
+fn question_loop(a: &AskArgs, session: &mut Session) -> Result<LoopEnd> {
     let mut times: Vec<f64> = Vec::new();
     let mut aborted: Option<String> = None;
-    let mut out_of_budget = false;
-    let threads = if a.no_lookahead {
-        1
-    } else {
-        std::thread::available_parallelism().map_or(1, |n| n.get())
-    };
     let t = Instant::now();
-    let mut next = asker.next_question().map_err(|e| files.problem_error(e))?;
+    let mut next = session.next_question().map_err(session_error)?;
     // The wait before the first question, then answer → next question.
     let mut ready_ms = t.elapsed().as_secs_f64() * 1000.0;
-    while let Some(q) = next.take() {
-        if asked_now >= a.max_questions {
-            out_of_budget = true;
-            break;
-        }
+    while let Some(shown) = next.take() {
         times.push(ready_ms);
-        let number = asker.answers().len() + 1;
-        let (json, png) = write_probe(a, files, &asker, &q, number)?;
-        // While the person (or the oracle) looks: the next question for
-        // both answers.
-        let ahead = asker.look_ahead(&q, threads);
+        let (q, number) = (&shown.question, shown.number);
+        let json = shown
+            .json
+            .as_deref()
+            .expect("the session writes probe files");
+        let png = shown
+            .png
+            .as_deref()
+            .expect("the session writes probe files");
         let verdict = match &a.oracle {
-            Some(cmd) => ask_oracle(cmd, &json, a.oracle_timeout),
-            None => ask_terminal(&q, number, &png),
+            Some(cmd) => ask_oracle(cmd, json, a.oracle_timeout),
+            None => ask_terminal(q, number, png),
         };
         let accepted = match verdict {
             Verdict::Yes => true,
@@ -538,56 +493,22 @@ fn question_loop(a: &AskArgs, files: &SessionFiles, mut asker: Asker) -> Result<
                 }
             ))?;
         }
-        // The journal first: relearning from an accepted probe takes a
-        // while, and Ctrl-C during it must not lose the answer (the next
-        // run replays the journal).
-        journal_answer(&files.answers, &asker, &q, accepted)?;
         let t = Instant::now();
-        let (after, upcoming) = match ahead.answer(accepted) {
-            Ok(b) => b,
-            Err(e @ rccpack::ask::AskError::Synth(_)) => return Err(files.problem_error(e).into()),
-            Err(e) => return Err(Reported(format!("error: {}: {e}", files.demos.display())).into()),
-        };
+        session.answer(&q.rule, accepted).map_err(session_error)?;
+        next = session.next_question().map_err(session_error)?;
         ready_ms = t.elapsed().as_secs_f64() * 1000.0;
-        asker = after;
-        next = upcoming;
-        asked_now += 1;
-        task::files::write_after_answer(&files.dir, &asker, accepted)
-            .map_err(|e| files.io_error(e))?;
     }
-    Ok(LoopEnd {
-        asker,
-        asked_now,
-        times,
-        aborted,
-        out_of_budget,
-    })
-}
-
-/// Write question `number`'s probe as `probes/probe-N.json` and its
-/// picture `probes/probe-N.png` (the rule it breaks, the moved objects
-/// outlined), as the library's question sessions do; their paths.
-fn write_probe(
-    a: &AskArgs,
-    files: &SessionFiles,
-    asker: &Asker,
-    q: &Question,
-    number: usize,
-) -> Result<(PathBuf, PathBuf)> {
-    task::session::write_probe_files(&files.dir, asker.held(), q, number, a.contact)
-        .map_err(|e| Reported(format!("error: {e}")).into())
+    Ok(LoopEnd { times, aborted })
 }
 
 /// The session's summary line, the unasked rules (when it ran to the
 /// end), why it stopped; exit 1 when it was aborted.
-fn finish(a: &AskArgs, files: &SessionFiles, end: LoopEnd) -> Result<ExitCode> {
-    let LoopEnd {
-        asker,
-        asked_now,
-        times,
-        aborted,
-        out_of_budget,
-    } = end;
+fn finish(a: &AskArgs, session: &Session, end: LoopEnd) -> Result<ExitCode> {
+    let LoopEnd { times, aborted } = end;
+    let (asker, asked_now) = (session.asker(), session.asked_now());
+    let out_of_budget = session.out_of_budget();
+    let learned = session.dir().join(task::files::LEARNED);
+    let answers = session.dir().join(task::files::ANSWERS);
     let p = asker.progress();
     let median = {
         let mut t = times.clone();
@@ -614,10 +535,10 @@ fn finish(a: &AskArgs, files: &SessionFiles, end: LoopEnd) -> Result<ExitCode> {
         } else {
             String::new()
         },
-        files.learned.display()
+        learned.display()
     ))?;
     if !out_of_budget && aborted.is_none() {
-        show_unasked(&asker)?;
+        show_unasked(asker)?;
     }
     if out_of_budget {
         outln(format!(
@@ -629,7 +550,7 @@ fn finish(a: &AskArgs, files: &SessionFiles, end: LoopEnd) -> Result<ExitCode> {
         ewriteln!(
             "error: aborted ({why}); {} answers are saved in {}, run again to resume",
             p.asked,
-            files.answers.display()
+            answers.display()
         );
         return Ok(ExitCode::from(1));
     }

@@ -8,9 +8,10 @@ use super::demos::{folder_lock, read_demos};
 use super::learn::{learn_params, read_statements, LearnBody};
 use super::learned::{current_learned, learned_value, LearnedView};
 use super::{internal, ok, parse_body, scene_value, ApiError, ApiResult, St};
-use crate::ask::{Answer, AnswersFile, AskError, AskOptions, Asker, ProbeOptions, Question};
+use crate::ask::{AskError, AskOptions, ProbeOptions, Question};
 use crate::infer::LearnParams;
 use crate::task::files::{self, ANSWERS, DEMOS, LEARNED, LEARNED_BACKUP};
+use crate::task::session::{Locking, Session, SessionError, SessionInputs, SessionOptions};
 use axum::body::Bytes;
 use axum::extract::State;
 use axum::http::StatusCode;
@@ -20,36 +21,14 @@ use std::sync::atomic::Ordering;
 use std::sync::Arc;
 use std::time::Duration;
 
-/// The open "Check rules" session: the question loop and the question the
-/// page was shown.
+/// The open "Check rules" session: the library's question session
+/// ([`Session`], the only implementation of it) and what the studio needs
+/// to know whether it still fits the folder.
 pub(crate) struct AskSession {
-    asker: Asker,
-    question: Option<Question>,
+    session: Session,
     /// [`AppState::ask_generation`] when the session read the files.
     generation: u64,
     params: LearnParams,
-    /// Versions of demos.json, learned.rcc and answers.json as the session
-    /// last wrote them: a file changed outside the studio since (a hand
-    /// edit) is never overwritten by an answer.
-    versions: (String, String, String),
-    /// The next question for both answers to the open one, being computed
-    /// while the person looks.
-    ahead: Option<crate::ask::Lookahead>,
-    /// The next question, computed ahead (`Some(None)`: there is none).
-    prepared: Option<Option<Question>>,
-}
-
-/// Versions ([`files::version`]) of demos.json, learned.rcc and
-/// answers.json on disk.
-fn disk_versions(st: &AppState) -> Result<(String, String, String), ApiError> {
-    let demos = files::read_optional(&st.dir, DEMOS).map_err(|e| ApiError::io(DEMOS, e))?;
-    let learned = files::read_optional(&st.dir, LEARNED).map_err(|e| ApiError::io(LEARNED, e))?;
-    let answers = files::read_optional(&st.dir, ANSWERS).map_err(|e| ApiError::io(ANSWERS, e))?;
-    Ok((
-        files::version(demos.as_deref()),
-        files::version(learned.as_deref()),
-        files::version(answers.as_deref()),
-    ))
 }
 
 impl AppState {
@@ -84,24 +63,31 @@ fn ask_error(e: AskError) -> ApiError {
     }
 }
 
-/// answers.json (empty when absent); one that does not parse is reported
-/// (409) and never overwritten.
-fn read_answers(st: &AppState) -> Result<Vec<Answer>, ApiError> {
-    let Some(text) =
-        files::read_optional(&st.dir, ANSWERS).map_err(|e| ApiError::io(ANSWERS, e))?
-    else {
-        return Ok(Vec::new());
-    };
-    let file = AnswersFile::from_json(&text).map_err(|e| {
-        ApiError::new(
+/// A session's error as the page gets it.
+fn session_error(e: SessionError) -> ApiError {
+    match e {
+        SessionError::Ask { source, .. } => ask_error(*source),
+        SessionError::Answers { source, .. } => ApiError::new(
             StatusCode::CONFLICT,
             format!(
-                "{ANSWERS}: {e}; the studio will not overwrite it — fix or move the file, then ask again"
+                "{ANSWERS}: {source}; the studio will not overwrite it — fix or move the file, then ask again"
             ),
         )
-        .kind("corrupt_answers")
-    })?;
-    Ok(file.answers)
+        .kind("corrupt_answers"),
+        SessionError::Changed { .. } => ApiError::new(
+            StatusCode::CONFLICT,
+            format!("{DEMOS}, {LEARNED} or {ANSWERS} changed on disk since the question was asked; the answer was not saved and nothing was overwritten — ask again"),
+        )
+        .kind("stale_files"),
+        e @ SessionError::NotOpen { .. } => {
+            ApiError::new(StatusCode::CONFLICT, e.to_string()).at("rule").kind("not_asked")
+        }
+        SessionError::Write { path, source } => {
+            let name = path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+            ApiError::io(&name, source)
+        }
+        e => ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, e.to_string()),
+    }
 }
 
 /// Start (or resume) a session from the task folder's files, as `rccpack
@@ -113,43 +99,46 @@ async fn start_session(
     params: LearnParams,
 ) -> Result<(AskSession, Option<&'static str>), ApiError> {
     let _guard = st.write_lock.lock().await;
-    let _folder = folder_lock(st)?;
+    let folder = folder_lock(st)?;
     let generation = st.ask_generation.load(Ordering::SeqCst);
-    let demos = read_demos(st)?;
-    let n_demos = demos.len();
-    let statements = read_statements(st)?;
-    let answers = read_answers(st)?;
-    let resumed = answers.len();
-    let opts = AskOptions {
-        learn: params,
-        probe: ProbeOptions {
-            contact: params.contact,
-            seed: params.seed,
-            time_limit: Some(Duration::from_secs(PROBE_TIME_LIMIT_SECS)),
-            ..ProbeOptions::default()
-        },
-        resemble: true,
-        priors: st.priors.clone(),
-        ..AskOptions::default()
+    let inputs = SessionInputs {
+        problem: st.problem.clone(),
+        demos: read_demos(st)?,
+        statements: read_statements(st)?,
     };
-    let problem = st.problem.clone();
-    let asker =
-        tokio::task::spawn_blocking(move || Asker::new(problem, demos, statements, answers, opts))
-            .await
-            .map_err(|_| internal("learning"))?
-            .map_err(ask_error)?;
-    let backup = files::write_session_start(&st.dir, &asker, n_demos, resumed)
-        .map_err(|(file, e)| ApiError::io(file, e))?
-        .then_some(LEARNED_BACKUP);
+    let opts = SessionOptions {
+        ask: AskOptions {
+            learn: params,
+            probe: ProbeOptions {
+                contact: params.contact,
+                seed: params.seed,
+                time_limit: Some(Duration::from_secs(PROBE_TIME_LIMIT_SECS)),
+                ..ProbeOptions::default()
+            },
+            resemble: true,
+            priors: st.priors.clone(),
+            ..AskOptions::default()
+        },
+        locking: Locking::Caller,
+        probe_files: false,
+        lookahead_threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
+        ..SessionOptions::default()
+    };
+    let dir = st.dir.clone();
+    let session = tokio::task::spawn_blocking(move || {
+        let s = Session::open_with(dir, inputs, opts);
+        drop(folder);
+        s
+    })
+    .await
+    .map_err(|_| internal("learning"))?
+    .map_err(session_error)?;
+    let backup = session.backup_written().then_some(LEARNED_BACKUP);
     Ok((
         AskSession {
-            asker,
-            question: None,
+            session,
             generation,
             params,
-            versions: disk_versions(st)?,
-            ahead: None,
-            prepared: None,
         },
         backup,
     ))
@@ -222,16 +211,18 @@ pub(crate) async fn ask_next(State(st): St, body: Bytes) -> ApiResult {
     let params = learn_params(&b)?;
     let mut guard = st.ask.clone().lock_owned().await;
     let generation = st.ask_generation.load(Ordering::SeqCst);
-    let on_disk = disk_versions(&st)?;
-    let keep = guard.as_ref().is_some_and(|s| {
+    let keep = match guard.as_ref() {
         // Parameters given in the body must match the session's; omitted
         // ones keep it. A file edited outside the studio starts afresh.
-        s.generation == generation
-            && s.versions == on_disk
-            && b.samples.is_none_or(|n| n == s.params.samples)
-            && b.seed.is_none_or(|x| x == s.params.seed)
-            && b.cutoff.is_none_or(|c| c == s.params.cutoff)
-    });
+        Some(s) => {
+            s.generation == generation
+                && !s.session.files_changed().map_err(session_error)?
+                && b.samples.is_none_or(|n| n == s.params.samples)
+                && b.seed.is_none_or(|x| x == s.params.seed)
+                && b.cutoff.is_none_or(|c| c == s.params.cutoff)
+        }
+        None => false,
+    };
     let mut backup = None;
     if !keep {
         *guard = None;
@@ -239,47 +230,26 @@ pub(crate) async fn ask_next(State(st): St, body: Bytes) -> ApiResult {
         *guard = Some(session);
         backup = b;
     }
-    let open = guard
-        .as_ref()
-        .and_then(|s| s.question.clone())
-        .map(|q| (q, guard.as_ref().map_or(0, |s| s.asker.answers().len())));
-    let (guard, question) = match open {
-        // The page asks again (a reload): the same question.
-        Some((q, asked)) => (guard, Some(question_value(&q, asked + 1))),
-        None => {
-            let joined = tokio::task::spawn_blocking(move || {
-                let mut guard = guard;
-                let s = guard.as_mut().expect("a session was just started");
-                let next = match s.prepared.take() {
-                    Some(q) => Ok(q),
-                    None => s.asker.next_question(),
-                };
-                if let Ok(q) = &next {
-                    s.question = q.clone();
-                    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-                    s.ahead = q.as_ref().map(|q| s.asker.look_ahead(q, threads));
-                }
-                (guard, next)
-            })
-            .await;
-            let Ok((mut guard, next)) = joined else {
-                *st.ask.lock().await = None;
-                return Err(internal("the probe search"));
-            };
-            match next {
-                Ok(q) => {
-                    let asked = guard.as_ref().map_or(0, |s| s.asker.answers().len());
-                    let v = q.as_ref().map(|q| question_value(q, asked + 1));
-                    (guard, v)
-                }
-                Err(e) => {
-                    *guard = None;
-                    return Err(ask_error(e));
-                }
-            }
+    // A reload asks again: the session gives the open question again.
+    let joined = tokio::task::spawn_blocking(move || {
+        let mut guard = guard;
+        let s = guard.as_mut().expect("a session was just started");
+        let next = s.session.next_question();
+        (guard, next)
+    })
+    .await;
+    let Ok((mut guard, next)) = joined else {
+        *st.ask.lock().await = None;
+        return Err(internal("the probe search"));
+    };
+    let question = match next {
+        Ok(shown) => shown.map(|s| question_value(&s.question, s.number)),
+        Err(e) => {
+            *guard = None;
+            return Err(session_error(e));
         }
     };
-    let progress = guard.as_ref().map(|s| s.asker.progress());
+    let progress = guard.as_ref().map(|s| s.session.asker().progress());
     drop(guard);
     ok(&NextBody {
         backup,
@@ -307,26 +277,32 @@ pub(crate) async fn ask_answer(State(st): St, body: Bytes) -> ApiResult {
         *guard = None;
     }
     check_open(&guard, &rule)?;
-    let mut guard = apply_answer(&st, guard, accepted).await?;
-    let _write = st.write_lock.lock().await;
-    let saved = folder_lock(&st)
-        .and_then(|_folder| save_answer(&st, guard.as_ref().expect("answered above"), accepted));
-    let rcc = match saved {
-        Ok((rcc, versions)) => {
-            if let Some(s) = guard.as_mut() {
-                s.versions = versions;
-            }
-            rcc
-        }
-        Err(e) => {
-            // A failed or refused write drops the session, so the next
-            // question starts again from what is on disk.
-            *guard = None;
-            return Err(e);
-        }
+    // The other routes wait while the answer is applied and written; an
+    // `rccpack ask` started meanwhile finds the folder locked.
+    let write = st.write_lock.lock().await;
+    let folder = folder_lock(&st)?;
+    let joined = tokio::task::spawn_blocking(move || {
+        let mut guard = guard;
+        let s = guard.as_mut().expect("checked above");
+        let r = s.session.answer(&rule, accepted).map(|_| ());
+        drop(folder);
+        (guard, r)
+    })
+    .await;
+    drop(write);
+    let Ok((mut guard, r)) = joined else {
+        *st.ask.lock().await = None;
+        return Err(internal("learning from the answer"));
     };
-    let s = guard.as_ref().expect("answered above");
-    let answer = s.asker.answers().last().expect("just answered");
+    if let Err(e) = r {
+        // A failed or refused write drops the session, so the next
+        // question starts again from what is on disk.
+        *guard = None;
+        return Err(session_error(e));
+    }
+    let s = &guard.as_ref().expect("answered above").session;
+    let answer = s.asker().answers().last().expect("just answered");
+    let rcc = s.asker().learned_rcc();
     ok(&AnsweredBody {
         answer: AnswerSummary {
             accepted: answer.accepted,
@@ -334,7 +310,7 @@ pub(crate) async fn ask_answer(State(st): St, body: Bytes) -> ApiResult {
             rule: answer.rule.clone(),
         },
         learned: learned_value(&st, Some(&rcc)),
-        progress: s.asker.progress(),
+        progress: s.asker().progress(),
     })
 }
 
@@ -356,7 +332,11 @@ fn parse_answer(body: &[u8]) -> Result<(String, bool), ApiError> {
 
 /// Refuse an answer unless the open question is about `rule`.
 fn check_open(guard: &SessionGuard, rule: &str) -> Result<(), ApiError> {
-    let Some(open) = guard.as_ref().and_then(|s| s.question.as_ref()) else {
+    let Some(open) = guard
+        .as_ref()
+        .and_then(|s| s.session.open_question())
+        .map(|o| &o.question)
+    else {
         return Err(ApiError::new(
             StatusCode::CONFLICT,
             "no question is open (none asked yet, or the demonstrations changed since); ask with POST /api/ask/next",
@@ -375,70 +355,4 @@ fn check_open(guard: &SessionGuard, rule: &str) -> Result<(), ApiError> {
         .kind("not_asked"));
     }
     Ok(())
-}
-
-/// Apply the answer to the open question on a blocking thread (learning
-/// again after an accepted probe); a failure drops the session.
-async fn apply_answer(
-    st: &Arc<AppState>,
-    guard: SessionGuard,
-    accepted: bool,
-) -> Result<SessionGuard, ApiError> {
-    let joined = tokio::task::spawn_blocking(move || {
-        let mut guard = guard;
-        let s = guard.as_mut().expect("checked above");
-        let q = s.question.take().expect("checked above");
-        let r = match s.ahead.take() {
-            // The branch computed ahead for this answer: the session after
-            // it and its next question.
-            Some(ahead) => ahead.answer(accepted).map(|(asker, next)| {
-                s.asker = asker;
-                s.prepared = Some(next);
-            }),
-            None => s.asker.answer(&q, accepted).map(|_| ()),
-        };
-        (guard, r)
-    })
-    .await;
-    let Ok((mut guard, r)) = joined else {
-        *st.ask.lock().await = None;
-        return Err(internal("learning from the answer"));
-    };
-    if let Err(e) = r {
-        *guard = None;
-        return Err(ask_error(e));
-    }
-    Ok(guard)
-}
-
-/// Write the answered session as `rccpack ask` does — the journal first,
-/// then the demonstrations, then the rules; each write atomic — unless the
-/// demonstrations changed through another route or a file changed on disk
-/// since the question was asked. Called with the folder's locks held.
-/// Returns `learned.rcc`'s new text and the files' versions after the
-/// writes.
-fn save_answer(
-    st: &AppState,
-    s: &AskSession,
-    accepted: bool,
-) -> Result<(String, (String, String, String)), ApiError> {
-    if s.generation != st.ask_generation.load(Ordering::SeqCst) {
-        return Err(ApiError::new(
-            StatusCode::CONFLICT,
-            format!("{DEMOS} changed while the answer was applied; the answer was not saved — ask again"),
-        )
-        .kind("no_question"));
-    }
-    // The version check of the other routes: a demonstration or a rule
-    // added by hand since the session read the files is never lost.
-    if disk_versions(st)? != s.versions {
-        return Err(ApiError::new(
-            StatusCode::CONFLICT,
-            format!("{DEMOS}, {LEARNED} or {ANSWERS} changed on disk since the question was asked; the answer was not saved and nothing was overwritten — ask again"),
-        )
-        .kind("stale_files"));
-    }
-    let rcc = s.asker.learned_rcc();
-    files::write_after_answer(&st.dir, &s.asker, accepted).map_err(|(f, e)| ApiError::io(f, e))?;
-    Ok((rcc, disk_versions(st)?))
 }
