@@ -141,6 +141,8 @@
 //!   of those names.
 //! - [`render`]: SVG pictures; PNG with the `png` feature.
 //! - [`limits`]: the documented limits on user-supplied numbers.
+//! - [`stop`]: when to stop a computation (a deadline, a node budget, a
+//!   cancel flag), taken by learning ([`infer::learn_with`]) and the pipeline.
 //! - [`fsutil`]: the one atomic file writer, UTF-8 reading, the folder lock.
 //! - `studio` (feature `studio`): the local web app; `bench` (feature
 //!   `bench`): the benchmark suites.
@@ -175,6 +177,7 @@ pub mod rules;
 pub mod sample;
 pub mod scene;
 pub mod shapes;
+pub mod stop;
 #[cfg(feature = "studio")]
 pub mod studio;
 pub mod synth;

@@ -106,6 +106,7 @@ fn nothing_below_learning_and_solving_knows_them() {
         "src/resemblance.rs",
         "src/limits.rs",
         "src/fsutil.rs",
+        "src/stop.rs",
     ];
     let upper = [
         "crate::infer",

@@ -3,7 +3,7 @@
 //! without one.
 
 use proptest::prelude::*;
-use rccpack::infer::{learn, learn_with_priors, LearnParams};
+use rccpack::infer::{learn, LearnParams};
 use rccpack::priors::{combine, Count, PriorParams, Priors, PriorsError, TaskCounts};
 use rccpack::scene::scenes_from_json;
 use std::collections::BTreeMap;
@@ -210,7 +210,7 @@ fn a_uniform_priors_file_learns_what_no_priors_file_learns() {
     );
     for uniform in [empty, half] {
         let file = Priors::from_json(&uniform.to_json()).unwrap();
-        let with = learn_with_priors(&demos, None, &params, Some(&file), None, None).unwrap();
+        let with = learn_with_priors(&demos, None, &params, &file).unwrap();
         assert_eq!(with.to_rcc(), none.to_rcc());
         assert!(with
             .statements
@@ -233,7 +233,7 @@ fn a_uniform_priors_file_learns_what_no_priors_file_learns() {
         }],
         &PriorParams::default(),
     );
-    let with = learn_with_priors(&demos, None, &params, Some(&strong), None, None).unwrap();
+    let with = learn_with_priors(&demos, None, &params, &strong).unwrap();
     assert_ne!(with.to_rcc(), none.to_rcc());
     assert!(with.to_rcc().contains("# priors fnv1a64:"));
 }
@@ -257,7 +257,7 @@ fn a_ruled_out_kind_is_left_out_of_the_statements() {
         )]),
     };
     let p = combine(&vec![never; 3], &params_after(3));
-    let with = learn_with_priors(&demos, None, &params, Some(&p), None, None).unwrap();
+    let with = learn_with_priors(&demos, None, &params, &p).unwrap();
     let used = with.priors.as_ref().unwrap();
     assert!(!used.ruled_out.is_empty());
     assert!(used
@@ -270,7 +270,7 @@ fn a_ruled_out_kind_is_left_out_of_the_statements() {
         .all(|s| !used.ruled_out.iter().any(|r| r.name == s.name)));
     // Given statements keep the uniform prior and are never ruled out.
     let given = rccpack::parse_rules("rule x: DR_N(B, R)\n").unwrap();
-    let with = learn_with_priors(&demos, Some(&given), &params, Some(&p), None, None).unwrap();
+    let with = learn_with_priors(&demos, Some(&given), &params, &p).unwrap();
     assert_eq!(with.statements.len(), 1);
     assert_eq!(with.statements[0].prior.as_ref().unwrap().from, None);
 }
@@ -519,4 +519,19 @@ fn bad_plain_counts_name_the_field() {
         }
         other => panic!("{other:?}"),
     }
+}
+
+/// Learning with priors ([`rccpack::infer::learn_with`] with
+/// `LearnOptions::priors`).
+fn learn_with_priors(
+    demos: &[rccpack::scene::Scene],
+    statements: Option<&rccpack::rules::RuleSet>,
+    params: &LearnParams,
+    priors: &rccpack::priors::Priors,
+) -> Result<rccpack::infer::Learned, rccpack::InferError> {
+    let opts = rccpack::infer::LearnOptions {
+        priors: Some(priors),
+        ..Default::default()
+    };
+    rccpack::infer::learn_with(demos, statements, params, &opts)
 }

@@ -1376,7 +1376,7 @@ async fn studio_learns_and_asks_with_priors() {
     assert_eq!(t["priors"]["tasks"], 2, "{t}");
     assert_eq!(t["priors"]["hash"], priors.hash_text().as_str());
 
-    // POST /api/learn learns what `learn_with_priors` learns.
+    // POST /api/learn learns what `learn_with` with priors learns.
     let v = learn_200(&app).await;
     let demos =
         scenes_from_json(&std::fs::read_to_string(dir.join("demos.json")).unwrap()).unwrap();
@@ -1384,9 +1384,16 @@ async fn studio_learns_and_asks_with_priors() {
         samples: 200,
         ..Default::default()
     };
-    let expected =
-        rccpack::infer::learn_with_priors(&demos, None, &params, Some(&priors), None, None)
-            .unwrap();
+    let expected = rccpack::infer::learn_with(
+        &demos,
+        None,
+        &params,
+        &rccpack::infer::LearnOptions {
+            priors: Some(&priors),
+            ..Default::default()
+        },
+    )
+    .unwrap();
     let rcc = expected.to_rcc();
     let header = rcc.split("\n\n").next().unwrap().to_string() + "\n";
     assert!(header.contains("\n# priors fnv1a64:"), "{header}");

@@ -8,7 +8,7 @@ use pyo3::exceptions::PyKeyboardInterrupt;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyBytes, PyTuple};
-use rccpack_core::infer::{learn_with_priors, InferError, LearnParams, Templates};
+use rccpack_core::infer::{learn_with, InferError, LearnOptions, LearnParams, Templates};
 use rccpack_core::render::render_png as core_render_png;
 use rccpack_core::resemblance::ResemblanceTarget;
 use rccpack_core::synth::{Progress, ProgressFn};
@@ -333,10 +333,15 @@ pub(crate) fn learn_interruptible(
     priors: Option<&rccpack_core::priors::Priors>,
     deadline: Option<std::time::Instant>,
 ) -> PyResult<PyLearned> {
-    let cancel = AtomicBool::new(false);
-    let (out, signal) = run_interruptible(py, &cancel, || {
-        learn_with_priors(demos, statements, params, priors, deadline, Some(&cancel))
-    })?;
+    let cancel = std::sync::Arc::new(AtomicBool::new(false));
+    let stop = match deadline {
+        Some(d) => rccpack_core::stop::Stop::at(d),
+        None => rccpack_core::stop::Stop::never(),
+    }
+    .with_cancel(cancel.clone());
+    let opts = LearnOptions { priors, stop };
+    let (out, signal) =
+        run_interruptible(py, &cancel, || learn_with(demos, statements, params, &opts))?;
     if let Some(e) = signal {
         return Err(e);
     }

@@ -4,7 +4,7 @@ use super::io::{parse_rules_text, read_text};
 use super::{out, write_file, LimitStruck, Reported};
 use anyhow::Result;
 use clap::Args;
-use rccpack::infer::{learn_with_priors, InferError, LearnParams, Learned, Templates};
+use rccpack::infer::{learn_with, InferError, LearnOptions, LearnParams, Learned, Templates};
 use rccpack::relations::Contact;
 use rccpack::rules::{Diagnostic, DiagnosticKind, RulesError};
 use rccpack::scene::measured::{Measured, Move};
@@ -109,9 +109,11 @@ pub fn run(a: LearnArgs) -> Result<ExitCode> {
         a.tolerance,
         a.statements.as_deref(),
         &params,
-        priors.as_ref(),
+        &LearnOptions {
+            priors: priors.as_ref(),
+            ..LearnOptions::default()
+        },
         progress,
-        None,
     )?;
     print_suspects(&learned, &measured.scenes);
     let rcc = learned.to_rcc();
@@ -199,15 +201,13 @@ pub fn report_with_moves(learned: &Learned, moves: &[Move]) -> String {
 /// and optionally a statement file, learn, and turn every error into a
 /// message naming the file (with a caret for statement files). Shared by
 /// `learn` and `run`.
-#[allow(clippy::too_many_arguments)]
 pub fn learn_files(
     demos_path: &Path,
     tolerance: Option<f64>,
     statements_path: Option<&Path>,
     params: &LearnParams,
-    priors: Option<&rccpack::priors::Priors>,
+    opts: &LearnOptions<'_>,
     progress: bool,
-    deadline: Option<Instant>,
 ) -> Result<(Learned, Measured)> {
     params
         .validate()
@@ -223,7 +223,7 @@ pub fn learn_files(
         );
     }
     let start = Instant::now();
-    let learned = learn_with_priors(demos, statements.as_ref(), params, priors, deadline, None)
+    let learned = learn_with(demos, statements.as_ref(), params, opts)
         .map_err(|e| learn_error(e, demos_path, statements_path, &text))?;
     if progress {
         let candidates = learned.statements.iter().filter(|s| s.candidate).count();

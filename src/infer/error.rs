@@ -112,7 +112,7 @@ pub enum InferError {
         /// The samples asked for.
         samples: usize,
     },
-    /// Learning was cancelled ([`learn_cancellable`](super::learn_cancellable): the studio's client
+    /// Learning was cancelled ([`learn_with`](super::learn_with)'s stop: the studio's client
     /// left, or a newer request replaced it).
     #[error("learning was cancelled; nothing was learned")]
     Cancelled,

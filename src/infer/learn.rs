@@ -11,6 +11,7 @@ use crate::eval::CompiledRule;
 use crate::relations::{ClassIndex, Contact};
 use crate::rules::{RuleSet, Scope};
 use crate::scene::Scene;
+use crate::stop::Stop;
 use std::borrow::Cow;
 
 /// Learn rules from `demos`. `statements`: the statement set, or `None` for
@@ -22,31 +23,22 @@ pub fn learn(
     statements: Option<&RuleSet>,
     params: &LearnParams,
 ) -> Result<Learned, InferError> {
-    learn_until(demos, statements, params, None)
+    learn_with(demos, statements, params, &LearnOptions::default())
 }
 
-/// [`learn`] that gives up with [`InferError::TimeLimit`] once `deadline`
-/// passes (checked per random scene of the null model), so a command's
-/// time limit covers learning too.
-pub fn learn_until(
-    demos: &[Scene],
-    statements: Option<&RuleSet>,
-    params: &LearnParams,
-    deadline: Option<std::time::Instant>,
-) -> Result<Learned, InferError> {
-    learn_cancellable(demos, statements, params, deadline, None)
-}
-
-/// [`learn_until`] that also gives up with [`InferError::Cancelled`] once
-/// `cancel` is set (checked per random scene of the null model).
-pub fn learn_cancellable(
-    demos: &[Scene],
-    statements: Option<&RuleSet>,
-    params: &LearnParams,
-    deadline: Option<std::time::Instant>,
-    cancel: Option<&std::sync::atomic::AtomicBool>,
-) -> Result<Learned, InferError> {
-    learn_with_priors(demos, statements, params, None, deadline, cancel)
+/// What [`learn_with`] takes besides the demonstrations, the statements
+/// and the parameters: priors learned across tasks, and when to stop.
+#[derive(Debug, Clone, Default)]
+pub struct LearnOptions<'a> {
+    /// Priors learned across tasks ([`crate::priors`]): a generated
+    /// statement gets the prior of its kind (`π = 1 − prior`), a statement
+    /// of a ruled-out kind is left out of the statements, and given
+    /// statements keep `params.prior`. `None`: the parameters' prior.
+    pub priors: Option<&'a crate::priors::Priors>,
+    /// When to give up: [`InferError::TimeLimit`] once the deadline
+    /// passes, [`InferError::Cancelled`] once the flag is set (both checked
+    /// per random scene of the null model).
+    pub stop: Stop,
 }
 
 /// Which of `set`'s statements every demonstration satisfies (the
@@ -75,19 +67,15 @@ pub fn candidate_flags(
         .collect())
 }
 
-/// [`learn_cancellable`] with priors learned across tasks
-/// ([`crate::priors`]): a generated statement gets the prior of its kind
-/// (`π = 1 − prior`), a statement of a ruled-out kind is left out of the
-/// statements, and given statements keep `params.prior`. `None`: exactly
-/// [`learn_cancellable`].
-pub fn learn_with_priors(
+/// [`learn`] with options: priors and when to stop ([`LearnOptions`]);
+/// the one entry point every front end learns through.
+pub fn learn_with(
     demos: &[Scene],
     statements: Option<&RuleSet>,
     params: &LearnParams,
-    priors: Option<&crate::priors::Priors>,
-    deadline: Option<std::time::Instant>,
-    cancel: Option<&std::sync::atomic::AtomicBool>,
+    opts: &LearnOptions<'_>,
 ) -> Result<Learned, InferError> {
+    let priors = opts.priors;
     params.validate()?;
     check_demos(demos)?;
     let class_list = templates::demo_classes(demos);
@@ -126,9 +114,7 @@ pub fn learn_with_priors(
     let weighed: Vec<bool> = (0..compiled.len())
         .map(|k| broken[k].is_none() || exceptions[k].is_some())
         .collect();
-    let counts = chance_counts(
-        demos, params, &classes, &compiled, &weighed, deadline, cancel,
-    )?;
+    let counts = chance_counts(demos, params, &classes, &compiled, &weighed, &opts.stop)?;
     let stats = class_stats(demos, &classes, params);
     // Scene-level statements (docs/guide.md#learning): q per random scene, n = d.
     let scene_epsilon = params.epsilon.unwrap_or(0.5 / params.samples as f64);
@@ -233,8 +219,7 @@ fn chance_counts(
     classes: &ClassIndex,
     compiled: &[CompiledRule],
     weighed: &[bool],
-    deadline: Option<std::time::Instant>,
-    cancel: Option<&std::sync::atomic::AtomicBool>,
+    stop: &Stop,
 ) -> Result<Vec<u64>, InferError> {
     let cand: Vec<CompiledRule> = (0..compiled.len())
         .filter(|&k| weighed[k])
@@ -248,8 +233,7 @@ fn chance_counts(
         classes,
         &cand,
         params.contact,
-        deadline,
-        cancel,
+        stop,
     )
 }
 

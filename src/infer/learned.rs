@@ -59,7 +59,7 @@ pub struct StatementResult {
     pub implied_by: Option<String>,
     /// One-line English reading.
     pub english: String,
-    /// With priors ([`learn_with_priors`](super::learn_with_priors)): the statement's prior and
+    /// With priors ([`learn_with`](super::learn_with)): the statement's prior and
     /// where it came from; `None` without.
     pub prior: Option<crate::priors::StatementPrior>,
 }

@@ -46,7 +46,7 @@ pub use candidates::{Exception, Provenance};
 pub(crate) use checks::check_demos;
 pub use english::{reading, statement_reading};
 pub use error::InferError;
-pub use learn::{candidate_flags, learn, learn_cancellable, learn_until, learn_with_priors};
+pub use learn::{candidate_flags, learn, learn_with, LearnOptions};
 pub use learned::{ClassStats, Learned, StatementResult, StatementSource, Suspect};
 pub use null_model::NullModel;
 pub use params::{LearnParams, DEFAULT_SLIP_RATE, SUGGESTED_SLIP_RATE};

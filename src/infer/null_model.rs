@@ -307,20 +307,25 @@ impl<'a> NullModel<'a> {
         rules: &[CompiledRule],
         contact: Contact,
     ) -> Result<Vec<u64>, InferError> {
-        self.count_until(samples, classes, rules, contact, None, None)
+        self.count_until(
+            samples,
+            classes,
+            rules,
+            contact,
+            &crate::stop::Stop::never(),
+        )
     }
 
     /// [`NullModel::count`] that stops with [`InferError::TimeLimit`] once
-    /// `deadline` passes, and with [`InferError::Cancelled`] once `cancel`
-    /// is set (both checked before each random scene).
+    /// `stop`'s deadline passes, and with [`InferError::Cancelled`] once its
+    /// flag is set (both checked before each random scene).
     pub fn count_until(
         &self,
         samples: usize,
         classes: &ClassIndex,
         rules: &[CompiledRule],
         contact: Contact,
-        deadline: Option<std::time::Instant>,
-        cancel: Option<&std::sync::atomic::AtomicBool>,
+        stop: &crate::stop::Stop,
     ) -> Result<Vec<u64>, InferError> {
         // Per demonstration, per class, the object indices.
         let by_class: Vec<Vec<Vec<usize>>> = self
@@ -356,18 +361,13 @@ impl<'a> NullModel<'a> {
                     if i > first_failure.load(Ordering::Relaxed) {
                         return (scratch, counts, err);
                     }
-                    if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                    if let Some(reason) = stop.reason() {
                         first_failure.fetch_min(i, Ordering::Relaxed);
-                        let e = InferError::TimeLimit { samples };
+                        let e = match reason {
+                            crate::stop::Reason::Cancelled => InferError::Cancelled,
+                            _ => InferError::TimeLimit { samples },
+                        };
                         return (scratch, counts, merge_err(err, Some((i, e))));
-                    }
-                    if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
-                        first_failure.fetch_min(i, Ordering::Relaxed);
-                        return (
-                            scratch,
-                            counts,
-                            merge_err(err, Some((i, InferError::Cancelled))),
-                        );
                     }
                     let d = i % self.demos.len();
                     let scene = &mut scratch[d];

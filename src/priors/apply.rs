@@ -1,4 +1,4 @@
-//! Priors applied to one learning run ([`crate::infer::learn_with_priors`]).
+//! Priors applied to one learning run ([`crate::infer::learn_with`]).
 
 use super::kind::Kind;
 use super::{Priors, StatementPrior};

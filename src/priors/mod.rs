@@ -7,7 +7,7 @@
 //! kept as rules again and again, others never. [`combine`] turns the
 //! library's counts into a prior per kind, shrunk towards its parent kind
 //! (empirical Bayes, see [`estimate`]), and rules out kinds that were
-//! candidates in many tasks and never kept. [`crate::infer::learn_with_priors`]
+//! candidates in many tasks and never kept. [`crate::infer::learn_with`]
 //! uses them: a generated statement's prior of *not* being intended is
 //! `1 − prior(kind)`, and a ruled-out kind is left out of the statements.
 //!

@@ -26,10 +26,11 @@ pub mod files;
 pub mod folder;
 pub mod session;
 
-use crate::infer::{InferError, LearnParams, Learned};
+use crate::infer::{InferError, LearnOptions, LearnParams, Learned};
 use crate::resemblance::ResemblanceTarget;
 use crate::rules::{check_landmarks, missing_classes, parse_rules, RuleSet, RulesError};
 use crate::scene::{scenes_from_json, Scene, SceneError};
+use crate::stop::Stop;
 use crate::synth::{synthesize, SynthError, SynthOptions, SynthResult};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -293,44 +294,18 @@ pub fn place(
     })
 }
 
-/// Learn with `opts.learn` until `deadline` ([`InferError::TimeLimit`]
-/// after it).
+/// Learn the task's rules ([`crate::infer::learn_with`]): priors and when
+/// to stop in `opts`.
 pub fn learn(
     task: &Task,
     params: &LearnParams,
-    deadline: Option<Instant>,
+    opts: &LearnOptions<'_>,
 ) -> Result<Learned, TaskError> {
-    learn_cancellable(task, params, deadline, None)
-}
-
-/// [`learn`] that also stops ([`InferError::Cancelled`]) once `cancel` is
-/// set; [`run`] passes the synthesis cancel flag
-/// ([`SynthOptions::cancel`]), so one flag stops the whole pipeline.
-pub fn learn_cancellable(
-    task: &Task,
-    params: &LearnParams,
-    deadline: Option<Instant>,
-    cancel: Option<&std::sync::atomic::AtomicBool>,
-) -> Result<Learned, TaskError> {
-    learn_with_priors(task, params, None, deadline, cancel)
-}
-
-/// [`learn_cancellable`] with priors learned across tasks
-/// ([`crate::infer::learn_with_priors`]).
-pub fn learn_with_priors(
-    task: &Task,
-    params: &LearnParams,
-    priors: Option<&crate::priors::Priors>,
-    deadline: Option<Instant>,
-    cancel: Option<&std::sync::atomic::AtomicBool>,
-) -> Result<Learned, TaskError> {
-    Ok(crate::infer::learn_with_priors(
+    Ok(crate::infer::learn_with(
         &task.demos,
         task.statements.as_ref(),
         params,
-        priors,
-        deadline,
-        cancel,
+        opts,
     )?)
 }
 
@@ -346,24 +321,24 @@ pub(crate) fn run_from(
     task: &Task,
     opts: &RunOptions,
 ) -> Result<Outcome, TaskError> {
-    let deadline = opts
-        .synth
-        .time_limit
-        .and_then(|limit| start.checked_add(limit));
-    let learned = learn_with_priors(
-        task,
-        &opts.learn,
-        opts.priors.as_deref(),
-        deadline,
-        opts.synth.cancel.as_deref(),
-    )?;
+    // One stop for the whole pipeline: the time limit counted from
+    // `start`, and the synthesis cancel flag ([`SynthOptions::cancel`]).
+    let mut stop = match opts.synth.time_limit {
+        Some(limit) => start.checked_add(limit).map_or_else(Stop::never, Stop::at),
+        None => Stop::never(),
+    };
+    if let Some(flag) = &opts.synth.cancel {
+        stop = stop.with_cancel(flag.clone());
+    }
+    let learn_opts = LearnOptions {
+        priors: opts.priors.as_deref(),
+        stop: stop.clone(),
+    };
+    let learned = learn(task, &opts.learn, &learn_opts)?;
     let rules = learned.rules();
     let synth = SynthOptions {
         contact: opts.learn.contact,
-        time_limit: opts
-            .synth
-            .time_limit
-            .map(|limit| limit.saturating_sub(start.elapsed())),
+        time_limit: stop.remaining(),
         ..opts.synth.clone()
     };
     let placement = place(&task.problem, &rules, &task.demos, &opts.like, &synth)?;

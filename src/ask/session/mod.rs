@@ -348,13 +348,14 @@ impl Asker {
         answers: Vec<Answer>,
         opts: AskOptions,
     ) -> Result<Asker, AskError> {
-        let learned = crate::infer::learn_with_priors(
+        let learned = crate::infer::learn_with(
             &demos,
             statements.as_ref(),
             &opts.learn,
-            opts.priors.as_deref(),
-            None,
-            None,
+            &crate::infer::LearnOptions {
+                priors: opts.priors.as_deref(),
+                ..Default::default()
+            },
         )?;
         let like = opts.resemble.then(|| ResemblanceTarget::new(&demos));
         let mut asker = Asker {
@@ -561,13 +562,14 @@ impl Asker {
         if accepted {
             let mut demos = self.demos.clone();
             demos.push(q.probe.scene.clone());
-            let learned = crate::infer::learn_with_priors(
+            let learned = crate::infer::learn_with(
                 &demos,
                 self.statements.as_ref(),
                 &self.opts.learn,
-                self.opts.priors.as_deref(),
-                None,
-                None,
+                &crate::infer::LearnOptions {
+                    priors: self.opts.priors.as_deref(),
+                    ..Default::default()
+                },
             )?;
             self.like = self.opts.resemble.then(|| ResemblanceTarget::new(&demos));
             self.demos = demos;

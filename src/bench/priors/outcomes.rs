@@ -9,7 +9,7 @@ use crate::ask::{AskOptions, Asker, ProbeOptions, QuestionBudget};
 use crate::bench::tasks::block;
 use crate::eval::evaluate;
 use crate::infer::english::rule_implies;
-use crate::infer::learn_with_priors;
+use crate::infer::{learn_with, LearnOptions};
 use crate::priors::Priors;
 use crate::rules::{Formula, Rule, RuleSet, Scope};
 use crate::scene::Scene;
@@ -166,10 +166,15 @@ pub(super) fn learn_outcome(
     priors: Option<&Priors>,
     cfg: &PriorsBenchConfig,
 ) -> Result<(Outcome, Vec<String>), PriorsBenchError> {
-    let learned = learn_with_priors(&h.task.demos, None, &cfg.learn_params(), priors, None, None)
-        .map_err(|error| PriorsBenchError::Learn {
-        stream: h.task.stream,
-        error,
+    let opts = LearnOptions {
+        priors,
+        ..LearnOptions::default()
+    };
+    let learned = learn_with(&h.task.demos, None, &cfg.learn_params(), &opts).map_err(|error| {
+        PriorsBenchError::Learn {
+            stream: h.task.stream,
+            error,
+        }
     })?;
     let rules = learned.rules();
     let mut o = h.score(&rules, cfg.params.contact);

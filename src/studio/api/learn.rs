@@ -5,7 +5,7 @@
 use super::super::AppState;
 use super::demos::read_demos;
 use super::{ok, parse_body, ApiError, ApiResult, St};
-use crate::infer::{learn_with_priors, statement_text, LearnParams, StatementSource};
+use crate::infer::{learn_with, statement_text, LearnOptions, LearnParams, StatementSource};
 use crate::rules::{parse_rules, RuleSet};
 use crate::task::files::{self, DEMOS, STATEMENTS};
 use axum::body::Bytes;
@@ -109,14 +109,11 @@ pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
     let priors = st.priors.clone();
     let learned = tokio::task::spawn_blocking(move || {
         let _done = CountDown(jobs);
-        learn_with_priors(
-            &demos,
-            statements.as_ref(),
-            &params,
-            priors.as_deref(),
-            None,
-            Some(&cancel),
-        )
+        let opts = LearnOptions {
+            priors: priors.as_deref(),
+            stop: crate::stop::Stop::never().with_cancel(cancel),
+        };
+        learn_with(&demos, statements.as_ref(), &params, &opts)
     })
     .await
     .map_err(|e| {

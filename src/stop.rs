@@ -1,0 +1,166 @@
+//! When to stop a computation: one value for every long computation of
+//! the library (in the spirit of Pumpkin's `termination`).
+//!
+//! A [`Stop`] is a deadline, a budget of search nodes and a cancel flag,
+//! each optional. Learning checks the deadline and the flag before every
+//! random scene of its null model; a task's pipeline ([`crate::task::run`])
+//! makes one `Stop` from its time limit and hands learning and synthesis
+//! what is left of it. A `Stop` is cheap to clone: clones share the cancel
+//! flag, so setting it stops every computation that holds one.
+//!
+//! ```
+//! use rccpack::stop::Stop;
+//! use std::time::Duration;
+//!
+//! let stop = Stop::after(Duration::from_secs(5)).with_nodes(100_000);
+//! assert!(stop.reason().is_none());
+//! stop.cancel();
+//! assert_eq!(stop.reason(), Some(rccpack::stop::Reason::Cancelled));
+//! ```
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Why a computation stopped early.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Reason {
+    /// The deadline passed.
+    Deadline,
+    /// The cancel flag was set.
+    Cancelled,
+}
+
+/// When to stop (see the module documentation). The default never stops.
+#[derive(Debug, Clone, Default)]
+pub struct Stop {
+    deadline: Option<Instant>,
+    nodes: Option<u64>,
+    cancel: Option<Arc<AtomicBool>>,
+}
+
+impl Stop {
+    /// Never stop early.
+    pub fn never() -> Stop {
+        Stop::default()
+    }
+
+    /// Stop `limit` from now (a limit too large for the clock: never).
+    pub fn after(limit: Duration) -> Stop {
+        Stop {
+            deadline: Instant::now().checked_add(limit),
+            ..Stop::default()
+        }
+    }
+
+    /// Stop at `deadline`.
+    pub fn at(deadline: Instant) -> Stop {
+        Stop {
+            deadline: Some(deadline),
+            ..Stop::default()
+        }
+    }
+
+    /// [`Stop::after`] when `limit` is given, else [`Stop::never`].
+    pub fn within(limit: Option<Duration>) -> Stop {
+        limit.map_or_else(Stop::never, Stop::after)
+    }
+
+    /// This stop with a budget of `nodes` search nodes (for the searches
+    /// that count them).
+    #[must_use]
+    pub fn with_nodes(mut self, nodes: u64) -> Stop {
+        self.nodes = Some(nodes);
+        self
+    }
+
+    /// This stop with `flag` as its cancel flag (shared with whoever sets
+    /// it).
+    #[must_use]
+    pub fn with_cancel(mut self, flag: Arc<AtomicBool>) -> Stop {
+        self.cancel = Some(flag);
+        self
+    }
+
+    /// This stop with a cancel flag when it has none; clones share it.
+    #[must_use]
+    pub fn cancellable(mut self) -> Stop {
+        if self.cancel.is_none() {
+            self.cancel = Some(Arc::new(AtomicBool::new(false)));
+        }
+        self
+    }
+
+    /// Set the cancel flag (nothing when there is none: see
+    /// [`Stop::cancellable`]).
+    pub fn cancel(&self) {
+        if let Some(c) = &self.cancel {
+            c.store(true, Ordering::SeqCst);
+        }
+    }
+
+    /// The deadline, if any.
+    pub fn deadline(&self) -> Option<Instant> {
+        self.deadline
+    }
+
+    /// The time left until the deadline (zero once it passed), if any.
+    pub fn remaining(&self) -> Option<Duration> {
+        self.deadline
+            .map(|d| d.saturating_duration_since(Instant::now()))
+    }
+
+    /// The node budget, if any.
+    pub fn nodes(&self) -> Option<u64> {
+        self.nodes
+    }
+
+    /// The cancel flag, if any.
+    pub fn cancel_flag(&self) -> Option<&Arc<AtomicBool>> {
+        self.cancel.as_ref()
+    }
+
+    /// Why to stop now, if so: the flag is checked first.
+    pub fn reason(&self) -> Option<Reason> {
+        if self
+            .cancel
+            .as_ref()
+            .is_some_and(|c| c.load(Ordering::Relaxed))
+        {
+            return Some(Reason::Cancelled);
+        }
+        if self.deadline.is_some_and(|d| Instant::now() >= d) {
+            return Some(Reason::Deadline);
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn never_stops_and_a_passed_deadline_stops() {
+        assert_eq!(Stop::never().reason(), None);
+        assert_eq!(Stop::within(None).remaining(), None);
+        let s = Stop::after(Duration::ZERO);
+        assert_eq!(s.reason(), Some(Reason::Deadline));
+        assert_eq!(s.remaining(), Some(Duration::ZERO));
+        // A limit the clock cannot hold never stops.
+        assert_eq!(Stop::after(Duration::MAX).reason(), None);
+    }
+
+    #[test]
+    fn clones_share_the_cancel_flag() {
+        let a = Stop::never().cancellable();
+        let b = a.clone();
+        a.cancel();
+        assert_eq!(b.reason(), Some(Reason::Cancelled));
+        // Without a flag, cancel does nothing.
+        let c = Stop::never();
+        c.cancel();
+        assert_eq!(c.reason(), None);
+    }
+}
