@@ -3,9 +3,11 @@
 
 use crate::support::{rccpack, scratch, stderr, write_file};
 use rand::SeedableRng;
+use rccpack::ask::{AskOptions, Asker};
 use rccpack::bench::noisy;
 use rccpack::bench::tasks::{generate_task, TasksConfig};
 use rccpack::infer::{learn, LearnParams};
+use rccpack::scene::Scene;
 use std::time::Duration;
 
 fn box_demos() -> String {
@@ -283,4 +285,234 @@ fn a_task_folder_reads_its_demonstrations_as_measured() {
     let measured = rccpack::task::Task::load(&dir).unwrap();
     let exact = rccpack::task::Task::load(src).unwrap();
     assert_eq!(measured.demos, exact.demos);
+}
+
+/// A slipped demonstration of generated task 0 with its problem.
+pub(crate) fn slipped_task0() -> (Scene, Vec<Scene>, noisy::Slip) {
+    let task = task0();
+    let exact = learn(&task.demos, None, &LearnParams::default()).unwrap();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+    rng.set_stream(1);
+    let (slipped, sl) = noisy::slip(&task.demos, &exact.rules(), &mut rng).expect("a slip");
+    (task.problems[0].scene.clone(), slipped, sl)
+}
+
+fn slip_ask_options() -> AskOptions {
+    AskOptions {
+        learn: LearnParams {
+            slip_rate: rccpack::infer::SUGGESTED_SLIP_RATE,
+            ..LearnParams::default()
+        },
+        ..AskOptions::default()
+    }
+}
+
+/// The question loop asks about the suspect first; "no" (a slip) sets the
+/// demonstration aside and confirms the rules it breaks, "yes" (meant)
+/// drops them; a resumed session ends where the answered one did.
+#[test]
+fn a_suspect_is_asked_about_first_and_both_answers_do_what_they_say() {
+    let (problem, slipped, sl) = slipped_task0();
+    let opts = slip_ask_options();
+    let mut asker = Asker::new(
+        problem.clone(),
+        slipped.clone(),
+        None,
+        Vec::new(),
+        opts.clone(),
+    )
+    .unwrap();
+    let q = asker.next_question().unwrap().expect("a question");
+    let s = q.suspect.clone().expect("the suspect is asked about first");
+    assert_eq!(s.demonstration, sl.demonstration);
+    assert!(s.objects.contains(&sl.object), "{s:?}");
+    assert_eq!(q.probe.scene, slipped[sl.demonstration]);
+    assert_eq!(q.rule, s.breaks[0]);
+
+    let mut no = asker.clone();
+    no.answer(&q, false).unwrap();
+    assert_eq!(no.set_aside().collect::<Vec<_>>(), vec![sl.demonstration]);
+    assert_eq!(no.demos(), &slipped[..], "demos.json keeps the slip");
+    // Set aside: learning from the other demonstrations.
+    let others: Vec<Scene> = (0..slipped.len())
+        .filter(|&i| i != sl.demonstration)
+        .map(|i| slipped[i].clone())
+        .collect();
+    let from_others = learn(&others, None, &opts.learn).unwrap();
+    let names = |set: &rccpack::RuleSet| -> Vec<String> {
+        set.rules.iter().map(|r| r.name.clone()).collect()
+    };
+    assert_eq!(names(no.held()), names(&from_others.rules()));
+    for b in &s.breaks {
+        assert!(no.is_confirmed(b), "{b} confirmed");
+    }
+    let rcc = no.learned_rcc();
+    assert!(
+        rcc.contains(&format!(
+            "# demonstration {} is set aside: answered as a slip",
+            sl.demonstration
+        )),
+        "{rcc}"
+    );
+    assert_eq!(no.answers()[0].demo, None);
+    assert_eq!(
+        no.answers()[0].suspect.as_ref().map(|a| a.demonstration),
+        Some(sl.demonstration)
+    );
+
+    let mut yes = asker.clone();
+    yes.answer(&q, true).unwrap();
+    let held = names(yes.held());
+    for b in &s.breaks {
+        assert!(!held.contains(b), "{b} dropped: the exception is meant");
+    }
+    assert!(yes
+        .learned()
+        .suspects()
+        .iter()
+        .all(|x| x.demonstration != sl.demonstration));
+    assert_eq!(yes.progress().dropped, s.breaks.len());
+
+    // Resumed from the journal: the same state.
+    for answered in [&no, &yes] {
+        let resumed = Asker::new(
+            problem.clone(),
+            slipped.clone(),
+            None,
+            answered.answers().to_vec(),
+            opts.clone(),
+        )
+        .unwrap();
+        assert_eq!(resumed.learned_rcc(), answered.learned_rcc());
+    }
+}
+
+/// `rccpack ask --slip-rate`: the suspect is the first question, its
+/// picture drawn; Ctrl-C while it waits loses nothing; "no" journals a
+/// slip that a resumed run does not ask about again; "yes" drops the rules
+/// it breaks.
+#[test]
+fn ask_asks_about_a_suspect_both_ways_and_resumes_after_ctrl_c() {
+    use std::process::Stdio;
+    use std::time::Instant;
+    let (problem, slipped, sl) = slipped_task0();
+    let folder = |tag: &str| {
+        let dir = scratch(tag);
+        write_file(&dir, "problem.json", &problem.to_json());
+        write_file(
+            &dir,
+            "demos.json",
+            &rccpack::scene::scenes_to_json(&slipped),
+        );
+        dir
+    };
+    let dir = folder("measured-ask-suspect");
+    let d = dir.to_str().unwrap();
+
+    // Ctrl-C while the oracle looks at the suspect: exit 1, nothing lost.
+    let child = crate::support::command()
+        .args([
+            "ask",
+            d,
+            "--slip-rate",
+            "0.01",
+            "--oracle",
+            "sleep 60; true",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while !dir.join("probes").join("probe-1.json").exists()
+        && start.elapsed() < Duration::from_secs(60)
+    {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    std::thread::sleep(Duration::from_millis(300));
+    // SAFETY: a signal to the child this test started.
+    unsafe {
+        libc::kill(child.id() as i32, libc::SIGINT);
+    }
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("interrupted (Ctrl-C)"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.join("answers.json").exists());
+
+    // "No": a slip.
+    let o = rccpack(&[
+        "ask",
+        d,
+        "--slip-rate",
+        "0.01",
+        "--oracle",
+        "exit 1",
+        "--max-questions",
+        "1",
+    ]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(o.status.success(), "{out}\n{}", stderr(&o));
+    assert!(
+        out.contains(&format!("question 1: demonstration {} (", sl.demonstration))
+            && out.contains("-> a slip: set aside, rules confirmed"),
+        "{out}"
+    );
+    let answers: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("answers.json")).unwrap()).unwrap();
+    assert_eq!(
+        answers["answers"][0]["suspect"]["demonstration"],
+        sl.demonstration
+    );
+    assert_eq!(answers["answers"][0]["accepted"], false);
+    let learned = std::fs::read_to_string(dir.join("learned.rcc")).unwrap();
+    assert!(
+        learned.contains("is set aside: answered as a slip"),
+        "{learned}"
+    );
+    assert!(dir.join("probes").join("probe-1.png").exists());
+    // demos.json is never rewritten for a slip.
+    assert_eq!(
+        std::fs::read_to_string(dir.join("demos.json")).unwrap(),
+        rccpack::scene::scenes_to_json(&slipped)
+    );
+    // Resumed: the slip is not asked about again.
+    let o = rccpack(&[
+        "ask",
+        d,
+        "--slip-rate",
+        "0.01",
+        "--oracle",
+        "exit 1",
+        "--max-questions",
+        "1",
+    ]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(o.status.success(), "{out}\n{}", stderr(&o));
+    assert!(out.contains("resuming: 1 answers"), "{out}");
+    assert!(!out.contains(": demonstration"), "{out}");
+
+    // "Yes": meant, and the rules it breaks are dropped.
+    let dir = folder("measured-ask-suspect-meant");
+    let d = dir.to_str().unwrap();
+    let o = rccpack(&[
+        "ask",
+        d,
+        "--slip-rate",
+        "0.01",
+        "--oracle",
+        "exit 0",
+        "--max-questions",
+        "1",
+    ]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(o.status.success(), "{out}\n{}", stderr(&o));
+    assert!(out.contains("-> meant: rules dropped"), "{out}");
+    let learned = std::fs::read_to_string(dir.join("learned.rcc")).unwrap();
+    for b in &sl.breaks {
+        assert!(!learned.contains(&format!("rule {b}:")), "{b}\n{learned}");
+    }
 }

@@ -1457,3 +1457,44 @@ fn studio_refuses_a_bad_priors_file_naming_the_field() {
     assert!(stderr.contains("priors.json"), "{stderr}");
     assert!(stderr.contains("field `hash`"), "{stderr}");
 }
+
+/// "Check rules" with a slip rate asks first whether the demonstration
+/// that looks like a slip is meant; "not like that" sets it aside (journaled
+/// as `rccpack ask` journals it), demos.json untouched.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn ask_asks_about_a_suspect_first() {
+    let (problem, slipped, sl) = crate::measured::slipped_task0();
+    let dir = crate::support::scratch("studio-ask-suspect");
+    std::fs::write(dir.join("problem.json"), problem.to_json()).unwrap();
+    let demos = rccpack::scene::scenes_to_json(&slipped);
+    std::fs::write(dir.join("demos.json"), &demos).unwrap();
+    let app = rccpack::studio::router(&dir).unwrap();
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/ask/next",
+        json!({"samples": 1000, "slip_rate": 0.01}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    let q = &v["question"];
+    assert_eq!(q["suspect"]["demonstration"], sl.demonstration, "{q}");
+    assert_eq!(q["suspect"]["objects"][0], sl.object.as_str(), "{q}");
+    let shown: Value = serde_json::from_str(&slipped[sl.demonstration].to_json()).unwrap();
+    assert_eq!(q["scene"], shown);
+    let a = answer(&app, &q["rule"], false).await;
+    assert_eq!(a["answer"]["suspect"], sl.demonstration, "{a}");
+    let answers = answers_on_disk(&dir);
+    assert_eq!(answers[0]["suspect"]["demonstration"], sl.demonstration);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("demos.json")).unwrap(),
+        demos
+    );
+    let rcc = std::fs::read_to_string(dir.join("learned.rcc")).unwrap();
+    assert!(rcc.contains("is set aside: answered as a slip"), "{rcc}");
+    // A question without a suspect has no `suspect` field.
+    let v = next_question(&app).await;
+    if let Some(q) = v["question"].as_object() {
+        assert!(!q.contains_key("suspect") || q["suspect"]["demonstration"] != sl.demonstration);
+    }
+}

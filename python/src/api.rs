@@ -339,7 +339,11 @@ pub(crate) fn learn_interruptible(
         None => rccpack_core::stop::Stop::never(),
     }
     .with_cancel(cancel.clone());
-    let opts = LearnOptions { priors, stop };
+    let opts = LearnOptions {
+        priors,
+        stop,
+        ..LearnOptions::default()
+    };
     let (out, signal) =
         run_interruptible(py, &cancel, || learn_with(demos, statements, params, &opts))?;
     if let Some(e) = signal {

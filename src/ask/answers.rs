@@ -43,6 +43,23 @@ pub struct Answer {
     /// one, and what moved from where.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub edit: Option<Edit>,
+    /// When the question asked whether a demonstration that looks like a
+    /// slip is as the person meant it (`probe` is that demonstration):
+    /// which one and the rules it breaks. Accepted: it is meant, and the
+    /// rules it breaks are dropped; rejected: a slip, set aside from
+    /// learning (it stays in `demos.json`), and the rules confirmed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub suspect: Option<SuspectAnswer>,
+}
+
+/// The demonstration a suspect question asked about, in `answers.json`.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SuspectAnswer {
+    /// Its index in `demos.json`.
+    pub demonstration: usize,
+    /// The learned rules it breaks (the others keep them).
+    pub breaks: Vec<String>,
 }
 
 /// The `answers.json` file.

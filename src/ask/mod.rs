@@ -25,9 +25,9 @@ pub use budget::{QuestionBudget, DEFAULT_QUESTION_NODES, DEFAULT_QUESTION_WALL};
 pub use edit::{Edit, Moved};
 pub use lookahead::Lookahead;
 
-pub use answers::{Answer, AnswersFile, AnswersFileError, CONFIRMED};
+pub use answers::{Answer, AnswersFile, AnswersFileError, SuspectAnswer, CONFIRMED};
 pub use probe::{
     find_probe, negation, probe_rules, Probe, ProbeOptions, ProbeOutcome, DEFAULT_CHECK_NODES,
     DEFAULT_PROBE_NODES,
 };
-pub use session::{AskError, AskOptions, Asker, Question, Tally, Unasked};
+pub use session::{AskError, AskOptions, Asker, Question, SuspectQuestion, Tally, Unasked};

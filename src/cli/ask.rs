@@ -89,6 +89,11 @@ pub struct AskArgs {
     /// Which templates to learn with when there is no `statements.rcc`.
     #[arg(long, default_value_t = rccpack::infer::LearnParams::default().templates, value_name = "first|second|third")]
     templates: Templates,
+    /// The chance that one object of a demonstration is a slip, in [0,
+    /// 0.5), as for `learn`; above 0 the session first asks about each
+    /// demonstration that looks like a slip.
+    #[arg(long = "slip-rate", default_value_t = rccpack::infer::DEFAULT_SLIP_RATE, allow_hyphen_values = true)]
+    slip_rate: f64,
     /// Priors learned across tasks (`rccpack priors`) for every learning
     /// run of the session.
     #[arg(long, value_name = "PRIORS.json")]
@@ -103,6 +108,38 @@ enum Verdict {
 
 fn show_question(q: &Question, number: usize, picture: &Path) -> Result<()> {
     outln("")?;
+    if let Some(s) = &q.suspect {
+        let first =
+            s.objects.first().map(
+                |id| match q.probe.scene.objects.iter().find(|o| &o.id == id) {
+                    Some(o) => format!(
+                        "`{id}` at ({}, {})",
+                        o.x.map_or("?".into(), |v| v.to_string()),
+                        o.y.map_or("?".into(), |v| v.to_string())
+                    ),
+                    None => format!("`{id}`"),
+                },
+            );
+        outln(format!(
+            "question {number}: demonstration {} as you meant it?",
+            s.demonstration
+        ))?;
+        outln(format!(
+            "  {} (outlined){} breaks {} rules the other demonstrations keep: {}",
+            first.unwrap_or_else(|| "it".into()),
+            if s.objects.len() > 1 {
+                format!(", with {},", s.objects[1..].join(", "))
+            } else {
+                String::new()
+            },
+            s.breaks.len(),
+            cut_list(&s.breaks.iter().map(String::as_str).collect::<Vec<_>>(), 6)
+        ))?;
+        outln(format!("  rule {}: {}", q.rule, q.english))?;
+        outln("  yes: it is meant, and those rules are dropped; no: a slip, set aside from learning (demos.json keeps it)")?;
+        outln(format!("  picture: {}", picture.display()))?;
+        return Ok(());
+    }
     outln(format!(
         "question {number}: rule `{}`: {}",
         q.rule, q.english
@@ -174,7 +211,12 @@ fn ask_terminal(q: &Question, number: usize, picture: &Path) -> Verdict {
     }
     let stdin = std::io::stdin();
     loop {
-        if let Err(e) = out("  is this layout acceptable? [y/n, q to stop] ") {
+        let prompt = if q.suspect.is_some() {
+            "  is this demonstration as you meant it? [y/n, q to stop] "
+        } else {
+            "  is this layout acceptable? [y/n, q to stop] "
+        };
+        if let Err(e) = out(prompt) {
             return Verdict::Abort(e.to_string());
         }
         let mut line = String::new();
@@ -374,6 +416,7 @@ fn session_options(a: &AskArgs) -> Result<SessionOptions> {
             seed: a.seed,
             contact: a.contact,
             templates: a.templates,
+            slip_rate: a.slip_rate,
             ..LearnParams::default()
         },
         probe: ProbeOptions {
@@ -482,16 +525,28 @@ fn question_loop(a: &AskArgs, session: &mut Session) -> Result<LoopEnd> {
             }
         };
         if a.oracle.is_some() {
-            outln(format!(
-                "question {number}: `{}` ({}) -> {}",
-                q.rule,
-                q.english,
-                if accepted {
-                    "acceptable: dropped"
-                } else {
-                    "not acceptable: confirmed"
-                }
-            ))?;
+            outln(match &q.suspect {
+                Some(s) => format!(
+                    "question {number}: demonstration {} ({}) -> {}",
+                    s.demonstration,
+                    s.breaks.join(", "),
+                    if accepted {
+                        "meant: rules dropped"
+                    } else {
+                        "a slip: set aside, rules confirmed"
+                    }
+                ),
+                None => format!(
+                    "question {number}: `{}` ({}) -> {}",
+                    q.rule,
+                    q.english,
+                    if accepted {
+                        "acceptable: dropped"
+                    } else {
+                        "not acceptable: confirmed"
+                    }
+                ),
+            })?;
         }
         let t = Instant::now();
         session.answer(&q.rule, accepted).map_err(session_error)?;

@@ -39,6 +39,14 @@ pub struct LearnOptions<'a> {
     /// passes, [`InferError::Cancelled`] once the flag is set (both checked
     /// per random scene of the null model).
     pub stop: Stop,
+    /// Demonstrations the person named as a slip (indices into the
+    /// demonstrations): learning leaves them out; every demonstration
+    /// index in the result still counts over all of them.
+    pub set_aside: &'a [usize],
+    /// Demonstrations the person confirmed as meant, exceptions and all: a
+    /// statement one of them breaks is not held with an exception (with a
+    /// slip rate), so it is no candidate.
+    pub meant: &'a [usize],
 }
 
 /// Which of `set`'s statements every demonstration satisfies (the
@@ -75,6 +83,9 @@ pub fn learn_with(
     params: &LearnParams,
     opts: &LearnOptions<'_>,
 ) -> Result<Learned, InferError> {
+    if !opts.set_aside.is_empty() {
+        return learn_setting_aside(demos, statements, params, opts);
+    }
     let priors = opts.priors;
     params.validate()?;
     check_demos(demos)?;
@@ -111,6 +122,12 @@ pub fn learn_with(
     } else {
         vec![None; compiled.len()]
     };
+    let mut exceptions = exceptions;
+    for e in &mut exceptions {
+        if e.as_ref().is_some_and(|e| opts.meant.contains(&e.demo)) {
+            *e = None;
+        }
+    }
     let weighed: Vec<bool> = (0..compiled.len())
         .map(|k| broken[k].is_none() || exceptions[k].is_some())
         .collect();
@@ -143,6 +160,50 @@ pub fn learn_with(
         order,
         priors: priors.map(|p| crate::priors::apply::summary(p, st.ruled_out)),
     })
+}
+
+/// [`learn_with`] without the demonstrations `opts.set_aside`: learned
+/// from the others, with every demonstration index (where a statement is
+/// broken, an exception) renumbered to count over all of `demos`.
+fn learn_setting_aside(
+    demos: &[Scene],
+    statements: Option<&RuleSet>,
+    params: &LearnParams,
+    opts: &LearnOptions<'_>,
+) -> Result<Learned, InferError> {
+    if let Some(&d) = opts.set_aside.iter().find(|&&d| d >= demos.len()) {
+        return Err(InferError::BadParameter {
+            param: "set_aside",
+            value: d.to_string(),
+            expected: "the index of a demonstration",
+        });
+    }
+    let kept: Vec<usize> = (0..demos.len())
+        .filter(|i| !opts.set_aside.contains(i))
+        .collect();
+    let sub: Vec<Scene> = kept.iter().map(|&i| demos[i].clone()).collect();
+    let meant: Vec<usize> = kept
+        .iter()
+        .enumerate()
+        .filter(|(_, i)| opts.meant.contains(i))
+        .map(|(j, _)| j)
+        .collect();
+    let inner = LearnOptions {
+        priors: opts.priors,
+        stop: opts.stop.clone(),
+        set_aside: &[],
+        meant: &meant,
+    };
+    let mut learned = learn_with(&sub, statements, params, &inner)?;
+    for st in &mut learned.statements {
+        if let Some(p) = &mut st.broken_by {
+            p.demo = kept[p.demo];
+        }
+        if let Some(e) = &mut st.exception {
+            e.demo = kept[e.demo];
+        }
+    }
+    Ok(learned)
 }
 
 /// The statements learning weighs, with their priors.

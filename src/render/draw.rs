@@ -272,6 +272,32 @@ pub(super) fn write_violations(
     out.push_str("</g>\n");
 }
 
+/// Outlined objects (a suspect's blocks): a thick outline where each is.
+pub(super) fn write_outlined(out: &mut String, f: &Frame, scene: &Scene, ids: &[String]) {
+    if ids.is_empty() {
+        return;
+    }
+    out.push_str("<g class=\"outlined\">\n");
+    for id in ids {
+        let Some(o) = scene.objects.iter().find(|o| &o.id == id) else {
+            continue;
+        };
+        let Some((x, y, w, h)) = f.to_screen(o) else {
+            continue;
+        };
+        let _ = writeln!(
+            out,
+            "<rect class=\"suspect\" data-id=\"{id}\" x=\"{x}\" y=\"{y}\" width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"{MOVED_STROKE}\" stroke-width=\"3\"/>",
+            id = esc(id),
+            x = n(x - 5.0),
+            y = n(y - 5.0),
+            w = n(w + 10.0),
+            h = n(h + 10.0),
+        );
+    }
+    out.push_str("</g>\n");
+}
+
 /// Moved objects: where each was (dashed), a line to where it is, and an
 /// outline.
 pub(super) fn write_moved(

@@ -38,6 +38,19 @@ pub(super) fn lines<'e>(
             )],
         });
     }
+    if !opts.outlined.is_empty() {
+        lines.push(Line {
+            dy: 20.0,
+            parts: vec![text(
+                0.0,
+                11.0,
+                false,
+                MOVED_STROKE,
+                false,
+                "outlined: the block that most looks like a slip".into(),
+            )],
+        });
+    }
     if !opts.moved.is_empty() {
         lines.push(Line {
             dy: 20.0,

@@ -51,6 +51,9 @@ pub struct RenderOptions {
     /// that is an edit of a demonstration): the old place is drawn dashed,
     /// with a line to the object, which is outlined.
     pub moved: Vec<(String, i64, i64)>,
+    /// Objects outlined where they are (the blocks of a demonstration that
+    /// look like a slip, docs/guide.md#slips).
+    pub outlined: Vec<String>,
 }
 
 impl Default for RenderOptions {
@@ -61,6 +64,7 @@ impl Default for RenderOptions {
             title: None,
             like: None,
             moved: Vec::new(),
+            outlined: Vec::new(),
         }
     }
 }
@@ -135,6 +139,7 @@ pub fn render_svg(scene: &Scene, rules: Option<&RuleSet>, opts: &RenderOptions) 
     draw::write_objects(&mut out, &f, scene, &fill_of);
     draw::write_violations(&mut out, &f, scene, &hard_of);
     draw::write_moved(&mut out, &f, scene, &opts.moved);
+    draw::write_outlined(&mut out, &f, scene, &opts.outlined);
     draw::write_tray(&mut out, &f, &tray_items, &fill_of);
     legend::write_legend(&mut out, &lines, f.lx, f.lw, f.ty);
     out.push_str("</svg>\n");

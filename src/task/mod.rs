@@ -333,6 +333,7 @@ pub(crate) fn run_from(
     let learn_opts = LearnOptions {
         priors: opts.priors.as_deref(),
         stop: stop.clone(),
+        ..LearnOptions::default()
     };
     let learned = learn(task, &opts.learn, &learn_opts)?;
     let rules = learned.rules();

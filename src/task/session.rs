@@ -643,20 +643,30 @@ pub fn write_probe_files(
     let json = probes.join(format!("probe-{number}.json"));
     let png = probes.join(format!("probe-{number}.png"));
     crate::fsutil::atomic_write(&json, q.probe.scene.to_json()).map_err(write_err(json.clone()))?;
+    // The rules the question is about: the probed one, or every rule a
+    // suspect demonstration breaks.
+    let about: Vec<&str> = match &q.suspect {
+        Some(s) => s.breaks.iter().map(String::as_str).collect(),
+        None => vec![q.rule.as_str()],
+    };
     let rule: Vec<_> = held
         .rules
         .iter()
-        .filter(|r| r.name == q.rule)
-        .take(1)
+        .filter(|r| about.contains(&r.name.as_str()))
         .cloned()
         .collect();
+    let title = match &q.suspect {
+        Some(s) => format!(
+            "question {number}: demonstration {} as you meant it? (breaks {})",
+            s.demonstration,
+            s.breaks.join(", ")
+        ),
+        None => format!("question {number}: is this acceptable? (breaks {})", q.rule),
+    };
     let ropts = RenderOptions {
         contact,
         scale: 1.0,
-        title: Some(format!(
-            "question {number}: is this acceptable? (breaks {})",
-            q.rule
-        )),
+        title: Some(title),
         like: None,
         moved: q
             .probe
@@ -664,6 +674,12 @@ pub fn write_probe_files(
             .iter()
             .flat_map(|e| &e.moved)
             .map(|m| (m.id.clone(), m.x, m.y))
+            .collect(),
+        outlined: q
+            .suspect
+            .as_ref()
+            .and_then(|s| s.objects.first().cloned())
+            .into_iter()
             .collect(),
     };
     render_to_path(&q.probe.scene, Some(&RuleSet::new(rule)), &ropts, &png).map_err(|source| {

@@ -65,7 +65,7 @@ mod checks;
 mod reuse;
 mod scan;
 
-use super::answers::{Answer, CONFIRMED};
+use super::answers::{Answer, SuspectAnswer, CONFIRMED};
 use super::budget::{Meter, QuestionBudget};
 use super::probe::{Probe, ProbeChecker, ProbeOptions};
 use crate::infer::{InferError, LearnParams, Learned};
@@ -115,6 +115,23 @@ pub struct Question {
     /// Other held rules the probe breaks too: rules of a group that imply
     /// one another (see [`Asker::next_question`]); usually empty.
     pub also_broken: Vec<String>,
+    /// `Some` when the question is whether a demonstration that looks like
+    /// a slip is as the person meant it (docs/guide.md#slips): the probe is
+    /// that demonstration, `probe.broken` its suspect objects, `rule` and
+    /// `also_broken` the rules it breaks that the others keep.
+    pub suspect: Option<SuspectQuestion>,
+}
+
+/// What a question about a suspect demonstration asks about.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct SuspectQuestion {
+    /// The demonstration's index in `demos.json`.
+    pub demonstration: usize,
+    /// Its objects that break the rules, the one breaking the most first
+    /// (the likely slip, outlined in the picture).
+    pub objects: Vec<String>,
+    /// Every rule it breaks that the other demonstrations keep.
+    pub breaks: Vec<String>,
 }
 
 /// Why a held rule was not asked about ([`Asker::unasked`]).
@@ -249,6 +266,51 @@ pub struct Asker {
     /// problem checker's, once one is built).
     weight: std::cell::Cell<u64>,
     open: Option<String>,
+    /// Demonstrations answered as slips: left out of learning.
+    set_aside: BTreeSet<usize>,
+    /// Demonstrations answered as meant, exceptions and all.
+    meant: BTreeSet<usize>,
+}
+
+/// The demonstrations answered as slips and as meant in `answers`.
+fn suspect_answers(answers: &[Answer]) -> (BTreeSet<usize>, BTreeSet<usize>) {
+    let mut set_aside = BTreeSet::new();
+    let mut meant = BTreeSet::new();
+    for a in answers {
+        if let Some(s) = &a.suspect {
+            if a.accepted {
+                meant.insert(s.demonstration);
+            } else {
+                set_aside.insert(s.demonstration);
+            }
+        }
+    }
+    (set_aside, meant)
+}
+
+/// Learn as the session learns: with the session's priors, leaving out the
+/// demonstrations answered as slips, and no exception in one answered as
+/// meant.
+fn learn_session(
+    demos: &[Scene],
+    statements: Option<&RuleSet>,
+    opts: &AskOptions,
+    set_aside: &BTreeSet<usize>,
+    meant: &BTreeSet<usize>,
+) -> Result<Learned, InferError> {
+    let set_aside: Vec<usize> = set_aside.iter().copied().collect();
+    let meant: Vec<usize> = meant.iter().copied().collect();
+    crate::infer::learn_with(
+        demos,
+        statements,
+        &opts.learn,
+        &crate::infer::LearnOptions {
+            priors: opts.priors.as_deref(),
+            set_aside: &set_aside,
+            meant: &meant,
+            ..Default::default()
+        },
+    )
 }
 
 impl Asker {
@@ -263,6 +325,19 @@ impl Asker {
     ) -> Result<Asker, AskError> {
         let mut demos = demos;
         for (i, a) in answers.iter().enumerate() {
+            if let Some(s) = &a.suspect {
+                if s.demonstration >= demos.len() {
+                    return Err(AskError::BadAnswer {
+                        index: i,
+                        why: format!(
+                            "the answer is about demonstration [{}], but demos.json has {} demonstrations",
+                            s.demonstration,
+                            demos.len()
+                        ),
+                    });
+                }
+                continue;
+            }
             if !a.accepted {
                 continue;
             }
@@ -348,15 +423,8 @@ impl Asker {
         answers: Vec<Answer>,
         opts: AskOptions,
     ) -> Result<Asker, AskError> {
-        let learned = crate::infer::learn_with(
-            &demos,
-            statements.as_ref(),
-            &opts.learn,
-            &crate::infer::LearnOptions {
-                priors: opts.priors.as_deref(),
-                ..Default::default()
-            },
-        )?;
+        let (set_aside, meant) = suspect_answers(&answers);
+        let learned = learn_session(&demos, statements.as_ref(), &opts, &set_aside, &meant)?;
         let like = opts.resemble.then(|| ResemblanceTarget::new(&demos));
         let mut asker = Asker {
             problem,
@@ -369,7 +437,10 @@ impl Asker {
             confirmed: answers
                 .iter()
                 .filter(|a| !a.accepted)
-                .map(|a| a.rule.clone())
+                .flat_map(|a| match &a.suspect {
+                    Some(s) => s.breaks.clone(),
+                    None => vec![a.rule.clone()],
+                })
                 .collect(),
             answers,
             known: HashMap::new(),
@@ -381,6 +452,8 @@ impl Asker {
             edit_tried: Default::default(),
             weight: std::cell::Cell::new(1),
             open: None,
+            set_aside,
+            meant,
         };
         asker.held = asker.held_rules();
         Ok(asker)
@@ -433,6 +506,11 @@ impl Asker {
     /// `learned.rcc`: [`Learned::to_rcc`] with the confirmed rules marked.
     pub fn learned_rcc(&self) -> String {
         let mut out = self.learned.rcc_header();
+        for d in &self.set_aside {
+            out.push_str(&format!(
+                "# demonstration {d} is set aside: answered as a slip (answers.json)\n"
+            ));
+        }
         for r in &self.held.rules {
             out.push_str(&print_rule(r));
         }
@@ -451,7 +529,12 @@ impl Asker {
         };
         Tally {
             asked: self.answers.len(),
-            dropped: self.answers.iter().filter(|a| a.accepted).count(),
+            dropped: self
+                .answers
+                .iter()
+                .filter(|a| a.accepted)
+                .map(|a| a.suspect.as_ref().map_or(1, |s| s.breaks.len()))
+                .sum(),
             confirmed: self.confirmed.len(),
             implied: count(|k| matches!(k, Known::Implied)),
             unknown: count(|k| matches!(k, Known::Unknown)),
@@ -516,6 +599,10 @@ impl Asker {
     /// depend on the budgets, never on the machine's speed, unless the
     /// time limit (a safety net) stops a solve first.
     pub fn next_question(&mut self) -> Result<Option<Question>, AskError> {
+        if let Some(q) = self.suspect_question() {
+            self.open = Some(q.rule.clone());
+            return Ok(Some(q));
+        }
         // One checker of the problem and one per demonstration for every
         // scan of this question (built when first needed).
         let mut checker: Option<ProbeChecker> = None;
@@ -535,6 +622,56 @@ impl Asker {
         }
     }
 
+    /// The first question about a suspect (docs/guide.md#slips): the
+    /// demonstration with the most rules held with an exception there, not
+    /// answered about yet; `None` when there is none (always with a slip
+    /// rate of 0).
+    fn suspect_question(&self) -> Option<Question> {
+        let suspects = self.learned.suspects();
+        let first = suspects.iter().find(|s| {
+            !self.meant.contains(&s.demonstration) && !self.set_aside.contains(&s.demonstration)
+        })?;
+        let d = first.demonstration;
+        let mut objects: Vec<String> = Vec::new();
+        let mut breaks: Vec<String> = Vec::new();
+        for s in suspects.iter().filter(|s| s.demonstration == d) {
+            if !s.object.is_empty() && !objects.contains(&s.object) {
+                objects.push(s.object.clone());
+            }
+            for b in &s.breaks {
+                if !breaks.contains(b) {
+                    breaks.push(b.clone());
+                }
+            }
+        }
+        let rule = breaks.first()?.clone();
+        let stmt = self.learned.statements.iter().find(|s| s.name == rule)?;
+        Some(Question {
+            rule,
+            statement: crate::infer::statement_text(stmt.scope, &stmt.formula),
+            english: stmt.english.clone(),
+            probe: super::probe::Probe {
+                rule: stmt.name.clone(),
+                scene: self.demos.get(d)?.clone(),
+                broken: objects.clone(),
+                cost: 0,
+                time_ms: 0.0,
+                edit: None,
+            },
+            also_broken: breaks[1..].to_vec(),
+            suspect: Some(SuspectQuestion {
+                demonstration: d,
+                objects,
+                breaks,
+            }),
+        })
+    }
+
+    /// The demonstrations answered as slips, left out of learning.
+    pub fn set_aside(&self) -> impl Iterator<Item = usize> + '_ {
+        self.set_aside.iter().copied()
+    }
+
     /// The answer to `q` as [`Asker::answer`] will record it (for a journal
     /// written before the answer is applied).
     pub fn answer_record(&self, q: &Question, accepted: bool) -> Answer {
@@ -543,10 +680,14 @@ impl Asker {
             statement: q.statement.clone(),
             english: q.english.clone(),
             accepted,
-            demo: accepted.then_some(self.demos.len()),
+            demo: (accepted && q.suspect.is_none()).then_some(self.demos.len()),
             broken: q.probe.broken.clone(),
             probe: q.probe.scene.clone(),
             edit: q.probe.edit.clone(),
+            suspect: q.suspect.as_ref().map(|s| SuspectAnswer {
+                demonstration: s.demonstration,
+                breaks: s.breaks.clone(),
+            }),
         }
     }
 
@@ -559,18 +700,44 @@ impl Asker {
         }
         self.open = None;
         let a = self.answer_record(q, accepted);
-        if accepted {
+        if let Some(s) = &q.suspect {
+            // A demonstration meant as it is (its exceptions are meant: the
+            // rules it breaks are no candidates) or a slip (set aside from
+            // learning, the rules confirmed); learning is redone either way.
+            if accepted {
+                self.meant.insert(s.demonstration);
+            } else {
+                self.set_aside.insert(s.demonstration);
+                self.confirmed.extend(s.breaks.iter().cloned());
+            }
+            let demos = self.demos.clone();
+            self.relearn(demos)?;
+        } else if accepted {
             let mut demos = self.demos.clone();
             demos.push(q.probe.scene.clone());
-            let learned = crate::infer::learn_with(
-                &demos,
-                self.statements.as_ref(),
-                &self.opts.learn,
-                &crate::infer::LearnOptions {
-                    priors: self.opts.priors.as_deref(),
-                    ..Default::default()
-                },
-            )?;
+            self.relearn(demos)?;
+        } else {
+            self.confirmed.insert(q.rule.clone());
+            // The held rules are the same, so is every probe and every
+            // proof; a rule the budget deferred stays deferred (it is
+            // looked at again when learning is redone).
+        }
+        self.held = self.held_rules();
+        self.answers.push(a);
+        Ok(self.answers.last().expect("just pushed"))
+    }
+
+    /// Learn again from `demos` (the session's slips and meant
+    /// demonstrations applied) and drop what depended on the held rules.
+    fn relearn(&mut self, demos: Vec<Scene>) -> Result<(), AskError> {
+        let learned = learn_session(
+            &demos,
+            self.statements.as_ref(),
+            &self.opts,
+            &self.set_aside,
+            &self.meant,
+        )?;
+        {
             self.like = self.opts.resemble.then(|| ResemblanceTarget::new(&demos));
             self.demos = demos;
             self.learned = learned;
@@ -586,15 +753,8 @@ impl Asker {
             }
             self.checks.get_mut().clear();
             self.edit_tried.get_mut().clear();
-        } else {
-            self.confirmed.insert(q.rule.clone());
-            // The held rules are the same, so is every probe and every
-            // proof; a rule the budget deferred stays deferred (it is
-            // looked at again when learning is redone).
         }
-        self.held = self.held_rules();
-        self.answers.push(a);
-        Ok(self.answers.last().expect("just pushed"))
+        Ok(())
     }
 }
 

@@ -265,6 +265,7 @@ impl Asker {
             statement: crate::infer::statement_text(rule.scope, &rule.formula),
             english: stmt.english.clone(),
             probe: p,
+            suspect: None,
         }
     }
 }

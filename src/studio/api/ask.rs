@@ -160,6 +160,10 @@ struct QuestionBody {
     /// The probe layout.
     scene: Value,
     statement: String,
+    /// When the question is whether a demonstration that looks like a slip
+    /// is as the person meant it (`scene` is that demonstration).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    suspect: Option<crate::ask::SuspectQuestion>,
     time_ms: f64,
 }
 
@@ -190,6 +194,10 @@ struct AnswerSummary {
     /// For an accepted probe: its index in `demos.json`.
     demo: Option<usize>,
     rule: String,
+    /// For a question about a suspect: the demonstration (set aside when
+    /// not accepted).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    suspect: Option<usize>,
 }
 
 fn question_value(q: &Question, number: usize) -> QuestionBody {
@@ -202,6 +210,7 @@ fn question_value(q: &Question, number: usize) -> QuestionBody {
         rule: q.rule.clone(),
         scene: scene_value(&q.probe.scene),
         statement: q.statement.clone(),
+        suspect: q.suspect.clone(),
         time_ms: q.probe.time_ms,
     }
 }
@@ -220,6 +229,7 @@ pub(crate) async fn ask_next(State(st): St, body: Bytes) -> ApiResult {
                 && b.samples.is_none_or(|n| n == s.params.samples)
                 && b.seed.is_none_or(|x| x == s.params.seed)
                 && b.cutoff.is_none_or(|c| c == s.params.cutoff)
+                && b.slip_rate.is_none_or(|r| r == s.params.slip_rate)
         }
         None => false,
     };
@@ -308,6 +318,7 @@ pub(crate) async fn ask_answer(State(st): St, body: Bytes) -> ApiResult {
             accepted: answer.accepted,
             demo: answer.demo,
             rule: answer.rule.clone(),
+            suspect: answer.suspect.as_ref().map(|s| s.demonstration),
         },
         learned: learned_value(&st, Some(&rcc)),
         progress: s.asker().progress(),

@@ -21,6 +21,9 @@ pub(super) struct LearnBody {
     pub(super) samples: Option<usize>,
     pub(super) seed: Option<u64>,
     pub(super) cutoff: Option<f64>,
+    /// The chance that one object of a demonstration is a slip
+    /// (docs/guide.md#slips); omitted: the library's default.
+    pub(super) slip_rate: Option<f64>,
 }
 
 /// statements.rcc, parsed, when present.
@@ -49,6 +52,9 @@ pub(super) fn learn_params(b: &LearnBody) -> Result<LearnParams, ApiError> {
     }
     if let Some(c) = b.cutoff {
         params.cutoff = c;
+    }
+    if let Some(r) = b.slip_rate {
+        params.slip_rate = r;
     }
     // Name the field of the body, not the command line's flag.
     if let Err(crate::infer::InferError::BadParameter {
@@ -112,6 +118,7 @@ pub(crate) async fn learn(State(st): St, body: Bytes) -> ApiResult {
         let opts = LearnOptions {
             priors: priors.as_deref(),
             stop: crate::stop::Stop::never().with_cancel(cancel),
+            ..LearnOptions::default()
         };
         learn_with(&demos, statements.as_ref(), &params, &opts)
     })

@@ -544,8 +544,13 @@ function renderAskRules() {
 
 function showProbe(q) {
   const violators = new Map(q.broken.map((id) => [id, 'hard']));
-  const title = `Question ${q.number} · is this acceptable?`;
-  const info = q.broken.length
+  const s = q.suspect;
+  const title = s
+    ? `Question ${q.number} · demonstration #${s.demonstration + 1} as you meant it?`
+    : `Question ${q.number} · is this acceptable?`;
+  const info = s
+    ? `${s.objects.length ? s.objects[0] : 'it'} (outlined) breaks ${s.breaks.length} rule${s.breaks.length === 1 ? '' : 's'} the other demonstrations keep: a slip?`
+    : q.broken.length
     ? `${q.broken.join(', ')} break${q.broken.length === 1 ? 's' : ''} ${q.rule} (outlined)`
     : `the layout breaks ${q.rule}`;
   const moved = q.edit ? q.edit.moved : [];
@@ -581,10 +586,17 @@ function applyAsk(d) {
     return;
   }
   $('ask-number').textContent = `question ${q.number}`;
+  const s = q.suspect;
+  $('ask-heading').textContent = s
+    ? `Demonstration #${s.demonstration + 1} as you meant it?`
+    : 'Is this layout acceptable?';
+  $('ask-question').dataset.suspect = s ? String(s.demonstration) : '';
   $('ask-rule').textContent = q.rule;
   $('ask-english').textContent = q.english;
   $('ask-statement').textContent = q.statement;
-  $('ask-broken').textContent = q.broken.length
+  $('ask-broken').textContent = s
+    ? `It breaks ${s.breaks.join(', ')}, which the other demonstrations keep. Looks right: it is meant, and those rules are dropped. Not like that: a slip; it is set aside from learning (demos.json keeps it).`
+    : q.broken.length
     ? `Outlined: ${q.broken.join(', ')} break${q.broken.length === 1 ? 's' : ''} it; every other learned rule holds.`
     : 'Every other learned rule holds.';
   $('ask-question').dataset.rule = q.rule;
@@ -603,7 +615,8 @@ async function askNext() {
   btn.textContent = 'Looking for a layout…';
   setAskState('busy');
   const samples = Number($('ask-samples').value) || 1000;
-  const r = await api('POST', '/api/ask/next', { samples });
+  const slip = Number($('ask-slip-rate').value) || 0;
+  const r = await api('POST', '/api/ask/next', { samples, slip_rate: slip });
   btn.disabled = false;
   btn.textContent = 'Check rules';
   if (!r.ok) {
@@ -636,7 +649,11 @@ async function askAnswer(accepted) {
   renderLearned();
   renderAskRules();
   renderAskProgress(r.data.progress);
-  if (accepted) {
+  if (q.suspect) {
+    toast(accepted
+      ? `Demonstration #${q.suspect.demonstration + 1} is meant: dropped ${q.suspect.breaks.join(', ')}.`
+      : `Demonstration #${q.suspect.demonstration + 1} set aside as a slip; confirmed ${q.suspect.breaks.join(', ')}.`, 'ok');
+  } else if (accepted) {
     toast(`Dropped ${q.rule}: the layout is now demonstration #${r.data.answer.demo + 1}.`, 'ok');
     loadDemos();
   } else {
