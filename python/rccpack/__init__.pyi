@@ -274,6 +274,7 @@ def learn(
     epsilon: Optional[float] = None,
     contact: str = "point",
     priors: Optional[_Path] = None,
+    slip_rate: float = 0.0,
 ) -> Learned: ...
 
 # ---- priors learned across tasks -----------------------------------------------
@@ -401,6 +402,9 @@ class Question:
     @property
     def also_broken(self) -> list[str]: ...
     @property
+    def suspect(self) -> Optional[int]:
+        """The demonstration asked about as a possible slip; `None` for a probe."""
+    @property
     def accepted(self) -> Optional[bool]:
         """`None` while the question is open."""
     @property
@@ -444,6 +448,7 @@ class AskSession:
         question_seconds: Optional[float] = 3.0,
         edits: bool = True,
         priors: Optional[_Path] = None,
+        slip_rate: float = 0.0,
     ) -> AskSession: ...
     def next_question(self) -> Optional[Question]: ...
     def answer(self, question: Question, accepted: bool) -> Question: ...
@@ -492,6 +497,7 @@ def ask(
     question_seconds: Optional[float] = 3.0,
     edits: bool = True,
     priors: Optional[_Path] = None,
+    slip_rate: float = 0.0,
 ) -> AskResult: ...
 
 # ---- task folders ------------------------------------------------------------

@@ -291,7 +291,7 @@ pub(crate) fn learn_error(e: InferError) -> PyErr {
 #[pyfunction]
 #[pyo3(signature = (demos, samples = 1000, cutoff = 0.01, seed = 0, templates = "third",
                     statements = None, prior = 0.5, epsilon = None, contact = "point",
-                    priors = None))]
+                    priors = None, slip_rate = 0.0))]
 #[allow(clippy::too_many_arguments)]
 #[pyo3(name = "learn")]
 pub fn learn_py(
@@ -306,6 +306,7 @@ pub fn learn_py(
     epsilon: Option<f64>,
     contact: &str,
     priors: Option<std::path::PathBuf>,
+    slip_rate: f64,
 ) -> PyResult<PyLearned> {
     let demos = scenes_arg(demos, "demos")?;
     let priors = crate::priors::read_priors(py, priors)?;
@@ -317,7 +318,7 @@ pub fn learn_py(
         seed,
         contact: self::contact(contact)?,
         templates: self::templates(templates)?,
-        ..LearnParams::default()
+        slip_rate,
     };
     let set = statements.map(|s| s.inner.clone());
     learn_interruptible(py, &demos, set.as_ref(), &params, priors.as_deref(), None)

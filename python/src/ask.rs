@@ -35,6 +35,11 @@ pub struct PyQuestion {
     broken: Vec<String>,
     /// Other held rules the probe breaks too.
     also_broken: Vec<String>,
+    /// For a question about a demonstration that looks like a slip: its
+    /// index in `demos.json` (the probe is that demonstration, `broken` its
+    /// suspect blocks, `rule` and `also_broken` the rules it breaks);
+    /// `None` for a probe.
+    suspect: Option<usize>,
     /// The answer: acceptable (the rule is dropped) or not (confirmed);
     /// `None` while the question is open.
     accepted: Option<bool>,
@@ -74,6 +79,7 @@ impl PyQuestion {
                 probe: Py::new(py, PyScene::wrap(q.probe.scene.clone()))?,
                 broken: q.probe.broken.clone(),
                 also_broken: q.also_broken.clone(),
+                suspect: q.suspect.as_ref().map(|s| s.demonstration),
                 accepted,
                 probe_file: path(&shown.json),
                 picture_file: path(&shown.png),
@@ -233,7 +239,7 @@ impl PyAskSession {
                         node_limit = DEFAULT_PROBE_NODES, check_nodes = DEFAULT_CHECK_NODES,
                         contact = "point", templates = "third",
                         question_nodes = DEFAULT_QUESTION_NODES, question_seconds = 3.0,
-                        edits = true, priors = None))]
+                        edits = true, priors = None, slip_rate = 0.0))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -252,6 +258,7 @@ impl PyAskSession {
         question_seconds: Option<f64>,
         edits: bool,
         priors: Option<PathBuf>,
+        slip_rate: f64,
     ) -> PyResult<PyAskSession> {
         let priors = crate::priors::read_priors(py, priors)?;
         let contact = self::contact(contact)?;
@@ -265,6 +272,7 @@ impl PyAskSession {
                     seed,
                     contact,
                     templates,
+                    slip_rate,
                     ..LearnParams::default()
                 },
                 probe: ProbeOptions {
@@ -508,7 +516,7 @@ impl PyAskSession {
                     node_limit = DEFAULT_PROBE_NODES, check_nodes = DEFAULT_CHECK_NODES,
                     contact = "point", templates = "third",
                     question_nodes = DEFAULT_QUESTION_NODES, question_seconds = 3.0,
-                    edits = true, priors = None))]
+                    edits = true, priors = None, slip_rate = 0.0))]
 #[allow(clippy::too_many_arguments)]
 pub fn ask(
     py: Python<'_>,
@@ -528,6 +536,7 @@ pub fn ask(
     question_seconds: Option<f64>,
     edits: bool,
     priors: Option<PathBuf>,
+    slip_rate: f64,
 ) -> PyResult<PyAskResult> {
     let session = PyAskSession::new(
         py,
@@ -546,6 +555,7 @@ pub fn ask(
         question_seconds,
         edits,
         priors,
+        slip_rate,
     )?;
     let run = || -> PyResult<PyAskResult> {
         while let Some(q) = session.next_question(py)? {

@@ -119,3 +119,50 @@ def test_memory_session_writes_nothing(example: Path, tmp_path: Path) -> None:
         res = s.result()
         assert res.stopped_at_budget and len(res.questions) == 1
     assert tree(d) == tree(example)
+
+
+def slipped_example(example: Path, d: Path) -> None:
+    """The bundled example with block r4 of demonstration 5 put in a wrong
+    free place (a slip)."""
+    import json
+
+    shutil.copytree(example, d)
+    demos = json.loads((d / "demos.json").read_text())
+    for o in demos[5]["objects"]:
+        if o["id"] == "r4":
+            o["x"], o["y"] = 300, 300
+    (d / "demos.json").write_text(json.dumps(demos, indent=1))
+
+
+def test_a_suspect_is_asked_about_first_both_ways(example: Path, tmp_path: Path) -> None:
+    import json
+
+    d = tmp_path / "task"
+    slipped_example(example, d)
+    demos_before = (d / "demos.json").read_text()
+    # Without a slip rate: no question about a demonstration.
+    with rccpack.AskSession(d, save=False) as s:
+        q = s.next_question()
+        assert q is not None and q.suspect is None
+    # "No": a slip, set aside; journaled, not asked again after a resume.
+    with rccpack.AskSession(d, slip_rate=0.01) as s:
+        q = s.next_question()
+        assert q is not None and q.suspect == 5 and q.broken[0] == "r4", q
+        a = s.answer(q, False)
+        assert a.suspect == 5 and a.accepted is False
+    answers = json.loads((d / "answers.json").read_text())["answers"]
+    assert answers[0]["suspect"]["demonstration"] == 5
+    assert "demonstration 5 is set aside" in (d / "learned.rcc").read_text()
+    assert (d / "demos.json").read_text() == demos_before
+    with rccpack.AskSession(d, slip_rate=0.01) as s:
+        assert s.resumed == 1
+        q = s.next_question()
+        assert q is None or q.suspect != 5
+    # "Yes": meant; the rules it breaks are dropped.
+    d2 = tmp_path / "task2"
+    slipped_example(example, d2)
+    r = rccpack.ask(d2, lambda probe: True, max_questions=1, slip_rate=0.01)
+    (q,) = r.questions
+    assert q.suspect == 5 and q.accepted is True
+    held = {rule.name for rule in r.rules}
+    assert q.rule not in held and not (set(q.also_broken) & held)

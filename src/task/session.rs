@@ -657,9 +657,10 @@ pub fn write_probe_files(
         .collect();
     let title = match &q.suspect {
         Some(s) => format!(
-            "question {number}: demonstration {} as you meant it? (breaks {})",
+            "question {number}: demonstration {} as you meant it? (breaks {} rule{} the others keep)",
             s.demonstration,
-            s.breaks.join(", ")
+            s.breaks.len(),
+            if s.breaks.len() == 1 { "" } else { "s" }
         ),
         None => format!("question {number}: is this acceptable? (breaks {})", q.rule),
     };

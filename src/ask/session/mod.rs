@@ -506,10 +506,20 @@ impl Asker {
     /// `learned.rcc`: [`Learned::to_rcc`] with the confirmed rules marked.
     pub fn learned_rcc(&self) -> String {
         let mut out = self.learned.rcc_header();
-        for d in &self.set_aside {
-            out.push_str(&format!(
-                "# demonstration {d} is set aside: answered as a slip (answers.json)\n"
-            ));
+        if !self.set_aside.is_empty() {
+            // In the header, before its closing blank line.
+            let blank = out.ends_with("\n\n");
+            if blank {
+                out.pop();
+            }
+            for d in &self.set_aside {
+                out.push_str(&format!(
+                    "# demonstration {d} is set aside: answered as a slip (answers.json)\n"
+                ));
+            }
+            if blank {
+                out.push('\n');
+            }
         }
         for r in &self.held.rules {
             out.push_str(&print_rule(r));
