@@ -1469,6 +1469,19 @@ async fn ask_asks_about_a_suspect_first() {
     let demos = rccpack::scene::scenes_to_json(&slipped);
     std::fs::write(dir.join("demos.json"), &demos).unwrap();
     let app = rccpack::studio::router(&dir).unwrap();
+    // Learn names the suspect; without a slip rate there is no `suspects`.
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/learn",
+        json!({"slip_rate": 0.01}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    assert_eq!(v["suspects"][0]["demonstration"], sl.demonstration, "{v}");
+    assert_eq!(v["suspects"][0]["object"], sl.object.as_str(), "{v}");
+    let (_, v) = call(&app, Method::POST, "/api/learn", "{}").await;
+    assert!(v.get("suspects").is_none(), "{v}");
     let (s, v) = call(
         &app,
         Method::POST,

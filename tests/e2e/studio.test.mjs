@@ -332,6 +332,63 @@ window.results = [];
       'learned.rcc unchanged by a foreign page');
   }
 
+  // A slip (docs/guide.md#questions-about-suspects): block r4 of
+  // demonstration #6 put in the middle of the box. Learn with a slip rate
+  // names it on the board; Check rules asks about it first, both ways; a
+  // reload resumes.
+  const slipped = JSON.parse(JSON.stringify(exampleDemos));
+  for (const o of slipped[5].objects) if (o.id === 'r4') { o.x = 300; o.y = 300; }
+  for (const f of ['answers.json', 'learned.rcc', 'learned.rcc.bak']) fs.rmSync(path.join(task, f), { force: true });
+  fs.writeFileSync(path.join(task, 'demos.json'), JSON.stringify(slipped, null, 1));
+  await page.reload();
+  await page.waitForSelector('body[data-ready="1"]');
+  await page.click('#tab-learn');
+  await page.fill('[data-testid=learn-slip-rate]', '0.01');
+  await page.click('#btn-learn');
+  await page.waitForSelector('[data-testid=suspects]', { timeout: 120000 });
+  assert.match(await page.locator('[data-testid=suspects] [data-demo="5"]').first().textContent(), /demonstration #6: r4\s+breaks \d+ rules/);
+  assert.equal(await page.locator('#demos .demo.suspect[data-index="5"] .pill.slip').count(), 1, 'demonstration #6 marked on the board');
+  await page.screenshot({ path: path.join(out, 'studio-suspects.png') });
+  const askSuspect = async (accepted) => {
+    await page.click('#tab-check');
+    await page.fill('[data-testid=ask-samples]', '1000');
+    await page.fill('[data-testid=ask-slip-rate]', '0.01');
+    await page.click('[data-testid=check-rules]');
+    await askSettled();
+    assert.equal(await page.evaluate(() => document.body.dataset.ask), 'question', 'a question about the suspect');
+    assert.equal(await question.getAttribute('data-suspect'), '5');
+    assert.match(await page.locator('#ask-heading').textContent(), /Demonstration #6 as you meant it\?/);
+    // The demonstration is on the board, r4 outlined.
+    assert.ok(await page.locator('#board .obj .violation').count() >= 1);
+    await page.screenshot({ path: path.join(out, `studio-suspect-${accepted ? 'yes' : 'no'}.png`) });
+    await page.click(accepted ? '[data-testid=ask-yes]' : '[data-testid=ask-no]');
+    await page.waitForFunction(() => /asked 1 /.test(document.querySelector('[data-testid=ask-progress-line]')?.textContent || ''));
+    await askSettled();
+    const a = JSON.parse(fs.readFileSync(path.join(task, 'answers.json'), 'utf8')).answers;
+    assert.equal(a.length, 1);
+    assert.equal(a[0].suspect.demonstration, 5);
+    assert.equal(a[0].accepted, accepted);
+    assert.deepEqual(JSON.parse(fs.readFileSync(path.join(task, 'demos.json'), 'utf8')), slipped, 'demos.json keeps the slip');
+    assert.notEqual(await question.getAttribute('data-suspect'), '5', 'not asked again');
+  };
+  await askSuspect(false);
+  assert.match(fs.readFileSync(path.join(task, 'learned.rcc'), 'utf8'), /# demonstration 5 is set aside: answered as a slip/);
+  // A reload resumes from answers.json: the slip is not asked about again.
+  await page.reload();
+  await page.waitForSelector('body[data-ready="1"]');
+  await page.click('#tab-check');
+  await page.fill('[data-testid=ask-slip-rate]', '0.01');
+  await page.click('[data-testid=check-rules]');
+  await askSettled();
+  assert.match(await progressLine(), /asked 1 /);
+  assert.notEqual(await question.getAttribute('data-suspect'), '5');
+  // The other answer, on a fresh journal: meant.
+  for (const f of ['answers.json', 'learned.rcc', 'learned.rcc.bak']) fs.rmSync(path.join(task, f), { force: true });
+  await page.reload();
+  await page.waitForSelector('body[data-ready="1"]');
+  await askSuspect(true);
+  log('suspect asked about both ways');
+
   assert.deepEqual(errors, [], 'no errors in the page');
   log('ok; screenshots in', out);
 } catch (e) {

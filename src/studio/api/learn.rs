@@ -155,6 +155,10 @@ struct LearnResponse {
     source: &'static str,
     /// Statements weighed.
     statements: usize,
+    /// With a slip rate: the objects that break rules the other
+    /// demonstrations keep, most rules broken first (docs/guide.md#slips).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    suspects: Vec<crate::infer::Suspect>,
 }
 
 /// One learned rule with its numbers.
@@ -214,5 +218,6 @@ fn learn_body(learned: &crate::infer::Learned, samples: usize) -> LearnResponse 
             StatementSource::Templates => "templates",
         },
         statements: learned.statements.len(),
+        suspects: learned.suspects(),
     }
 }

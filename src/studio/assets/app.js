@@ -275,19 +275,21 @@ async function loadDemos() {
     del.onclick = async () => {
       if (!confirm(`Delete demonstration #${i + 1}?`)) return;
       const d = await api('DELETE', `/api/demos/${i}?version=${encodeURIComponent(state.demosVersion)}`);
-      if (d.ok) toast(`Deleted demonstration #${i + 1}.`, 'ok'); else toast(d.data.error, 'error');
+      if (d.ok) { toast(`Deleted demonstration #${i + 1}.`, 'ok'); state.suspects = []; } else toast(d.data.error, 'error');
       loadDemos();
     };
     meta.append(show, del);
     item.appendChild(meta);
     box.appendChild(item);
   });
+  markSuspects();
 }
 
 async function saveDemo() {
   const r = await api('POST', '/api/demos', boardScene());
   if (!r.ok) { toast(r.data.error, 'error'); return; }
   toast(`Saved demonstration #${r.data.index + 1} to demos.json.`, 'ok');
+  state.suspects = [];
   state.placed = [];
   state.selected = null;
   showEditor();
@@ -301,7 +303,8 @@ async function learn() {
   btn.disabled = true;
   btn.textContent = 'Learning…';
   $('learn-summary').innerHTML = '<div class="progress"><span></span></div>';
-  const r = await api('POST', '/api/learn', {});
+  const slip = Number($('learn-slip-rate').value) || 0;
+  const r = await api('POST', '/api/learn', slip ? { slip_rate: slip } : {});
   btn.disabled = false;
   btn.textContent = 'Learn again';
   if (!r.ok) {
@@ -315,7 +318,38 @@ async function learn() {
   $('learn-summary').innerHTML = `<p><b>${d.rules.length}</b> rules learned from <b>${d.demonstrations}</b> demonstrations:
     ${d.candidates} of ${d.statements} ${d.source === 'given' ? 'statements from statements.rcc' : 'template statements'} hold in every demonstration;
     the rest are rejected as likely by chance (${d.samples} random layouts).</p>`;
+  const suspects = d.suspects || [];
+  if (suspects.length) {
+    $('learn-summary').insertAdjacentHTML('beforeend', `<div class="suspects" data-testid="suspects"><p><b>Looks like a slip?</b></p>${
+      suspects.map((s) => `<p class="small" data-demo="${s.demonstration}">demonstration #${s.demonstration + 1}: ${s.object ? `<b>${esc(s.object)}</b>` : 'it'}
+        breaks ${s.breaks.length} rule${s.breaks.length === 1 ? '' : 's'} the others keep (${esc(s.breaks.slice(0, 4).join(', '))}${s.breaks.length > 4 ? ', …' : ''})</p>`).join('')
+    }<p class="hint">Check rules (with a slip rate) asks about each.</p></div>`);
+  }
+  state.suspects = suspects;
+  markSuspects();
   renderRules();
+}
+
+/// Mark the demonstrations with a suspect on the demonstrations board.
+function markSuspects() {
+  const by = new Map();
+  for (const s of state.suspects || []) {
+    if (!by.has(s.demonstration)) by.set(s.demonstration, []);
+    if (s.object) by.get(s.demonstration).push(s.object);
+  }
+  for (const item of document.querySelectorAll('#demos .demo')) {
+    const objs = by.get(Number(item.dataset.index));
+    item.classList.toggle('suspect', !!objs);
+    item.querySelector('.pill.slip')?.remove();
+    if (objs) {
+      const pill = document.createElement('span');
+      pill.className = 'pill slip';
+      pill.dataset.testid = 'slip';
+      pill.textContent = 'a slip?';
+      pill.title = `${objs.join(', ')} break${objs.length === 1 ? 's' : ''} rules the other demonstrations keep`;
+      item.querySelector('.demo-meta')?.prepend(pill);
+    }
+  }
 }
 
 function renderRules() {
