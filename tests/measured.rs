@@ -516,3 +516,71 @@ fn ask_asks_about_a_suspect_both_ways_and_resumes_after_ctrl_c() {
         assert!(!learned.contains(&format!("rule {b}:")), "{b}\n{learned}");
     }
 }
+
+/// `rccpack ask` on measured demonstrations: the same questions as on the
+/// exact ones, and an accepted probe is appended after the recorded
+/// entries, which keep their measured positions (never snapped in place).
+#[test]
+fn ask_reads_measured_demonstrations_and_keeps_them_as_recorded() {
+    let jit = jittered_box_demos();
+    let folder = |tag: &str, demos: &str| {
+        let dir = scratch(tag);
+        std::fs::copy(
+            concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/examples/box-packing/problem.json"
+            ),
+            dir.join("problem.json"),
+        )
+        .unwrap();
+        write_file(&dir, "demos.json", demos);
+        dir
+    };
+    let exact = folder("measured-ask-exact", &box_demos());
+    let measured = folder("measured-ask-jit", &jit);
+    let run = |dir: &std::path::Path| {
+        rccpack(&[
+            "ask",
+            dir.to_str().unwrap(),
+            "--samples",
+            "200",
+            "--oracle",
+            "exit 0",
+            "--max-questions",
+            "1",
+        ])
+    };
+    let (a, b) = (run(&exact), run(&measured));
+    assert!(a.status.success() && b.status.success(), "{}", stderr(&b));
+    // The question line (the summary's timing differs).
+    let out = |o: &std::process::Output, _dir: &std::path::Path| {
+        String::from_utf8_lossy(&o.stdout)
+            .lines()
+            .next()
+            .unwrap_or("")
+            .to_string()
+    };
+    assert_eq!(out(&a, &exact), out(&b, &measured), "the same question");
+    assert!(
+        stderr(&b).contains("8 demonstrations as measured:"),
+        "{}",
+        stderr(&b)
+    );
+    let before: Vec<serde_json::Value> = serde_json::from_str(&jit).unwrap();
+    let after: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(measured.join("demos.json")).unwrap())
+            .unwrap();
+    assert_eq!(after.len(), before.len() + 1, "the accepted probe appended");
+    assert_eq!(&after[..before.len()], &before[..], "recorded entries kept");
+    let exact_after: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(exact.join("demos.json")).unwrap()).unwrap();
+    assert_eq!(
+        after[before.len()],
+        exact_after[before.len()],
+        "the same probe"
+    );
+    assert_eq!(
+        std::fs::read_to_string(measured.join("learned.rcc")).unwrap(),
+        std::fs::read_to_string(exact.join("learned.rcc")).unwrap()
+    );
+}

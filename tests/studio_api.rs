@@ -1511,3 +1511,44 @@ async fn ask_asks_about_a_suspect_first() {
         assert!(!q.contains_key("suspect") || q["suspect"]["demonstration"] != sl.demonstration);
     }
 }
+
+/// A measured demos.json (a camera's fractions): the studio lists it on
+/// the grid, and saving or deleting a demonstration keeps every other
+/// recorded entry as it was.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn measured_demonstrations_are_listed_on_the_grid_and_kept_as_recorded() {
+    let dir = task_dir("measured", false);
+    let a = demo(&[("R", 200, 200), ("R", 220, 200), ("B", 200, 220)]);
+    let mut m = a.clone();
+    m["objects"][4]["x"] = json!(201.7);
+    m["objects"][5]["y"] = json!(198.6);
+    let recorded = json!([m.clone(), a.clone()]);
+    std::fs::write(dir.join("demos.json"), recorded.to_string()).unwrap();
+    let app = rccpack::studio::router(&dir).unwrap();
+    let (s, v) = call(&app, Method::GET, "/api/demos", Body::empty()).await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    assert_eq!(v["count"], 2);
+    assert_eq!(v["demos"][0], v["demos"][1], "snapped to the grid: {v}");
+    let on_disk = || -> Vec<Value> {
+        serde_json::from_str(&std::fs::read_to_string(dir.join("demos.json")).unwrap()).unwrap()
+    };
+    let b = demo(&[("R", 240, 200), ("R", 260, 200), ("B", 240, 220)]);
+    let (s, v) = call(&app, Method::POST, "/api/demos", b.to_string()).await;
+    assert_eq!(s, StatusCode::CREATED, "{v}");
+    let after = on_disk();
+    assert_eq!(after.len(), 3);
+    assert_eq!(after[0], m, "the measured entry is kept as recorded");
+    let (_, list) = call(&app, Method::GET, "/api/demos", Body::empty()).await;
+    let version = list["version"].as_str().unwrap().to_string();
+    let (s, v) = call(
+        &app,
+        Method::DELETE,
+        &format!("/api/demos/1?version={version}"),
+        Body::empty(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    let after = on_disk();
+    assert_eq!(after.len(), 2);
+    assert_eq!(after[0], m, "still as recorded");
+}

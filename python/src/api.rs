@@ -63,6 +63,93 @@ pub fn load_scenes(path: std::path::PathBuf) -> PyResult<Vec<PyScene>> {
         .map_err(|e| scene_error(e, Some(&name)))
 }
 
+/// Demonstrations read as measured (docs/scenes.md#demonstrations-as-measured):
+/// the scenes on the grid and every object moved to get there.
+#[pyclass(module = "rccpack", name = "Measured", frozen)]
+pub struct PyMeasured {
+    scenes: Vec<CoreScene>,
+    moves: Vec<rccpack_core::scene::measured::Move>,
+}
+
+#[pymethods]
+impl PyMeasured {
+    /// The demonstrations on the grid.
+    #[getter]
+    fn scenes(&self) -> Vec<PyScene> {
+        self.scenes.iter().cloned().map(PyScene::wrap).collect()
+    }
+
+    /// Every object that moved, in order: dicts with `demonstration`,
+    /// `object`, `from` (the measured `(x, y)`), `to` (on the grid) and
+    /// `distance` (px).
+    #[getter]
+    fn moves<'py>(&self, py: Python<'py>) -> PyResult<Vec<Bound<'py, pyo3::types::PyDict>>> {
+        self.moves
+            .iter()
+            .map(|m| {
+                let d = pyo3::types::PyDict::new(py);
+                d.set_item("demonstration", m.demonstration)?;
+                d.set_item("object", &m.object)?;
+                d.set_item("from", m.from)?;
+                d.set_item("to", m.to)?;
+                d.set_item("distance", m.distance)?;
+                Ok(d)
+            })
+            .collect()
+    }
+
+    fn __repr__(&self) -> String {
+        let most = self.moves.iter().map(|m| m.distance).fold(0.0, f64::max);
+        format!(
+            "<Measured {} demonstrations: {} objects moved by at most {most} px>",
+            self.scenes.len(),
+            self.moves.len()
+        )
+    }
+}
+
+fn measured_text(text: &str, tolerance: Option<f64>, name: Option<&str>) -> PyResult<PyMeasured> {
+    let m = guard(|| rccpack_core::scene::measured::measured_from_json(text, tolerance))?
+        .map_err(|e| scene_error(e, name))?;
+    if let Some(t) = tolerance {
+        rccpack_core::scene::measured::check_tolerance(t, &m.scenes)
+            .map_err(|e| Error::new_err(format!("tolerance: {e}")))?;
+    }
+    Ok(PyMeasured {
+        scenes: m.scenes,
+        moves: m.moves,
+    })
+}
+
+/// Read demonstrations as measured (fractions, small overlaps and gaps; as
+/// `rccpack learn` reads them) from a JSON file; `tolerance` in px
+/// (`None`: four tenths of the grid step; 0: exact).
+#[pyfunction]
+#[pyo3(signature = (path, tolerance = None))]
+pub fn load_measured(path: std::path::PathBuf, tolerance: Option<f64>) -> PyResult<PyMeasured> {
+    let text = read_text(&path)?;
+    measured_text(&text, tolerance, Some(&path.display().to_string()))
+}
+
+/// [`load_measured`] from JSON text, or from a list of dicts (scenes whose
+/// coordinates may be floats).
+#[pyfunction]
+#[pyo3(signature = (demos, tolerance = None))]
+pub fn measured(
+    py: Python<'_>,
+    demos: &Bound<'_, PyAny>,
+    tolerance: Option<f64>,
+) -> PyResult<PyMeasured> {
+    let text: String = if let Ok(s) = demos.extract::<String>() {
+        s
+    } else {
+        py.import("json")?
+            .call_method1("dumps", (demos,))?
+            .extract()?
+    };
+    measured_text(&text, tolerance, None)
+}
+
 /// Read and parse a `.rcc` file.
 #[pyfunction]
 pub fn load_rules(path: std::path::PathBuf) -> PyResult<PyRuleSet> {

@@ -46,6 +46,9 @@ fn _rccpack(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<ask::PyAskResult>()?;
     m.add_function(wrap_pyfunction!(api::load_scene, m)?)?;
     m.add_function(wrap_pyfunction!(api::load_scenes, m)?)?;
+    m.add_function(wrap_pyfunction!(api::load_measured, m)?)?;
+    m.add_function(wrap_pyfunction!(api::measured, m)?)?;
+    m.add_class::<api::PyMeasured>()?;
     m.add_function(wrap_pyfunction!(api::load_rules, m)?)?;
     m.add_function(wrap_pyfunction!(api::scenes_to_json, m)?)?;
     m.add_function(wrap_pyfunction!(api::evaluate, m)?)?;

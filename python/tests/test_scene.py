@@ -131,3 +131,38 @@ def test_scenes_to_json_round_trip(demos: list[rccpack.Scene], example: Path) ->
     text = rccpack.scenes_to_json(demos)
     assert len(json.loads(text)) == len(json.loads((example / "demos.json").read_text()))
     assert [rccpack.Scene.from_dict(d) for d in json.loads(text)] == demos
+
+
+def test_measured_demonstrations_take_float_coordinates(tmp_path: Path) -> None:
+    """Demonstrations as a camera records them: fractions and a 2-px
+    overlap go to the grid, as `rccpack learn` reads them."""
+    import json
+
+    space = {"x": 0, "y": 0, "width": 100, "height": 100}
+    demo = {
+        "space": space,
+        "grid": 10,
+        "objects": [
+            {"id": "a", "class": "A", "x": 14.9, "y": 20.0, "width": 10, "height": 10},
+            {"id": "b", "class": "A", "x": 22.9, "y": 20.0, "width": 10, "height": 10},
+        ],
+    }
+    m = rccpack.measured([demo])
+    (scene,) = m.scenes
+    xs = {o.id: o.x for o in scene.objects}
+    assert xs == {"a": 10, "b": 20}, xs
+    assert [(mv["object"], mv["to"]) for mv in m.moves] == [("a", (10, 20)), ("b", (20, 20))]
+    assert max(mv["distance"] for mv in m.moves) < 5
+    # The same from a file, and from JSON text.
+    f = tmp_path / "demos.json"
+    f.write_text(json.dumps([demo]))
+    same = [s.to_json() for s in m.scenes]
+    assert [s.to_json() for s in rccpack.load_measured(f).scenes] == same
+    assert [s.to_json() for s in rccpack.measured(json.dumps([demo])).scenes] == same
+    # Exact reading refuses the fractions; a tolerance at half a step or more is refused.
+    with pytest.raises(rccpack.SceneError):
+        rccpack.measured([demo], tolerance=0)
+    with pytest.raises(rccpack.Error, match="tolerance"):
+        rccpack.measured([demo], tolerance=5)
+    # Learning takes the snapped scenes.
+    assert len(rccpack.learn(m.scenes * 3, samples=50).statements) > 0

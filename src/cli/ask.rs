@@ -9,7 +9,7 @@
 //! abort (end of input, `q`, an oracle failure, Ctrl-C) loses nothing
 //! already answered; running again resumes.
 
-use super::{out, outln, read_rules, read_scene, read_scenes, Reported};
+use super::{out, outln, read_rules, read_scene, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::ask::{AskOptions, Asker, ProbeOptions, Question};
@@ -393,10 +393,19 @@ pub fn run(a: AskArgs) -> Result<ExitCode> {
 /// command line's errors (a `.rcc` error drawn at its place).
 fn read_inputs(dir: &Path) -> Result<SessionInputs> {
     let problem = read_scene(&dir.join(task::files::PROBLEM))?;
-    let (demos, _) = read_scenes(&dir.join(task::files::DEMOS))?;
+    // As measured, as `learn` reads them (a note says what moved); a
+    // measured file keeps its recorded entries when probes are appended.
+    let demos_path = dir.join(task::files::DEMOS);
+    let measured = super::io::read_demos(&demos_path, None)?;
+    let demos = if measured.moves.is_empty() {
+        task::files::DemosFile::from(measured.scenes)
+    } else {
+        task::files::DemosFile::parse(&super::io::read_text(&demos_path)?)
+            .map_err(|e| Reported(format!("error: {}: {e}", demos_path.display())))?
+    };
     let statements_path = dir.join(task::files::STATEMENTS);
     let statements = if statements_path.exists() {
-        Some(read_rules(&statements_path, &demos)?)
+        Some(read_rules(&statements_path, &demos.scenes)?)
     } else {
         None
     };

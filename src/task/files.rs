@@ -2,6 +2,7 @@
 //! content versions. Shared by `rccpack run`/`ask` and the studio, so a name
 //! is written once.
 
+use crate::scene::{scenes_to_json, Scene};
 use std::fs;
 use std::path::{Path, PathBuf};
 
@@ -74,6 +75,89 @@ pub fn version(content: Option<&str>) -> String {
     }
 }
 
+/// A demonstrations file as read, as measured
+/// ([`crate::scene::measured`]): the scenes on the grid, and — when reading
+/// it moved an object (a camera's fractions, overlaps) — its recorded
+/// entries, which every write keeps as they were: a question session or the
+/// studio appends its new demonstrations after them, and never rewrites a
+/// measured position with the snapped one.
+#[derive(Debug, Clone, Default)]
+pub struct DemosFile {
+    /// The demonstrations on the grid.
+    pub scenes: Vec<Scene>,
+    /// The recorded entries, when reading moved an object.
+    recorded: Option<Vec<serde_json::Value>>,
+}
+
+impl From<Vec<Scene>> for DemosFile {
+    /// Demonstrations on the grid (written back as [`scenes_to_json`]
+    /// writes them).
+    fn from(scenes: Vec<Scene>) -> Self {
+        DemosFile {
+            scenes,
+            recorded: None,
+        }
+    }
+}
+
+impl DemosFile {
+    /// Read `text` as measured with the default tolerance; a file on the
+    /// grid is read exactly and written back as [`scenes_to_json`] writes
+    /// it, byte for byte.
+    pub fn parse(text: &str) -> Result<DemosFile, crate::scene::SceneError> {
+        let m = crate::scene::measured::measured_from_json(text, None)?;
+        let recorded = if m.moves.is_empty() {
+            None
+        } else {
+            // It parsed as scenes, so it is a JSON array (or one scene).
+            match serde_json::from_str::<serde_json::Value>(text) {
+                Ok(serde_json::Value::Array(v)) => Some(v),
+                Ok(one) => Some(vec![one]),
+                Err(_) => None,
+            }
+        };
+        Ok(DemosFile {
+            scenes: m.scenes,
+            recorded,
+        })
+    }
+
+    /// Whether reading moved an object to the grid.
+    pub fn measured(&self) -> bool {
+        self.recorded.is_some()
+    }
+
+    /// Drop demonstration `i` (its recorded entry too).
+    pub fn remove(&mut self, i: usize) -> Scene {
+        if let Some(r) = &mut self.recorded {
+            if i < r.len() {
+                r.remove(i);
+            }
+        }
+        self.scenes.remove(i)
+    }
+
+    /// The file's text for `demos` — the scenes read, possibly with some
+    /// appended or the last ones dropped: each demonstration that was read
+    /// as recorded, the others as [`scenes_to_json`] writes them.
+    pub fn to_json(&self, demos: &[Scene]) -> String {
+        let Some(recorded) = &self.recorded else {
+            return scenes_to_json(demos);
+        };
+        let values: Vec<serde_json::Value> = demos
+            .iter()
+            .enumerate()
+            .map(|(i, d)| match recorded.get(i) {
+                Some(v) => v.clone(),
+                None => serde_json::from_str(&d.to_json()).expect("scene JSON re-parses"),
+            })
+            .collect();
+        let mut s = serde_json::to_string_pretty(&values).expect("JSON values serialise");
+        s.push('\n');
+        s
+    }
+}
+
 /// The writes that start (or resume) a question session (docs/guide.md#questions), shared
 /// by `rccpack ask` and the studio: `demos.json` when `Asker::new` added an
 /// accepted probe an abort had kept out of it (`demos_read` is how many
@@ -83,12 +167,11 @@ pub fn version(content: Option<&str>) -> String {
 pub fn write_session_start(
     dir: &Path,
     asker: &crate::ask::Asker,
-    demos_read: usize,
+    demos_read: &DemosFile,
     resumed: usize,
 ) -> Result<bool, (&'static str, std::io::Error)> {
-    if asker.demos().len() != demos_read {
-        atomic_write(dir, DEMOS, &crate::scene::scenes_to_json(asker.demos()))
-            .map_err(|e| (DEMOS, e))?;
+    if asker.demos().len() != demos_read.scenes.len() {
+        atomic_write(dir, DEMOS, &demos_read.to_json(asker.demos())).map_err(|e| (DEMOS, e))?;
     }
     let rcc = asker.learned_rcc();
     let old = read_optional(dir, LEARNED).map_err(|e| (LEARNED, e))?;
@@ -108,6 +191,7 @@ pub fn write_session_start(
 pub fn write_after_answer(
     dir: &Path,
     asker: &crate::ask::Asker,
+    demos_read: &DemosFile,
     accepted: bool,
 ) -> Result<(), (&'static str, std::io::Error)> {
     let file = crate::ask::AnswersFile {
@@ -115,8 +199,7 @@ pub fn write_after_answer(
     };
     atomic_write(dir, ANSWERS, &file.to_json()).map_err(|e| (ANSWERS, e))?;
     if accepted {
-        atomic_write(dir, DEMOS, &crate::scene::scenes_to_json(asker.demos()))
-            .map_err(|e| (DEMOS, e))?;
+        atomic_write(dir, DEMOS, &demos_read.to_json(asker.demos())).map_err(|e| (DEMOS, e))?;
     }
     atomic_write(dir, LEARNED, &asker.learned_rcc()).map_err(|e| (LEARNED, e))
 }

@@ -35,7 +35,7 @@
 //! # Ok::<(), rccpack::task::session::SessionError>(())
 //! ```
 
-use super::{files, read_scene, read_scenes, read_statements, read_text, TaskError};
+use super::{files, read_scene, read_statements, read_text, TaskError};
 use crate::ask::{
     Answer, AnswersFile, AnswersFileError, AskError, AskOptions, Asker, Lookahead, Question,
 };
@@ -194,8 +194,9 @@ impl Default for SessionOptions {
 pub struct SessionInputs {
     /// The problem (`problem.json`).
     pub problem: Scene,
-    /// The demonstrations (`demos.json`).
-    pub demos: Vec<Scene>,
+    /// The demonstrations (`demos.json`, read as measured: a measured
+    /// file's recorded entries are kept by every write).
+    pub demos: files::DemosFile,
     /// The statements (`statements.rcc`), if any.
     pub statements: Option<RuleSet>,
 }
@@ -205,10 +206,16 @@ impl SessionInputs {
     /// the task folder `dir`.
     pub fn read(dir: &Path) -> Result<SessionInputs, SessionError> {
         let problem = read_scene(&dir.join(files::PROBLEM))?;
-        let demos = read_scenes(&dir.join(files::DEMOS))?;
+        let demos_path = dir.join(files::DEMOS);
+        let demos = files::DemosFile::parse(&read_text(&demos_path)?).map_err(|source| {
+            TaskError::Scene {
+                path: demos_path,
+                source,
+            }
+        })?;
         let statements_path = dir.join(files::STATEMENTS);
         let statements = if statements_path.exists() {
-            Some(read_statements(&statements_path, &demos)?)
+            Some(read_statements(&statements_path, &demos.scenes)?)
         } else {
             None
         };
@@ -260,6 +267,8 @@ pub struct Session {
     out_of_budget: bool,
     backup: bool,
     versions: Versions,
+    /// `demos.json` as read (its recorded entries kept by every write).
+    demos_read: files::DemosFile,
 }
 
 impl std::fmt::Debug for Session {
@@ -364,17 +373,16 @@ impl Session {
             demos,
             statements,
         } = inputs;
-        let n_demos = demos.len();
         let asker = Asker::new(
             problem.clone(),
-            demos,
+            demos.scenes.clone(),
             statements.clone(),
             answers,
             opts.ask.clone(),
         )
         .map_err(|e| ask_err(ask_path(&dir, &e))(e))?;
         let backup = if opts.save {
-            files::write_session_start(&dir, &asker, n_demos, resumed).map_err(
+            files::write_session_start(&dir, &asker, &demos, resumed).map_err(
                 |(file, source)| SessionError::Write {
                     path: dir.join(file),
                     source,
@@ -402,6 +410,7 @@ impl Session {
             out_of_budget: false,
             backup,
             versions,
+            demos_read: demos,
         })
     }
 
@@ -561,7 +570,7 @@ impl Session {
         self.asked_now += 1;
         if self.opts.save {
             self.check_unchanged()?;
-            files::write_after_answer(&self.dir, &self.asker, accepted).map_err(
+            files::write_after_answer(&self.dir, &self.asker, &self.demos_read, accepted).map_err(
                 |(file, source)| SessionError::Write {
                     path: self.dir.join(file),
                     source,
@@ -615,7 +624,7 @@ impl Session {
                 files::atomic_write(
                     dir,
                     files::DEMOS,
-                    &crate::scene::scenes_to_json(self.asker.demos()),
+                    &self.demos_read.to_json(self.asker.demos()),
                 )
                 .map_err(write_err(dir.join(files::DEMOS)))?;
             }

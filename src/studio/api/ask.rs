@@ -4,7 +4,7 @@
 //! file changed outside the studio since the question was asked.
 
 use super::super::AppState;
-use super::demos::{folder_lock, read_demos};
+use super::demos::{folder_lock, read_demos_versioned};
 use super::learn::{learn_params, read_statements, LearnBody};
 use super::learned::{current_learned, learned_value, LearnedView};
 use super::{internal, ok, parse_body, scene_value, ApiError, ApiResult, St};
@@ -103,7 +103,7 @@ async fn start_session(
     let generation = st.ask_generation.load(Ordering::SeqCst);
     let inputs = SessionInputs {
         problem: st.problem.clone(),
-        demos: read_demos(st)?,
+        demos: read_demos_versioned(st)?.0,
         statements: read_statements(st)?,
     };
     let opts = SessionOptions {

@@ -4,7 +4,8 @@
 
 use super::super::AppState;
 use super::{off_async, ok, reply, scene_value, ApiError, ApiResult, St};
-use crate::scene::{scenes_from_json, scenes_to_json, Scene};
+use crate::scene::Scene;
+use crate::task::files::DemosFile;
 use crate::task::files::{self, DEMOS};
 use axum::body::Bytes;
 use axum::extract::{Path, Query, State};
@@ -15,11 +16,13 @@ use serde_json::Value;
 /// Read demos.json; a file that does not parse is reported (409) and never
 /// overwritten.
 pub(super) fn read_demos(st: &AppState) -> Result<Vec<Scene>, ApiError> {
-    read_demos_versioned(st).map(|(d, _)| d)
+    read_demos_versioned(st).map(|(d, _)| d.scenes)
 }
 
-/// The demonstrations and the version of the file they came from.
-pub(super) fn read_demos_versioned(st: &AppState) -> Result<(Vec<Scene>, String), ApiError> {
+/// The demonstrations, read as measured (docs/scenes.md#demonstrations-as-measured:
+/// on the grid, a measured file's recorded entries kept for writing), and
+/// the version of the file they came from.
+pub(super) fn read_demos_versioned(st: &AppState) -> Result<(DemosFile, String), ApiError> {
     let text = files::read_optional(&st.dir, DEMOS)
         .map_err(|e| {
             // Not UTF-8: corrupt like any other bad content (409), not a
@@ -34,7 +37,7 @@ pub(super) fn read_demos_versioned(st: &AppState) -> Result<(Vec<Scene>, String)
     if !text.trim_start().starts_with('[') {
         return Err(corrupt("expected a JSON array of scenes"));
     }
-    let demos = scenes_from_json(&text).map_err(|e| corrupt(&e.to_string()))?;
+    let demos = DemosFile::parse(&text).map_err(|e| corrupt(&e.to_string()))?;
     Ok((demos, files::version(Some(&text))))
 }
 
@@ -182,8 +185,8 @@ pub(crate) async fn list_demos(State(st): St) -> ApiResult {
     let list = off_async(move || {
         let (demos, version) = read_demos_versioned(&st2)?;
         Ok(DemoList {
-            count: demos.len(),
-            demos: demos.iter().map(scene_value).collect(),
+            count: demos.scenes.len(),
+            demos: demos.scenes.iter().map(scene_value).collect(),
             version,
         })
     })
@@ -196,10 +199,11 @@ pub(crate) async fn save_demo(State(st): St, body: Bytes) -> ApiResult {
     let scene = off_async(move || parse_demo(&st2, &body)).await?;
     let _guard = st.write_lock.lock().await;
     let _folder = folder_lock(&st)?;
-    let mut demos = read_demos(&st)?;
+    let (file, _) = read_demos_versioned(&st)?;
+    let mut demos = file.scenes.clone();
     demos.push(scene);
     st.reset_ask();
-    files::atomic_write(&st.dir, DEMOS, &scenes_to_json(&demos))
+    files::atomic_write(&st.dir, DEMOS, &file.to_json(&demos))
         .map_err(|e| ApiError::io(DEMOS, e))?;
     Ok(reply(
         StatusCode::CREATED,
@@ -246,7 +250,7 @@ pub(crate) async fn delete_demo(
 ) -> ApiResult {
     let _guard = st.write_lock.lock().await;
     let _folder = folder_lock(&st)?;
-    let (mut demos, version) = read_demos_versioned(&st)?;
+    let (mut file, version) = read_demos_versioned(&st)?;
     if q.version.as_ref().is_some_and(|v| *v != version) {
         return Err(ApiError::new(
             StatusCode::CONFLICT,
@@ -254,10 +258,12 @@ pub(crate) async fn delete_demo(
         )
         .kind("stale_demos"));
     }
-    let i = demo_index(&index, demos.len())?;
-    demos.remove(i);
+    let i = demo_index(&index, file.scenes.len())?;
+    file.remove(i);
     st.reset_ask();
-    files::atomic_write(&st.dir, DEMOS, &scenes_to_json(&demos))
+    files::atomic_write(&st.dir, DEMOS, &file.to_json(&file.scenes))
         .map_err(|e| ApiError::io(DEMOS, e))?;
-    ok(&Deleted { count: demos.len() })
+    ok(&Deleted {
+        count: file.scenes.len(),
+    })
 }
