@@ -360,3 +360,55 @@ fn lookahead_writes_what_a_session_without_it_writes() {
     let _ = std::fs::remove_dir_all(&with);
     let _ = std::fs::remove_dir_all(&without);
 }
+
+/// Hardening, third pass, items 11 and 13: a hand-edited answer for a rule
+/// that is no statement of the task, or an accepted probe whose index is
+/// past the end of demos.json, is refused naming the answer — never
+/// counted confirmed, never called "a different scene".
+#[test]
+fn an_answer_the_task_cannot_hold_is_refused_naming_it() {
+    let dir = task("edited-answers");
+    let o = ask(&dir, &["--max-questions", "2"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let good = read(&dir, "answers.json");
+    let mut v: serde_json::Value = serde_json::from_str(&good).unwrap();
+    // A confirmed rule renamed by hand (item 11).
+    {
+        let mut w = v.clone();
+        let mut bogus = w["answers"][0].clone();
+        bogus["rule"] = serde_json::json!("No_such_rule");
+        bogus["accepted"] = serde_json::json!(false);
+        bogus.as_object_mut().unwrap().remove("demo");
+        let answers = w["answers"].as_array_mut().unwrap();
+        answers.push(bogus);
+        let i = answers.len() - 1;
+        std::fs::write(dir.join("answers.json"), w.to_string()).unwrap();
+        let o = ask(&dir, &["--max-questions", "0"]);
+        assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+        let t = text(&o);
+        assert!(
+            t.contains(&format!(
+                "answers[{i}]: rule: `No_such_rule` is not a statement of this task"
+            )),
+            "{t}"
+        );
+    }
+    // An accepted probe far past the end (item 13).
+    let accepted = v["answers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|a| a["accepted"] == true)
+        .expect("the first probe is accepted");
+    v["answers"][accepted]["demo"] = serde_json::json!(50);
+    std::fs::write(dir.join("answers.json"), v.to_string()).unwrap();
+    let o = ask(&dir, &["--max-questions", "0"]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let t = text(&o);
+    assert!(
+        t.contains(&format!("answers[{accepted}]: demo: 50 is out of range")),
+        "{t}"
+    );
+    assert!(!t.contains("different scene"), "{t}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1552,3 +1552,60 @@ async fn measured_demonstrations_are_listed_on_the_grid_and_kept_as_recorded() {
     assert_eq!(after.len(), 2);
     assert_eq!(after[0], m, "still as recorded");
 }
+
+/// Hardening, third pass, item 2: the page's own delete never breaks
+/// "Check rules" — a demonstration the journal refers to (or one before
+/// it) is not deleted, with a reason; one after them is.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn delete_refuses_a_demonstration_the_answers_refer_to() {
+    let dir = task_dir("delete-answered", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let n0 = demos_on_disk(&dir);
+    let q = next_question(&app).await["question"].clone();
+    let v = answer(&app, &q["rule"], true).await;
+    assert_eq!(v["answer"]["demo"], n0, "the probe is demonstration {n0}");
+    let version = || async {
+        let (_, l) = call(&app, Method::GET, "/api/demos", Body::empty()).await;
+        l["version"].as_str().unwrap().to_string()
+    };
+    for i in [0, n0] {
+        let (s, v) = call(
+            &app,
+            Method::DELETE,
+            &format!("/api/demos/{i}?version={}", version().await),
+            Body::empty(),
+        )
+        .await;
+        assert_eq!(s, StatusCode::CONFLICT, "{v}");
+        assert_eq!(v["kind"], "answered_demo", "{v}");
+        assert!(
+            v["error"]
+                .as_str()
+                .unwrap()
+                .contains("answers.json refers to demonstration"),
+            "{v}"
+        );
+    }
+    assert_eq!(demos_on_disk(&dir), n0 + 1, "nothing deleted");
+    // Check rules goes on.
+    let (s, v) = call(
+        &app,
+        Method::POST,
+        "/api/ask/next",
+        json!({"samples": 200}).to_string(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+    // A demonstration saved after the answers can go.
+    let extra = demo(&[("R", 200, 200), ("R", 220, 200), ("B", 200, 220)]);
+    let (s, _) = call(&app, Method::POST, "/api/demos", extra.to_string()).await;
+    assert_eq!(s, StatusCode::CREATED);
+    let (s, v) = call(
+        &app,
+        Method::DELETE,
+        &format!("/api/demos/{}?version={}", n0 + 1, version().await),
+        Body::empty(),
+    )
+    .await;
+    assert_eq!(s, StatusCode::OK, "{v}");
+}

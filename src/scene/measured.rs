@@ -554,7 +554,11 @@ mod tests {
     }
 
     fn x_of(m: &Measured, id: &str) -> Option<i64> {
-        m.scenes[0].objects.iter().find(|o| o.id == id).and_then(|o| o.x)
+        m.scenes[0]
+            .objects
+            .iter()
+            .find(|o| o.id == id)
+            .and_then(|o| o.x)
     }
 
     /// A block measured more than the tolerance off its nearest line takes
@@ -581,7 +585,10 @@ mod tests {
     /// which was refused before).
     #[test]
     fn conflicts_beyond_one_search_are_resolved_in_rounds() {
-        let text = format!("[{}]", r#"{"grid":10,"objects":[{"class":"W","fixed":true,"height":10,"id":"w_south","width":190,"x":160,"y":160},{"class":"W","fixed":true,"height":10,"id":"w_north","width":190,"x":160,"y":330},{"class":"W","fixed":true,"height":160,"id":"w_west","width":10,"x":160,"y":170},{"class":"W","fixed":true,"height":160,"id":"w_east","width":10,"x":340,"y":170},{"class":"R","height":20,"id":"r1","width":20,"x":229.8,"y":164.7},{"class":"R","height":20,"id":"r2","width":20,"x":249.3,"y":164.0},{"class":"R","height":20,"id":"r3","width":20,"x":267.1,"y":171.5},{"class":"G","height":20,"id":"g1","width":20,"x":228.1,"y":187.3},{"class":"G","height":20,"id":"g2","width":20,"x":229.3,"y":212.1},{"class":"G","height":20,"id":"g3","width":20,"x":247.2,"y":195.2},{"class":"G","height":20,"id":"g4","width":20,"x":244.9,"y":211.5},{"class":"G","height":20,"id":"g5","width":20,"x":232.7,"y":232.0},{"class":"G","height":20,"id":"g6","width":20,"x":231.8,"y":244.4}],"space":{"height":500,"width":510,"x":0,"y":0}}"#);
+        let text = format!(
+            "[{}]",
+            r#"{"grid":10,"objects":[{"class":"W","fixed":true,"height":10,"id":"w_south","width":190,"x":160,"y":160},{"class":"W","fixed":true,"height":10,"id":"w_north","width":190,"x":160,"y":330},{"class":"W","fixed":true,"height":160,"id":"w_west","width":10,"x":160,"y":170},{"class":"W","fixed":true,"height":160,"id":"w_east","width":10,"x":340,"y":170},{"class":"R","height":20,"id":"r1","width":20,"x":229.8,"y":164.7},{"class":"R","height":20,"id":"r2","width":20,"x":249.3,"y":164.0},{"class":"R","height":20,"id":"r3","width":20,"x":267.1,"y":171.5},{"class":"G","height":20,"id":"g1","width":20,"x":228.1,"y":187.3},{"class":"G","height":20,"id":"g2","width":20,"x":229.3,"y":212.1},{"class":"G","height":20,"id":"g3","width":20,"x":247.2,"y":195.2},{"class":"G","height":20,"id":"g4","width":20,"x":244.9,"y":211.5},{"class":"G","height":20,"id":"g5","width":20,"x":232.7,"y":232.0},{"class":"G","height":20,"id":"g6","width":20,"x":231.8,"y":244.4}],"space":{"height":500,"width":510,"x":0,"y":0}}"#
+        );
         let m = measured_from_json(&text, None).expect("resolved");
         let s = &m.scenes[0];
         s.validate().expect("no overlap");

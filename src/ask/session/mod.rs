@@ -347,6 +347,17 @@ impl Asker {
             match a.demo {
                 Some(d) if demos.get(d) == Some(&a.probe) => {}
                 Some(d) if d == demos.len() => demos.push(a.probe.clone()),
+                Some(d) if d > demos.len() => {
+                    return Err(AskError::BadAnswer {
+                        index: i,
+                        why: format!(
+                            "demo: {d} is out of range: demos.json has {} demonstrations (indices 0 to {}), and an accepted probe is at most the next one, [{}]",
+                            demos.len(),
+                            demos.len().saturating_sub(1),
+                            demos.len()
+                        ),
+                    })
+                }
                 Some(d) => {
                     return Err(AskError::BadAnswer {
                         index: i,
@@ -425,6 +436,26 @@ impl Asker {
     ) -> Result<Asker, AskError> {
         let (set_aside, meant) = suspect_answers(&answers);
         let learned = learn_session(&demos, statements.as_ref(), &opts, &set_aside, &meant)?;
+        // A confirmed rule must be one of the task's statements (a hand
+        // edit or a renamed rule would be counted confirmed and marked
+        // nowhere).
+        for (i, a) in answers.iter().enumerate() {
+            let named: Vec<&String> = match &a.suspect {
+                Some(s) => s.breaks.iter().collect(),
+                None => vec![&a.rule],
+            };
+            for rule in named {
+                if !learned.statements.iter().any(|s| &s.name == rule) {
+                    return Err(AskError::BadAnswer {
+                        index: i,
+                        why: format!(
+                            "rule: `{}` is not a statement of this task (renamed, or edited by hand?); expected the name of a learned rule — fix or remove the answer",
+                            crate::limits::cut(rule)
+                        ),
+                    });
+                }
+            }
+        }
         let like = opts.resemble.then(|| ResemblanceTarget::new(&demos));
         let mut asker = Asker {
             problem,

@@ -41,6 +41,39 @@ pub(super) fn read_demos_versioned(st: &AppState) -> Result<(DemosFile, String),
     Ok((demos, files::version(Some(&text))))
 }
 
+/// Refuse to delete demonstration `i` when answers.json refers to it or to
+/// a later one (an accepted probe is demonstration `demo`, a suspect answer
+/// names its demonstration): deleting would shift them and break the
+/// journal "Check rules" resumes from.
+fn refuse_if_answered(st: &AppState, i: usize) -> Result<(), ApiError> {
+    let Some(text) = files::read_optional(&st.dir, files::ANSWERS)
+        .map_err(|e| ApiError::io(files::ANSWERS, e))?
+    else {
+        return Ok(());
+    };
+    // A corrupt journal is reported by "Check rules"; nothing to protect.
+    let Ok(journal) = crate::ask::AnswersFile::from_json(&text) else {
+        return Ok(());
+    };
+    let refers = journal.answers.iter().enumerate().find_map(|(k, a)| {
+        let d = a.demo.or(a.suspect.as_ref().map(|s| s.demonstration))?;
+        (d >= i).then_some((k, d))
+    });
+    match refers {
+        Some((k, d)) => Err(ApiError::new(
+            StatusCode::CONFLICT,
+            format!(
+                "demonstration #{} was not deleted: answers.json refers to demonstration #{} (answer {} of Check rules), and deleting would renumber it; move answers.json away first (its answers are then forgotten)",
+                i + 1,
+                d + 1,
+                k + 1
+            ),
+        )
+        .kind("answered_demo")),
+        None => Ok(()),
+    }
+}
+
 /// The task folder's lock (shared with `rccpack ask`), taken while
 /// writing; a 409 naming it when an `ask` session holds it.
 pub(super) fn folder_lock(st: &AppState) -> Result<crate::fsutil::DirLock, ApiError> {
@@ -259,6 +292,7 @@ pub(crate) async fn delete_demo(
         .kind("stale_demos"));
     }
     let i = demo_index(&index, file.scenes.len())?;
+    refuse_if_answered(&st, i)?;
     file.remove(i);
     st.reset_ask();
     files::atomic_write(&st.dir, DEMOS, &file.to_json(&file.scenes))
