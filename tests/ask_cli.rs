@@ -412,3 +412,37 @@ fn an_answer_the_task_cannot_hold_is_refused_naming_it() {
     assert!(!t.contains("different scene"), "{t}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Hardening, third pass, item 3: an oracle that answers at once but leaves
+/// a child in a session of its own holding its standard error (an image
+/// viewer it opened) does not make `ask` wait for that child.
+#[test]
+fn an_oracles_lingering_child_is_not_waited_for() {
+    let dir = task("lingering-child");
+    let start = std::time::Instant::now();
+    let o = crate::support::command()
+        .arg("ask")
+        .arg(&dir)
+        .args([
+            "--samples",
+            "200",
+            "--max-questions",
+            "1",
+            "--oracle",
+            "setsid sleep 30 & exit 1",
+        ])
+        .output()
+        .unwrap();
+    let took = start.elapsed();
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(
+        text(&o).contains("not acceptable: confirmed"),
+        "{}",
+        text(&o)
+    );
+    assert!(
+        took < std::time::Duration::from_secs(20),
+        "ask waited {took:?} for the oracle's child"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

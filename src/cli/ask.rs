@@ -279,16 +279,30 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
     };
     let pgid = i32::try_from(child.id()).unwrap_or(0);
     ORACLE_GROUP.store(pgid, Ordering::SeqCst);
-    // Its standard error, read as it comes (a full pipe would hang it).
-    let errors = child.stderr.take().map(|mut e| {
+    // Its standard error, read as it comes (a full pipe would hang it),
+    // into a buffer the answer takes when the oracle exits: a child the
+    // oracle left running in a session of its own (an image viewer) may
+    // hold the pipe open for ever, and is never waited for.
+    let said_so_far = std::sync::Arc::new(std::sync::Mutex::new(Vec::<u8>::new()));
+    let (eof_tx, eof_rx) = std::sync::mpsc::channel::<()>();
+    if let Some(mut e) = child.stderr.take() {
+        let buf = said_so_far.clone();
         std::thread::spawn(move || {
             use std::io::Read as _;
-            let mut text = Vec::new();
-            let _ = (&mut e).take(1 << 16).read_to_end(&mut text);
-            let _ = std::io::copy(&mut e, &mut std::io::sink());
-            String::from_utf8_lossy(&text).into_owned()
-        })
-    });
+            let mut chunk = [0u8; 4096];
+            loop {
+                match e.read(&mut chunk) {
+                    Ok(0) | Err(_) => break,
+                    Ok(k) => {
+                        let mut b = buf.lock().unwrap_or_else(|p| p.into_inner());
+                        let room = (1usize << 16).saturating_sub(b.len());
+                        b.extend_from_slice(&chunk[..k.min(room)]);
+                    }
+                }
+            }
+            let _ = eof_tx.send(());
+        });
+    }
     let start = Instant::now();
     let status = loop {
         match child.try_wait() {
@@ -310,11 +324,13 @@ fn ask_oracle(cmd: &str, probe: &Path, timeout: Duration) -> Verdict {
     // Whatever the shell left running goes with it.
     kill_group(pgid);
     ORACLE_GROUP.store(0, Ordering::SeqCst);
-    let said = errors
-        .and_then(|t| t.join().ok())
-        .unwrap_or_default()
-        .trim()
-        .to_string();
+    // What it printed: to the end of the pipe, or what came within a
+    // moment when something outside its process group still holds it.
+    let _ = eof_rx.recv_timeout(Duration::from_millis(200));
+    let said = {
+        let b = said_so_far.lock().unwrap_or_else(|p| p.into_inner());
+        String::from_utf8_lossy(&b).trim().to_string()
+    };
     oracle_verdict(cmd, status, &said)
 }
 
