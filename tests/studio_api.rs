@@ -1609,3 +1609,46 @@ async fn delete_refuses_a_demonstration_the_answers_refer_to() {
     .await;
     assert_eq!(s, StatusCode::OK, "{v}");
 }
+
+/// Hardening, third pass, item 9: the learning a "Check rules" request
+/// starts ends when its client leaves, as POST /api/learn's does — the
+/// folder is free again at once, not after a million random layouts.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn ask_learning_stops_when_its_client_leaves() {
+    let dir = task_dir("ask-leave", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let slow = call(
+        &app,
+        Method::POST,
+        "/api/ask/next",
+        json!({"samples": 1_000_000}).to_string(),
+    );
+    // The client gives up.
+    assert!(
+        tokio::time::timeout(std::time::Duration::from_millis(500), slow)
+            .await
+            .is_err(),
+        "a million samples take longer than half a second"
+    );
+    let start = std::time::Instant::now();
+    loop {
+        let (s, v) = call(
+            &app,
+            Method::POST,
+            "/api/ask/next",
+            json!({"samples": 200}).to_string(),
+        )
+        .await;
+        if s == StatusCode::OK {
+            break;
+        }
+        assert_eq!(s, StatusCode::CONFLICT, "{v}");
+        assert!(
+            // Measured: about 0.2 s after the client left; a million
+            // samples take about 5 s in a debug build.
+            start.elapsed() < std::time::Duration::from_secs(3),
+            "the left request's learning still holds the folder: {v}"
+        );
+        tokio::time::sleep(std::time::Duration::from_millis(100)).await;
+    }
+}

@@ -92,7 +92,7 @@ impl Lookahead {
 impl Drop for Lookahead {
     fn drop(&mut self) {
         // Branches not taken stop their solves; their threads end on their
-        // own (learning, which cannot be stopped, runs to its end).
+        // own (learning checks the same flag before each random scene).
         for b in self.branches.iter().flatten() {
             if let Pending::Thread(_, cancel) = b {
                 cancel.store(true, Ordering::SeqCst);

@@ -456,6 +456,16 @@ impl Session {
         self.backup
     }
 
+    /// Stop learning and every probe search when `flag` is set (`None`:
+    /// never), for the session's options and its loop.
+    pub(crate) fn set_cancel(
+        &mut self,
+        flag: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    ) {
+        self.opts.ask.probe.cancel = flag.clone();
+        self.asker.set_cancel(flag);
+    }
+
     /// The question shown and not answered yet.
     pub fn open_question(&self) -> Option<&Shown> {
         self.open.as_ref().map(|o| &o.shown)

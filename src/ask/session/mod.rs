@@ -300,15 +300,20 @@ fn learn_session(
 ) -> Result<Learned, InferError> {
     let set_aside: Vec<usize> = set_aside.iter().copied().collect();
     let meant: Vec<usize> = meant.iter().copied().collect();
+    // The flag that stops the probe searches stops learning too.
+    let stop = match &opts.probe.cancel {
+        Some(flag) => crate::stop::Stop::never().with_cancel(flag.clone()),
+        None => crate::stop::Stop::never(),
+    };
     crate::infer::learn_with(
         demos,
         statements,
         &opts.learn,
         &crate::infer::LearnOptions {
             priors: opts.priors.as_deref(),
+            stop,
             set_aside: &set_aside,
             meant: &meant,
-            ..Default::default()
         },
     )
 }

@@ -5,7 +5,7 @@
 
 use super::super::AppState;
 use super::demos::{folder_lock, read_demos_versioned};
-use super::learn::{learn_params, read_statements, LearnBody};
+use super::learn::{learn_params, read_statements, CancelOnDrop, LearnBody};
 use super::learned::{current_learned, learned_value, LearnedView};
 use super::{internal, ok, parse_body, scene_value, ApiError, ApiResult, St};
 use crate::ask::{AskError, AskOptions, ProbeOptions, Question};
@@ -106,6 +106,10 @@ async fn start_session(
         demos: read_demos_versioned(st)?.0,
         statements: read_statements(st)?,
     };
+    // Learning stops when the request's client leaves (the handler's
+    // future is dropped, and with it `_leave`), as for POST /api/learn.
+    let cancel = Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let _leave = CancelOnDrop(cancel.clone());
     let opts = SessionOptions {
         ask: AskOptions {
             learn: params,
@@ -113,6 +117,7 @@ async fn start_session(
                 contact: params.contact,
                 seed: params.seed,
                 time_limit: Some(Duration::from_secs(PROBE_TIME_LIMIT_SECS)),
+                cancel: Some(cancel),
                 ..ProbeOptions::default()
             },
             resemble: true,
@@ -126,7 +131,11 @@ async fn start_session(
     };
     let dir = st.dir.clone();
     let session = tokio::task::spawn_blocking(move || {
-        let s = Session::open_with(dir, inputs, opts);
+        let s = Session::open_with(dir, inputs, opts).map(|mut s| {
+            // Started: the request's flag no longer stops the session.
+            s.set_cancel(None);
+            s
+        });
         drop(folder);
         s
     })

@@ -73,7 +73,7 @@ pub(super) fn learn_params(b: &LearnBody) -> Result<LearnParams, ApiError> {
 
 /// Sets its flag when dropped: a request's learning run ends when the
 /// request does, however it ends.
-struct CancelOnDrop(Arc<AtomicBool>);
+pub(super) struct CancelOnDrop(pub(super) Arc<AtomicBool>);
 
 impl Drop for CancelOnDrop {
     fn drop(&mut self) {
