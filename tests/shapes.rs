@@ -329,3 +329,38 @@ fn ask_probes_a_group_statement() {
         o => panic!("expected implied, got {o:?}"),
     }
 }
+
+/// Hardening, third pass, item 10: on a scene without the class, the note
+/// names the rules that cannot hold (a scene rule that needs a subject, a
+/// negated group statement) instead of saying every rule holds vacuously,
+/// and a group statement about the class gets the note too.
+#[test]
+fn the_absent_class_note_names_the_rules_that_cannot_hold() {
+    let dir = crate::support::scratch("shapes-absent-class");
+    let rules = crate::support::write_file(
+        &dir,
+        "r.rcc",
+        "# learned by rccpack (a test)\nrule a: DR_N(Q, R)\nrule b: some Q: DR_N(Q, R)\nrule c: not group(Q)\n",
+    );
+    let problem = crate::support::path("examples/box-packing/problem.json");
+    let o = crate::support::rccpack(&["score", problem.to_str().unwrap(), "--rules", &rules]);
+    let err = crate::support::stderr(&o);
+    assert!(
+        err.contains("note: the problem has no objects of class Q; its rules hold vacuously, except `b`, `c`, which need one and cannot hold"),
+        "{err}"
+    );
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(out.contains("b            1        0/1"), "{out}");
+    // A group statement alone is noted too.
+    let only = crate::support::write_file(
+        &dir,
+        "g.rcc",
+        "# learned by rccpack (a test)\nrule g: group(Q)\n",
+    );
+    let o = crate::support::rccpack(&["score", problem.to_str().unwrap(), "--rules", &only]);
+    let err = crate::support::stderr(&o);
+    assert!(
+        err.contains("note: the problem has no objects of class Q; its rules hold vacuously\n"),
+        "{err}"
+    );
+}

@@ -510,8 +510,9 @@ fn say_start(session: &Session) -> Result<()> {
         ))?;
     }
     // docs/language.md#classes-a-scene-lacks: learned rules about a class today's problem lacks.
-    let missing = rccpack::rules::missing_classes(session.asker().held(), session.problem());
-    if let Some(note) = rccpack::rules::missing_classes_note(&missing) {
+    if let Some(note) =
+        rccpack::rules::absent_classes_note(session.asker().held(), session.problem())
+    {
         outln(note)?;
     }
     Ok(())

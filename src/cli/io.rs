@@ -190,7 +190,8 @@ pub fn read_rules_seen(path: &Path, scenes: &[Scene], also: &[Scene]) -> Result<
         }
     }
     let missing: Vec<String> = missing.iter().map(|c| rccpack::limits::cut(c)).collect();
-    if let Some(note) = rules::missing_classes_note(&missing) {
+    let needing = rules::rules_needing(&set, &missing);
+    if let Some(note) = rules::missing_classes_note(&missing, &needing) {
         let note = if scenes.len() > 1 {
             note.replacen("the problem has", "some scenes have", 1)
         } else {

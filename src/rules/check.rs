@@ -1,7 +1,7 @@
 //! Semantic checks that need a scene (classes named by rules exist in it;
 //! landmarks name fixed objects of it).
 
-use super::{Diagnostic, DiagnosticKind, RuleSet, RulesError, Span, Target};
+use super::{Diagnostic, DiagnosticKind, RuleSet, RulesError, Scope, Span, Target};
 use crate::scene::Scene;
 
 /// Check that every class named by `rules` exists in `scene`.
@@ -169,6 +169,13 @@ pub fn missing_classes(rules: &RuleSet, scene: &Scene) -> Vec<String> {
     let classes = scene.classes();
     let mut out: Vec<String> = Vec::new();
     for rule in &rules.rules {
+        // A group statement names its class in its shape, not in atoms.
+        if rule.scope == Scope::Group {
+            let class = rule.formula.subject();
+            if !classes.contains(&class) && !out.iter().any(|o| o == class) {
+                out.push(class.to_string());
+            }
+        }
         for atom in rule.formula.atoms() {
             let mut named = vec![atom.subject.as_str()];
             if let Target::Class(c) = &atom.target {
@@ -184,17 +191,54 @@ pub fn missing_classes(rules: &RuleSet, scene: &Scene) -> Vec<String> {
     out
 }
 
-/// The note a command prints for [`missing_classes`] (docs/language.md#classes-a-scene-lacks), or `None`.
+/// The rules about a class in `missing` that a scene without it breaks
+/// instead of keeping vacuously (docs/language.md#classes-a-scene-lacks): a
+/// scene rule that needs a subject (`some Q: …`, `at least K Q: …`) and a
+/// negated group statement (`not group(Q)`: the empty class is one group).
+pub fn rules_needing(rules: &RuleSet, missing: &[String]) -> Vec<String> {
+    rules
+        .rules
+        .iter()
+        .filter(|r| missing.iter().any(|m| m == r.formula.subject()))
+        .filter(|r| match r.scope {
+            Scope::Scene(q) => !q.holds(0, 0),
+            Scope::Group => r.formula.shape().is_some_and(|(_, negated)| negated),
+            Scope::Each => false,
+        })
+        .map(|r| r.name.clone())
+        .collect()
+}
+
+/// [`missing_classes_note`] for `rules` on `scene`.
+#[doc(hidden)]
+pub fn absent_classes_note(rules: &RuleSet, scene: &Scene) -> Option<String> {
+    let missing = missing_classes(rules, scene);
+    missing_classes_note(&missing, &rules_needing(rules, &missing))
+}
+
+/// The note a command prints for [`missing_classes`] (docs/language.md#classes-a-scene-lacks), or `None`;
+/// `needing`: the rules [`rules_needing`] names, which cannot hold.
 /// Shared with the command line (a separate crate); not part of the API.
 #[doc(hidden)]
-pub fn missing_classes_note(missing: &[String]) -> Option<String> {
+pub fn missing_classes_note(missing: &[String], needing: &[String]) -> Option<String> {
+    let except = match needing {
+        [] => String::new(),
+        [one] => format!(", except `{one}`, which needs one and cannot hold"),
+        many => format!(
+            ", except {}, which need one and cannot hold",
+            many.iter()
+                .map(|n| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
     match missing {
         [] => None,
         [one] => Some(format!(
-            "note: the problem has no objects of class {one}; its rules hold vacuously"
+            "note: the problem has no objects of class {one}; its rules hold vacuously{except}"
         )),
         many => Some(format!(
-            "note: the problem has no objects of classes {}; their rules hold vacuously",
+            "note: the problem has no objects of classes {}; their rules hold vacuously{except}",
             many.join(", ")
         )),
     }

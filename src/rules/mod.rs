@@ -16,7 +16,8 @@ pub use ast::{
     Target,
 };
 pub use check::{
-    check_classes, check_classes_across, check_landmarks, missing_classes, missing_classes_note,
+    absent_classes_note, check_classes, check_classes_across, check_landmarks, missing_classes,
+    missing_classes_note, rules_needing,
 };
 pub use diagnostic::{Diagnostic, DiagnosticKind, RulesError};
 pub use parser::parse_rules;

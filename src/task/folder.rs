@@ -157,7 +157,8 @@ pub fn summary(run: &FolderRun) -> Summary {
     }
     // Learned rules about a class today's problem lacks hold as docs/language.md#class-rules
     // says (docs/language.md#classes-a-scene-lacks): a note, then a layout.
-    if let Some(note) = missing_classes_note(&placement.missing_classes) {
+    let needing = crate::rules::rules_needing(rules, &placement.missing_classes);
+    if let Some(note) = missing_classes_note(&placement.missing_classes, &needing) {
         stdout.push(note);
     }
     let candidates = learned.statements.iter().filter(|s| s.candidate).count();

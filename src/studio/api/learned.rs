@@ -7,9 +7,7 @@ use super::demos::{folder_lock, read_demos};
 use super::learn::rules_error;
 use super::{internal, ok, parse_body, ApiError, ApiResult, St};
 use crate::infer::statement_text;
-use crate::rules::{
-    check_classes, check_landmarks, missing_classes, missing_classes_note, parse_rules, RuleSet,
-};
+use crate::rules::{check_classes, check_landmarks, parse_rules, RuleSet};
 use crate::task::files::{self, LEARNED};
 use axum::body::Bytes;
 use axum::extract::State;
@@ -77,7 +75,7 @@ pub(super) fn learned_value(st: &AppState, text: Option<&str>) -> LearnedView {
         }) {
             Ok(set) => {
                 // docs/language.md#classes-a-scene-lacks: a class today's problem lacks is ordinary.
-                v.note = missing_classes_note(&missing_classes(&set, &st.problem));
+                v.note = crate::rules::absent_classes_note(&set, &st.problem);
                 v.rules = Some(rule_summary(&set, &files::confirmed_names(t)));
             }
             Err(e) => v.error = Some(e.render(LEARNED, t, false)),

@@ -5,7 +5,6 @@ use super::demos::read_demos;
 use super::learned::parse_checked;
 use super::{ok, parse_body, reply, scene_value, ApiError, ApiResult, St};
 use crate::limits::cut;
-use crate::rules::{missing_classes, missing_classes_note};
 use crate::synth::{Progress, ProgressFn, SynthOptions, SynthResult};
 use crate::task::files;
 use crate::task::Like;
@@ -52,7 +51,7 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
     let (set, _) = parse_checked(&st, CHOSEN, b.rules).await?;
     // docs/language.md#classes-a-scene-lacks: the chosen rules are learned ones; a class the problem
     // lacks is noted, not refused.
-    let note = missing_classes_note(&missing_classes(&set, &st.problem));
+    let note = crate::rules::absent_classes_note(&set, &st.problem);
     let secs = b.time_limit.unwrap_or(30.0);
     // The shared validated parser, then the studio's own tighter cap.
     let limit = crate::limits::time_limit(secs)
