@@ -157,6 +157,7 @@
 //!
 //! The command-line tool `rccpack` wraps these (`check`, `score`, `render`,
 //! …); see docs/cli.md.
+#![warn(unreachable_pub)]
 #![warn(missing_docs)]
 
 pub mod ask;

@@ -23,7 +23,7 @@ use std::time::{Duration, Instant};
 pub const DEFAULT_QUESTION_NODES: u64 = 20_000;
 
 /// Model Booleans per unit of weight (see the module docs).
-pub const WEIGHT_UNIT: usize = 1024;
+pub(super) const WEIGHT_UNIT: usize = 1024;
 
 /// The weight of a node on a model with `bools` Booleans.
 pub(crate) fn weight(bools: usize) -> u64 {
@@ -64,7 +64,7 @@ pub(crate) struct Meter {
 
 impl Meter {
     /// A full budget from now.
-    pub fn start(b: &QuestionBudget) -> Meter {
+    pub(super) fn start(b: &QuestionBudget) -> Meter {
         Meter {
             left: b.nodes,
             deadline: b.wall.and_then(|w| Instant::now().checked_add(w)),
@@ -72,7 +72,7 @@ impl Meter {
     }
 
     /// A meter that never runs out (for one-off checks outside a question).
-    pub fn unlimited() -> Meter {
+    pub(super) fn unlimited() -> Meter {
         Meter {
             left: u64::MAX,
             deadline: None,
@@ -80,13 +80,13 @@ impl Meter {
     }
 
     /// Whether nothing is left (nodes or time).
-    pub fn exhausted(&self) -> bool {
+    pub(super) fn exhausted(&self) -> bool {
         self.left == 0 || self.deadline.is_some_and(|d| Instant::now() >= d)
     }
 
     /// Nodes for a solve on a model of weight `weight` that wants `want`:
     /// at most what is left; `None` when nothing is.
-    pub fn grant(&self, want: u64, weight: u64) -> Option<u64> {
+    pub(super) fn grant(&self, want: u64, weight: u64) -> Option<u64> {
         let can = self.left / weight.max(1);
         if self.exhausted() || can == 0 {
             None
@@ -96,19 +96,19 @@ impl Meter {
     }
 
     /// Half of what is left, in nodes of weight `weight` (at least 1).
-    pub fn half_nodes(&self, weight: u64) -> u64 {
+    pub(super) fn half_nodes(&self, weight: u64) -> u64 {
         (self.left / 2 / weight.max(1)).max(1)
     }
 
     /// Charge `nodes` spent on a model of weight `weight`.
-    pub fn spend(&mut self, nodes: u64, weight: u64) {
+    pub(super) fn spend(&mut self, nodes: u64, weight: u64) {
         self.left = self
             .left
             .saturating_sub(nodes.saturating_mul(weight.max(1)));
     }
 
     /// The deadline (the wall-clock cap), if any.
-    pub fn deadline(&self) -> Option<Instant> {
+    pub(super) fn deadline(&self) -> Option<Instant> {
         self.deadline
     }
 }

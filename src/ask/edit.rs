@@ -45,14 +45,14 @@ use serde::{Deserialize, Serialize};
 use std::time::Duration;
 
 /// At most this many objects are moved in a demonstration.
-pub const MAX_MOVED: usize = 2;
+pub(super) const MAX_MOVED: usize = 2;
 
 /// At most this many neighbourhoods are searched per rule.
-pub const MAX_SOLVES: usize = 24;
+pub(super) const MAX_SOLVES: usize = 24;
 
 /// Search nodes for one neighbourhood (one or two objects free: a complete
 /// search is far below this on every bundled and generated task).
-pub const EDIT_NODES: u64 = 2_000;
+pub(super) const EDIT_NODES: u64 = 2_000;
 
 /// A probe that is a demonstration with a few objects moved.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -161,7 +161,7 @@ impl EditSearch<'_> {
     /// when no neighbourhood tried has one (or the budget ran out).
     /// `checkers` holds one pinned checker per demonstration, built when
     /// first needed (they stay valid while `held` does).
-    pub fn find(
+    pub(super) fn find(
         &self,
         held: &RuleSet,
         target: usize,

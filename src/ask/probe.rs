@@ -42,7 +42,7 @@ use crate::synth::{synthesize, Status, SynthError, SynthOptions};
 use std::time::Duration;
 
 /// The name given to the negated rule inside a probe problem.
-pub const NEGATION_PREFIX: &str = "not_";
+pub(super) const NEGATION_PREFIX: &str = "not_";
 
 /// A rule that holds exactly when `rule` is broken: `some A: !φ` for a
 /// per-object rule, the complementary quantifier for a scene-level one.
@@ -225,7 +225,7 @@ pub fn probe_rules(held: &RuleSet, target: usize) -> Option<RuleSet> {
 /// one to show (most visible, most like the demonstrations).
 ///
 /// Holds a Pumpkin engine, so it is not `Send`: make one per scan.
-pub struct ProbeChecker {
+pub(super) struct ProbeChecker {
     engine: Option<crate::synth::engine::Engine>,
     model: crate::synth::model::Model,
     problem: Scene,
@@ -242,7 +242,7 @@ pub struct ProbeChecker {
 
 impl ProbeChecker {
     /// Build the engine for `held` on `problem`.
-    pub fn new(
+    pub(super) fn new(
         problem: &Scene,
         held: &RuleSet,
         opts: &ProbeOptions,
@@ -255,7 +255,7 @@ impl ProbeChecker {
     /// constraint holding it where it is), so that
     /// [`ProbeChecker::has_probe_moving`] can free any few of them under
     /// assumptions. Objects off the grid stay where they are.
-    pub fn pinned(
+    pub(super) fn pinned(
         demo: &Scene,
         held: &RuleSet,
         opts: &ProbeOptions,
@@ -352,7 +352,12 @@ impl ProbeChecker {
     /// Whether rule `k` has a probe that moves only the objects in `free`
     /// (indices into the scene of [`ProbeChecker::pinned`]; every other
     /// pinned object stays where it is), within `nodes` search nodes.
-    pub fn has_probe_moving(&mut self, k: usize, free: &[usize], nodes: Option<u64>) -> Checked {
+    pub(super) fn has_probe_moving(
+        &mut self,
+        k: usize,
+        free: &[usize],
+        nodes: Option<u64>,
+    ) -> Checked {
         let Some(neg) = self.negation_of[k] else {
             return Checked::Proven;
         };
@@ -369,23 +374,23 @@ impl ProbeChecker {
     }
 
     /// Whether object `i` of the scene can move (it has a pin).
-    pub fn can_move(&self, i: usize) -> bool {
+    pub(super) fn can_move(&self, i: usize) -> bool {
         self.pins.get(i).is_some_and(Option::is_some)
     }
 
     /// The weight of one of its search nodes (see `super::budget`).
-    pub fn weight(&self) -> u64 {
+    pub(super) fn weight(&self) -> u64 {
         super::budget::weight(self.model.bools.len())
     }
 
     /// Search nodes spent by every solve so far.
-    pub fn nodes(&self) -> u64 {
+    pub(super) fn nodes(&self) -> u64 {
         self.engine.as_ref().map_or(0, |e| e.nodes())
     }
 
     /// Stop every later solve at `deadline` too (besides the options' time
     /// limit).
-    pub fn set_deadline(&mut self, deadline: Option<std::time::Instant>) {
+    pub(super) fn set_deadline(&mut self, deadline: Option<std::time::Instant>) {
         self.deadline = deadline;
     }
 
@@ -397,13 +402,18 @@ impl ProbeChecker {
     /// Rules with `removed[j]` (allowed to break with `k`) are left out of
     /// the assumptions.
     #[cfg(test)]
-    pub fn has_probe(&mut self, k: usize, removed: &[bool]) -> Checked {
+    pub(super) fn has_probe(&mut self, k: usize, removed: &[bool]) -> Checked {
         self.has_probe_within(k, removed, None)
     }
 
     /// [`ProbeChecker::has_probe`] with at most `nodes` search nodes when
     /// that is below the options' check budget.
-    pub fn has_probe_within(&mut self, k: usize, removed: &[bool], nodes: Option<u64>) -> Checked {
+    pub(super) fn has_probe_within(
+        &mut self,
+        k: usize,
+        removed: &[bool],
+        nodes: Option<u64>,
+    ) -> Checked {
         let Some(neg) = self.negation_of[k] else {
             return Checked::Proven;
         };
@@ -420,13 +430,13 @@ impl ProbeChecker {
     /// when it does not, [`Checked::Stopped`] when a limit stopped the
     /// solve.
     #[cfg(test)]
-    pub fn implies(&mut self, a: usize, b: usize) -> Checked {
+    pub(super) fn implies(&mut self, a: usize, b: usize) -> Checked {
         self.implies_within(a, b, None)
     }
 
     /// [`ProbeChecker::implies`] with at most `nodes` search nodes when
     /// that is below the options' check budget.
-    pub fn implies_within(&mut self, a: usize, b: usize, nodes: Option<u64>) -> Checked {
+    pub(super) fn implies_within(&mut self, a: usize, b: usize, nodes: Option<u64>) -> Checked {
         let Some(neg) = self.negation_of[b] else {
             return Checked::Proven;
         };
@@ -466,7 +476,7 @@ impl ProbeChecker {
 
 /// What one check of a [`ProbeChecker`] found.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Checked {
+pub(super) enum Checked {
     /// A layout of the problem that answers the check with "no": it keeps
     /// the assumed rules and breaks the rule checked.
     Witness(Scene),
@@ -478,7 +488,7 @@ pub enum Checked {
 
 impl Checked {
     /// A word for logs: `witness`, `proven` or `stopped`.
-    pub fn name(&self) -> &'static str {
+    pub(super) fn name(&self) -> &'static str {
         match self {
             Checked::Witness(_) => "witness",
             Checked::Proven => "proven",

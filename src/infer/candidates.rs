@@ -34,7 +34,7 @@ pub struct Provenance {
 ///
 /// `classes` must cover every class of the demonstrations and every
 /// landmark of the statements.
-pub fn find_candidates(
+pub(crate) fn find_candidates(
     demos: &[Scene],
     classes: &ClassIndex,
     rules: &[CompiledRule],
@@ -112,7 +112,7 @@ impl Exception {
 /// For each statement broken in exactly one of at least three
 /// demonstrations (`broken` from [`find_candidates`]), that demonstration
 /// and the objects breaking it; `None` for every other statement.
-pub fn find_exceptions(
+pub(crate) fn find_exceptions(
     demos: &[Scene],
     classes: &ClassIndex,
     rules: &[CompiledRule],

@@ -439,7 +439,7 @@ fn atom_implies(a: &Atom, b: &Atom, contact: Contact) -> bool {
 /// the implications between atoms allow (see the module documentation).
 /// Sound but not complete: `false` may hide an implication. Gives `false`
 /// beyond 16 distinct atoms.
-pub fn implies(f: &Formula, g: &Formula, contact: Contact) -> bool {
+pub(crate) fn implies(f: &Formula, g: &Formula, contact: Contact) -> bool {
     if f.subject() != g.subject() {
         return false;
     }
@@ -479,7 +479,7 @@ pub fn implies(f: &Formula, g: &Formula, contact: Contact) -> bool {
 /// (`some`/`at least k` ⇒ `at least j ≤ k` when `f ⇒ g`; `no`/`at most k`
 /// ⇒ `at most j ≥ k` when `g ⇒ f`). A per-object and a scene-level
 /// statement are never compared.
-pub fn rule_implies(f: (Scope, &Formula), g: (Scope, &Formula), contact: Contact) -> bool {
+pub(crate) fn rule_implies(f: (Scope, &Formula), g: (Scope, &Formula), contact: Contact) -> bool {
     match (f.0, g.0) {
         (Scope::Each, Scope::Each) => implies(f.1, g.1, contact),
         (Scope::Scene(qf), Scope::Scene(qg)) => {

@@ -38,9 +38,9 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Draws per object before the scene is started over.
-pub const MAX_TRIES: usize = 1000;
+pub(super) const MAX_TRIES: usize = 1000;
 /// Scene restarts before the objects are declared unplaceable.
-pub const MAX_RESAMPLES: usize = 100;
+pub(super) const MAX_RESAMPLES: usize = 100;
 
 /// A cell bitset or a list of rectangles.
 #[derive(Debug, Clone)]

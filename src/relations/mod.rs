@@ -495,41 +495,41 @@ mod conditions {
         }};
     }
 
-    pub const DR_N: &[&[Cmp]] = &[&[cmp(A, Y, Ge, B, Y2)]];
-    pub const DR_S: &[&[Cmp]] = &[&[cmp(A, Y2, Le, B, Y)]];
-    pub const DR_E: &[&[Cmp]] = &[&[cmp(A, X, Ge, B, X2)]];
-    pub const DR_W: &[&[Cmp]] = &[&[cmp(A, X2, Le, B, X)]];
+    pub(super) const DR_N: &[&[Cmp]] = &[&[cmp(A, Y, Ge, B, Y2)]];
+    pub(super) const DR_S: &[&[Cmp]] = &[&[cmp(A, Y2, Le, B, Y)]];
+    pub(super) const DR_E: &[&[Cmp]] = &[&[cmp(A, X, Ge, B, X2)]];
+    pub(super) const DR_W: &[&[Cmp]] = &[&[cmp(A, X2, Le, B, X)]];
 
-    pub const EC_N_P: &[&[Cmp]] = &[&cat!(cmp(A, Y, Eq, B, Y2), meet_point!(X, X2))];
-    pub const EC_S_P: &[&[Cmp]] = &[&cat!(cmp(A, Y2, Eq, B, Y), meet_point!(X, X2))];
-    pub const EC_E_P: &[&[Cmp]] = &[&cat!(cmp(A, X, Eq, B, X2), meet_point!(Y, Y2))];
-    pub const EC_W_P: &[&[Cmp]] = &[&cat!(cmp(A, X2, Eq, B, X), meet_point!(Y, Y2))];
-    pub const EC_N_E: &[&[Cmp]] = &[&cat!(cmp(A, Y, Eq, B, Y2), meet_edge!(X, X2))];
-    pub const EC_S_E: &[&[Cmp]] = &[&cat!(cmp(A, Y2, Eq, B, Y), meet_edge!(X, X2))];
-    pub const EC_E_E: &[&[Cmp]] = &[&cat!(cmp(A, X, Eq, B, X2), meet_edge!(Y, Y2))];
-    pub const EC_W_E: &[&[Cmp]] = &[&cat!(cmp(A, X2, Eq, B, X), meet_edge!(Y, Y2))];
+    pub(super) const EC_N_P: &[&[Cmp]] = &[&cat!(cmp(A, Y, Eq, B, Y2), meet_point!(X, X2))];
+    pub(super) const EC_S_P: &[&[Cmp]] = &[&cat!(cmp(A, Y2, Eq, B, Y), meet_point!(X, X2))];
+    pub(super) const EC_E_P: &[&[Cmp]] = &[&cat!(cmp(A, X, Eq, B, X2), meet_point!(Y, Y2))];
+    pub(super) const EC_W_P: &[&[Cmp]] = &[&cat!(cmp(A, X2, Eq, B, X), meet_point!(Y, Y2))];
+    pub(super) const EC_N_E: &[&[Cmp]] = &[&cat!(cmp(A, Y, Eq, B, Y2), meet_edge!(X, X2))];
+    pub(super) const EC_S_E: &[&[Cmp]] = &[&cat!(cmp(A, Y2, Eq, B, Y), meet_edge!(X, X2))];
+    pub(super) const EC_E_E: &[&[Cmp]] = &[&cat!(cmp(A, X, Eq, B, X2), meet_edge!(Y, Y2))];
+    pub(super) const EC_W_E: &[&[Cmp]] = &[&cat!(cmp(A, X2, Eq, B, X), meet_edge!(Y, Y2))];
 
-    pub const FL_N: &[&[Cmp]] = &[
+    pub(super) const FL_N: &[&[Cmp]] = &[
         &cat!(cmp(A, Y, Eq, B, Y2), contained!(X, X2)),
         &cat!(cmp(A, Y, Eq, B, Y2), contains!(X, X2)),
     ];
-    pub const FL_S: &[&[Cmp]] = &[
+    pub(super) const FL_S: &[&[Cmp]] = &[
         &cat!(cmp(A, Y2, Eq, B, Y), contained!(X, X2)),
         &cat!(cmp(A, Y2, Eq, B, Y), contains!(X, X2)),
     ];
-    pub const FL_E: &[&[Cmp]] = &[
+    pub(super) const FL_E: &[&[Cmp]] = &[
         &cat!(cmp(A, X, Eq, B, X2), contained!(Y, Y2)),
         &cat!(cmp(A, X, Eq, B, X2), contains!(Y, Y2)),
     ];
-    pub const FL_W: &[&[Cmp]] = &[
+    pub(super) const FL_W: &[&[Cmp]] = &[
         &cat!(cmp(A, X2, Eq, B, X), contained!(Y, Y2)),
         &cat!(cmp(A, X2, Eq, B, X), contains!(Y, Y2)),
     ];
 
-    pub const AL_N: &[&[Cmp]] = &[&[cmp(A, Y2, Eq, B, Y2)]];
-    pub const AL_S: &[&[Cmp]] = &[&[cmp(A, Y, Eq, B, Y)]];
-    pub const AL_E: &[&[Cmp]] = &[&[cmp(A, X2, Eq, B, X2)]];
-    pub const AL_W: &[&[Cmp]] = &[&[cmp(A, X, Eq, B, X)]];
+    pub(super) const AL_N: &[&[Cmp]] = &[&[cmp(A, Y2, Eq, B, Y2)]];
+    pub(super) const AL_S: &[&[Cmp]] = &[&[cmp(A, Y, Eq, B, Y)]];
+    pub(super) const AL_E: &[&[Cmp]] = &[&[cmp(A, X2, Eq, B, X2)]];
+    pub(super) const AL_W: &[&[Cmp]] = &[&[cmp(A, X, Eq, B, X)]];
 }
 
 const fn def(

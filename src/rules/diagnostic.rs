@@ -143,7 +143,7 @@ impl LineIndex {
 /// At most this many diagnostics are rendered; the rest are counted
 /// ("… and N more errors"), so a file with 100,000 errors is reported in
 /// linear time and a screenful of text.
-pub const MAX_SHOWN_DIAGNOSTICS: usize = 20;
+pub(super) const MAX_SHOWN_DIAGNOSTICS: usize = 20;
 
 fn floor_boundary(src: &str, mut i: usize) -> usize {
     i = i.min(src.len());

@@ -25,14 +25,14 @@ use pest::Parser as _;
 use std::collections::HashMap;
 
 /// The deepest nesting of parentheses and negations a formula may have.
-pub const MAX_DEPTH: usize = 256;
+pub(super) const MAX_DEPTH: usize = 256;
 
 #[allow(missing_docs)]
 mod grammar {
     /// The parser generated from `grammar/rcc.pest`.
     #[derive(pest_derive::Parser)]
     #[grammar = "grammar/rcc.pest"]
-    pub struct RccParser;
+    pub(super) struct RccParser;
 }
 
 use grammar::{RccParser, Rule as R};

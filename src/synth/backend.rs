@@ -41,7 +41,7 @@ use std::time::Instant;
 
 /// When to stop.
 #[derive(Debug, Clone, Default)]
-pub struct Limits {
+pub(crate) struct Limits {
     /// Wall-clock deadline.
     pub deadline: Option<Instant>,
     /// Maximum number of decisions (over the whole backend's life).
@@ -53,7 +53,7 @@ pub struct Limits {
 impl Limits {
     /// Whether a limit other than the node count has fired (the deadline
     /// has passed or the stop flag is set).
-    pub fn expired(&self) -> bool {
+    pub(crate) fn expired(&self) -> bool {
         self.cancel
             .as_ref()
             .is_some_and(|c| c.load(Ordering::Relaxed))
@@ -63,7 +63,7 @@ impl Limits {
 
 /// One assumption of a call: holds for this call only.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Assumption {
+pub(crate) enum Assumption {
     /// The objective (the integer score numerator) is at least this.
     ObjectiveAtLeast(i64),
     /// The resemblance cost is at most this.
@@ -75,7 +75,7 @@ pub enum Assumption {
 
 /// A fact added for good: every later call obeys it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Fact {
+pub(crate) enum Fact {
     /// The objective is at most this (after a refutation of more).
     ObjectiveAtMost(i64),
     /// The objective is at least this (the score is never traded away).
@@ -86,7 +86,7 @@ pub enum Fact {
 
 /// Which assumptions an infeasible call is to blame on.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub enum Core {
+pub(crate) enum Core {
     /// The backend does not say.
     Unknown,
     /// These `Rule` assumptions (hard-rule indices) are enough to make the
@@ -96,7 +96,7 @@ pub enum Core {
 
 /// The answer to one call.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub enum Verdict {
+pub(crate) enum Verdict {
     /// A solution: grid values per model variable.
     Solution(Vec<i64>),
     /// Proved impossible under the assumptions.
@@ -106,7 +106,7 @@ pub enum Verdict {
 }
 
 /// An engine holding one model.
-pub trait Backend {
+pub(crate) trait Backend {
     /// Solve under `assumptions` within `limits`.
     fn solve(&mut self, assumptions: &[Assumption], limits: &Limits) -> Verdict;
     /// Add a fact for every later call.

@@ -22,11 +22,11 @@ use crate::scene::Scene;
 
 /// Most placed objects whose union area is computed exactly (quadratic);
 /// with more, they are not subtracted (the bound stays sound, only weaker).
-pub const MAX_UNION_OBJECTS: usize = 2_000;
+pub(super) const MAX_UNION_OBJECTS: usize = 2_000;
 
 /// Whether the bounds above prove that the unplaced objects of `problem`
 /// cannot all be placed (whatever the rules).
-pub fn cannot_fit(problem: &Scene) -> bool {
+pub(super) fn cannot_fit(problem: &Scene) -> bool {
     let s = &problem.space;
     let g = i128::from(problem.grid.max(1));
     let (sw, sh) = (i128::from(s.width), i128::from(s.height));
@@ -130,7 +130,7 @@ fn union_area(boxes: &[[i128; 4]]) -> i128 {
 
 /// The result of a problem whose objects cannot fit (see [`cannot_fit`]),
 /// or `None`: what [`super::synthesize`] returns at once.
-pub fn infeasible_at_once(problem: &Scene, opts: &SynthOptions) -> Option<SynthResult> {
+pub(super) fn infeasible_at_once(problem: &Scene, opts: &SynthOptions) -> Option<SynthResult> {
     let start = std::time::Instant::now();
     if !cannot_fit(problem) {
         return None;

@@ -78,7 +78,7 @@ pub enum Strategy {
 
 /// How an optimisation ended.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub enum OptOutcome {
+pub(super) enum OptOutcome {
     /// Proved optimal.
     Optimal(Vec<i64>),
     /// Best found before a limit.
@@ -91,7 +91,7 @@ pub enum OptOutcome {
 
 /// How the second phase ended.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct CostOutcome {
+pub(super) struct CostOutcome {
     /// The layout to return: the numerator is at least the first phase's.
     pub values: Vec<i64>,
     /// Its resemblance cost.
@@ -105,7 +105,7 @@ pub struct CostOutcome {
 }
 
 /// The first objective as the driver sees it.
-pub struct Objective<'a> {
+pub(super) struct Objective<'a> {
     /// The positive integer coefficients (for the reachable sums).
     pub coefs: &'a [i64],
     /// The objective value of a solution.
@@ -116,7 +116,7 @@ pub struct Objective<'a> {
 /// is called with every improving solution. (The solve runs its two halves
 /// separately; this is their composition, for the driver's tests.)
 #[cfg(test)]
-pub fn optimise(
+pub(super) fn optimise(
     backend: &mut dyn Backend,
     objective: Option<&Objective<'_>>,
     limits: &Limits,
@@ -133,7 +133,10 @@ pub fn optimise(
 
 /// The first solution of `backend` (then told [`Backend::found_first`]),
 /// or the outcome when there is none.
-pub fn first_solution(backend: &mut dyn Backend, limits: &Limits) -> Result<Vec<i64>, OptOutcome> {
+pub(super) fn first_solution(
+    backend: &mut dyn Backend,
+    limits: &Limits,
+) -> Result<Vec<i64>, OptOutcome> {
     match backend.solve(&[], limits) {
         Verdict::Solution(v) => {
             backend.found_first();
@@ -147,7 +150,7 @@ pub fn first_solution(backend: &mut dyn Backend, limits: &Limits) -> Result<Vec<
 /// [`optimise`] from a known solution `best` (the backend's own first
 /// solution, or one found elsewhere, e.g. by [`super::lns`]: it need not
 /// come from this backend, only satisfy its model).
-pub fn optimise_from(
+pub(super) fn optimise_from(
     backend: &mut dyn Backend,
     objective: Option<&Objective<'_>>,
     best: Vec<i64>,
@@ -238,7 +241,7 @@ pub fn optimise_from(
 /// bound a limit reports); when that runs out too, the budget doubles and
 /// stepping down resumes. The backend keeps what it learned across probes;
 /// every budget is in nodes, so a node limit keeps the run deterministic.
-pub fn minimise_cost(
+pub(super) fn minimise_cost(
     backend: &mut dyn Backend,
     objective: Option<&Objective<'_>>,
     cost: &dyn Fn(&[i64]) -> u64,
@@ -376,7 +379,7 @@ pub fn minimise_cost(
 /// each rule in turn; keep it out when the rest still conflict), cut short
 /// by the backend's cores where it gives them. The input is assumed to
 /// conflict. Returns the set and whether it is proven minimal.
-pub fn shrink_conflict(
+pub(super) fn shrink_conflict(
     backend: &mut dyn Backend,
     rules: &[usize],
     limits: &Limits,

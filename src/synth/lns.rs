@@ -105,7 +105,7 @@ impl Default for LnsOptions {
 
 /// What the phase did.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct LnsOutcome {
+pub(super) struct LnsOutcome {
     /// The best layout (grid values of the full model).
     pub values: Vec<i64>,
     /// Its objective value.
@@ -121,7 +121,7 @@ pub struct LnsOutcome {
 }
 
 /// One LNS run over one problem.
-pub struct Lns<'a> {
+pub(super) struct Lns<'a> {
     /// The problem (movable objects unplaced).
     pub problem: &'a Scene,
     /// Its rules.
@@ -156,7 +156,7 @@ impl Lns<'_> {
     /// `on_incumbent` sees every improving layout. (The solve alternates
     /// phases with [`Lns::alternate`]; this one phase is for the tests.)
     #[cfg(test)]
-    pub fn improve(
+    pub(super) fn improve(
         &self,
         start: Vec<i64>,
         bound: i64,
@@ -186,7 +186,7 @@ impl Lns<'_> {
     /// hands it better incumbents. Every budget is in nodes, so a node limit
     /// keeps the whole solve deterministic.
     #[allow(clippy::too_many_arguments)]
-    pub fn alternate(
+    pub(super) fn alternate(
         &self,
         engine: &mut dyn Backend,
         objective: &Objective<'_>,

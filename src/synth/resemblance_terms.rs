@@ -14,7 +14,7 @@ use crate::scene::Scene;
 
 /// One object's share of the resemblance cost.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ResemblanceTerm {
+pub(crate) struct ResemblanceTerm {
     /// The object (index into the problem's objects).
     pub object: usize,
     /// Its x grid variable (index into `Model::vars`).
@@ -27,7 +27,7 @@ pub struct ResemblanceTerm {
 
 impl ResemblanceTerm {
     /// The cost at grid values `vals` (one per model variable).
-    pub fn cost(&self, vals: &[i64]) -> u64 {
+    pub(crate) fn cost(&self, vals: &[i64]) -> u64 {
         let (gx, gy) = (vals[self.x], vals[self.y]);
         match (u64::try_from(gx), u64::try_from(gy)) {
             (Ok(gx), Ok(gy)) => self.map.at(gx, gy).unwrap_or(u64::MAX),
@@ -38,7 +38,7 @@ impl ResemblanceTerm {
 
 /// The terms of every unplaced object of `problem` in `model` (built from
 /// the same problem).
-pub fn resemblance_terms(
+pub(super) fn resemblance_terms(
     model: &Model,
     problem: &Scene,
     like: &ResemblanceTarget,
@@ -75,7 +75,7 @@ pub fn resemblance_terms(
 }
 
 /// The total cost of grid values `vals`.
-pub fn total_cost(terms: &[ResemblanceTerm], vals: &[i64]) -> u64 {
+pub(super) fn total_cost(terms: &[ResemblanceTerm], vals: &[i64]) -> u64 {
     terms
         .iter()
         .map(|t| t.cost(vals))

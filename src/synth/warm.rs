@@ -56,7 +56,11 @@ type Positions = BTreeMap<Key, Vec<(i64, i64)>>;
 /// One preferred grid value per variable of `model` (`None`: no
 /// preference), from the placements of the movable objects of `scenes`;
 /// `None` when no scene gives any usable position.
-pub fn hint_values(model: &Model, problem: &Scene, scenes: &[Scene]) -> Option<Vec<Option<i64>>> {
+pub(super) fn hint_values(
+    model: &Model,
+    problem: &Scene,
+    scenes: &[Scene],
+) -> Option<Vec<Option<i64>>> {
     if scenes.is_empty() {
         return None;
     }

@@ -18,7 +18,7 @@ const MAX_TOTAL: i64 = 1 << 30;
 
 /// Integer coefficients for `weights` (all > 0), or `None` when even
 /// `p = 0` overflows.
-pub fn integer_weights(weights: &[f64]) -> Option<Vec<i64>> {
+pub(super) fn integer_weights(weights: &[f64]) -> Option<Vec<i64>> {
     if weights.is_empty() {
         return Some(Vec::new());
     }
@@ -66,7 +66,7 @@ const MAX_DP: i64 = 1 << 24;
 /// Which totals `Σ_{i∈S} c_i` are reachable, for stepping an upper bound
 /// down to the next achievable objective value.
 #[derive(Debug, Clone)]
-pub struct SubsetSums {
+pub(super) struct SubsetSums {
     /// `None`: every integer counts as reachable (total too large for the
     /// table).
     bits: Option<Vec<u64>>,
@@ -74,12 +74,12 @@ pub struct SubsetSums {
 
 impl SubsetSums {
     /// Every non-negative integer treated as reachable.
-    pub fn all() -> SubsetSums {
+    pub(super) fn all() -> SubsetSums {
         SubsetSums { bits: None }
     }
 
     /// The reachable sums of `coefs`, or `None` when the total is too large.
-    pub fn new(coefs: &[i64]) -> Option<SubsetSums> {
+    pub(super) fn new(coefs: &[i64]) -> Option<SubsetSums> {
         let total: i64 = coefs.iter().sum();
         if total > MAX_DP {
             return None;
@@ -111,7 +111,7 @@ impl SubsetSums {
     }
 
     /// Whether `v` is reachable.
-    pub fn contains(&self, v: i64) -> bool {
+    pub(super) fn contains(&self, v: i64) -> bool {
         let Some(bits) = &self.bits else {
             return v >= 0;
         };
@@ -122,7 +122,7 @@ impl SubsetSums {
     }
 
     /// The largest reachable sum `< v`, if any.
-    pub fn below(&self, v: i64) -> Option<i64> {
+    pub(super) fn below(&self, v: i64) -> Option<i64> {
         let mut u = v - 1;
         if u < 0 {
             return None;

@@ -458,6 +458,7 @@ impl Session {
 
     /// Stop learning and every probe search when `flag` is set (`None`:
     /// never), for the session's options and its loop.
+    #[cfg(feature = "studio")]
     pub(crate) fn set_cancel(
         &mut self,
         flag: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,

@@ -72,10 +72,10 @@ use std::cell::Cell;
 use std::rc::Rc;
 use stop::{Counters, Counting, Stop};
 
-pub use super::backend::Limits;
+pub(crate) use super::backend::Limits;
 
 /// A Pumpkin solver holding one model: the [`Backend`] the driver runs on.
-pub struct Engine {
+pub(crate) struct Engine {
     solver: Solver,
     brancher: Counting,
     resolver: ResolutionResolver,
@@ -114,7 +114,7 @@ impl Engine {
     /// `i32`; one that does not fit is a [`SynthError::TooLarge`] naming it
     /// (see [`super::MAX_SYNTH_COORD`] for why that cannot happen on a problem
     /// that passed the range check).
-    pub fn new(
+    pub(crate) fn new(
         model: &Model,
         seed: u64,
         guarded: bool,
@@ -128,7 +128,7 @@ impl Engine {
     /// below by its distance map (see `post_resemblance`); the total is one
     /// variable. Costs that do not fit `i32` ([`resemblance_fits`]) are a
     /// [`SynthError::TooLarge`].
-    pub fn with_resemblance(
+    pub(crate) fn with_resemblance(
         model: &Model,
         seed: u64,
         guarded: bool,
@@ -141,7 +141,7 @@ impl Engine {
 
     /// [`Engine::with_resemblance`], given up (`None`) once `deadline` passes:
     /// posting a large model can take longer than the solve's time limit.
-    pub fn with_resemblance_until(
+    pub(crate) fn with_resemblance_until(
         model: &Model,
         seed: u64,
         guarded: bool,
@@ -158,7 +158,7 @@ impl Engine {
 
     /// [`Engine::with_resemblance_until`] that also gives up when `stop`'s cancel
     /// flag is set (Ctrl-C while a large model is posted).
-    pub fn with_resemblance_stop(
+    pub(crate) fn with_resemblance_stop(
         model: &Model,
         seed: u64,
         guarded: bool,
@@ -204,17 +204,17 @@ impl Engine {
 
     /// The objective's coefficients, variable terms only, in
     /// [`Model::soft`] order (none: no objective).
-    pub fn objective_coefs(&self) -> Option<&[i64]> {
+    pub(crate) fn objective_coefs(&self) -> Option<&[i64]> {
         self.objective.as_ref().map(|(_, c)| c.as_slice())
     }
 
     /// Decisions so far.
-    pub fn nodes(&self) -> u64 {
+    pub(crate) fn nodes(&self) -> u64 {
         self.counters.nodes.get()
     }
 
     /// Conflicts so far.
-    pub fn conflicts(&self) -> u64 {
+    pub(crate) fn conflicts(&self) -> u64 {
         self.counters.conflicts.get()
     }
 
@@ -236,13 +236,13 @@ impl Engine {
     }
 
     /// Find any solution.
-    pub fn satisfy(&mut self, limits: &Limits) -> Verdict {
+    pub(crate) fn satisfy(&mut self, limits: &Limits) -> Verdict {
         self.solve(&[], limits)
     }
 
     /// Solve with the guards of the hard rules in `rules` (indices into
     /// `Model::hard`) assumed true.
-    pub fn satisfy_rules(&mut self, rules: &[usize], limits: &Limits) -> Verdict {
+    pub(crate) fn satisfy_rules(&mut self, rules: &[usize], limits: &Limits) -> Verdict {
         let a: Vec<Assumption> = rules.iter().map(|&r| Assumption::Rule(r)).collect();
         self.solve(&a, limits)
     }
@@ -467,7 +467,7 @@ impl Backend for Engine {
 
 /// Whether the resemblance terms' costs fit the engine's `i32` arithmetic
 /// (every cost, every index and the total).
-pub fn resemblance_fits(terms: &[ResemblanceTerm]) -> bool {
+pub(crate) fn resemblance_fits(terms: &[ResemblanceTerm]) -> bool {
     let max = i32::MAX as u64;
     let mut total = 0u64;
     for t in terms {

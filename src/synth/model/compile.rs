@@ -15,7 +15,7 @@ use std::collections::HashMap;
 /// anything is built instead of running out of memory. A rule against a
 /// landmark costs one literal per subject; `*` or a large target class,
 /// one per pair.
-pub const MAX_PAIR_LITERALS: u128 = 120_000;
+pub(crate) const MAX_PAIR_LITERALS: u128 = 120_000;
 
 /// Atom literals already built: `(object, relation, quantifier, target)`.
 type AtomCache = HashMap<(usize, Relation, Quant, Target), Lit>;

@@ -56,7 +56,7 @@
 //! objects of the subject class (already-placed ones included), or one term
 //! for a scene-level rule.
 
-pub use crate::relations::Axis;
+pub(crate) use crate::relations::Axis;
 use crate::relations::Contact;
 use crate::scene::Scene;
 use std::collections::HashMap;
@@ -68,7 +68,7 @@ mod packing;
 mod shapes;
 
 pub(crate) use build::Encoding;
-pub use compile::MAX_PAIR_LITERALS;
+pub(crate) use compile::MAX_PAIR_LITERALS;
 
 /// A literal: a constant or a (possibly negated) model Boolean.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
