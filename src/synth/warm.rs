@@ -132,17 +132,27 @@ fn scene_order(per_scene: &[Positions], wanted: &BTreeMap<Key, Vec<usize>>) -> V
             .map(|(k, ps)| ps.len().min(wanted.get(k).map_or(0, Vec::len)))
             .sum()
     };
+    // How many scenes use each (key, position): counted once, so that
+    // ordering many scenes stays linear in them (a warm start of thousands
+    // of scenes once took a minute here).
+    let mut scenes_with: std::collections::HashMap<(&Key, (i64, i64)), usize> =
+        std::collections::HashMap::new();
+    for m in per_scene {
+        let mut seen = std::collections::HashSet::new();
+        for (k, ps) in m {
+            for &p in ps {
+                if seen.insert((k, p)) {
+                    *scenes_with.entry((k, p)).or_default() += 1;
+                }
+            }
+        }
+    }
+    // Per position of scene `i`, the other scenes that use it too.
     let typical = |i: usize| -> usize {
         per_scene[i]
             .iter()
-            .flat_map(|(k, ps)| ps.iter().map(move |p| (k, p)))
-            .map(|(k, p)| {
-                per_scene
-                    .iter()
-                    .enumerate()
-                    .filter(|&(j, m)| j != i && m.get(k).is_some_and(|q| q.contains(p)))
-                    .count()
-            })
+            .flat_map(|(k, ps)| ps.iter().map(move |&p| (k, p)))
+            .map(|kp| scenes_with.get(&kp).map_or(0, |n| n.saturating_sub(1)))
             .sum()
     };
     let mut order: Vec<usize> = (0..per_scene.len()).collect();
