@@ -393,6 +393,25 @@ fn an_answer_the_task_cannot_hold_is_refused_naming_it() {
             "{t}"
         );
     }
+    // Two answers about one rule: the second contradicts the first.
+    {
+        let mut w = v.clone();
+        let mut again = w["answers"][0].clone();
+        again["accepted"] = serde_json::json!(false);
+        again.as_object_mut().unwrap().remove("demo");
+        let answers = w["answers"].as_array_mut().unwrap();
+        answers.push(again);
+        let i = answers.len() - 1;
+        std::fs::write(dir.join("answers.json"), w.to_string()).unwrap();
+        let o = ask(&dir, &["--max-questions", "0"]);
+        assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+        let t = text(&o);
+        assert!(
+            t.contains(&format!("answers[{i}]: rule: `"))
+                && t.contains("was answered already by answers[0] (acceptable: dropped)"),
+            "{t}"
+        );
+    }
     // An accepted probe far past the end (item 13).
     let accepted = v["answers"]
         .as_array()

@@ -329,6 +329,26 @@ impl Asker {
         opts: AskOptions,
     ) -> Result<Asker, AskError> {
         let mut demos = demos;
+        // A session never asks about a rule twice: a second answer about
+        // one (a hand edit) contradicts or repeats the first.
+        for (i, a) in answers.iter().enumerate() {
+            if a.suspect.is_some() {
+                continue;
+            }
+            if let Some(j) = answers[..i]
+                .iter()
+                .position(|b| b.suspect.is_none() && b.rule == a.rule)
+            {
+                return Err(AskError::BadAnswer {
+                    index: i,
+                    why: format!(
+                        "rule: `{}` was answered already by answers[{j}] ({}); a session asks about a rule once — keep one of the two answers",
+                        crate::limits::cut(&a.rule),
+                        if answers[j].accepted { "acceptable: dropped" } else { "not acceptable: confirmed" }
+                    ),
+                });
+            }
+        }
         for (i, a) in answers.iter().enumerate() {
             if let Some(s) = &a.suspect {
                 if s.demonstration >= demos.len() {
