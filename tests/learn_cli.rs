@@ -306,7 +306,8 @@ fn demonstrations_with_another_grid_or_moved_walls_are_refused() {
     )
     .unwrap();
     let dir = crate::support::scratch("learn-cli-mismatch");
-    let cases: [(&str, Box<dyn Fn(&mut serde_json::Value)>, &str); 3] = [
+    type Change = Box<dyn Fn(&mut serde_json::Value)>;
+    let cases: [(&str, Change, &str); 3] = [
         (
             "grid",
             Box::new(|d| d[2]["grid"] = serde_json::json!(5)),
