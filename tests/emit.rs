@@ -495,10 +495,16 @@ fn minizinc_form_is_complete() {
 
 /// Runs `peer` on the cases and compares with rccpack.
 fn against_peer(peer: Peer, cases: &[Case], time_limit: Duration) {
+    against_peer_with(peer, cases, time_limit, emitted);
+}
+
+type Emit = fn(&Scene, &RuleSet, &SynthOptions) -> Result<Emitted, rccpack::synth::SynthError>;
+
+fn against_peer_with(peer: Peer, cases: &[Case], time_limit: Duration, emit: Emit) {
     require_peer(peer);
     let (mut optimal, mut infeasible) = (0, 0);
     for case in cases {
-        let e: Emitted = emitted(&case.scene, &case.rules, &case.opts).expect("usable");
+        let e: Emitted = emit(&case.scene, &case.rules, &case.opts).expect("usable");
         let r = synthesize(&case.scene, &case.rules, &case.opts).expect("solves");
         let p = peers::solve(peer, &e, time_limit)
             .unwrap_or_else(|m| panic!("case {}: {m}", case.index));
@@ -643,6 +649,15 @@ fn gecode_agrees_with_rccpack() {
     cases.extend(infeasible_cases());
     against_peer(Peer::Gecode, &cases, Duration::from_secs(10));
     definitions_agree(Peer::Gecode, 1000, 30);
+    // Group statements as MiniZinc reachability (`--emit F.mzn`).
+    let mut groups: Vec<Case> = (GROUP_CASES..GROUP_CASES + 15).map(random_case).collect();
+    groups.extend(infeasible_cases());
+    against_peer_with(
+        Peer::Gecode,
+        &groups,
+        Duration::from_secs(10),
+        rccpack::synth::emit::emitted_for_minizinc,
+    );
 }
 
 #[test]
@@ -715,4 +730,50 @@ fn cli_emit_writes_the_model() {
         assert!(!bad.exists());
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Hardening, third pass: `--emit F.mzn` of a group statement grows with the
+/// contact edges (about the square of the objects), not with their cube as
+/// the circuit of `and` nodes does (165 MB of MiniZinc for 120 objects).
+/// Sizes as ratios between 20 and 40 objects of one group.
+#[test]
+fn a_group_statement_emits_to_minizinc_in_quadratic_size() {
+    let size = |n: usize, compact: bool| -> usize {
+        let objects: Vec<Object> = (0..n)
+            .map(|i| Object {
+                id: format!("r{i}"),
+                class: "R".into(),
+                x: None,
+                y: None,
+                width: 10,
+                height: 10,
+                fixed: false,
+            })
+            .collect();
+        let scene = Scene {
+            space: Space {
+                x: 0,
+                y: 0,
+                width: 200,
+                height: 200,
+            },
+            grid: 10,
+            objects,
+        };
+        let rules = rccpack::rules::parse_rules("rule g: group(R)\n").unwrap();
+        let opts = SynthOptions::default();
+        let e = if compact {
+            rccpack::synth::emit::emitted_for_minizinc(&scene, &rules, &opts)
+        } else {
+            emitted(&scene, &rules, &opts)
+        }
+        .expect("usable");
+        to_minizinc(&e).len()
+    };
+    let (c20, c40) = (size(20, true), size(40, true));
+    let (k20, k40) = (size(20, false), size(40, false));
+    let growth = |a: usize, b: usize| b as f64 / a as f64;
+    assert!(growth(c20, c40) < 5.0, "compact: {c20} -> {c40}");
+    assert!(growth(k20, k40) > 6.0, "circuit: {k20} -> {k40}");
+    assert!(c40 * 5 < k40, "compact {c40}, circuit {k40}");
 }

@@ -106,10 +106,13 @@ fn write_emitted(
     rules: &rccpack::rules::RuleSet,
     opts: &SynthOptions,
 ) -> Result<(), Emitted> {
-    let e = emit::emitted(problem, rules, opts).map_err(Emitted::Refused)?;
     let text = match format {
-        EmitFormat::MiniZinc => emit::to_minizinc(&e),
-        EmitFormat::Json => emit::to_json(&e),
+        EmitFormat::MiniZinc => emit::to_minizinc(
+            &emit::emitted_for_minizinc(problem, rules, opts).map_err(Emitted::Refused)?,
+        ),
+        EmitFormat::Json => {
+            emit::to_json(&emit::emitted(problem, rules, opts).map_err(Emitted::Refused)?)
+        }
     };
     super::write_file(path, &text, "the model").map_err(Emitted::Write)
 }

@@ -12,16 +12,20 @@ fn comment(s: &str) -> String {
         .collect()
 }
 
-/// A [`BoolDef::Connected`] as a MiniZinc `let` with a layered
-/// reachability array from node 0 (only for an [`Emitted`] built by hand:
-/// [`emitted`] writes group statements as circuits).
-fn mzn_connected(nodes: u32, edges: &[(u32, u32, Lit)]) -> String {
+/// A [`BoolDef::Connected`] (Boolean `j`): top-level declarations of its
+/// layered reachability array from node 0, `r{j}[t, i]` (node `i` reached
+/// in `t` steps over edges whose literal holds), each layer defined from
+/// the one before; and the definition of `b{j}`: every node reached. The
+/// text grows with the edges, not with the cube of the nodes (the array is
+/// declared at the top level: MiniZinc refuses a `let` with free variables
+/// under `<->`).
+fn mzn_connected(j: usize, nodes: u32, edges: &[(u32, u32, Lit)]) -> (String, String) {
     let n = nodes.max(1) - 1;
-    let mut s = format!(
-        "let {{ array[0..{n}, 0..{n}] of var bool: r; constraint forall(i in 0..{n})(r[0, i] = (i = 0));"
+    let mut decls = format!(
+        "array[0..{n}, 0..{n}] of var bool: r{j};\nconstraint forall(i in 0..{n})(r{j}[0, i] = (i = 0));\n"
     );
     for i in 0..nodes {
-        let mut ways = vec![format!("r[t - 1, {i}]")];
+        let mut ways = vec![format!("r{j}[t - 1, {i}]")];
         for &(a, b, l) in edges {
             let other = if a == i {
                 b
@@ -30,16 +34,15 @@ fn mzn_connected(nodes: u32, edges: &[(u32, u32, Lit)]) -> String {
             } else {
                 continue;
             };
-            ways.push(format!("(r[t - 1, {other}] /\\ {})", mzn_lit(l)));
+            ways.push(format!("(r{j}[t - 1, {other}] /\\ {})", mzn_lit(l)));
         }
-        let _ = write!(
-            s,
-            " constraint forall(t in 1..{n})(r[t, {i}] = ({}));",
+        let _ = writeln!(
+            decls,
+            "constraint forall(t in 1..{n})(r{j}[t, {i}] = ({}));",
             ways.join(" \\/ ")
         );
     }
-    let _ = write!(s, " }} in forall(i in 0..{n})(r[{n}, i])");
-    s
+    (decls, format!("forall(i in 0..{n})(r{j}[{n}, i])"))
 }
 
 fn mzn_lit(l: Lit) -> String {
@@ -176,7 +179,11 @@ fn booleans(s: &mut String, e: &Emitted) {
                     .collect();
                 format!("{} >= {k}", mzn_sum(&terms))
             }
-            BoolDef::Connected { nodes, edges } => mzn_connected(*nodes, edges),
+            BoolDef::Connected { nodes, edges } => {
+                let (decls, def) = mzn_connected(j, *nodes, edges);
+                s.push_str(&decls);
+                def
+            }
         };
         let _ = writeln!(s, "constraint b{j} <-> ({def});");
     }
