@@ -799,9 +799,7 @@ fn misplaced_shape(src: &str, pos: usize) -> Option<Diagnostic> {
     let start = rest.trim_end_matches(is_ident).len();
     let word = &rest[start..];
     let lower = word.to_ascii_lowercase();
-    if ShapeKind::from_name(&lower).is_none() {
-        return None;
-    }
+    ShapeKind::from_name(&lower)?;
     let span = Span::new(start, rest.len());
     let message = if word != lower {
         format!(
