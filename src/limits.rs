@@ -47,6 +47,19 @@ pub const MAX_STATEMENTS: usize = 50_000;
 /// file took 2.8 GB of memory to check).
 pub const MAX_RULES_BYTES: usize = 16 << 20;
 
+/// Largest scene JSON file (a problem, a scene or a demonstrations
+/// array), in bytes (256 MiB): far past any real task. A larger file, or
+/// an endless device such as `/dev/zero`, is refused while reading.
+pub const MAX_SCENE_BYTES: usize = 256 << 20;
+
+/// Largest priors file (`--priors`), in bytes (16 MiB), checked while
+/// reading.
+pub const MAX_PRIORS_BYTES: usize = 16 << 20;
+
+/// Largest `@LIST` file of `rccpack priors`, in bytes (16 MiB), checked
+/// while reading.
+pub const MAX_LIST_BYTES: usize = 16 << 20;
+
 /// Longest value echoed whole in an error message, in characters; a longer
 /// one is cut to its first [`CUT_TO`] characters and `…`.
 pub const MAX_ECHO: usize = 80;

@@ -125,3 +125,13 @@ __all__ = [
     "synthesize",
     "task_counts",
 ]
+
+
+def __getattr__(name: str) -> object:
+    """`rccpack.strategies` after a plain `import rccpack`: the submodule
+    (it needs Hypothesis) is imported on first use, not with the package."""
+    if name == "strategies":
+        import importlib
+
+        return importlib.import_module(".strategies", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

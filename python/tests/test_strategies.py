@@ -89,3 +89,21 @@ def test_planted_planner_bug_is_found_and_shrunk() -> None:
     # (an unshrunk, random failing layout is not, half of the time).
     simpler = sum(weight(s) < weight(layout) for s in failing)
     assert simpler <= len(failing) // 2, (weight(layout), sorted(weight(s) for s in failing))
+
+
+def test_strategies_is_an_attribute_after_a_plain_import() -> None:
+    # A fresh interpreter: this file's own `from rccpack import strategies`
+    # already imported the submodule here.
+    import subprocess
+
+    code = "import rccpack; print(callable(rccpack.strategies.rule_sets))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "True"
+    missing = subprocess.run(
+        [sys.executable, "-c", "import rccpack; rccpack.no_such_thing"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert "AttributeError" in missing.stderr and "no_such_thing" in missing.stderr

@@ -82,6 +82,11 @@ pub fn read_text(path: &Path) -> Result<String> {
     rccpack::task::read_text(path).map_err(|e| Reported(format!("error: {e}")).into())
 }
 
+/// [`read_text`] of at most `max` bytes ([`rccpack::task::read_text_at_most`]).
+pub fn read_text_at_most(path: &Path, max: usize) -> Result<String> {
+    rccpack::task::read_text_at_most(path, max).map_err(|e| Reported(format!("error: {e}")).into())
+}
+
 fn scene_error(path: &Path, e: scene::SceneError) -> anyhow::Error {
     Reported(format!("error: {}: {e}", path.display())).into()
 }
@@ -93,7 +98,7 @@ pub fn read_scene(path: &Path) -> Result<Scene> {
 
 /// Read a scene file or a demonstrations array; `true` when it was an array.
 pub fn read_scenes(path: &Path) -> Result<(Vec<Scene>, bool)> {
-    let text = read_text(path)?;
+    let text = read_text_at_most(path, rccpack::limits::MAX_SCENE_BYTES)?;
     let is_array = text.trim_start().starts_with('[');
     let scenes = scene::scenes_from_json(&text).map_err(|e| scene_error(path, e))?;
     Ok((scenes, is_array))
@@ -104,7 +109,7 @@ pub fn read_scenes(path: &Path) -> Result<(Vec<Scene>, bool)> {
 /// step), a note on standard error saying what moved. A given tolerance is
 /// checked against every demonstration's grid (`--tolerance` named).
 pub fn read_demos(path: &Path, tolerance: Option<f64>) -> Result<scene::measured::Measured> {
-    let text = read_text(path)?;
+    let text = read_text_at_most(path, rccpack::limits::MAX_SCENE_BYTES)?;
     let m =
         scene::measured::measured_from_json(&text, tolerance).map_err(|e| scene_error(path, e))?;
     if let Some(t) = tolerance {

@@ -29,19 +29,19 @@ pub struct LearnArgs {
     #[arg(long, default_value_t = rccpack::infer::LearnParams::default().templates, value_name = "first|second|third")]
     templates: Templates,
     /// Random scenes in the null model (at least 1).
-    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().samples)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().samples, allow_hyphen_values = true)]
     samples: usize,
     /// Learn candidates whose posterior is below this, in (0, 1).
-    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().cutoff)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().cutoff, allow_hyphen_values = true)]
     cutoff: f64,
     /// Prior that a statement is not intended, in (0, 1).
-    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().prior)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().prior, allow_hyphen_values = true)]
     prior: f64,
     /// Floor of the chance rate, in (0, 1) [default: 0.5 / N_A per class].
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     epsilon: Option<f64>,
     /// Seed of the null model; the same seed gives the same output.
-    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().seed)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().seed, allow_hyphen_values = true)]
     seed: u64,
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
     #[arg(long, default_value_t = rccpack::infer::LearnParams::default().contact)]

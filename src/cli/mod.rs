@@ -40,7 +40,8 @@ use std::process::ExitCode;
 
 pub use io::{
     guard_outputs, learn_error_text, out, outln, read_rules, read_rules_seen, read_scene,
-    read_scenes, read_text, synth_error_text, task_error_text, write_file, LimitStruck, Reported,
+    read_scenes, read_text_at_most, synth_error_text, task_error_text, write_file, LimitStruck,
+    Reported,
 };
 
 /// Clap value parser for `--time-limit SECONDS` (the library's shared,

@@ -2,12 +2,13 @@
 //! statement from a library of finished task folders, and the
 //! `--priors FILE` reader of `learn`, `run`, `ask` and the studio.
 
-use super::{read_text, write_file, Reported};
+use super::{read_text_at_most, write_file, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::infer::Templates;
 use rccpack::priors::{folder, PriorParams, Priors, PriorsError};
 use rccpack::relations::Contact;
+use rccpack::task::files;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -24,11 +25,11 @@ pub struct PriorsArgs {
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
     /// Shrinkage strength: pseudo-candidates of the parent kind, at least 1.
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = 4, allow_hyphen_values = true)]
     strength: u32,
     /// Rule a kind out after this many tasks in which it was a candidate
     /// and never kept (0: never).
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, allow_hyphen_values = true)]
     rule_out_after: u64,
     /// The template set whose candidates are counted.
     #[arg(long, default_value = "third", value_name = "first|second|third")]
@@ -37,7 +38,7 @@ pub struct PriorsArgs {
     #[arg(long, default_value = "point")]
     contact: Contact,
     /// Threads (default: every core). The output is the same for any number.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     threads: Option<usize>,
 }
 
@@ -46,7 +47,7 @@ fn expand(dirs: &[PathBuf]) -> Result<Vec<PathBuf>> {
     for d in dirs {
         match d.to_str().and_then(|s| s.strip_prefix('@')) {
             Some(list) => {
-                let text = read_text(Path::new(list))?;
+                let text = read_text_at_most(Path::new(list), rccpack::limits::MAX_LIST_BYTES)?;
                 out.extend(
                     text.lines()
                         .map(str::trim)
@@ -58,6 +59,30 @@ fn expand(dirs: &[PathBuf]) -> Result<Vec<PathBuf>> {
         }
     }
     Ok(out)
+}
+
+/// Each folder once, by its canonical path (`T T`, `T ./T/` or a repeated
+/// `@LIST` line would count a task twice); a note on stderr names each
+/// folder dropped as a repeat. A folder that cannot be resolved is kept as
+/// given (reading it reports the error).
+fn once_each(dirs: Vec<PathBuf>) -> Vec<PathBuf> {
+    let mut seen: std::collections::HashMap<PathBuf, PathBuf> = std::collections::HashMap::new();
+    let mut out = Vec::new();
+    for d in dirs {
+        let key = std::fs::canonicalize(&d).unwrap_or_else(|_| d.clone());
+        match seen.get(&key) {
+            Some(first) => ewriteln!(
+                "note: task folder {} is the same folder as {}; counted once",
+                d.display(),
+                first.display()
+            ),
+            None => {
+                seen.insert(key, d.clone());
+                out.push(d);
+            }
+        }
+    }
+    out
 }
 
 pub fn run(a: PriorsArgs) -> Result<ExitCode> {
@@ -73,7 +98,22 @@ pub fn run(a: PriorsArgs) -> Result<ExitCode> {
         )
         .into());
     }
-    let dirs = expand(&a.dirs)?;
+    // Outputs are never inputs: `-o` naming the `@LIST` file is refused
+    // before it is read, and naming a task's file before any is read.
+    let lists: Vec<&Path> = a
+        .dirs
+        .iter()
+        .filter_map(|d| d.to_str()?.strip_prefix('@').map(Path::new))
+        .collect();
+    let output = [("-o", a.output.as_deref())];
+    super::guard_outputs(&lists, &output, &[])?;
+    let dirs = once_each(expand(&a.dirs)?);
+    let task_files: Vec<PathBuf> = dirs
+        .iter()
+        .flat_map(|d| [d.join(files::DEMOS), d.join(files::LEARNED)])
+        .collect();
+    let task_files: Vec<&Path> = task_files.iter().map(PathBuf::as_path).collect();
+    super::guard_outputs(&task_files, &output, &[])?;
     let params = PriorParams {
         strength: a.strength,
         rule_out_after: a.rule_out_after,
@@ -121,7 +161,7 @@ fn priors_error_text(e: &PriorsError) -> String {
 
 /// Read `--priors FILE`; errors name the file and the field.
 pub fn read_priors(path: &Path) -> Result<Priors> {
-    let text = read_text(path)?;
+    let text = read_text_at_most(path, rccpack::limits::MAX_PRIORS_BYTES)?;
     Priors::from_json(&text).map_err(|e| Reported(format!("error: {}: {e}", path.display())).into())
 }
 

@@ -13,7 +13,7 @@ pub struct RenderArgs {
     /// Scene JSON (or a demonstrations array, with `--index`).
     scene: PathBuf,
     /// Which scene of a demonstrations array to draw (0-based).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     index: Option<usize>,
     /// Rules: objects that break one are outlined, and a legend lists them.
     #[arg(long)]
@@ -22,7 +22,7 @@ pub struct RenderArgs {
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
     /// Pixels per length unit.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     scale: f64,
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
     #[arg(long, default_value = "point")]
@@ -43,6 +43,10 @@ pub fn run(a: RenderArgs) -> Result<ExitCode> {
         (false, None | Some(0)) => scenes.remove(0),
         (false, Some(i)) => anyhow::bail!(
             "--index {i}: {} holds one scene, not an array",
+            a.scene.display()
+        ),
+        (true, _) if scenes.is_empty() => anyhow::bail!(
+            "{} is an empty demonstrations array (`[]`); expected at least one scene to draw",
             a.scene.display()
         ),
         (true, None) => anyhow::bail!(

@@ -28,13 +28,13 @@ pub struct RunArgs {
     #[arg(long)]
     out: Option<PathBuf>,
     /// Random scenes in the null model.
-    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().samples)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().samples, allow_hyphen_values = true)]
     samples: usize,
     /// Learn candidates whose posterior is below this, in (0, 1).
-    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().cutoff)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().cutoff, allow_hyphen_values = true)]
     cutoff: f64,
     /// Seed for learning and synthesis.
-    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().seed)]
+    #[arg(long, default_value_t = rccpack::infer::LearnParams::default().seed, allow_hyphen_values = true)]
     seed: u64,
     /// Stop the layout search after this many seconds, keeping the best found.
     #[arg(long, value_name = "SECONDS", default_value = "60", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
@@ -65,6 +65,30 @@ pub struct RunArgs {
 
 pub fn run(a: RunArgs) -> Result<ExitCode> {
     let out = a.out.clone().unwrap_or_else(|| a.dir.clone());
+    // Outputs are never inputs: `--like` or `--priors` naming a file `run`
+    // writes in OUT is refused before anything is read or written.
+    let written: Vec<PathBuf> = [
+        files::LEARNED,
+        files::LEARNED_BACKUP,
+        files::LEARN_REPORT,
+        files::SOLUTION,
+        files::SOLUTION_PNG,
+    ]
+    .iter()
+    .map(|f| out.join(f))
+    .collect();
+    let outputs: Vec<(&str, Option<&Path>)> = written
+        .iter()
+        .map(|p| ("--out", Some(p.as_path())))
+        .collect();
+    super::guard_outputs(
+        &[],
+        &outputs,
+        &[
+            ("--like", a.like.as_deref()),
+            ("--priors", a.priors.as_deref()),
+        ],
+    )?;
     // The folder `run` writes is locked as `ask` and the studio lock it:
     // nothing is written while another session writes there.
     let lock = folder::lock(&out).map_err(|e| Reported(format!("error: {e}")))?;

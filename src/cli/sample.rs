@@ -26,16 +26,16 @@ pub struct SampleArgs {
     #[arg(long)]
     rules: PathBuf,
     /// How many distinct layouts to write.
-    #[arg(short = 'n', value_name = "N")]
+    #[arg(short = 'n', value_name = "N", allow_hyphen_values = true)]
     n: usize,
     /// Seed of every random choice: the same seed gives the same layouts.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, allow_hyphen_values = true)]
     seed: u64,
     /// Only layouts of score 1 (every rule kept by every object).
     #[arg(long, conflicts_with = "min_score")]
     all_rules: bool,
     /// Only layouts of score at least X (0 to 1). Default: the optimum score.
-    #[arg(long, value_name = "X")]
+    #[arg(long, value_name = "X", allow_hyphen_values = true)]
     min_score: Option<f64>,
     /// Lean towards the positions objects have in these scenes (one scene or
     /// an array, usually the demonstrations): half of the random hints are
@@ -55,7 +55,7 @@ pub struct SampleArgs {
     time_limit: Option<Duration>,
     /// Give up the search for the next layout after this many decisions
     /// (deterministic).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
     layout_node_limit: Option<u64>,
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
     #[arg(long, default_value = "point")]
@@ -206,16 +206,16 @@ fn draw(
 #[derive(Args, Debug)]
 pub struct BenchSampleArgs {
     /// Seed of the sampler (and the first seed of the CP-SAT baseline).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, allow_hyphen_values = true)]
     seed: u64,
     /// Layouts per problem.
-    #[arg(short = 'n', default_value_t = 100)]
+    #[arg(short = 'n', default_value_t = 100, allow_hyphen_values = true)]
     n: usize,
     /// Uniformity: draws per layout of each tiny problem.
-    #[arg(long, default_value_t = 20)]
+    #[arg(long, default_value_t = 20, allow_hyphen_values = true)]
     draws_per_layout: usize,
     /// Generated realistic tasks (the 1x problem of each).
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 3, allow_hyphen_values = true)]
     tasks: usize,
     /// Also run the baseline: CP-SAT with randomised search, one seed per
     /// layout, on the emitted model (needs python3 and ortools).

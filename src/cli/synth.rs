@@ -38,10 +38,10 @@ pub struct SynthArgs {
     #[arg(long, value_name = "SECONDS", value_parser = super::time_limit_arg, allow_hyphen_values = true)]
     time_limit: Option<Duration>,
     /// Stop after this many search decisions (deterministic).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
     node_limit: Option<u64>,
     /// Seed of the solver's randomised choices.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, allow_hyphen_values = true)]
     seed: u64,
     /// How EC decides that two sides touch: `point` (corners count) or `edge`.
     #[arg(long, default_value = "point")]

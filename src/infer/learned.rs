@@ -260,7 +260,11 @@ impl Learned {
         let _ = writeln!(
             s,
             "# samples {}, seed {}, cutoff {}, prior {}, contact {}",
-            p.samples, p.seed, p.cutoff, p.prior, p.contact
+            p.samples,
+            p.seed,
+            crate::limits::number(p.cutoff),
+            crate::limits::number(p.prior),
+            p.contact
         );
         let mut eps: Vec<String> = self
             .classes

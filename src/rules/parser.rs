@@ -762,6 +762,9 @@ fn pest_diagnostic(src: &str, e: &pest::error::Error<R>) -> Diagnostic {
         InputLocation::Pos(p) => p,
         InputLocation::Span((s, _)) => s,
     };
+    if let Some(d) = misplaced_shape(src, pos) {
+        return d;
+    }
     let (found, span) = found_at(src, pos);
     let message = match &e.variant {
         ErrorVariant::ParsingError { positives, .. } if !positives.is_empty() => {
@@ -778,6 +781,39 @@ fn pest_diagnostic(src: &str, e: &pest::error::Error<R>) -> Diagnostic {
         ErrorVariant::CustomError { message } => message.to_lowercase(),
     };
     Diagnostic::new(DiagnosticKind::Syntax, span, message)
+}
+
+/// A group statement where the grammar does not take it (`(group(R))`,
+/// `!(row(R))`, `some R: group(R)`, `GROUP(R)`): the text before the error
+/// at `pos` ends with `KEYWORD(CLASS`, a shape keyword in any case, which
+/// the parser then read as a relation missing its `,`.
+fn misplaced_shape(src: &str, pos: usize) -> Option<Diagnostic> {
+    let before = src.get(..pos)?;
+    let is_ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    let rest = before.trim_end();
+    let class = rest.trim_end_matches(is_ident);
+    if class.len() == rest.len() {
+        return None;
+    }
+    let rest = class.trim_end().strip_suffix('(')?.trim_end();
+    let start = rest.trim_end_matches(is_ident).len();
+    let word = &rest[start..];
+    let lower = word.to_ascii_lowercase();
+    ShapeKind::from_name(&lower)?;
+    let span = Span::new(start, rest.len());
+    let message = if word != lower {
+        format!(
+            "unknown keyword `{word}`: the group statement keyword is lowercase, write `{lower}`"
+        )
+    } else {
+        format!(
+            "a group statement (group, row, column, block) stands alone as a rule's whole \
+             formula: `{word}` cannot be parenthesised, combined with `&` or `|`, or follow \
+             a scene scope such as `some R:`; write `rule NAME: {word}(CLASS)` or \
+             `rule NAME: not {word}(CLASS)`"
+        )
+    };
+    Some(Diagnostic::new(DiagnosticKind::Syntax, span, message))
 }
 
 fn join_or(names: &[&str]) -> String {

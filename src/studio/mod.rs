@@ -94,7 +94,7 @@ pub fn router_with(dir: &Path, opts: StudioOptions) -> Result<Router, StudioErro
         message: e.to_string(),
     };
     let path = dir.join(files::PROBLEM);
-    let text = match crate::task::read_text(&path) {
+    let text = match crate::task::read_scene_text(&path) {
         Ok(t) => t,
         Err(crate::task::TaskError::NotUtf8 { source, .. }) => {
             return Err(StudioError::Problem {

@@ -143,9 +143,14 @@ pub fn read_text_at_most(path: &Path, max: usize) -> Result<String, TaskError> {
     })
 }
 
+/// Read a scene JSON file, at most [`crate::limits::MAX_SCENE_BYTES`].
+pub fn read_scene_text(path: &Path) -> Result<String, TaskError> {
+    read_text_at_most(path, crate::limits::MAX_SCENE_BYTES)
+}
+
 /// Read a scene file or an array of scenes.
 pub fn read_scenes(path: &Path) -> Result<Vec<Scene>, TaskError> {
-    scenes_from_json(&read_text(path)?).map_err(|source| TaskError::Scene {
+    scenes_from_json(&read_scene_text(path)?).map_err(|source| TaskError::Scene {
         path: path.to_path_buf(),
         source,
     })
@@ -155,7 +160,7 @@ pub fn read_scenes(path: &Path) -> Result<Vec<Scene>, TaskError> {
 /// ([`crate::scene::measured`]): positions snapped to the grid with the
 /// default tolerance, exact on-grid files read as they are.
 pub fn read_demos(path: &Path) -> Result<Vec<Scene>, TaskError> {
-    crate::scene::measured::measured_from_json(&read_text(path)?, None)
+    crate::scene::measured::measured_from_json(&read_scene_text(path)?, None)
         .map(|m| m.scenes)
         .map_err(|source| TaskError::Scene {
             path: path.to_path_buf(),
@@ -165,7 +170,7 @@ pub fn read_demos(path: &Path) -> Result<Vec<Scene>, TaskError> {
 
 /// Read one scene.
 pub fn read_scene(path: &Path) -> Result<Scene, TaskError> {
-    Scene::from_json(&read_text(path)?).map_err(|source| TaskError::Scene {
+    Scene::from_json(&read_scene_text(path)?).map_err(|source| TaskError::Scene {
         path: path.to_path_buf(),
         source,
     })

@@ -279,8 +279,17 @@ pub(crate) struct DeleteQuery {
 pub(crate) async fn delete_demo(
     State(st): St,
     Path(index): Path<String>,
-    Query(q): Query<DeleteQuery>,
+    q: Result<Query<DeleteQuery>, axum::extract::rejection::QueryRejection>,
 ) -> ApiResult {
+    // A bad query string (a repeated `version`) answers JSON like every
+    // other error, not axum's plain text.
+    let Query(q) = q.map_err(|e| {
+        ApiError::bad(format!(
+            "query string: {}; expected at most one `version` parameter",
+            crate::limits::cut(&e.body_text()).to_lowercase()
+        ))
+        .at("version")
+    })?;
     let _guard = st.write_lock.lock().await;
     let _folder = folder_lock(&st)?;
     let (mut file, version) = read_demos_versioned(&st)?;

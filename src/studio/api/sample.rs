@@ -51,7 +51,8 @@ pub(crate) async fn sample_layout(State(st): St, body: Bytes) -> ApiResult {
     let min = b.min_score.unwrap_or(1.0);
     if !(0.0..=1.0).contains(&min) {
         return Err(ApiError::bad(format!(
-            "request body: min_score: {min} is out of range; expected a number from 0 to 1"
+            "request body: min_score: {} is out of range; expected a number from 0 to 1",
+            crate::limits::number(min)
         ))
         .at("min_score"));
     }

@@ -59,7 +59,8 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
         .filter(|d| !d.is_zero() && *d <= Duration::from_secs(STUDIO_MAX_TIME_LIMIT_SECS))
         .ok_or_else(|| {
             ApiError::bad(format!(
-                "request body: time_limit: {secs} is out of range; expected seconds in (0, {STUDIO_MAX_TIME_LIMIT_SECS}]"
+                "request body: time_limit: {} is out of range; expected seconds in (0, {STUDIO_MAX_TIME_LIMIT_SECS}]",
+                crate::limits::number(secs)
             ))
             .at("time_limit")
         })?;
