@@ -37,61 +37,6 @@ pub(crate) fn check_demos(demos: &[Scene]) -> Result<(), InferError> {
                 found: s.grid,
             });
         }
-        check_fixed(d, first, s)?;
-    }
-    Ok(())
-}
-
-/// The fixed objects of demonstration `d` are those of `first`: the same
-/// ids, classes, sizes and places.
-fn check_fixed(d: usize, first: &Scene, s: &Scene) -> Result<(), InferError> {
-    let place = |o: &crate::scene::Object| {
-        format!(
-            "{}×{} at ({}, {})",
-            o.width,
-            o.height,
-            o.x.unwrap_or(0),
-            o.y.unwrap_or(0)
-        )
-    };
-    let fixed = |sc: &Scene| -> Vec<crate::scene::Object> {
-        sc.objects.iter().filter(|o| o.fixed).cloned().collect()
-    };
-    let (a, b) = (fixed(first), fixed(s));
-    for o in &a {
-        match b.iter().find(|p| p.id == o.id) {
-            None => {
-                return Err(InferError::FixedMismatch {
-                    demo: d,
-                    object: o.id.clone(),
-                    why: "is missing".into(),
-                })
-            }
-            Some(p)
-                if (p.class.as_str(), p.x, p.y, p.width, p.height)
-                    != (o.class.as_str(), o.x, o.y, o.width, o.height) =>
-            {
-                return Err(InferError::FixedMismatch {
-                    demo: d,
-                    object: o.id.clone(),
-                    why: format!(
-                        "is {} of class {}, but {} of class {} in demonstration [0]",
-                        place(p),
-                        p.class,
-                        place(o),
-                        o.class
-                    ),
-                })
-            }
-            Some(_) => {}
-        }
-    }
-    if let Some(p) = b.iter().find(|p| !a.iter().any(|o| o.id == p.id)) {
-        return Err(InferError::FixedMismatch {
-            demo: d,
-            object: p.id.clone(),
-            why: "is not in demonstration [0]".into(),
-        });
     }
     Ok(())
 }

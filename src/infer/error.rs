@@ -57,17 +57,6 @@ pub enum InferError {
         /// Grid of demonstration `demo`.
         found: i64,
     },
-    /// Demonstrations whose fixed objects differ (one missing, added or
-    /// moved).
-    #[error("demonstration [{demo}]: fixed object `{object}` {why}; all demonstrations must share the fixed objects of demonstration [0]")]
-    FixedMismatch {
-        /// Index of the first demonstration that differs.
-        demo: usize,
-        /// The fixed object's id.
-        object: String,
-        /// What differs, in words.
-        why: String,
-    },
     /// A statement names a class that no demonstration has.
     #[error("rule `{rule}` names class `{class}`, which no demonstration has (classes: {known})")]
     UnknownClass {
