@@ -12,7 +12,9 @@
 //! use rccpack::stop::Stop;
 //! use std::time::Duration;
 //!
-//! let stop = Stop::after(Duration::from_secs(5)).with_nodes(100_000);
+//! let stop = Stop::after(Duration::from_secs(5))
+//!     .with_nodes(100_000)
+//!     .cancellable();
 //! assert!(stop.reason().is_none());
 //! stop.cancel();
 //! assert_eq!(stop.reason(), Some(rccpack::stop::Reason::Cancelled));
