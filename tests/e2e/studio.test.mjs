@@ -269,8 +269,15 @@ try {
   } else {
     log('synthesis: not in this build of the page');
   }
-  // Delete a saved demonstration from the list.
+  // Delete a saved demonstration from the list: refused while answers.json
+  // refers to a later one (the accepted probe), with the reason; done once
+  // the journal is moved away.
   await page.click('#tab-record');
+  page.once('dialog', (d) => d.accept());
+  await page.locator('#demos .demo').nth(1).getByRole('button', { name: 'Delete' }).click();
+  await page.waitForFunction(() => /was not deleted: answers\.json refers to demonstration/.test(document.getElementById('toast').textContent));
+  assert.equal(JSON.parse(fs.readFileSync(path.join(task, 'demos.json'), 'utf8')).length, exampleDemos.length + 1);
+  fs.renameSync(path.join(task, 'answers.json'), path.join(tmp, 'answers-moved.json'));
   page.once('dialog', (d) => d.accept());
   await page.locator('#demos .demo').nth(1).getByRole('button', { name: 'Delete' }).click();
   await page.waitForFunction((n) => document.getElementById('demo-count').textContent === String(n), exampleDemos.length);
