@@ -64,6 +64,10 @@
 mod checks;
 mod reuse;
 mod scan;
+mod suspects;
+
+pub use suspects::SuspectQuestion;
+use suspects::{learn_session, suspect_answers};
 
 use super::answers::{Answer, SuspectAnswer, CONFIRMED};
 use super::budget::{Meter, QuestionBudget};
@@ -120,18 +124,6 @@ pub struct Question {
     /// that demonstration, `probe.broken` its suspect objects, `rule` and
     /// `also_broken` the rules it breaks that the others keep.
     pub suspect: Option<SuspectQuestion>,
-}
-
-/// What a question about a suspect demonstration asks about.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
-pub struct SuspectQuestion {
-    /// The demonstration's index in `demos.json`.
-    pub demonstration: usize,
-    /// Its objects that break the rules, the one breaking the most first
-    /// (the likely slip, outlined in the picture).
-    pub objects: Vec<String>,
-    /// Every rule it breaks that the other demonstrations keep.
-    pub breaks: Vec<String>,
 }
 
 /// Why a held rule was not asked about ([`Asker::unasked`]).
@@ -270,52 +262,6 @@ pub struct Asker {
     set_aside: BTreeSet<usize>,
     /// Demonstrations answered as meant, exceptions and all.
     meant: BTreeSet<usize>,
-}
-
-/// The demonstrations answered as slips and as meant in `answers`.
-fn suspect_answers(answers: &[Answer]) -> (BTreeSet<usize>, BTreeSet<usize>) {
-    let mut set_aside = BTreeSet::new();
-    let mut meant = BTreeSet::new();
-    for a in answers {
-        if let Some(s) = &a.suspect {
-            if a.accepted {
-                meant.insert(s.demonstration);
-            } else {
-                set_aside.insert(s.demonstration);
-            }
-        }
-    }
-    (set_aside, meant)
-}
-
-/// Learn as the session learns: with the session's priors, leaving out the
-/// demonstrations answered as slips, and no exception in one answered as
-/// meant.
-fn learn_session(
-    demos: &[Scene],
-    statements: Option<&RuleSet>,
-    opts: &AskOptions,
-    set_aside: &BTreeSet<usize>,
-    meant: &BTreeSet<usize>,
-) -> Result<Learned, InferError> {
-    let set_aside: Vec<usize> = set_aside.iter().copied().collect();
-    let meant: Vec<usize> = meant.iter().copied().collect();
-    // The flag that stops the probe searches stops learning too.
-    let stop = match &opts.probe.cancel {
-        Some(flag) => crate::stop::Stop::never().with_cancel(flag.clone()),
-        None => crate::stop::Stop::never(),
-    };
-    crate::infer::learn_with(
-        demos,
-        statements,
-        &opts.learn,
-        &crate::infer::LearnOptions {
-            priors: opts.priors.as_deref(),
-            stop,
-            set_aside: &set_aside,
-            meant: &meant,
-        },
-    )
 }
 
 impl Asker {
@@ -686,56 +632,6 @@ impl Asker {
                 }
             }
         }
-    }
-
-    /// The first question about a suspect (docs/guide.md#slips): the
-    /// demonstration with the most rules held with an exception there, not
-    /// answered about yet; `None` when there is none (always with a slip
-    /// rate of 0).
-    fn suspect_question(&self) -> Option<Question> {
-        let suspects = self.learned.suspects();
-        let first = suspects.iter().find(|s| {
-            !self.meant.contains(&s.demonstration) && !self.set_aside.contains(&s.demonstration)
-        })?;
-        let d = first.demonstration;
-        let mut objects: Vec<String> = Vec::new();
-        let mut breaks: Vec<String> = Vec::new();
-        for s in suspects.iter().filter(|s| s.demonstration == d) {
-            if !s.object.is_empty() && !objects.contains(&s.object) {
-                objects.push(s.object.clone());
-            }
-            for b in &s.breaks {
-                if !breaks.contains(b) {
-                    breaks.push(b.clone());
-                }
-            }
-        }
-        let rule = breaks.first()?.clone();
-        let stmt = self.learned.statements.iter().find(|s| s.name == rule)?;
-        Some(Question {
-            rule,
-            statement: crate::infer::statement_text(stmt.scope, &stmt.formula),
-            english: stmt.english.clone(),
-            probe: super::probe::Probe {
-                rule: stmt.name.clone(),
-                scene: self.demos.get(d)?.clone(),
-                broken: objects.clone(),
-                cost: 0,
-                time_ms: 0.0,
-                edit: None,
-            },
-            also_broken: breaks[1..].to_vec(),
-            suspect: Some(SuspectQuestion {
-                demonstration: d,
-                objects,
-                breaks,
-            }),
-        })
-    }
-
-    /// The demonstrations answered as slips, left out of learning.
-    pub fn set_aside(&self) -> impl Iterator<Item = usize> + '_ {
-        self.set_aside.iter().copied()
     }
 
     /// The answer to `q` as [`Asker::answer`] will record it (for a journal
