@@ -10,6 +10,7 @@ mod check;
 mod diagnostic;
 mod parser;
 mod printer;
+mod syntax_errors;
 
 pub use ast::{
     Atom, Formula, Quant, Rule, RuleOrigin, RuleSet, Scope, Shape, ShapeKind, Span, Strength,
