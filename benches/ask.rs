@@ -28,7 +28,9 @@
 //! `task03`, `tasks` for all ten). `--compare` runs every session twice,
 //! alternating: `plain` (no demonstration edits, no question budget: every
 //! check and probe search runs to its own limits) and `budget` (the
-//! defaults). `--no-probes` skips the probe-search columns.
+//! defaults). `--no-probes` skips the probe-search columns; `--no-groups`
+//! asks about one rule per question (no group questions); `--transcript`
+//! prints every question (rule, answer, evidence, group).
 
 #[path = "../tests/support/mod.rs"]
 mod support;
@@ -136,6 +138,12 @@ struct Session {
 
 /// The options of a `plain` (`budget == false`) or `budget` session.
 fn options(params: &LearnParams, budget: bool) -> AskOptions {
+    let groups = !std::env::args().any(|a| a == "--no-groups");
+    let opts = options_with(params, budget);
+    AskOptions { groups, ..opts }
+}
+
+fn options_with(params: &LearnParams, budget: bool) -> AskOptions {
     if budget {
         AskOptions {
             learn: *params,
@@ -235,6 +243,27 @@ fn session(
             ready.last().copied().unwrap_or(0.0)
         );
         let ok = keeps(&q.probe.scene, oracle);
+        if std::env::args().any(|a| a == "--transcript") {
+            let post = |name: &str| {
+                asker
+                    .learned()
+                    .statements
+                    .iter()
+                    .find(|s| s.name == name)
+                    .and_then(|s| s.posterior)
+                    .map_or(f64::NAN, |p| p.log10_posterior)
+            };
+            println!(
+                "  q{:<3} {:<5} {:>8.2} {} {}  group {:?} also {:?}",
+                ready.len(),
+                if ok { "yes" } else { "no" },
+                post(&q.rule),
+                q.rule,
+                q.statement,
+                q.group_names(),
+                q.also_broken
+            );
+        }
         edits += usize::from(q.probe.edit.is_some());
         transcript.push((q.rule.clone(), ok));
         asker.answer(&q, ok).unwrap();

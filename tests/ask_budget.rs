@@ -40,16 +40,22 @@ fn keeps(scene: &Scene, rules: &RuleSet) -> bool {
 }
 
 /// Whether `q`'s probe is a real probe of the session's held rules: it
-/// breaks its rule for at least one object and keeps every other held rule
-/// but the ones it names in `also_broken`; an edit of a demonstration
+/// breaks its rule (for a group question: each rule of its group) for at
+/// least one object and keeps every other held rule but the ones it names
+/// in `also_broken`; an edit of a demonstration
 /// differs from it in exactly the objects it marks as moved, each marked
 /// with where it was.
 fn check_probe(asker: &Asker, q: &Question) {
     let ev = evaluate(&q.probe.scene, asker.held(), Contact::Point);
+    let group = q.group_names();
     for r in &ev.rules {
-        if r.name == q.rule {
+        if r.name == q.rule && group.is_empty() {
             assert!(r.satisfied < r.subjects, "{} is not broken", q.rule);
             assert_eq!(r.violators, q.probe.broken, "{}", q.rule);
+        } else if group.contains(&r.name) {
+            // A group question breaks each of its rules.
+            assert!(r.satisfied < r.subjects, "{} is not broken", r.name);
+            assert!(r.violators.iter().all(|v| q.probe.broken.contains(v)));
         } else if !q.also_broken.contains(&r.name) {
             assert_eq!(r.satisfied, r.subjects, "{} breaks {}", q.rule, r.name);
         }

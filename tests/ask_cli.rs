@@ -368,7 +368,9 @@ fn lookahead_writes_what_a_session_without_it_writes() {
 #[test]
 fn an_answer_the_task_cannot_hold_is_refused_naming_it() {
     let dir = task("edited-answers");
-    let o = ask(&dir, &["--max-questions", "2"]);
+    // Answers about one rule each (the hand edits below rename or repeat
+    // one).
+    let o = ask(&dir, &["--max-questions", "2", "--no-groups"]);
     assert!(o.status.success(), "{}", text(&o));
     let good = read(&dir, "answers.json");
     let mut v: serde_json::Value = serde_json::from_str(&good).unwrap();
@@ -454,8 +456,10 @@ fn an_oracles_lingering_child_is_not_waited_for() {
         .unwrap();
     let took = start.elapsed();
     assert!(o.status.success(), "{}", text(&o));
+    // The oracle said no: a rule confirmed, or a group's "one of them is
+    // meant".
     assert!(
-        text(&o).contains("not acceptable: confirmed"),
+        text(&o).contains("not acceptable"),
         "{}",
         text(&o)
     );

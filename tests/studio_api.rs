@@ -616,16 +616,65 @@ fn answers_on_disk(dir: &Path) -> Vec<Value> {
     v["answers"].as_array().unwrap().clone()
 }
 
+/// The next question of a session that asks about one rule per question
+/// (`groups: false`: these tests check what one answer does to one rule).
 async fn next_question(app: &axum::Router) -> Value {
-    let (s, v) = call(
-        app,
-        Method::POST,
-        "/api/ask/next",
-        json!({"samples": 200}).to_string(),
-    )
-    .await;
+    next_question_with(app, json!({"samples": 200, "groups": false})).await
+}
+
+async fn next_question_with(app: &axum::Router, body: Value) -> Value {
+    let (s, v) = call(app, Method::POST, "/api/ask/next", body.to_string()).await;
     assert_eq!(s, StatusCode::OK, "{v}");
     v
+}
+
+/// With group questions (the default), the first question of the bundled
+/// example breaks a group of rules; "not acceptable" confirms none of them
+/// and the next question is about part of that group; "acceptable" drops
+/// all the rules it breaks. The page gets each rule's English reading.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn ask_group_questions_narrow_a_rejected_group() {
+    let dir = task_dir("ask-groups", true);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let v = next_question_with(&app, json!({"samples": 200})).await;
+    let q1 = v["question"].clone();
+    let group: Vec<String> = q1["group"]
+        .as_array()
+        .unwrap_or_else(|| panic!("a group question: {q1}"))
+        .iter()
+        .map(|g| {
+            assert!(!g["english"].as_str().unwrap().is_empty(), "{g}");
+            g["rule"].as_str().unwrap().to_string()
+        })
+        .collect();
+    assert!(group.len() >= 2, "{q1}");
+    assert_eq!(q1["rule"], group[0].as_str());
+    let v = answer(&app, &q1["rule"], false).await;
+    assert_eq!(v["progress"]["confirmed"], 0, "{v}");
+    assert_eq!(v["progress"]["grouped"], 1, "{v}");
+    assert_eq!(answers_on_disk(&dir)[0]["group"], json!(group));
+    let q2 = next_question_with(&app, json!({"samples": 200})).await["question"].clone();
+    let asked: Vec<String> = match q2["group"].as_array() {
+        Some(g) => g.iter().map(|g| g["rule"].as_str().unwrap().to_string()).collect(),
+        None => vec![q2["rule"].as_str().unwrap().to_string()],
+    };
+    assert!(asked.len() < group.len(), "{q2}");
+    assert!(asked.iter().all(|r| group.contains(r)), "{asked:?} in {group:?}");
+    let v = answer(&app, &q2["rule"], true).await;
+    assert_eq!(v["progress"]["dropped"], asked.len(), "{v}");
+    let rcc = std::fs::read_to_string(dir.join("learned.rcc")).unwrap();
+    for r in &asked {
+        assert!(
+            !rcc.contains(&format!("rule {r}:")) && !rcc.contains(&format!("rule {r} ")),
+            "{r} dropped"
+        );
+    }
+    if group.len() == 2 {
+        // The one left of the rejected pair is meant: confirmed without a
+        // question.
+        assert_eq!(v["progress"]["deduced"], 1, "{v}");
+        assert_eq!(v["progress"]["confirmed"], 1, "{v}");
+    }
 }
 
 async fn answer(app: &axum::Router, rule: &Value, accepted: bool) -> Value {

@@ -412,6 +412,9 @@ class Question:
     @property
     def also_broken(self) -> list[str]: ...
     @property
+    def group(self) -> list[str]:
+        """For a group question, every rule the probe breaks on purpose; empty for one rule."""
+    @property
     def suspect(self) -> Optional[int]:
         """The demonstration asked about as a possible slip; `None` for a probe."""
     @property
@@ -459,6 +462,7 @@ class AskSession:
         edits: bool = True,
         priors: Optional[_Path] = None,
         slip_rate: float = 0.0,
+        groups: bool = True,
     ) -> AskSession: ...
     def next_question(self) -> Optional[Question]: ...
     def answer(self, question: Question, accepted: bool) -> Question: ...
@@ -508,6 +512,7 @@ def ask(
     edits: bool = True,
     priors: Optional[_Path] = None,
     slip_rate: float = 0.0,
+    groups: bool = True,
 ) -> AskResult: ...
 
 # ---- task folders ------------------------------------------------------------

@@ -35,6 +35,10 @@ pub struct PyQuestion {
     broken: Vec<String>,
     /// Other held rules the probe breaks too.
     also_broken: Vec<String>,
+    /// For a group question: every rule the probe breaks on purpose,
+    /// `rule` first (acceptable: all dropped; not acceptable: at least one
+    /// is meant, and the next questions find which); empty for one rule.
+    group: Vec<String>,
     /// For a question about a demonstration that looks like a slip: its
     /// index in `demos.json` (the probe is that demonstration, `broken` its
     /// suspect blocks, `rule` and `also_broken` the rules it breaks);
@@ -79,6 +83,7 @@ impl PyQuestion {
                 probe: Py::new(py, PyScene::wrap(q.probe.scene.clone()))?,
                 broken: q.probe.broken.clone(),
                 also_broken: q.also_broken.clone(),
+                group: q.group_names(),
                 suspect: q.suspect.as_ref().map(|s| s.demonstration),
                 accepted,
                 probe_file: path(&shown.json),
@@ -127,18 +132,12 @@ impl PyAskResult {
     fn answers_json(&self) -> &str {
         &self.answers_json
     }
-    /// Counts: asked, dropped, confirmed, implied, unknown, held.
+    /// Counts: asked, dropped, confirmed, implied, unknown, held,
+    /// grouped (questions about a group), deduced (confirmed as the one
+    /// left of a rejected group).
     #[getter]
     fn progress<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let p = self.progress;
-        let d = PyDict::new(py);
-        d.set_item("asked", p.asked)?;
-        d.set_item("dropped", p.dropped)?;
-        d.set_item("confirmed", p.confirmed)?;
-        d.set_item("implied", p.implied)?;
-        d.set_item("unknown", p.unknown)?;
-        d.set_item("held", p.held)?;
-        Ok(d)
+        tally(py, self.progress)
     }
     /// Whether `max_questions` stopped the loop before every rule was
     /// settled.
@@ -198,6 +197,8 @@ fn tally<'py>(py: Python<'py>, p: rccpack_core::ask::Tally) -> PyResult<Bound<'p
     d.set_item("implied", p.implied)?;
     d.set_item("unknown", p.unknown)?;
     d.set_item("held", p.held)?;
+    d.set_item("grouped", p.grouped)?;
+    d.set_item("deduced", p.deduced)?;
     Ok(d)
 }
 
@@ -239,7 +240,7 @@ impl PyAskSession {
                         node_limit = DEFAULT_PROBE_NODES, check_nodes = DEFAULT_CHECK_NODES,
                         contact = "point", templates = "third",
                         question_nodes = DEFAULT_QUESTION_NODES, question_seconds = 3.0,
-                        edits = true, priors = None, slip_rate = 0.0))]
+                        edits = true, priors = None, slip_rate = 0.0, groups = true))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -259,6 +260,7 @@ impl PyAskSession {
         edits: bool,
         priors: Option<PathBuf>,
         slip_rate: f64,
+        groups: bool,
     ) -> PyResult<PyAskSession> {
         let priors = crate::priors::read_priors(py, priors)?;
         let contact = self::contact(contact)?;
@@ -290,6 +292,7 @@ impl PyAskSession {
                 },
                 edits,
                 priors,
+                groups,
                 ..AskOptions::default()
             },
             max_questions,
@@ -516,7 +519,7 @@ impl PyAskSession {
                     node_limit = DEFAULT_PROBE_NODES, check_nodes = DEFAULT_CHECK_NODES,
                     contact = "point", templates = "third",
                     question_nodes = DEFAULT_QUESTION_NODES, question_seconds = 3.0,
-                    edits = true, priors = None, slip_rate = 0.0))]
+                    edits = true, priors = None, slip_rate = 0.0, groups = true))]
 #[allow(clippy::too_many_arguments)]
 pub fn ask(
     py: Python<'_>,
@@ -537,6 +540,7 @@ pub fn ask(
     edits: bool,
     priors: Option<PathBuf>,
     slip_rate: f64,
+    groups: bool,
 ) -> PyResult<PyAskResult> {
     let session = PyAskSession::new(
         py,
@@ -556,6 +560,7 @@ pub fn ask(
         edits,
         priors,
         slip_rate,
+        groups,
     )?;
     let run = || -> PyResult<PyAskResult> {
         while let Some(q) = session.next_question(py)? {

@@ -50,6 +50,23 @@ pub struct Answer {
     /// learning (it stays in `demos.json`), and the rules confirmed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub suspect: Option<SuspectAnswer>,
+    /// For a group question (docs/guide.md#questions): every rule the
+    /// probe was chosen to break, `rule` first. Accepted: all are dropped;
+    /// rejected: at least one is meant, and the session narrows the group
+    /// down. Empty for a question about one rule.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub group: Vec<String>,
+}
+
+impl Answer {
+    /// The rules the question asked about: its group, or its one rule.
+    pub fn asked(&self) -> Vec<&str> {
+        if self.group.is_empty() {
+            vec![self.rule.as_str()]
+        } else {
+            self.group.iter().map(String::as_str).collect()
+        }
+    }
 }
 
 /// The demonstration a suspect question asked about, in `answers.json`.

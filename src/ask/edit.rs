@@ -35,7 +35,7 @@
 //! of the same kind: add them to [`neighbourhoods`], after the cheaper ones.
 
 use super::budget::Meter;
-use super::probe::{probe_rules, Checked, Probe, ProbeChecker, ProbeOptions};
+use super::probe::{group_probe_rules, Checked, Probe, ProbeChecker, ProbeOptions};
 use crate::eval::evaluate;
 use crate::resemblance::ResemblanceTarget;
 use crate::rules::{Rule, RuleSet, Target};
@@ -156,21 +156,36 @@ pub(crate) struct EditSearch<'a> {
 }
 
 impl EditSearch<'_> {
-    /// A probe for `held.rules[target]` that is a demonstration with at
-    /// most [`MAX_MOVED`] objects moved, within the meter's budget; `None`
-    /// when no neighbourhood tried has one (or the budget ran out).
-    /// `checkers` holds one pinned checker per demonstration, built when
-    /// first needed (they stay valid while `held` does).
-    pub(super) fn find(
+    /// A probe for the held rules `targets` (one rule, or a group
+    /// question's) that is a demonstration with at most [`MAX_MOVED`]
+    /// objects moved, breaking every one of them and keeping every other
+    /// held rule (the objects of all their classes may move), within the
+    /// meter's budget; `None` when no neighbourhood tried has one (or the
+    /// budget ran out). `checkers` holds one pinned checker per
+    /// demonstration, built when first needed (they stay valid while
+    /// `held` does).
+    pub(super) fn find_group(
         &self,
         held: &RuleSet,
-        target: usize,
+        targets: &[usize],
         checkers: &mut Vec<Option<ProbeChecker>>,
         meter: &mut Meter,
     ) -> Option<Probe> {
-        let rule = &held.rules[target];
-        let rules = probe_rules(held, target)?;
-        let classes = rule_classes(rule);
+        let rule = &held.rules[targets[0]];
+        let rules = group_probe_rules(held, targets)?;
+        let mut classes: Option<Vec<String>> = Some(Vec::new());
+        for &t in targets {
+            match (rule_classes(&held.rules[t]), classes.as_mut()) {
+                (Some(cs), Some(all)) => {
+                    for c in cs {
+                        if !all.contains(&c) {
+                            all.push(c);
+                        }
+                    }
+                }
+                _ => classes = None,
+            }
+        }
         let cs = classes.as_deref();
         let mut order: Vec<usize> = (0..self.demos.len()).collect();
         order.sort_by_key(|&d| (weight(&self.demos[d], cs), d));
@@ -207,7 +222,7 @@ impl EditSearch<'_> {
             let nodes = meter.grant(EDIT_NODES, c.weight())?;
             c.set_deadline(meter.deadline());
             let before = c.nodes();
-            let found = c.has_probe_moving(target, &free, Some(nodes));
+            let found = c.has_probe_moving(targets, &free, Some(nodes));
             meter.spend(c.nodes() - before, c.weight());
             let Checked::Witness(witness) = found else {
                 continue;
@@ -217,7 +232,7 @@ impl EditSearch<'_> {
             let (layout, cost) = self
                 .refine(demo, &free, &rules, meter)
                 .unwrap_or((witness, 0));
-            if let Some(p) = self.probe(held, target, d, layout, cost) {
+            if let Some(p) = self.probe(held, targets, d, layout, cost) {
                 log::debug!(
                     "ask: edit probe of {} at try {n}: demonstration {d}, {} moved",
                     rule.name,
@@ -262,25 +277,27 @@ impl EditSearch<'_> {
         r.scene.map(|s| (s, cost))
     }
 
-    /// `layout` (an edit of demonstration `d`) as a probe of
-    /// `held.rules[target]`, after the evaluator confirms it breaks the
-    /// rule and keeps every other held rule.
+    /// `layout` (an edit of demonstration `d`) as a probe of the held
+    /// rules `targets`, after the evaluator confirms it breaks each of them
+    /// and keeps every other held rule.
     fn probe(
         &self,
         held: &RuleSet,
-        target: usize,
+        targets: &[usize],
         d: usize,
         layout: Scene,
         cost: u64,
     ) -> Option<Probe> {
-        let rule = &held.rules[target];
+        let rule = &held.rules[targets[0]];
         let ev = evaluate(&layout, held, self.contact);
-        let breaks = ev.rules[target].satisfied < ev.rules[target].subjects;
+        let breaks = targets
+            .iter()
+            .all(|&t| ev.rules[t].satisfied < ev.rules[t].subjects);
         let keeps = ev
             .rules
             .iter()
             .enumerate()
-            .all(|(j, e)| j == target || e.satisfied == e.subjects);
+            .all(|(j, e)| targets.contains(&j) || e.satisfied == e.subjects);
         if !(breaks && keeps) {
             // The engine and the evaluator disagree: never shown.
             log::warn!("ask: an edit probe of {} failed the evaluator", rule.name);
@@ -298,7 +315,14 @@ impl EditSearch<'_> {
                 y: a.y.unwrap_or(0),
             })
             .collect();
-        let broken = ev.rules[target].violators.clone();
+        let mut broken: Vec<String> = Vec::new();
+        for &t in targets {
+            for v in &ev.rules[t].violators {
+                if !broken.contains(v) {
+                    broken.push(v.clone());
+                }
+            }
+        }
         Some(Probe {
             rule: rule.name.clone(),
             scene: layout,

@@ -188,13 +188,19 @@ pub struct Probe {
 /// its negation hard, "break it for as many subjects as possible" soft.
 /// `None` when the rule cannot be broken at all ([`negation`]).
 pub fn probe_rules(held: &RuleSet, target: usize) -> Option<RuleSet> {
-    let r = &held.rules[target];
-    let neg = negation(r)?;
+    group_probe_rules(held, &[target])
+}
+
+/// The probe problem of a group question (docs/guide.md#questions): every
+/// held rule of `targets` broken (its negation hard, "break it for as many
+/// subjects as possible" soft), every other held rule hard. `None` when
+/// one of them cannot be broken at all ([`negation`]).
+pub fn group_probe_rules(held: &RuleSet, targets: &[usize]) -> Option<RuleSet> {
     let mut rules: Vec<Rule> = held
         .rules
         .iter()
         .enumerate()
-        .filter(|&(k, _)| k != target)
+        .filter(|&(k, _)| !targets.contains(&k))
         .map(|(_, h)| Rule {
             strength: Strength::Hard,
             comments: Vec::new(),
@@ -202,13 +208,18 @@ pub fn probe_rules(held: &RuleSet, target: usize) -> Option<RuleSet> {
             ..h.clone()
         })
         .collect();
-    if r.scope == Scope::Each {
-        // The most visible break: as many subjects as possible.
-        let mut visible = Rule::new(format!("break_{}", r.name), Formula::not(r.formula.clone()));
-        visible.strength = Strength::Weight(1.0);
-        rules.push(visible);
+    for &target in targets {
+        let r = &held.rules[target];
+        let neg = negation(r)?;
+        if r.scope == Scope::Each {
+            // The most visible break: as many subjects as possible.
+            let mut visible =
+                Rule::new(format!("break_{}", r.name), Formula::not(r.formula.clone()));
+            visible.strength = Strength::Weight(1.0);
+            rules.push(visible);
+        }
+        rules.push(neg);
     }
-    rules.push(neg);
     // Names stay unique: the added names carry prefixes no learned name
     // needs, and if one clashes the solve still works (names are labels).
     Some(RuleSet::new(rules))
@@ -349,20 +360,22 @@ impl ProbeChecker {
         })
     }
 
-    /// Whether rule `k` has a probe that moves only the objects in `free`
+    /// Whether the rules `targets` have one probe that moves only the objects in `free`
     /// (indices into the scene of [`ProbeChecker::pinned`]; every other
     /// pinned object stays where it is), within `nodes` search nodes.
     pub(super) fn has_probe_moving(
         &mut self,
-        k: usize,
+        targets: &[usize],
         free: &[usize],
         nodes: Option<u64>,
     ) -> Checked {
-        let Some(neg) = self.negation_of[k] else {
-            return Checked::Proven;
-        };
-        let mut assume: Vec<usize> = (0..self.held).filter(|&j| j != k).collect();
-        assume.push(neg);
+        let mut assume: Vec<usize> = (0..self.held).filter(|j| !targets.contains(j)).collect();
+        for &k in targets {
+            let Some(neg) = self.negation_of[k] else {
+                return Checked::Proven;
+            };
+            assume.push(neg);
+        }
         assume.extend(
             self.pins
                 .iter()
@@ -370,6 +383,24 @@ impl ProbeChecker {
                 .filter(|(i, _)| !free.contains(i))
                 .filter_map(|(_, p)| *p),
         );
+        self.solve(&assume, nodes)
+    }
+
+    /// Whether one layout breaks every held rule of `targets` and keeps
+    /// every other held rule (a group question's probe exists), within
+    /// `nodes` search nodes when that is below the check budget.
+    pub(super) fn has_group_probe_within(
+        &mut self,
+        targets: &[usize],
+        nodes: Option<u64>,
+    ) -> Checked {
+        let mut assume: Vec<usize> = (0..self.held).filter(|j| !targets.contains(j)).collect();
+        for &k in targets {
+            let Some(neg) = self.negation_of[k] else {
+                return Checked::Proven;
+            };
+            assume.push(neg);
+        }
         self.solve(&assume, nodes)
     }
 
@@ -536,7 +567,20 @@ pub(crate) fn search_probe(
     target: usize,
     opts: &ProbeOptions,
 ) -> Result<(ProbeOutcome, u64), SynthError> {
-    let Some(rules) = probe_rules(held, target) else {
+    search_group_probe(problem, held, &[target], opts)
+}
+
+/// The probe of a group question: a layout breaking every held rule of
+/// `targets` and keeping the others ([`group_probe_rules`]), with the
+/// search nodes it spent. The probe is named after the first target; its
+/// `broken` objects are those breaking any target.
+pub(crate) fn search_group_probe(
+    problem: &Scene,
+    held: &RuleSet,
+    targets: &[usize],
+    opts: &ProbeOptions,
+) -> Result<(ProbeOutcome, u64), SynthError> {
+    let Some(rules) = group_probe_rules(held, targets) else {
         return Ok((ProbeOutcome::Implied { by: Vec::new() }, 0));
     };
     let sopts = SynthOptions {
@@ -554,27 +598,38 @@ pub(crate) fn search_probe(
         ..SynthOptions::default()
     };
     let r = synthesize(problem, &rules, &sopts)?;
-    let name = &held.rules[target].name;
+    let name = &held.rules[targets[0]].name;
     let nodes = r.stats.nodes;
     let outcome = match r.status {
         Status::Optimal | Status::Feasible => {
             let scene = r.scene.expect("a layout with a solution status");
-            let one = RuleSet::new(vec![held.rules[target].clone()]);
-            let ev = evaluate(&scene, &one, opts.contact);
+            let asked = RuleSet::new(targets.iter().map(|&k| held.rules[k].clone()).collect());
+            let ev = evaluate(&scene, &asked, opts.contact);
+            let mut broken: Vec<String> = Vec::new();
+            for r in &ev.rules {
+                for v in &r.violators {
+                    if !broken.contains(v) {
+                        broken.push(v.clone());
+                    }
+                }
+            }
             ProbeOutcome::Probe(Probe {
                 rule: name.clone(),
                 scene,
-                broken: ev.rules[0].violators.clone(),
+                broken,
                 cost: r.resemblance.map_or(0, |c| c.cost),
                 time_ms: r.stats.time_ms,
                 edit: None,
             })
         }
         Status::Infeasible => {
-            let neg = format!("{NEGATION_PREFIX}{name}");
+            let negs: Vec<String> = targets
+                .iter()
+                .map(|&k| format!("{NEGATION_PREFIX}{}", held.rules[k].name))
+                .collect();
             let by = r
                 .conflict
-                .map(|c| c.hard_rules.into_iter().filter(|n| *n != neg).collect())
+                .map(|c| c.hard_rules.into_iter().filter(|n| !negs.contains(n)).collect())
                 .unwrap_or_default();
             ProbeOutcome::Implied { by }
         }

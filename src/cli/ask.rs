@@ -78,6 +78,10 @@ pub struct AskArgs {
     /// moved.
     #[arg(long)]
     no_edits: bool,
+    /// Ask about one rule per question: never one probe that breaks a
+    /// group of likely habits at once (docs/guide.md#questions).
+    #[arg(long)]
+    no_groups: bool,
     /// Do not compute the next question for both answers while a question
     /// waits (the questions are the same either way; with it, the next one
     /// is usually ready when the answer comes). Off with `--oracle`, which
@@ -141,6 +145,9 @@ fn show_question(q: &Question, number: usize, picture: &Path) -> Result<()> {
         outln(format!("  picture: {}", picture.display()))?;
         return Ok(());
     }
+    if !q.group.is_empty() {
+        return show_group_question(q, number, picture);
+    }
     outln(format!(
         "question {number}: rule `{}`: {}",
         q.rule, q.english
@@ -168,6 +175,36 @@ fn show_question(q: &Question, number: usize, picture: &Path) -> Result<()> {
             q.also_broken.join(", ")
         ))?;
     }
+    outln(format!("  picture: {}", picture.display()))?;
+    Ok(())
+}
+
+/// A question about a group of rules: every rule it breaks, and what each
+/// answer does.
+fn show_group_question(q: &Question, number: usize, picture: &Path) -> Result<()> {
+    outln(format!(
+        "question {number}: this layout breaks {} rules and keeps every other learned rule:",
+        q.group.len()
+    ))?;
+    for g in &q.group {
+        outln(format!("  rule {}: {} ({})", g.rule, g.english, g.statement))?;
+    }
+    if !q.probe.broken.is_empty() {
+        outln(format!("  broken by {}", q.probe.broken.join(", ")))?;
+    }
+    let others: Vec<&str> = q
+        .also_broken
+        .iter()
+        .map(String::as_str)
+        .filter(|n| !q.group.iter().any(|g| g.rule == *n))
+        .collect();
+    if !others.is_empty() {
+        outln(format!(
+            "  it also breaks {}, which the other rules imply",
+            others.join(", ")
+        ))?;
+    }
+    outln("  yes: none of them is meant, all are dropped; no: at least one is meant, and the next questions find which")?;
     outln(format!("  picture: {}", picture.display()))?;
     Ok(())
 }
@@ -459,6 +496,7 @@ fn session_options(a: &AskArgs) -> Result<SessionOptions> {
             wall: Some(a.question_seconds),
         },
         edits: !a.no_edits,
+        groups: !a.no_groups,
         priors: super::priors::read_priors_opt(a.priors.as_deref())?.map(std::sync::Arc::new),
         ..AskOptions::default()
     };
@@ -567,6 +605,16 @@ fn question_loop(a: &AskArgs, session: &mut Session) -> Result<LoopEnd> {
                         "a slip: set aside, rules confirmed"
                     }
                 ),
+                None if !q.group.is_empty() => format!(
+                    "question {number}: {} rules ({}) -> {}",
+                    q.group.len(),
+                    q.group_names().join(", "),
+                    if accepted {
+                        "acceptable: all dropped"
+                    } else {
+                        "not acceptable: at least one is meant"
+                    }
+                ),
                 None => format!(
                     "question {number}: `{}` ({}) -> {}",
                     q.rule,
@@ -603,12 +651,22 @@ fn finish(a: &AskArgs, session: &Session, end: LoopEnd) -> Result<ExitCode> {
     };
     outln("")?;
     outln(format!(
-        "asked {} questions ({} in this run{}): {} rules dropped, {} confirmed; {} rules held, {} need no question (the others imply them{}){} -> {}",
+        "asked {} questions ({} in this run{}{}): {} rules dropped, {} confirmed{}; {} rules held, {} need no question (the others imply them{}){} -> {}",
         p.asked,
         asked_now,
         median.map_or(String::new(), |m| format!(", median {m:.0} ms to a question")),
+        if p.grouped > 0 {
+            format!(", {} about a group of rules", p.grouped)
+        } else {
+            String::new()
+        },
         p.dropped,
         p.confirmed,
+        if p.deduced > 0 {
+            format!(" ({} as the one left of a rejected group)", p.deduced)
+        } else {
+            String::new()
+        },
         p.held,
         p.implied,
         if out_of_budget || aborted.is_some() {

@@ -667,6 +667,7 @@ pub fn write_probe_files(
     // suspect demonstration breaks.
     let about: Vec<&str> = match &q.suspect {
         Some(s) => s.breaks.iter().map(String::as_str).collect(),
+        None if !q.group.is_empty() => q.group.iter().map(|g| g.rule.as_str()).collect(),
         None => vec![q.rule.as_str()],
     };
     let rule: Vec<_> = held
@@ -681,6 +682,11 @@ pub fn write_probe_files(
             s.demonstration,
             s.breaks.len(),
             if s.breaks.len() == 1 { "" } else { "s" }
+        ),
+        None if !q.group.is_empty() => format!(
+            "question {number}: is this acceptable? (breaks {} rules: {})",
+            q.group.len(),
+            crate::limits::cut(&q.group_names().join(", "))
         ),
         None => format!("question {number}: is this acceptable? (breaks {})", q.rule),
     };

@@ -363,6 +363,17 @@ impl Asker {
         k: usize,
         checkers: &mut Vec<Option<ProbeChecker>>,
     ) -> Option<Probe> {
+        self.edit_probe_of(&[k], checkers)
+    }
+
+    /// A probe breaking every held rule of `targets` (and keeping the
+    /// others) that is a demonstration with a few objects moved, within
+    /// the question's budget.
+    pub(super) fn edit_probe_of(
+        &self,
+        targets: &[usize],
+        checkers: &mut Vec<Option<ProbeChecker>>,
+    ) -> Option<Probe> {
         if !self.opts.edits {
             return None;
         }
@@ -375,10 +386,15 @@ impl Asker {
             cancel: self.opts.probe.cancel.clone(),
         };
         let t = std::time::Instant::now();
-        let found = search.find(&self.held, k, checkers, &mut self.meter.borrow_mut());
+        let found = search.find_group(&self.held, targets, checkers, &mut self.meter.borrow_mut());
         log::debug!(
-            "ask: edit search {}: {} in {:.1} ms",
-            self.held.rules[k].name,
+            "ask: edit search {}{}: {} in {:.1} ms",
+            self.held.rules[targets[0]].name,
+            if targets.len() > 1 {
+                format!(" and {} more", targets.len() - 1)
+            } else {
+                String::new()
+            },
             if found.is_some() { "probe" } else { "none" },
             t.elapsed().as_secs_f64() * 1e3
         );

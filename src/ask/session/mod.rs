@@ -61,7 +61,9 @@
 //! The bench (`cargo bench --bench ask -- --compare`) and
 //! `tests/ask_tasks.rs` check that the questions stay the same.
 
+mod belief;
 mod checks;
+mod group;
 mod reuse;
 mod scan;
 mod suspects;
@@ -119,11 +121,35 @@ pub struct Question {
     /// Other held rules the probe breaks too: rules of a group that imply
     /// one another (see [`Asker::next_question`]); usually empty.
     pub also_broken: Vec<String>,
+    /// For a group question (docs/guide.md#questions): every held rule the
+    /// probe was chosen to break, `rule` first ("acceptable" drops them
+    /// all; "not acceptable" says at least one is meant, and the next
+    /// questions narrow the group down). Empty for a question about one
+    /// rule.
+    pub group: Vec<Asked>,
     /// `Some` when the question is whether a demonstration that looks like
     /// a slip is as the person meant it (docs/guide.md#slips): the probe is
     /// that demonstration, `probe.broken` its suspect objects, `rule` and
     /// `also_broken` the rules it breaks that the others keep.
     pub suspect: Option<SuspectQuestion>,
+}
+
+impl Question {
+    /// The names of the rules of a group question (empty for one rule).
+    pub fn group_names(&self) -> Vec<String> {
+        self.group.iter().map(|a| a.rule.clone()).collect()
+    }
+}
+
+/// One rule a group question asks about.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Asked {
+    /// Its name.
+    pub rule: String,
+    /// Its `.rcc` text (after `rule NAME:`).
+    pub statement: String,
+    /// Its English reading.
+    pub english: String,
 }
 
 /// Why a held rule was not asked about ([`Asker::unasked`]).
@@ -169,6 +195,11 @@ pub struct Tally {
     pub unknown: usize,
     /// Held rules now.
     pub held: usize,
+    /// Questions about a group of rules (among `asked`).
+    pub grouped: usize,
+    /// Rules confirmed without a question of their own: the last rule of a
+    /// rejected group that the other answers left (among `confirmed`).
+    pub deduced: usize,
 }
 
 /// Settings of the loop.
@@ -197,6 +228,10 @@ pub struct AskOptions {
     /// Priors learned across tasks ([`crate::priors`]) for every learning
     /// run of the session; `None`: the uniform prior.
     pub priors: Option<std::sync::Arc<crate::priors::Priors>>,
+    /// Ask about groups of rules that are likely habits with one probe
+    /// (on by default; docs/guide.md#questions). Off, every question is
+    /// about one rule.
+    pub groups: bool,
 }
 
 impl Default for AskOptions {
@@ -209,6 +244,7 @@ impl Default for AskOptions {
             budget: QuestionBudget::default(),
             edits: true,
             priors: None,
+            groups: true,
         }
     }
 }
@@ -262,6 +298,11 @@ pub struct Asker {
     set_aside: BTreeSet<usize>,
     /// Demonstrations answered as meant, exceptions and all.
     meant: BTreeSet<usize>,
+    /// Rules of a rejected group not settled yet: at least one of them is
+    /// meant (the next questions narrow it down).
+    pending: Vec<String>,
+    /// Rules confirmed by deduction: the one left of a rejected group.
+    deduced: BTreeSet<String>,
 }
 
 impl Asker {
@@ -278,19 +319,29 @@ impl Asker {
         // A session never asks about a rule twice: a second answer about
         // one (a hand edit) contradicts or repeats the first.
         for (i, a) in answers.iter().enumerate() {
+            // A session never asks the same question twice (a rule of a
+            // rejected group is asked about again only alone or in a
+            // smaller group).
             if a.suspect.is_some() {
                 continue;
             }
-            if let Some(j) = answers[..i]
-                .iter()
-                .position(|b| b.suspect.is_none() && b.rule == a.rule)
-            {
+            let mut asked = a.asked();
+            asked.sort_unstable();
+            if let Some(j) = answers[..i].iter().position(|b| {
+                let mut other = b.asked();
+                other.sort_unstable();
+                b.suspect.is_none() && other == asked
+            }) {
                 return Err(AskError::BadAnswer {
                     index: i,
                     why: format!(
                         "rule: `{}` was answered already by answers[{j}] ({}); a session asks about a rule once — keep one of the two answers",
                         crate::limits::cut(&a.rule),
-                        if answers[j].accepted { "acceptable: dropped" } else { "not acceptable: confirmed" }
+                        match (answers[j].accepted, answers[j].group.is_empty()) {
+                            (true, _) => "acceptable: dropped",
+                            (false, true) => "not acceptable: confirmed",
+                            (false, false) => "not acceptable: one of its group is meant",
+                        }
                     ),
                 });
             }
@@ -385,7 +436,7 @@ impl Asker {
         )?;
         for a in answers {
             match asker.next_question()? {
-                Some(q) if q.rule == a.rule && q.probe.scene == a.probe => {
+                Some(q) if q.rule == a.rule && q.group_names() == a.group && q.probe.scene == a.probe => {
                     asker.answer(&q, a.accepted)?;
                 }
                 _ => {
@@ -413,7 +464,7 @@ impl Asker {
         for (i, a) in answers.iter().enumerate() {
             let named: Vec<&String> = match &a.suspect {
                 Some(s) => s.breaks.iter().collect(),
-                None => vec![&a.rule],
+                None => std::iter::once(&a.rule).chain(&a.group).collect(),
             };
             for rule in named {
                 if !learned.statements.iter().any(|s| &s.name == rule) {
@@ -428,6 +479,7 @@ impl Asker {
             }
         }
         let like = opts.resemble.then(|| ResemblanceTarget::new(&demos));
+        let (pending, deduced) = group::replay_groups(&answers);
         let mut asker = Asker {
             problem,
             demos,
@@ -438,11 +490,12 @@ impl Asker {
             like,
             confirmed: answers
                 .iter()
-                .filter(|a| !a.accepted)
+                .filter(|a| !a.accepted && a.group.is_empty())
                 .flat_map(|a| match &a.suspect {
                     Some(s) => s.breaks.clone(),
                     None => vec![a.rule.clone()],
                 })
+                .chain(deduced.iter().cloned())
                 .collect(),
             answers,
             known: HashMap::new(),
@@ -456,8 +509,11 @@ impl Asker {
             open: None,
             set_aside,
             meant,
+            pending,
+            deduced,
         };
         asker.held = asker.held_rules();
+        asker.settle_pending();
         Ok(asker)
     }
 
@@ -545,12 +601,18 @@ impl Asker {
                 .answers
                 .iter()
                 .filter(|a| a.accepted)
-                .map(|a| a.suspect.as_ref().map_or(1, |s| s.breaks.len()))
+                .map(|a| {
+                    a.suspect
+                        .as_ref()
+                        .map_or(a.asked().len(), |s| s.breaks.len())
+                })
                 .sum(),
             confirmed: self.confirmed.len(),
             implied: count(|k| matches!(k, Known::Implied)),
             unknown: count(|k| matches!(k, Known::Unknown)),
             held: self.held.rules.len(),
+            grouped: self.answers.iter().filter(|a| !a.group.is_empty()).count(),
+            deduced: self.deduced.len(),
         }
     }
 
@@ -576,10 +638,26 @@ impl Asker {
             .collect()
     }
 
-    /// Held rules in asking order: weakest evidence first.
+    /// Held rules in asking order: weakest evidence first; with
+    /// [`AskOptions::groups`], likeliest habit first (ties: weakest
+    /// evidence first).
     fn asking_order(&self) -> Vec<usize> {
-        // `held` is strongest first.
-        (0..self.held.rules.len()).rev().collect()
+        if self.opts.groups {
+            self.asking_order_with(&self.meant_chances())
+        } else {
+            // `held` is strongest first.
+            (0..self.held.rules.len()).rev().collect()
+        }
+    }
+
+    /// [`Asker::asking_order`] with the chances `p` that each held rule is
+    /// meant.
+    fn asking_order_with(&self, p: &[f64]) -> Vec<usize> {
+        let mut order: Vec<usize> = (0..self.held.rules.len()).rev().collect();
+        if self.opts.groups {
+            order.sort_by(|&a, &b| p[a].total_cmp(&p[b]));
+        }
+        order
     }
 
     /// The next question, or `None` when every held rule is confirmed or
@@ -650,6 +728,7 @@ impl Asker {
                 demonstration: s.demonstration,
                 breaks: s.breaks.clone(),
             }),
+            group: q.group_names(),
         }
     }
 
@@ -678,14 +757,20 @@ impl Asker {
             let mut demos = self.demos.clone();
             demos.push(q.probe.scene.clone());
             self.relearn(demos)?;
-        } else {
+        } else if q.group.is_empty() {
             self.confirmed.insert(q.rule.clone());
             // The held rules are the same, so is every probe and every
             // proof; a rule the budget deferred stays deferred (it is
             // looked at again when learning is redone).
         }
+        if q.suspect.is_none() {
+            group::narrow(&mut self.pending, &a.asked(), accepted);
+        }
         self.held = self.held_rules();
         self.answers.push(a);
+        if self.settle_pending() {
+            self.held = self.held_rules();
+        }
         Ok(self.answers.last().expect("just pushed"))
     }
 

@@ -43,7 +43,13 @@ impl Asker {
         // kept), so every scan makes progress and the loop ends.
         let settled = |a: &Asker| a.checks.borrow().len() + a.alone.borrow().len();
         let settled_before = settled(self);
-        let order = self.asking_order();
+        let p = self.meant_chances();
+        let order = self.asking_order_with(&p);
+        if self.opts.groups && !self.pending.is_empty() {
+            if let Some(q) = self.pending_question(&p, checker, edit_checkers)? {
+                return Ok(Scan::Question(Box::new(q)));
+            }
+        }
         for pass in 0..4 {
             if pass > 0 {
                 // The group passes and the last one get budgets of their
@@ -58,6 +64,15 @@ impl Asker {
                 }
                 let probe = match pass {
                     0 => {
+                        if self.opts.groups
+                            && p[k] < 0.5
+                            && !self.known.contains_key(&name)
+                            && !self.syntactically_implied(k)
+                        {
+                            if let Some(q) = self.group_question(k, &order, &p, checker, edit_checkers)? {
+                                return Ok(Scan::Question(Box::new(q)));
+                            }
+                        }
                         if !self.known.contains_key(&name) {
                             if decided > 0 && self.meter.borrow().exhausted() {
                                 // Every rule so far is decided or deferred:
@@ -102,7 +117,7 @@ impl Asker {
     /// asked about now (the last pass looks at other mixes); one that can
     /// break is shown as an edit of a demonstration when one breaks it,
     /// else as a layout of the problem.
-    fn decide_on_problem(
+    pub(super) fn decide_on_problem(
         &self,
         k: usize,
         checker: &mut Option<ProbeChecker>,
@@ -243,7 +258,7 @@ impl Asker {
 
     /// The question about held rule `k` with probe `p`, naming the other
     /// held rules the probe breaks.
-    fn question(&self, k: usize, p: Probe) -> Question {
+    pub(super) fn question(&self, k: usize, p: Probe) -> Question {
         let rule = &self.held.rules[k];
         let name = &rule.name;
         let stmt = self
@@ -265,6 +280,7 @@ impl Asker {
             statement: crate::infer::statement_text(rule.scope, &rule.formula),
             english: stmt.english.clone(),
             probe: p,
+            group: Vec::new(),
             suspect: None,
         }
     }

@@ -107,6 +107,7 @@ impl Asker {
                 edit: None,
             },
             also_broken: breaks[1..].to_vec(),
+            group: Vec::new(),
             suspect: Some(SuspectQuestion {
                 demonstration: d,
                 objects,

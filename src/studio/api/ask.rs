@@ -29,6 +29,8 @@ pub(crate) struct AskSession {
     /// [`AppState::ask_generation`] when the session read the files.
     generation: u64,
     params: LearnParams,
+    /// Group questions on (docs/guide.md#questions).
+    groups: bool,
 }
 
 impl AppState {
@@ -97,6 +99,7 @@ fn session_error(e: SessionError) -> ApiError {
 async fn start_session(
     st: &Arc<AppState>,
     params: LearnParams,
+    groups: bool,
 ) -> Result<(AskSession, Option<&'static str>), ApiError> {
     let _guard = st.write_lock.lock().await;
     let folder = folder_lock(st)?;
@@ -122,6 +125,7 @@ async fn start_session(
             },
             resemble: true,
             priors: st.priors.clone(),
+            groups,
             ..AskOptions::default()
         },
         locking: Locking::Caller,
@@ -148,6 +152,7 @@ async fn start_session(
             session,
             generation,
             params,
+            groups,
         },
         backup,
     ))
@@ -163,6 +168,10 @@ struct QuestionBody {
     /// When the probe is a demonstration with a few objects moved.
     edit: Option<crate::ask::Edit>,
     english: String,
+    /// For a group question: every rule the probe breaks on purpose
+    /// (`rule` first); absent for a question about one rule.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    group: Vec<crate::ask::Asked>,
     /// The question's number in the session, from 1.
     number: usize,
     rule: String,
@@ -215,6 +224,7 @@ fn question_value(q: &Question, number: usize) -> QuestionBody {
         cost: q.probe.cost,
         edit: q.probe.edit.clone(),
         english: q.english.clone(),
+        group: q.group.clone(),
         number,
         rule: q.rule.clone(),
         scene: scene_value(&q.probe.scene),
@@ -239,13 +249,14 @@ pub(crate) async fn ask_next(State(st): St, body: Bytes) -> ApiResult {
                 && b.seed.is_none_or(|x| x == s.params.seed)
                 && b.cutoff.is_none_or(|c| c == s.params.cutoff)
                 && b.slip_rate.is_none_or(|r| r == s.params.slip_rate)
+                && b.groups.is_none_or(|g| g == s.groups)
         }
         None => false,
     };
     let mut backup = None;
     if !keep {
         *guard = None;
-        let (session, b) = start_session(&st, params).await?;
+        let (session, b) = start_session(&st, params, b.groups.unwrap_or(true)).await?;
         *guard = Some(session);
         backup = b;
     }

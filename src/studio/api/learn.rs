@@ -24,6 +24,9 @@ pub(super) struct LearnBody {
     /// The chance that one object of a demonstration is a slip
     /// (docs/guide.md#slips); omitted: the library's default.
     pub(super) slip_rate: Option<f64>,
+    /// "Check rules" only: ask about groups of likely habits with one
+    /// probe (docs/guide.md#questions); omitted: on.
+    pub(super) groups: Option<bool>,
 }
 
 /// statements.rcc, parsed, when present.

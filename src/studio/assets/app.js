@@ -582,8 +582,11 @@ function showProbe(q) {
   const title = s
     ? `Question ${q.number} · demonstration #${s.demonstration + 1} as you meant it?`
     : `Question ${q.number} · is this acceptable?`;
+  const group = q.group || [];
   const info = s
     ? `${s.objects.length ? s.objects[0] : 'it'} (outlined) breaks ${s.breaks.length} rule${s.breaks.length === 1 ? '' : 's'} the other demonstrations keep: a slip?`
+    : group.length
+    ? `this layout breaks ${group.length} rules: ${group.map((g) => g.rule).join(', ')}${q.broken.length ? ` (outlined: ${q.broken.join(', ')})` : ''}`
     : q.broken.length
     ? `${q.broken.join(', ')} break${q.broken.length === 1 ? 's' : ''} ${q.rule} (outlined)`
     : `the layout breaks ${q.rule}`;
@@ -611,7 +614,7 @@ function applyAsk(d) {
   if (!q) {
     const p = d.progress;
     $('ask-done').innerHTML = `<h3>No more questions</h3>
-      <p id="ask-summary" data-testid="ask-summary">${p.asked} answered: ${p.dropped} rules dropped, ${p.confirmed} confirmed;
+      <p id="ask-summary" data-testid="ask-summary">${p.asked} answered${p.grouped ? ` (${p.grouped} about a group of rules)` : ''}: ${p.dropped} rules dropped, ${p.confirmed} confirmed${p.deduced ? ` (${p.deduced} as the one left of a rejected group)` : ''};
       ${p.held} rules held${p.implied ? `, ${p.implied} of them follow from the others` : ''}${p.unknown ? `, ${p.unknown} deferred (the question budget did not decide them)` : ''}.
       learned.rcc holds the checked rules.</p>`;
     state.probe = null;
@@ -625,11 +628,19 @@ function applyAsk(d) {
     ? `Demonstration #${s.demonstration + 1} as you meant it?`
     : 'Is this layout acceptable?';
   $('ask-question').dataset.suspect = s ? String(s.demonstration) : '';
-  $('ask-rule').textContent = q.rule;
-  $('ask-english').textContent = q.english;
-  $('ask-statement').textContent = q.statement;
+  const group = q.group || [];
+  $('ask-rule').textContent = group.length ? `${group.length} rules` : q.rule;
+  $('ask-english').textContent = group.length
+    ? group.map((g) => `${g.rule}: ${g.english}`).join(' · ')
+    : q.english;
+  $('ask-statement').textContent = group.length
+    ? group.map((g) => g.statement).join('  ·  ')
+    : q.statement;
+  $('ask-question').dataset.group = String(group.length);
   $('ask-broken').textContent = s
     ? `It breaks ${s.breaks.join(', ')}, which the other demonstrations keep. Looks right: it is meant, and those rules are dropped. Not like that: a slip; it is set aside from learning (demos.json keeps it).`
+    : group.length
+    ? `It breaks all ${group.length}; every other learned rule holds. Acceptable: none of them is meant, all are dropped. Not acceptable: at least one is meant, and the next questions find which.`
     : q.broken.length
     ? `Outlined: ${q.broken.join(', ')} break${q.broken.length === 1 ? 's' : ''} it; every other learned rule holds.`
     : 'Every other learned rule holds.';
@@ -688,8 +699,11 @@ async function askAnswer(accepted) {
       ? `Demonstration #${q.suspect.demonstration + 1} is meant: dropped ${q.suspect.breaks.join(', ')}.`
       : `Demonstration #${q.suspect.demonstration + 1} set aside as a slip; confirmed ${q.suspect.breaks.join(', ')}.`, 'ok');
   } else if (accepted) {
-    toast(`Dropped ${q.rule}: the layout is now demonstration #${r.data.answer.demo + 1}.`, 'ok');
+    const what = (q.group || []).length ? `${q.group.length} rules (${q.group.map((g) => g.rule).join(', ')})` : q.rule;
+    toast(`Dropped ${what}: the layout is now demonstration #${r.data.answer.demo + 1}.`, 'ok');
     loadDemos();
+  } else if ((q.group || []).length) {
+    toast(`At least one of ${q.group.length} rules is meant; the next questions find which.`, 'ok');
   } else {
     toast(`Confirmed ${q.rule}.`, 'ok');
   }
