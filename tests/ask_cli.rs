@@ -458,11 +458,7 @@ fn an_oracles_lingering_child_is_not_waited_for() {
     assert!(o.status.success(), "{}", text(&o));
     // The oracle said no: a rule confirmed, or a group's "one of them is
     // meant".
-    assert!(
-        text(&o).contains("not acceptable"),
-        "{}",
-        text(&o)
-    );
+    assert!(text(&o).contains("not acceptable"), "{}", text(&o));
     assert!(
         took < std::time::Duration::from_secs(20),
         "ask waited {took:?} for the oracle's child"

@@ -7,6 +7,7 @@ mod support;
 mod architecture;
 mod ask_budget;
 mod ask_cli;
+mod ask_groups;
 mod ask_probes;
 mod ask_tasks;
 mod bench_tasks;

@@ -655,11 +655,17 @@ async fn ask_group_questions_narrow_a_rejected_group() {
     assert_eq!(answers_on_disk(&dir)[0]["group"], json!(group));
     let q2 = next_question_with(&app, json!({"samples": 200})).await["question"].clone();
     let asked: Vec<String> = match q2["group"].as_array() {
-        Some(g) => g.iter().map(|g| g["rule"].as_str().unwrap().to_string()).collect(),
+        Some(g) => g
+            .iter()
+            .map(|g| g["rule"].as_str().unwrap().to_string())
+            .collect(),
         None => vec![q2["rule"].as_str().unwrap().to_string()],
     };
     assert!(asked.len() < group.len(), "{q2}");
-    assert!(asked.iter().all(|r| group.contains(r)), "{asked:?} in {group:?}");
+    assert!(
+        asked.iter().all(|r| group.contains(r)),
+        "{asked:?} in {group:?}"
+    );
     let v = answer(&app, &q2["rule"], true).await;
     assert_eq!(v["progress"]["dropped"], asked.len(), "{v}");
     let rcc = std::fs::read_to_string(dir.join("learned.rcc")).unwrap();

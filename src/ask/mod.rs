@@ -27,7 +27,7 @@ pub use lookahead::Lookahead;
 
 pub use answers::{Answer, AnswersFile, AnswersFileError, SuspectAnswer, CONFIRMED};
 pub use probe::{
-    find_probe, group_probe_rules, negation, probe_rules, Probe, ProbeOptions, ProbeOutcome, DEFAULT_CHECK_NODES,
-    DEFAULT_PROBE_NODES,
+    find_probe, group_probe_rules, negation, probe_rules, Probe, ProbeOptions, ProbeOutcome,
+    DEFAULT_CHECK_NODES, DEFAULT_PROBE_NODES,
 };
 pub use session::{AskError, AskOptions, Asked, Asker, Question, SuspectQuestion, Tally, Unasked};

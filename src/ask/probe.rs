@@ -629,7 +629,12 @@ pub(crate) fn search_group_probe(
                 .collect();
             let by = r
                 .conflict
-                .map(|c| c.hard_rules.into_iter().filter(|n| !negs.contains(n)).collect())
+                .map(|c| {
+                    c.hard_rules
+                        .into_iter()
+                        .filter(|n| !negs.contains(n))
+                        .collect()
+                })
                 .unwrap_or_default();
             ProbeOutcome::Implied { by }
         }

@@ -187,7 +187,10 @@ fn show_group_question(q: &Question, number: usize, picture: &Path) -> Result<()
         q.group.len()
     ))?;
     for g in &q.group {
-        outln(format!("  rule {}: {} ({})", g.rule, g.english, g.statement))?;
+        outln(format!(
+            "  rule {}: {} ({})",
+            g.rule, g.english, g.statement
+        ))?;
     }
     if !q.probe.broken.is_empty() {
         outln(format!("  broken by {}", q.probe.broken.join(", ")))?;

@@ -174,8 +174,16 @@ impl Asker {
         let stmt = self.learned.statements.iter().find(|s| s.name == *name);
         let l = self.evidence_of(name).unwrap_or(0.0);
         let mut base = l / (l + HALF_EVIDENCE);
-        let meant_below = families.evidence.iter().filter(|&&(e, m)| m && e <= l).count();
-        let habits_above = families.evidence.iter().filter(|&&(e, m)| !m && e >= l).count();
+        let meant_below = families
+            .evidence
+            .iter()
+            .filter(|&&(e, m)| m && e <= l)
+            .count();
+        let habits_above = families
+            .evidence
+            .iter()
+            .filter(|&&(e, m)| !m && e >= l)
+            .count();
         base = (meant_below as f64 + PRIOR_WEIGHT * base)
             / ((meant_below + habits_above) as f64 + PRIOR_WEIGHT);
         if let Some(prior) = stmt.and_then(|s| s.prior.as_ref()) {
@@ -214,6 +222,9 @@ mod tests {
             family("some R: EC_N(R, @w_south)", &classes, false),
             "some A: EC_N(A, @L)"
         );
-        assert_eq!(family("at least 2 R: DR_N(R, W)", &classes, false), "at least 2 A: DR_N(A, B)");
+        assert_eq!(
+            family("at least 2 R: DR_N(R, W)", &classes, false),
+            "at least 2 A: DR_N(A, B)"
+        );
     }
 }

@@ -29,7 +29,9 @@
 use super::belief::GROUP_CHANCE;
 use super::{AskError, Asked, Asker, Known, Question};
 use crate::ask::answers::Answer;
-use crate::ask::probe::{search_group_probe, Checked, Probe, ProbeChecker, ProbeOptions, ProbeOutcome};
+use crate::ask::probe::{
+    search_group_probe, Checked, Probe, ProbeChecker, ProbeOptions, ProbeOutcome,
+};
 use std::collections::BTreeSet;
 
 /// At most this many rules are tried for one group (each try is a check).
@@ -333,9 +335,8 @@ impl Asker {
     fn pool_group_probe(&self, set: &[usize]) -> Option<Probe> {
         let at = self.pool_breaking_exactly(set)?;
         let scene = self.pool.borrow().scenes[at].clone();
-        let asked = crate::rules::RuleSet::new(
-            set.iter().map(|&j| self.held.rules[j].clone()).collect(),
-        );
+        let asked =
+            crate::rules::RuleSet::new(set.iter().map(|&j| self.held.rules[j].clone()).collect());
         let mut broken: Vec<String> = Vec::new();
         for r in crate::eval::evaluate(&scene, &asked, self.opts.probe.contact).rules {
             for v in r.violators {
@@ -398,13 +399,18 @@ mod tests {
             .unwrap(),
             edit: None,
             suspect: None,
-            group: if group.len() > 1 { names(group) } else { Vec::new() },
+            group: if group.len() > 1 {
+                names(group)
+            } else {
+                Vec::new()
+            },
         };
         let (pending, deduced) =
             replay_groups(&[answer(&["a", "b", "c"], false), answer(&["a", "b"], true)]);
         assert!(pending.is_empty());
         assert_eq!(deduced, ["c".to_string()].into_iter().collect());
-        let (pending, deduced) = replay_groups(&[answer(&["a", "b", "c"], false), answer(&["a"], true)]);
+        let (pending, deduced) =
+            replay_groups(&[answer(&["a", "b", "c"], false), answer(&["a"], true)]);
         assert_eq!(pending, names(&["b", "c"]));
         assert!(deduced.is_empty());
     }

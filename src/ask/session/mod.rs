@@ -436,7 +436,11 @@ impl Asker {
         )?;
         for a in answers {
             match asker.next_question()? {
-                Some(q) if q.rule == a.rule && q.group_names() == a.group && q.probe.scene == a.probe => {
+                Some(q)
+                    if q.rule == a.rule
+                        && q.group_names() == a.group
+                        && q.probe.scene == a.probe =>
+                {
                     asker.answer(&q, a.accepted)?;
                 }
                 _ => {

@@ -69,7 +69,9 @@ impl Asker {
                             && !self.known.contains_key(&name)
                             && !self.syntactically_implied(k)
                         {
-                            if let Some(q) = self.group_question(k, &order, &p, checker, edit_checkers)? {
+                            if let Some(q) =
+                                self.group_question(k, &order, &p, checker, edit_checkers)?
+                            {
                                 return Ok(Scan::Question(Box::new(q)));
                             }
                         }
