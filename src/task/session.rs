@@ -683,10 +683,10 @@ pub fn write_probe_files(
             s.breaks.len(),
             if s.breaks.len() == 1 { "" } else { "s" }
         ),
+        // The legend lists them.
         None if !q.group.is_empty() => format!(
-            "question {number}: is this acceptable? (breaks {} rules: {})",
-            q.group.len(),
-            crate::limits::cut(&q.group_names().join(", "))
+            "question {number}: is this acceptable? (breaks {} rules)",
+            q.group.len()
         ),
         None => format!("question {number}: is this acceptable? (breaks {})", q.rule),
     };

@@ -134,6 +134,9 @@ pub struct PriorsBenchConfig {
     /// Run the question loop on the first this many held-out tasks
     /// (`None`, the default: on all of them).
     pub ask_tasks: Option<usize>,
+    /// Group questions in the loop ([`crate::ask::AskOptions::groups`], on
+    /// by default).
+    pub ask_groups: bool,
     /// A truth rule is *rare* when its kind was kept in fewer than this
     /// percentage of the true library's tasks (default 15).
     pub rare_percent: u64,
@@ -168,6 +171,7 @@ impl PriorsBenchConfig {
             ask: true,
             max_questions: 40,
             ask_tasks: None,
+            ask_groups: true,
             rare_percent: 15,
             params: PriorParams::default(),
         }

@@ -247,6 +247,7 @@ pub(super) fn ask_outcome(
             ..QuestionBudget::default()
         },
         priors,
+        groups: cfg.ask_groups,
         ..AskOptions::default()
     };
     let mut asker = Asker::new(

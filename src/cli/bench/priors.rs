@@ -35,6 +35,9 @@ pub(super) struct PriorsBenchArgs {
     /// all; a loop takes half a minute to two minutes).
     #[arg(long = "ask-tasks", value_parser = clap::value_parser!(u16).range(0..=1000))]
     ask_tasks: Option<u16>,
+    /// Ask about one rule per question in the loop (no group questions).
+    #[arg(long = "no-groups")]
+    no_groups: bool,
     /// A truth rule is rare when its kind was kept in fewer than this
     /// percentage of the true library's tasks (0 to 100).
     #[arg(long = "rare-percent", default_value_t = 15, value_parser = clap::value_parser!(u64).range(0..=100))]
@@ -70,6 +73,7 @@ pub(super) fn run_priors(a: PriorsBenchArgs) -> Result<ExitCode> {
     cfg.ask = !a.no_ask;
     cfg.max_questions = usize::from(a.max_questions);
     cfg.ask_tasks = a.ask_tasks.map(usize::from);
+    cfg.ask_groups = !a.no_groups;
     cfg.params.rule_out_after = a.rule_out_after;
     cfg.rare_percent = a.rare_percent;
     cfg.params.strength = a.strength;
