@@ -35,7 +35,8 @@
 //! of the same kind: add them to [`neighbourhoods`], after the cheaper ones.
 
 use super::budget::Meter;
-use super::probe::{group_probe_rules, Checked, Probe, ProbeChecker, ProbeOptions};
+use super::checker::{Checked, ProbeChecker};
+use super::probe::{group_probe_rules, Probe, ProbeOptions};
 use crate::eval::evaluate;
 use crate::resemblance::ResemblanceTarget;
 use crate::rules::{Rule, RuleSet, Target};

@@ -16,6 +16,7 @@
 
 mod answers;
 mod budget;
+mod checker;
 mod edit;
 mod lookahead;
 mod probe;

@@ -4,8 +4,9 @@
 
 use super::reuse::FIRST_TRY_NODES;
 use super::{AskError, Asker, Known};
+use crate::ask::checker::{Checked, ProbeChecker};
 use crate::ask::edit::EditSearch;
-use crate::ask::probe::{search_probe, Checked, Probe, ProbeChecker, ProbeOptions, ProbeOutcome};
+use crate::ask::probe::{search_probe, Probe, ProbeOptions, ProbeOutcome};
 use crate::infer::english::rule_implies;
 use crate::rules::RuleSet;
 use std::collections::BTreeSet;

@@ -29,9 +29,8 @@
 use super::belief::GROUP_CHANCE;
 use super::{AskError, Asked, Asker, Known, Question};
 use crate::ask::answers::Answer;
-use crate::ask::probe::{
-    search_group_probe, Checked, Probe, ProbeChecker, ProbeOptions, ProbeOutcome,
-};
+use crate::ask::checker::{Checked, ProbeChecker};
+use crate::ask::probe::{search_group_probe, Probe, ProbeOptions, ProbeOutcome};
 use std::collections::BTreeSet;
 
 /// At most this many rules are tried for one group (each try is a check).

@@ -64,16 +64,20 @@
 mod belief;
 mod checks;
 mod group;
+mod question;
+mod resume;
 mod reuse;
 mod scan;
 mod suspects;
 
+pub use question::{Asked, Question, Tally, Unasked};
 pub use suspects::SuspectQuestion;
 use suspects::{learn_session, suspect_answers};
 
 use super::answers::{Answer, SuspectAnswer, CONFIRMED};
 use super::budget::{Meter, QuestionBudget};
-use super::probe::{Probe, ProbeChecker, ProbeOptions};
+use super::checker::ProbeChecker;
+use super::probe::{Probe, ProbeOptions};
 use crate::infer::{InferError, LearnParams, Learned};
 use crate::resemblance::ResemblanceTarget;
 use crate::rules::{print_rule, RuleSet};
@@ -81,7 +85,6 @@ use crate::scene::Scene;
 use crate::synth::SynthError;
 use reuse::Pool;
 use scan::Scan;
-use serde::Serialize;
 use std::collections::{BTreeSet, HashMap};
 
 /// Why the question loop cannot go on.
@@ -105,101 +108,6 @@ pub enum AskError {
     /// An answer for a question that is not the one asked.
     #[error("no question about rule `{0}` is open")]
     NotAsked(String),
-}
-
-/// A question: is this probe acceptable?
-#[derive(Debug, Clone, PartialEq)]
-pub struct Question {
-    /// The rule it asks about.
-    pub rule: String,
-    /// The rule's `.rcc` text (after `rule NAME:`).
-    pub statement: String,
-    /// The rule's English reading.
-    pub english: String,
-    /// The probe.
-    pub probe: Probe,
-    /// Other held rules the probe breaks too: rules of a group that imply
-    /// one another (see [`Asker::next_question`]); usually empty.
-    pub also_broken: Vec<String>,
-    /// For a group question (docs/guide.md#questions): every held rule the
-    /// probe was chosen to break, `rule` first ("acceptable" drops them
-    /// all; "not acceptable" says at least one is meant, and the next
-    /// questions narrow the group down). Empty for a question about one
-    /// rule.
-    pub group: Vec<Asked>,
-    /// `Some` when the question is whether a demonstration that looks like
-    /// a slip is as the person meant it (docs/guide.md#slips): the probe is
-    /// that demonstration, `probe.broken` its suspect objects, `rule` and
-    /// `also_broken` the rules it breaks that the others keep.
-    pub suspect: Option<SuspectQuestion>,
-}
-
-impl Question {
-    /// The names of the rules of a group question (empty for one rule).
-    pub fn group_names(&self) -> Vec<String> {
-        self.group.iter().map(|a| a.rule.clone()).collect()
-    }
-}
-
-/// One rule a group question asks about.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Asked {
-    /// Its name.
-    pub rule: String,
-    /// Its `.rcc` text (after `rule NAME:`).
-    pub statement: String,
-    /// Its English reading.
-    pub english: String,
-}
-
-/// Why a held rule was not asked about ([`Asker::unasked`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Unasked {
-    /// The other held rules imply it on the problem (proven, or on every
-    /// scene); with `edits_tried`, no demonstration with one or two objects
-    /// moved breaks it either.
-    Implied {
-        /// The demonstrations' edits were searched too.
-        edits_tried: bool,
-    },
-    /// The question budget (or a limit) stopped its check or probe search
-    /// before it decided.
-    Deferred,
-}
-
-impl std::fmt::Display for Unasked {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Unasked::Implied { edits_tried: true } => {
-                "follows from the others on the problem and on every demonstration edit tried"
-            }
-            Unasked::Implied { edits_tried: false } => "follows from the others on the problem",
-            Unasked::Deferred => "the question budget did not decide it",
-        })
-    }
-}
-
-/// How far the questions have come (counts of a session).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-pub struct Tally {
-    /// Questions answered (over all runs).
-    pub asked: usize,
-    /// Rules dropped by accepted probes.
-    pub dropped: usize,
-    /// Rules confirmed by rejected probes.
-    pub confirmed: usize,
-    /// Held rules not asked because the others imply them.
-    pub implied: usize,
-    /// Held rules deferred: the question budget (or a limit) stopped their
-    /// check or probe search before it decided them.
-    pub unknown: usize,
-    /// Held rules now.
-    pub held: usize,
-    /// Questions about a group of rules (among `asked`).
-    pub grouped: usize,
-    /// Rules confirmed without a question of their own: the last rule of a
-    /// rejected group that the other answers left (among `confirmed`).
-    pub deduced: usize,
 }
 
 /// Settings of the loop.
@@ -316,87 +224,7 @@ impl Asker {
         opts: AskOptions,
     ) -> Result<Asker, AskError> {
         let mut demos = demos;
-        // A session never asks about a rule twice: a second answer about
-        // one (a hand edit) contradicts or repeats the first.
-        for (i, a) in answers.iter().enumerate() {
-            // A session never asks the same question twice (a rule of a
-            // rejected group is asked about again only alone or in a
-            // smaller group).
-            if a.suspect.is_some() {
-                continue;
-            }
-            let mut asked = a.asked();
-            asked.sort_unstable();
-            if let Some(j) = answers[..i].iter().position(|b| {
-                let mut other = b.asked();
-                other.sort_unstable();
-                b.suspect.is_none() && other == asked
-            }) {
-                return Err(AskError::BadAnswer {
-                    index: i,
-                    why: format!(
-                        "rule: `{}` was answered already by answers[{j}] ({}); a session asks about a rule once — keep one of the two answers",
-                        crate::limits::cut(&a.rule),
-                        match (answers[j].accepted, answers[j].group.is_empty()) {
-                            (true, _) => "acceptable: dropped",
-                            (false, true) => "not acceptable: confirmed",
-                            (false, false) => "not acceptable: one of its group is meant",
-                        }
-                    ),
-                });
-            }
-        }
-        for (i, a) in answers.iter().enumerate() {
-            if let Some(s) = &a.suspect {
-                if s.demonstration >= demos.len() {
-                    return Err(AskError::BadAnswer {
-                        index: i,
-                        why: format!(
-                            "the answer is about demonstration [{}], but demos.json has {} demonstrations",
-                            s.demonstration,
-                            demos.len()
-                        ),
-                    });
-                }
-                continue;
-            }
-            if !a.accepted {
-                continue;
-            }
-            // An accepted probe is a demonstration; one saved in the
-            // answers but not yet in the demonstrations (an abort between
-            // the two writes) is added again.
-            match a.demo {
-                Some(d) if demos.get(d) == Some(&a.probe) => {}
-                Some(d) if d == demos.len() => demos.push(a.probe.clone()),
-                Some(d) if d > demos.len() => {
-                    return Err(AskError::BadAnswer {
-                        index: i,
-                        why: format!(
-                            "demo: {d} is out of range: demos.json has {} demonstrations (indices 0 to {}), and an accepted probe is at most the next one, [{}]",
-                            demos.len(),
-                            demos.len().saturating_sub(1),
-                            demos.len()
-                        ),
-                    })
-                }
-                Some(d) => {
-                    return Err(AskError::BadAnswer {
-                        index: i,
-                        why: format!(
-                            "the accepted probe should be demonstration [{d}], but demos.json has {} demonstrations and [{d}] is a different scene",
-                            demos.len()
-                        ),
-                    })
-                }
-                None => {
-                    return Err(AskError::BadAnswer {
-                        index: i,
-                        why: "an accepted answer needs `demo`, its index in demos.json".into(),
-                    })
-                }
-            }
-        }
+        resume::check_answers(&answers, &mut demos)?;
         if let Some(asker) = Self::replay(&problem, &demos, &statements, &answers, &opts)? {
             return Ok(asker);
         }
@@ -589,59 +417,6 @@ impl Asker {
         out
     }
 
-    /// The progress so far.
-    pub fn progress(&self) -> Tally {
-        let count = |f: fn(&Known) -> bool| {
-            self.held
-                .rules
-                .iter()
-                .filter(|r| !self.confirmed.contains(&r.name))
-                .filter(|r| self.known.get(&r.name).is_some_and(f))
-                .count()
-        };
-        Tally {
-            asked: self.answers.len(),
-            dropped: self
-                .answers
-                .iter()
-                .filter(|a| a.accepted)
-                .map(|a| {
-                    a.suspect
-                        .as_ref()
-                        .map_or(a.asked().len(), |s| s.breaks.len())
-                })
-                .sum(),
-            confirmed: self.confirmed.len(),
-            implied: count(|k| matches!(k, Known::Implied)),
-            unknown: count(|k| matches!(k, Known::Unknown)),
-            held: self.held.rules.len(),
-            grouped: self.answers.iter().filter(|a| !a.group.is_empty()).count(),
-            deduced: self.deduced.len(),
-        }
-    }
-
-    /// The held rules not confirmed and not open to a question now, with
-    /// why, in asking order (after [`Asker::next_question`] returned
-    /// `None`: every rule the session leaves unasked).
-    pub fn unasked(&self) -> Vec<(String, Unasked)> {
-        self.asking_order()
-            .into_iter()
-            .map(|k| &self.held.rules[k].name)
-            .filter(|name| !self.confirmed.contains(*name))
-            .filter_map(|name| {
-                let why = match self.known.get(name)? {
-                    Known::Implied if self.edit_tried.borrow().contains(name) => {
-                        Unasked::Implied { edits_tried: true }
-                    }
-                    Known::Implied => Unasked::Implied { edits_tried: false },
-                    Known::Unknown => Unasked::Deferred,
-                    Known::Probe(_) => return None,
-                };
-                Some((name.clone(), why))
-            })
-            .collect()
-    }
-
     /// Held rules in asking order: weakest evidence first; with
     /// [`AskOptions::groups`], likeliest habit first (ties: weakest
     /// evidence first).
@@ -812,7 +587,7 @@ impl Asker {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ask::probe::Checked;
+    use crate::ask::checker::Checked;
     use crate::scene::scenes_from_json;
 
     /// The bundled example's problem and demonstrations.

@@ -4,7 +4,8 @@
 use super::checks::related;
 use super::{AskError, Asker, Known, Question};
 use crate::ask::budget::Meter;
-use crate::ask::probe::{Probe, ProbeChecker};
+use crate::ask::checker::ProbeChecker;
+use crate::ask::probe::Probe;
 
 /// How a scan for the next question ended.
 pub(super) enum Scan {
