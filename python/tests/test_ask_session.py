@@ -166,3 +166,21 @@ def test_a_suspect_is_asked_about_first_both_ways(example: Path, tmp_path: Path)
     assert q.suspect == 5 and q.accepted is True
     held = {rule.name for rule in r.rules}
     assert q.rule not in held and not (set(q.also_broken) & held)
+
+
+def test_group_questions_and_one_rule_per_question(example: Path, tmp_path: Path) -> None:
+    d = tmp_path / "task"
+    shutil.copytree(example, d)
+    with rccpack.AskSession(d, max_questions=2, question_seconds=600) as s:
+        q = s.next_question()
+        assert q is not None and len(q.group) >= 2 and q.group[0] == q.rule
+        s.answer(q, False)
+        # "not acceptable" about a group confirms none of its rules yet
+        assert s.progress["grouped"] == 1 and s.progress["confirmed"] == 0
+        q2 = s.next_question()
+        assert q2 is not None and set(q2.group or [q2.rule]) < set(q.group)
+    d2 = tmp_path / "task2"
+    shutil.copytree(example, d2)
+    with rccpack.AskSession(d2, max_questions=1, groups=False) as s:
+        q = s.next_question()
+        assert q is not None and q.group == []
