@@ -687,6 +687,14 @@ fn finish(a: &AskArgs, session: &Session, end: LoopEnd) -> Result<ExitCode> {
     if !out_of_budget && aborted.is_none() {
         show_unasked(asker)?;
     }
+    if let Some(used) = asker.learned().priors.as_ref() {
+        if !used.ruled_out.is_empty() {
+            outln(format!(
+                "ruled out by the priors (never held, never asked): {} statements",
+                used.ruled_out.len()
+            ))?;
+        }
+    }
     if out_of_budget {
         outln(format!(
             "stopped at --max-questions {}; run again to go on",

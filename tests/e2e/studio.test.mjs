@@ -183,6 +183,20 @@ try {
   const askSettled = () => page.waitForSelector('body[data-ask="question"], body[data-ask="done"], body[data-ask="error"]',
     { timeout: 120000 });
   await askSettled();
+  // Group questions (the default): the first question of the box breaks
+  // two rules that look like habits; the panel names how many.
+  {
+    const q = page.locator('[data-testid=ask-question]');
+    assert.ok(Number(await q.getAttribute('data-group')) >= 2, 'a group question first');
+    assert.match(await page.locator('[data-testid=ask-rule]').textContent(), /^\d+ rules$/);
+    assert.match(await page.locator('#ask-broken').textContent(), /at least one is meant/);
+    await page.screenshot({ path: path.join(out, 'studio-check-group.png') });
+  }
+  // One rule per question from here (a new session: no answer yet).
+  await page.uncheck('[data-testid=ask-groups]');
+  await page.click('[data-testid=check-rules]');
+  await askSettled();
+  assert.equal(await page.locator('[data-testid=ask-question]').getAttribute('data-group'), '0');
   assert.equal(await page.evaluate(() => document.body.dataset.ask), 'question', 'a first question');
   const progressLine = () => page.locator('[data-testid=ask-progress-line]').textContent();
   assert.match(await progressLine(), /asked 0 · dropped 0 · confirmed 0/);

@@ -661,7 +661,8 @@ async function askNext() {
   setAskState('busy');
   const samples = Number($('ask-samples').value) || 1000;
   const slip = Number($('ask-slip-rate').value) || 0;
-  const r = await api('POST', '/api/ask/next', { samples, slip_rate: slip });
+  const groups = $('ask-groups').checked;
+  const r = await api('POST', '/api/ask/next', { samples, slip_rate: slip, groups });
   btn.disabled = false;
   btn.textContent = 'Check rules';
   if (!r.ok) {
