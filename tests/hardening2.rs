@@ -51,11 +51,7 @@ fn a_failing_oracle_confirms_nothing() {
         let e = stderr(&o);
         assert_eq!(o.status.code(), Some(1), "{oracle}: {e}");
         assert!(e.contains("failed rather than answered"), "{e}");
-        assert!(
-            !stdout(&o).contains("not acceptable: confirmed"),
-            "{}",
-            stdout(&o)
-        );
+        assert!(!stdout(&o).contains("not acceptable"), "{}", stdout(&o));
         if let Ok(a) = std::fs::read_to_string(task.join("answers.json")) {
             let v: serde_json::Value = serde_json::from_str(&a).unwrap();
             assert_eq!(v["answers"], serde_json::json!([]), "{a}");
@@ -73,7 +69,9 @@ fn a_failing_oracle_confirms_nothing() {
         "1",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stdout(&o).contains("not acceptable: confirmed"));
+    // About one rule: confirmed; about a group (the box's first question):
+    // one of them is meant.
+    assert!(stdout(&o).contains("not acceptable"), "{}", stdout(&o));
 }
 
 /// Item 2: one rule for classes a scene lacks. A class some scene the
