@@ -128,17 +128,20 @@ impl Plan {
             if o.fixed {
                 continue;
             }
-            if o.width > space.w || o.height > space.h {
+            // The footprint as demonstrated: a random layout keeps each
+            // object's orientation.
+            let (ow, oh) = o.footprint();
+            if ow > space.w || oh > space.h {
                 return Err(InferError::CannotPlace {
                     demo: demo_index,
                     object: o.id.clone(),
                     reason: format!(
                         "it is {}x{}, larger than the {}x{} space",
-                        o.width, o.height, space.w, space.h
+                        ow, oh, space.w, space.h
                     ),
                 });
             }
-            movable.push((i, (space.w - o.width) / g + 1, (space.h - o.height) / g + 1));
+            movable.push((i, (space.w - ow) / g + 1, (space.h - oh) / g + 1));
         }
         let aligned = scene.objects.iter().all(|o| {
             o.width % g == 0
@@ -206,7 +209,7 @@ impl Plan {
             for &m in &order {
                 let (i, nx, ny) = self.movable[m];
                 let o = &scene.objects[i];
-                let (w, h) = (o.width, o.height);
+                let (w, h) = o.footprint();
                 let mut placed = None;
                 for _ in 0..MAX_TRIES {
                     let kx = rng.random_range(0..nx);
