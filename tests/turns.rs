@@ -467,3 +467,47 @@ fn sample_is_not_broken_by_turnable_objects() {
         assert!(keys.insert(rccpack::sample::canonical_key(&problem, s)));
     }
 }
+
+/// The packing benchmark's inputs: problems that fit only turned, found by
+/// the exhaustive cell search of `support::turn_packing` (no solver) and
+/// kept in `tests/fixtures/turns/packings.json` (regenerate with
+/// `RCCPACK_BLESS=1` only on purpose). On each, the engine proves that
+/// the blocks do not fit flat, and packs them turned, optimal and
+/// verified; brute force agrees where it can enumerate.
+#[test]
+fn packings_that_fit_only_turned_are_proven_flat_and_packed_turned() {
+    use crate::support::turn_packing::{flat, packings};
+    let found = packings(16);
+    assert_eq!(found.len(), 16);
+    let text = rccpack::scene::scenes_to_json(&found);
+    let file = crate::support::path("tests/fixtures/turns/packings.json");
+    if std::env::var_os("RCCPACK_BLESS").is_some() {
+        std::fs::create_dir_all(file.parent().expect("folder")).expect("folder");
+        std::fs::write(&file, &text).expect("written");
+    }
+    assert_eq!(
+        std::fs::read_to_string(&file).expect("the fixture"),
+        text,
+        "the search's problems changed"
+    );
+    let none = RuleSet::default();
+    let opts = SynthOptions::default();
+    let mut by_brute_force = 0;
+    for (i, problem) in found.iter().enumerate() {
+        let r = synthesize(&flat(problem), &none, &opts).expect("solve");
+        assert_eq!(r.status, Status::Infeasible, "packing {i} flat");
+        assert!(r.conflict.expect("conflict").objects_cannot_fit);
+        let r = synthesize(problem, &none, &opts).expect("solve");
+        assert_eq!(r.status, Status::Optimal, "packing {i} turned");
+        let sol = r.scene.expect("layout");
+        verify_solution(problem, &sol, &none, Contact::Point).expect("verified");
+        assert!(sol.objects.iter().any(|o| o.turned), "packing {i}");
+        if let Ok(bf) = brute_force::solve(problem, &none, Contact::Point) {
+            assert!(bf.feasible, "packing {i}");
+            let bf = brute_force::solve(&flat(problem), &none, Contact::Point).expect("smaller");
+            assert!(!bf.feasible, "packing {i}");
+            by_brute_force += 1;
+        }
+    }
+    assert!(by_brute_force >= 8, "{by_brute_force}");
+}

@@ -87,6 +87,8 @@ class Object:
         x: Optional[int] = None,
         y: Optional[int] = None,
         fixed: bool = False,
+        turnable: bool = False,
+        turned: bool = False,
     ) -> Object: ...
     @property
     def id(self) -> str: ...

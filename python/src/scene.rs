@@ -63,7 +63,8 @@ pub struct PyObject {
 #[pymethods]
 impl PyObject {
     #[new]
-    #[pyo3(signature = (id, cls, width, height, x = None, y = None, fixed = false))]
+    #[pyo3(signature = (id, cls, width, height, x = None, y = None, fixed = false, turnable = false, turned = false))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         id: String,
         cls: String,
@@ -72,6 +73,8 @@ impl PyObject {
         x: Option<i64>,
         y: Option<i64>,
         fixed: bool,
+        turnable: bool,
+        turned: bool,
     ) -> Self {
         PyObject {
             inner: CoreObject {
@@ -82,8 +85,8 @@ impl PyObject {
                 width,
                 height,
                 fixed,
-                turnable: false,
-                turned: false,
+                turnable,
+                turned,
             },
         }
     }
