@@ -340,6 +340,27 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
                 .with_scope(scope)
         })
         .collect();
+    if sizes.language == Language::Turning && rng.random_range(0..2) == 0 {
+        // An orientation statement ("every A lies turned", "no B lies
+        // turned", or inside a formula), hard or soft.
+        let subject = pick(&mut rng, &["A", "B"]);
+        let turned = Formula::Turned(subject.into());
+        let formula = match rng.random_range(0..4) {
+            0 => turned,
+            1 => Formula::not(turned),
+            2 => Formula::Or(vec![turned, random_formula2(&mut rng, subject)]),
+            _ => Formula::And(vec![
+                Formula::not(turned),
+                random_formula2(&mut rng, subject),
+            ]),
+        };
+        let strength = if rng.random_range(0..3) == 0 {
+            Strength::Hard
+        } else {
+            Strength::Weight(pick(&mut rng, &[0.5, 1.0, 2.5]))
+        };
+        rules.push(Rule::new("turn", formula).with_strength(strength));
+    }
     if third {
         for i in 0..rng.random_range(1..=2) {
             let kind = pick(&mut rng, &rccpack::shapes::ShapeKind::ALL);

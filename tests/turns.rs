@@ -511,3 +511,141 @@ fn packings_that_fit_only_turned_are_proven_flat_and_packed_turned() {
     }
     assert!(by_brute_force >= 8, "{by_brute_force}");
 }
+
+// ---- the language and learning ---------------------------------------------------
+
+#[test]
+fn orientation_statements_parse_print_read_and_evaluate() {
+    let text = "rule l_on_end: turned(L)\n\
+                rule r_flat: !turned(R)\n\
+                rule l_on_end_or_low: turned(L) | EC_S(L, W)\n\
+                rule few_turned: at most 1 R: turned(R)\n";
+    let set = rules(text);
+    assert_eq!(rccpack::rules::print_rules(&set), text);
+    let read: Vec<String> = set
+        .rules
+        .iter()
+        .map(|r| rccpack::infer::statement_reading(r.scope, &r.formula))
+        .collect();
+    assert_eq!(read[0], "every L lies turned");
+    assert_eq!(read[1], "no R lies turned");
+    assert_eq!(read[3], "at most 1 R lies turned");
+    // A square never lies turned: `turned` on a 10×10 is its footprint.
+    let s = scene(
+        80,
+        40,
+        vec![
+            Object::placed("l1", "L", 0, 0, 20, 10).with_turned(),
+            Object::placed("l2", "L", 20, 0, 20, 10),
+            Object::placed("r1", "R", 50, 0, 10, 10).with_turned(),
+            Object::placed("r2", "R", 60, 0, 10, 20).with_turned(),
+            Object::fixed_at("w", "W", 0, 30, 80, 10),
+        ],
+    );
+    let ev = evaluate(&s, &set, Contact::Point);
+    let by = |name: &str| {
+        let r = ev.rules.iter().find(|r| r.name == name).expect("rule");
+        (r.satisfied, r.subjects)
+    };
+    assert_eq!(by("l_on_end"), (1, 2));
+    assert_eq!(by("r_flat"), (1, 2), "r1 is square: not turned");
+    assert_eq!(by("few_turned"), (1, 1));
+    // Bad subjects are refused where they are written.
+    for bad in [
+        "rule x: turned(*)\n",
+        "rule x: turned(@w)\n",
+        "rule x: turned(A, B)\n",
+    ] {
+        assert!(parse_rules(bad).is_err(), "{bad}");
+    }
+    let mixed = parse_rules("rule x: turned(A) | EC_S(B, W)\n");
+    assert!(mixed.is_err(), "one subject per rule");
+}
+
+/// Demonstrations of 3 L blocks (20 × 10, turnable) and 2 R blocks in a
+/// 100 × 100 box, the Ls turned as `turned(d, i)` says.
+fn orientation_demos(turned: impl Fn(usize, usize) -> bool) -> Vec<Scene> {
+    (0..5)
+        .map(|d| {
+            let mut objects = Vec::new();
+            let slot = |k: usize| {
+                let k = (k + d * 2) % 9;
+                (10 + 30 * (k % 3) as i64, 10 + 30 * (k / 3) as i64)
+            };
+            for i in 0..3 {
+                let (x, y) = slot(i);
+                let mut o = Object::placed(&format!("l{i}"), "L", x, y, 20, 10).with_turnable();
+                o.turned = turned(d, i);
+                objects.push(o);
+            }
+            for i in 0..2 {
+                let (x, y) = slot(3 + i);
+                objects.push(Object::placed(&format!("r{i}"), "R", x, y, 10, 10));
+            }
+            scene(100, 100, objects)
+        })
+        .collect()
+}
+
+#[test]
+fn a_demonstrators_habit_of_standing_blocks_on_end_is_learned() {
+    let params = rccpack::LearnParams::default();
+    let names = |demos: &[Scene]| -> Vec<String> {
+        rccpack::learn(demos, None, &params)
+            .expect("learned")
+            .rules()
+            .rules
+            .iter()
+            .map(|r| r.name.clone())
+            .collect()
+    };
+    let always = names(&orientation_demos(|_, _| true));
+    assert!(always.contains(&"L_turned".to_string()), "{always:?}");
+    assert!(!always.contains(&"L_not_turned".to_string()));
+    let never = names(&orientation_demos(|_, _| false));
+    assert!(never.contains(&"L_not_turned".to_string()), "{never:?}");
+    // Half of them, as a coin would: neither.
+    let half = names(&orientation_demos(|d, i| (d + i) % 2 == 0));
+    assert!(
+        !half
+            .iter()
+            .any(|n| n.starts_with("L_turned") || n.starts_with("L_not_turned")),
+        "{half:?}"
+    );
+    // No class that turns: no orientation statement is even a candidate.
+    let plain: Vec<Scene> = orientation_demos(|_, _| false)
+        .into_iter()
+        .map(|mut s| {
+            for o in &mut s.objects {
+                o.turnable = false;
+            }
+            s
+        })
+        .collect();
+    let statements = rccpack::infer::templates::generate(&plain);
+    assert!(statements.rules.iter().all(|r| !r.formula.mentions_turns()));
+}
+
+#[test]
+fn a_learned_habit_is_kept_by_synthesis() {
+    // Learned from demonstrations that stand every L on end, the rules
+    // place a problem's turnable Ls turned.
+    let demos = orientation_demos(|_, _| true);
+    let learned = rccpack::learn(&demos, None, &rccpack::LearnParams::default()).expect("learned");
+    let set = learned.rules();
+    let mut problem = demos[0].clone();
+    for o in &mut problem.objects {
+        o.x = None;
+        o.y = None;
+        o.turned = false;
+    }
+    let r = synthesize(&problem, &set, &SynthOptions::default()).expect("solve");
+    assert!(matches!(r.status, Status::Optimal | Status::Feasible));
+    let sol = r.scene.expect("layout");
+    verify_solution(&problem, &sol, &set, Contact::Point).expect("verified");
+    assert!(sol
+        .objects
+        .iter()
+        .filter(|o| o.class == "L")
+        .all(|o| o.turned));
+}

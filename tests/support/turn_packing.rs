@@ -112,8 +112,7 @@ pub fn packings(n: usize) -> Vec<Scene> {
                 .iter()
                 .zip(&p)
                 .all(|(&(a, b), &n)| n == 0 || (a <= w && b <= h));
-            if count < 2
-                || count > 6
+            if !(2..=6).contains(&count)
                 || area + 1 < w * h
                 || area > w * h
                 || !each_fits_flat
