@@ -633,19 +633,34 @@ fn a_learned_habit_is_kept_by_synthesis() {
     let demos = orientation_demos(|_, _| true);
     let learned = rccpack::learn(&demos, None, &rccpack::LearnParams::default()).expect("learned");
     let set = learned.rules();
-    let mut problem = demos[0].clone();
-    for o in &mut problem.objects {
-        o.x = None;
-        o.y = None;
-        o.turned = false;
+    assert!(set.rules.iter().any(|r| r.name == "L_turned"));
+    // 1× and 2× the demonstrations' blocks.
+    for copies in 1..=2 {
+        let mut problem = demos[0].clone();
+        problem.objects = (0..copies)
+            .flat_map(|k| {
+                demos[0].objects.iter().map(move |o| Object {
+                    id: format!("{}_{k}", o.id),
+                    x: None,
+                    y: None,
+                    turned: false,
+                    ..o.clone()
+                })
+            })
+            .collect();
+        let opts = SynthOptions {
+            node_limit: Some(200_000),
+            ..SynthOptions::default()
+        };
+        let r = synthesize(&problem, &set, &opts).expect("solve");
+        assert!(
+            matches!(r.status, Status::Optimal | Status::Feasible),
+            "{copies}×"
+        );
+        let sol = r.scene.expect("layout");
+        verify_solution(&problem, &sol, &set, Contact::Point).expect("verified");
+        let ls: Vec<&Object> = sol.objects.iter().filter(|o| o.class == "L").collect();
+        assert_eq!(ls.len(), 3 * copies);
+        assert!(ls.iter().all(|o| o.turned), "{copies}×: {}", sol.to_json());
     }
-    let r = synthesize(&problem, &set, &SynthOptions::default()).expect("solve");
-    assert!(matches!(r.status, Status::Optimal | Status::Feasible));
-    let sol = r.scene.expect("layout");
-    verify_solution(&problem, &sol, &set, Contact::Point).expect("verified");
-    assert!(sol
-        .objects
-        .iter()
-        .filter(|o| o.class == "L")
-        .all(|o| o.turned));
 }
