@@ -7,6 +7,13 @@
 //! and packs them with turns (optimal, verified); the table gives both
 //! times (CPU time of the solving thread), the nodes, and how many
 //! orientation choices the turned solve tried.
+//!
+//! `cargo bench --bench turns -- tasks [SECONDS]` then solves the first
+//! four realistic tasks of `rccpack bench tasks` (seed 0, sizes 1× and
+//! 1.5×, score only, the demonstrations as warm start) as generated and
+//! with every oblong block `turnable`, under the same time limit per
+//! problem (default 10 s; shared by the orientation choices), every layout
+//! verified: the statuses, scores and wall times side by side.
 
 #[path = "../tests/support/mod.rs"]
 mod support;
@@ -58,7 +65,66 @@ fn choices(problem: &Scene) -> u64 {
     groups.iter().map(|g| g.1 + 1).product()
 }
 
+/// The realistic tasks, flat and turnable.
+fn tasks(seconds: u64) {
+    use rccpack::bench::tasks::{generate_task, solve_options, TasksConfig};
+    let mut cfg = TasksConfig::quick(0, std::time::Duration::from_secs(seconds));
+    cfg.tasks = 4;
+    cfg.example_counts = Vec::new();
+    println!("| problem | objects | turnable | choices | flat: status | score | s | turnable: status | score | s | turned |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    for index in 0..cfg.tasks {
+        let task = generate_task(&cfg, index).expect("a task");
+        let opts = solve_options(&cfg, &task.demos, false);
+        for p in &task.problems {
+            let mut turnable = p.scene.clone();
+            for o in turnable.objects.iter_mut().filter(|o| !o.fixed && o.is_oblong()) {
+                o.turnable = true;
+            }
+            let n_turnable = turnable.objects.iter().filter(|o| o.turnable).count();
+            let run = |scene: &Scene| {
+                let t0 = std::time::Instant::now();
+                let r = synthesize(scene, &task.rules, &opts);
+                let secs = t0.elapsed().as_secs_f64();
+                match r {
+                    Ok(r) => {
+                        if let Some(sol) = &r.scene {
+                            verify_solution(scene, sol, &task.rules, Contact::Point)
+                                .expect("verified");
+                        }
+                        let turned = r
+                            .scene
+                            .as_ref()
+                            .map_or(0, |s| s.objects.iter().filter(|o| o.turned).count());
+                        (
+                            format!("{:?}", r.status).to_lowercase(),
+                            r.evaluation.map_or("-".into(), |e| format!("{:.3}", e.score)),
+                            format!("{secs:.2}"),
+                            turned,
+                        )
+                    }
+                    Err(e) => (format!("refused: {e}"), "-".into(), "-".into(), 0),
+                }
+            };
+            let (fs, fsc, ft, _) = run(&p.scene);
+            let (ts, tsc, tt, turned) = run(&turnable);
+            println!(
+                "| {} | {} | {n_turnable} | {} | {fs} | {fsc} | {ft} | {ts} | {tsc} | {tt} | {turned} |",
+                p.name,
+                p.movable,
+                choices(&turnable),
+            );
+        }
+    }
+}
+
 fn main() {
+    let args: Vec<String> = std::env::args().skip(1).filter(|a| a != "--bench").collect();
+    if args.first().map(String::as_str) == Some("tasks") {
+        let seconds = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(10);
+        tasks(seconds);
+        return;
+    }
     let none = RuleSet::default();
     println!("| # | box | blocks | flat: status | flat ms | turned: status | turned ms | nodes | choices | turned blocks |");
     println!("|---|---|---|---|---|---|---|---|---|---|");
