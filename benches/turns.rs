@@ -78,7 +78,11 @@ fn tasks(seconds: u64) {
         let opts = solve_options(&cfg, &task.demos, false);
         for p in &task.problems {
             let mut turnable = p.scene.clone();
-            for o in turnable.objects.iter_mut().filter(|o| !o.fixed && o.is_oblong()) {
+            for o in turnable
+                .objects
+                .iter_mut()
+                .filter(|o| !o.fixed && o.is_oblong())
+            {
                 o.turnable = true;
             }
             let n_turnable = turnable.objects.iter().filter(|o| o.turnable).count();
@@ -98,7 +102,8 @@ fn tasks(seconds: u64) {
                             .map_or(0, |s| s.objects.iter().filter(|o| o.turned).count());
                         (
                             format!("{:?}", r.status).to_lowercase(),
-                            r.evaluation.map_or("-".into(), |e| format!("{:.3}", e.score)),
+                            r.evaluation
+                                .map_or("-".into(), |e| format!("{:.3}", e.score)),
                             format!("{secs:.2}"),
                             turned,
                         )
@@ -119,7 +124,10 @@ fn tasks(seconds: u64) {
 }
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).filter(|a| a != "--bench").collect();
+    let args: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| a != "--bench")
+        .collect();
     if args.first().map(String::as_str) == Some("tasks") {
         let seconds = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(10);
         tasks(seconds);

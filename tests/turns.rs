@@ -664,3 +664,36 @@ fn a_learned_habit_is_kept_by_synthesis() {
         assert!(ls.iter().all(|o| o.turned), "{copies}×: {}", sol.to_json());
     }
 }
+
+#[test]
+fn a_layout_keeping_every_rule_ends_the_orientation_search() {
+    // Flat, the first choice solved, keeps every rule: no other choice can
+    // score more, so the search stops there (the same nodes as the flat
+    // problem alone), optimal.
+    let set = rules("rule l_west: DR_W(L, S)\nrule k_south: DR_S(K, S)\n");
+    let mut objects = Vec::new();
+    for i in 0..2 {
+        objects.push(Object::movable(&format!("l{i}"), "L", 20, 10).with_turnable());
+        objects.push(Object::movable(&format!("k{i}"), "K", 10, 30).with_turnable());
+    }
+    objects.push(Object::movable("s", "S", 10, 10));
+    let problem = scene(80, 80, objects);
+    let turning = synthesize(&problem, &set, &SynthOptions::default()).expect("solve");
+    let flat = synthesize(
+        &crate::support::turn_packing::flat(&problem),
+        &set,
+        &SynthOptions::default(),
+    )
+    .expect("solve");
+    assert_eq!(turning.status, Status::Optimal);
+    assert_eq!(turning.score_bound, Some(1.0));
+    assert!(flat.stats.nodes > 0);
+    assert_eq!(turning.stats.nodes, flat.stats.nodes);
+    verify_solution(
+        &problem,
+        turning.scene.as_ref().expect("layout"),
+        &set,
+        Contact::Point,
+    )
+    .expect("verified");
+}

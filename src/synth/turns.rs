@@ -16,7 +16,10 @@
 //! - `infeasible` means every choice was proven infeasible: no layout in
 //!   any orientation (the conflict is the union of the choices' conflicts);
 //! - a limit (time, nodes, Ctrl-C) is shared by the choices in turn; what
-//!   is left unsolved makes the result `feasible` or `unknown`.
+//!   is left unsolved makes the result `feasible` or `unknown`;
+//! - without a second objective (`like`), a layout that satisfies every
+//!   rule (the numerator is the total weight) ends the search: no choice
+//!   can score more, so the choices left are not solved.
 
 use super::{
     synthesize_fixed, verify_solution, Conflict, Progress, ProgressFn, Resemblance, SolveStats,
@@ -124,7 +127,7 @@ pub(super) fn synthesize_turning(
     let reported = Arc::new(Mutex::new(f64::NEG_INFINITY));
     let mut nodes_used: u64 = 0;
     let mut solved: Vec<Solved> = Vec::new();
-    let mut stopped = false;
+    let (mut stopped, mut maximum) = (false, false);
     for turned in choices(groups) {
         let cancelled = opts
             .cancel
@@ -157,14 +160,27 @@ pub(super) fn synthesize_turning(
         let choice = oriented(problem, groups, &turned);
         let result = synthesize_fixed(&choice, rules, &sub)?;
         nodes_used = nodes_used.saturating_add(result.stats.nodes);
+        let top = opts.like.is_none() && at_maximum(&result);
         solved.push(Solved { result, offset });
+        if top {
+            maximum = true;
+            break;
+        }
     }
-    let mut out = combine(solved, stopped, opts.like.is_some());
+    let mut out = combine(solved, stopped, opts.like.is_some(), maximum);
     out.stats.time_ms = start.elapsed().as_secs_f64() * 1000.0;
     if let Some(scene) = &out.scene {
         verify_solution(problem, scene, rules, opts.contact).map_err(SynthError::Unverified)?;
     }
     Ok(out)
+}
+
+/// Whether a result's layout satisfies every rule (its numerator is the
+/// total weight): no layout scores more.
+fn at_maximum(r: &SynthResult) -> bool {
+    r.evaluation
+        .as_ref()
+        .is_some_and(|e| e.hard_ok() && e.satisfied_weight >= e.total_weight)
 }
 
 /// The numerator of a result's layout (`None` without one).
@@ -174,8 +190,9 @@ fn numerator(r: &SynthResult) -> Option<f64> {
 
 /// The best layout over the choices, its status and bounds (see the
 /// module's documentation). `stopped`: a limit struck before every choice
-/// was tried.
-fn combine(mut solved: Vec<Solved>, stopped: bool, like: bool) -> SynthResult {
+/// was tried; `maximum`: the last choice solved found a layout that
+/// satisfies every rule, so the choices left cannot score more.
+fn combine(mut solved: Vec<Solved>, stopped: bool, like: bool, maximum: bool) -> SynthResult {
     let ms = |d: Duration| d.as_secs_f64() * 1000.0;
     let mut stats = SolveStats::default();
     for s in &solved {
@@ -186,10 +203,11 @@ fn combine(mut solved: Vec<Solved>, stopped: bool, like: bool) -> SynthResult {
         .iter()
         .filter_map(|s| Some(ms(s.offset) + s.result.stats.time_to_first_ms?))
         .reduce(f64::min);
-    let all_proven = !stopped
-        && solved
-            .iter()
-            .all(|s| matches!(s.result.status, Status::Optimal | Status::Infeasible));
+    let all_proven = maximum
+        || !stopped
+            && solved
+                .iter()
+                .all(|s| matches!(s.result.status, Status::Optimal | Status::Infeasible));
     // The best: the largest numerator, then the smallest resemblance cost,
     // then the earliest choice.
     let cost = |r: &SynthResult| r.resemblance.map_or(0, |x| x.cost);
@@ -229,12 +247,16 @@ fn combine(mut solved: Vec<Solved>, stopped: bool, like: bool) -> SynthResult {
         && solved
             .iter()
             .all(|s| s.result.status == Status::Infeasible || s.result.score_bound.is_some());
-    let score_bound = bounded.then(|| {
-        solved
-            .iter()
-            .filter_map(|s| s.result.score_bound)
-            .fold(f64::NEG_INFINITY, f64::max)
-    });
+    let score_bound = if maximum {
+        solved[b].result.evaluation.as_ref().map(|e| e.score)
+    } else {
+        bounded.then(|| {
+            solved
+                .iter()
+                .filter_map(|s| s.result.score_bound)
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
+    };
     let best_num = numerator(&solved[b].result);
     let resemblance = like
         .then(|| resemblance_over(&solved, b, best_num, all_proven))
