@@ -697,3 +697,27 @@ fn a_layout_keeping_every_rule_ends_the_orientation_search() {
     )
     .expect("verified");
 }
+
+#[test]
+fn past_256_orientation_choices_only_a_flat_layout_keeping_every_rule_is_returned() {
+    // 3 classes × 7 turnable blocks: 8³ = 512 choices.
+    let mut objects = Vec::new();
+    for class in ["A", "B", "C"] {
+        for i in 0..7 {
+            objects.push(
+                Object::movable(&format!("{}{i}", class.to_lowercase()), class, 20, 10)
+                    .with_turnable(),
+            );
+        }
+    }
+    objects.push(Object::movable("s", "S", 10, 10));
+    let problem = scene(200, 200, objects);
+    let kept = rules("rule a_west: DR_W(A, S)\n");
+    let r = synthesize(&problem, &kept, &SynthOptions::default()).expect("flat keeps every rule");
+    assert_eq!(r.status, Status::Optimal);
+    verify_solution(&problem, r.scene.as_ref().expect("layout"), &kept, Contact::Point)
+        .expect("verified");
+    let broken = rules("rule a_on_end: turned(A)\n");
+    let e = synthesize(&problem, &broken, &SynthOptions::default()).expect_err("refused");
+    assert!(e.to_string().contains("512 orientation choices"), "{e}");
+}

@@ -7,7 +7,8 @@
 //! name classes, resemblance and warm starts match class and footprint),
 //! so a choice is how many of each such group lie turned — the first `t`
 //! of the group in problem order — not which: `Π (nᵍ + 1)` choices, at most
-//! [`MAX_ORIENTATION_CHOICES`]. A square object never turns (its footprint
+//! [`MAX_ORIENTATION_CHOICES`] (past that, only the flat choice is solved,
+//! and the problem is refused unless its layout keeps every rule). A square object never turns (its footprint
 //! is the same). Each choice is the same problem with `turned` set on the
 //! chosen objects, solved (and verified) like any other problem, so:
 //!
@@ -111,15 +112,14 @@ pub(super) fn synthesize_turning(
     groups: &[Vec<usize>],
 ) -> Result<SynthResult, SynthError> {
     let count = choice_count(groups);
-    if count > MAX_ORIENTATION_CHOICES {
-        let objects: usize = groups.iter().map(Vec::len).sum();
-        return Err(SynthError::TooLarge(format!(
-            "{objects} turnable objects in {} groups of one class and size give {count} orientation choices, \
-             more than the {MAX_ORIENTATION_CHOICES} synthesis tries; expected fewer turnable objects \
-             (drop \"turnable\" from some, or make interchangeable ones the same class and size)",
-            groups.len()
-        )));
-    }
+    // Past the limit only the flat choice is tried: enough when its layout
+    // keeps every rule, else the problem is refused.
+    let too_many = count > MAX_ORIENTATION_CHOICES;
+    let all = if too_many {
+        vec![vec![0; groups.len()]]
+    } else {
+        choices(groups)
+    };
     let start = Instant::now();
     let deadline = opts.time_limit.and_then(|t| start.checked_add(t));
     // The best score reported so far: progress reports only improvements
@@ -128,7 +128,7 @@ pub(super) fn synthesize_turning(
     let mut nodes_used: u64 = 0;
     let mut solved: Vec<Solved> = Vec::new();
     let (mut stopped, mut maximum) = (false, false);
-    for turned in choices(groups) {
+    for turned in all {
         let cancelled = opts
             .cancel
             .as_ref()
@@ -166,6 +166,15 @@ pub(super) fn synthesize_turning(
             maximum = true;
             break;
         }
+    }
+    if too_many && !maximum {
+        let objects: usize = groups.iter().map(Vec::len).sum();
+        return Err(SynthError::TooLarge(format!(
+            "{objects} turnable objects in {} groups of one class and size give {count} orientation choices, \
+             more than the {MAX_ORIENTATION_CHOICES} synthesis tries (and the layout with none turned breaks a rule); \
+             expected fewer turnable objects (drop \"turnable\" from some, or make interchangeable ones the same class and size)",
+            groups.len()
+        )));
     }
     let mut out = combine(solved, stopped, opts.like.is_some(), maximum);
     out.stats.time_ms = start.elapsed().as_secs_f64() * 1000.0;
