@@ -45,6 +45,8 @@ fn synthetic(n: usize) -> Vec<Scene> {
                     width: 20,
                     height: 20,
                     fixed: false,
+                    turnable: false,
+                    turned: false,
                 });
             }
             Scene {

@@ -41,6 +41,8 @@ pub enum CompiledFormula {
     /// A group statement's shape (decided for the whole class by
     /// `CompiledRule::group_check`; false read per object).
     Shape(ShapeKind),
+    /// `turned(A)`: the object lies turned (and is not square).
+    Turned,
     /// Negation.
     Not(Box<CompiledFormula>),
     /// Conjunction.
@@ -69,6 +71,10 @@ impl CompiledFormula {
                 classes.intern(&sh.class);
                 CompiledFormula::Shape(sh.kind)
             }
+            Formula::Turned(c) => {
+                classes.intern(c);
+                CompiledFormula::Turned
+            }
             Formula::Not(g) => CompiledFormula::Not(Box::new(Self::compile(g, classes))),
             Formula::And(v) => {
                 CompiledFormula::And(v.iter().map(|g| Self::compile(g, classes)).collect())
@@ -93,6 +99,7 @@ impl CompiledFormula {
                 count.is_some_and(|c| c.holds(*rel, *quant))
             }
             CompiledFormula::Shape(_) => false,
+            CompiledFormula::Turned => atoms.lies_turned(obj),
             CompiledFormula::Not(g) => atoms.is_placed(obj) && !g.eval(atoms, obj),
             CompiledFormula::And(v) => atoms.is_placed(obj) && v.iter().all(|g| g.eval(atoms, obj)),
             CompiledFormula::Or(v) => v.iter().any(|g| g.eval(atoms, obj)),

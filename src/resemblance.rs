@@ -94,6 +94,13 @@ fn steps(d: i128, g: i128) -> u64 {
     u64::try_from(s).unwrap_or(u64::MAX)
 }
 
+/// The key positions are shown under: the class and the footprint (a
+/// block standing on end is like the blocks shown standing on end).
+fn key(o: &Object) -> (String, i64, i64) {
+    let (w, h) = o.footprint();
+    (o.class.clone(), w, h)
+}
+
 impl ResemblanceTarget {
     /// Collect the positions of every movable, placed object of `scenes`.
     pub fn new(scenes: &[Scene]) -> ResemblanceTarget {
@@ -101,10 +108,7 @@ impl ResemblanceTarget {
         for s in scenes {
             for o in &s.objects {
                 if let (false, Some(x), Some(y)) = (o.fixed, o.x, o.y) {
-                    positions
-                        .entry((o.class.clone(), o.width, o.height))
-                        .or_default()
-                        .push((x, y));
+                    positions.entry(key(o)).or_default().push((x, y));
                 }
             }
         }
@@ -119,11 +123,9 @@ impl ResemblanceTarget {
         self.positions.is_empty()
     }
 
-    /// The positions shown for objects like `o` (same class and size).
+    /// The positions shown for objects like `o` (same class and footprint).
     pub(crate) fn positions_of(&self, o: &Object) -> &[(i64, i64)] {
-        self.positions
-            .get(&(o.class.clone(), o.width, o.height))
-            .map_or(&[], Vec::as_slice)
+        self.positions.get(&key(o)).map_or(&[], Vec::as_slice)
     }
 
     /// Every `(class, width, height)` shown, with its positions.
@@ -183,8 +185,9 @@ impl ResemblanceTarget {
                 u64::try_from(room / g).map_or(u64::MAX, |k| k.saturating_add(1))
             }
         };
-        let nx = count(problem.space.width.saturating_sub(o.width));
-        let ny = count(problem.space.height.saturating_sub(o.height));
+        let (w, h) = o.footprint();
+        let nx = count(problem.space.width.saturating_sub(w));
+        let ny = count(problem.space.height.saturating_sub(h));
         let cells = u128::from(nx) * u128::from(ny);
         if cells > u128::from(MAX_MAP_CELLS) {
             return Err(ResemblanceError::TooManyPositions {
@@ -281,6 +284,8 @@ mod tests {
             width: 1,
             height: 1,
             fixed: false,
+            turnable: false,
+            turned: false,
         };
         let like = ResemblanceTarget::new(&[Scene {
             space: crate::scene::Space {
@@ -300,6 +305,8 @@ mod tests {
             width: 1,
             height: 1,
             fixed: false,
+            turnable: false,
+            turned: false,
         };
         assert_eq!(like.object_cost(&o, i64::MAX, i64::MAX, 1), u64::MAX);
         let problem = Scene::from_json(

@@ -748,6 +748,8 @@ fn a_group_statement_emits_to_minizinc_in_quadratic_size() {
                 width: 10,
                 height: 10,
                 fixed: false,
+                turnable: false,
+                turned: false,
             })
             .collect();
         let scene = Scene {

@@ -42,4 +42,5 @@ mod studio_browser;
 mod synth;
 mod synth_differential;
 mod task;
+mod turns;
 mod worked_example;

@@ -21,6 +21,8 @@ fn obj(id: &str, class: &str, x: i64, y: i64, w: i64, h: i64, fixed: bool) -> Ob
         width: w,
         height: h,
         fixed,
+        turnable: false,
+        turned: false,
     }
 }
 

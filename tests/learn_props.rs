@@ -80,6 +80,8 @@ fn build(cells: &[((i64, i64), usize)]) -> Scene {
             width: 10,
             height: 10,
             fixed: c == 2,
+            turnable: false,
+            turned: false,
         })
         .collect();
     // One landmark shared by every demonstration (scene-level templates).
@@ -95,6 +97,8 @@ fn build(cells: &[((i64, i64), usize)]) -> Scene {
                 width: 10,
                 height: 10,
                 fixed: *c == "W",
+                turnable: false,
+                turned: false,
             });
         }
     }

@@ -46,6 +46,8 @@ fn scene_strategy() -> impl Strategy<Value = Scene> {
                 width: r.w,
                 height: r.h,
                 fixed: false,
+                turnable: false,
+                turned: false,
             })
             .collect(),
     })

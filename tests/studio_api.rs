@@ -1707,3 +1707,29 @@ async fn ask_learning_stops_when_its_client_leaves() {
         tokio::time::sleep(std::time::Duration::from_millis(100)).await;
     }
 }
+
+#[tokio::test]
+async fn a_turned_block_is_saved_turned_and_a_bad_turn_is_refused_by_field() {
+    let dir = task_dir("turned", false);
+    let app = rccpack::studio::router(&dir).unwrap();
+    let mut d = demo(&[("R", 200, 200), ("G", 220, 200)]);
+    let last = d["objects"].as_array().unwrap().len() - 1;
+    d["objects"][last]["turned"] = json!(true);
+    let (s, v) = call(&app, Method::POST, "/api/demos", d.to_string()).await;
+    assert_eq!(s, StatusCode::CREATED, "{v}");
+    let saved =
+        scenes_from_json(&std::fs::read_to_string(dir.join("demos.json")).unwrap()).unwrap();
+    assert!(saved[0].objects.iter().any(|o| o.turned && o.id == "g1"));
+    d["objects"][last]["turned"] = json!("yes");
+    let (s, v) = call(&app, Method::POST, "/api/demos", d.to_string()).await;
+    assert_eq!(s, StatusCode::BAD_REQUEST);
+    assert_eq!(v["path"], format!("objects[{last}].turned"), "{v}");
+    // The board draws footprints and the recorder turns blocks.
+    let (_, board) = call(&app, Method::GET, "/assets/board.js", Body::empty()).await;
+    assert!(board
+        .as_str()
+        .unwrap()
+        .contains("export function footprint(o)"));
+    let (_, app_js) = call(&app, Method::GET, "/assets/app.js", Body::empty()).await;
+    assert!(app_js.as_str().unwrap().contains("function turnSelected()"));
+}

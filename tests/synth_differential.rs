@@ -76,6 +76,10 @@ enum Language {
     /// and one or two group statements (`group`, `row`, `column`, `block`,
     /// negated now and then, hard or soft) added after the other rules.
     Third,
+    /// The second edition's cases with more oblong blocks (10×20, 20×10),
+    /// each movable block `turnable` (a square one never turns): the
+    /// engine's orientation choices against brute force's.
+    Turning,
 }
 
 /// What a run draws.
@@ -100,6 +104,10 @@ const SMALL2: Sizes = Sizes {
 const LARGE2: Sizes = Sizes {
     language: Language::Second,
     ..LARGE
+};
+const SMALL_TURNING: Sizes = Sizes {
+    language: Language::Turning,
+    ..SMALL
 };
 const SMALL3: Sizes = Sizes {
     spaces: &[(30, 30), (40, 30), (30, 40), (40, 40), (50, 30)],
@@ -258,7 +266,14 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
             pick(&mut rng, &["A", "B"])
         };
         // Large blocks only now and then: they shrink the domains a lot.
-        let (bw, bh) = if second {
+        let (bw, bh) = if sizes.language == Language::Turning {
+            match rng.random_range(0..8) {
+                0 => (20, 20),
+                1..=3 => (20, 10),
+                4 | 5 => (10, 20),
+                _ => (10, 10),
+            }
+        } else if second {
             match rng.random_range(0..8) {
                 0 => (20, 20),
                 1 => (20, 10),
@@ -269,12 +284,9 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
             let side = if rng.random_range(0..4) == 0 { 20 } else { 10 };
             (side, side)
         };
-        objects.push(Object::movable(
-            &format!("{}{}", class.to_lowercase(), i),
-            class,
-            bw,
-            bh,
-        ));
+        let mut o = Object::movable(&format!("{}{}", class.to_lowercase(), i), class, bw, bh);
+        o.turnable = sizes.language == Language::Turning;
+        objects.push(o);
     }
     // Already-placed movable objects (subjects and targets that do not
     // move, but no landmarks), where they fit: they make the counts of
@@ -328,6 +340,27 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
                 .with_scope(scope)
         })
         .collect();
+    if sizes.language == Language::Turning && rng.random_range(0..2) == 0 {
+        // An orientation statement ("every A lies turned", "no B lies
+        // turned", or inside a formula), hard or soft.
+        let subject = pick(&mut rng, &["A", "B"]);
+        let turned = Formula::Turned(subject.into());
+        let formula = match rng.random_range(0..4) {
+            0 => turned,
+            1 => Formula::not(turned),
+            2 => Formula::Or(vec![turned, random_formula2(&mut rng, subject)]),
+            _ => Formula::And(vec![
+                Formula::not(turned),
+                random_formula2(&mut rng, subject),
+            ]),
+        };
+        let strength = if rng.random_range(0..3) == 0 {
+            Strength::Hard
+        } else {
+            Strength::Weight(pick(&mut rng, &[0.5, 1.0, 2.5]))
+        };
+        rules.push(Rule::new("turn", formula).with_strength(strength));
+    }
     if third {
         for i in 0..rng.random_range(1..=2) {
             let kind = pick(&mut rng, &rccpack::shapes::ShapeKind::ALL);
@@ -395,6 +428,12 @@ fn check_conflict(case: &Case, c: &rccpack::synth::Conflict) -> Result<(), Strin
         return Err(format!(
             "conflict {names:?} is feasible on its own (not a conflict)"
         ));
+    }
+    // With objects that turn, the conflict is the union of every
+    // orientation's (docs/guide.md#objects-that-turn): a conflict, not
+    // necessarily a minimal one.
+    if case.scene.objects.iter().any(|o| o.turnable) {
+        return Ok(());
     }
     for i in 0..names.len() {
         let rest: Vec<&str> = names
@@ -1086,6 +1125,41 @@ fn engine_matches_brute_force_group_shapes_without_symmetry_breaking_or_redundan
 #[test]
 fn engine_matches_brute_force_group_shapes_with_lns_and_warm_starts() {
     assert_clean(run_with(700_000..700_400, SMALL3, true, true, check_warm));
+}
+
+#[test]
+fn engine_matches_brute_force_with_objects_that_turn() {
+    let t = run(900_000..900_600, SMALL_TURNING, true, true);
+    // Infeasible problems (their conflicts checked) and feasible ones.
+    assert!(t.infeasible > 30 && t.infeasible < 400, "{}", t.infeasible);
+    assert_clean(t);
+}
+
+#[test]
+fn engine_matches_brute_force_with_objects_that_turn_without_symmetry_breaking_or_redundancy() {
+    assert_clean(run(900_000..900_200, SMALL_TURNING, false, false));
+}
+
+#[test]
+fn engine_matches_brute_force_with_objects_that_turn_lns_and_warm_starts() {
+    assert_clean(run_with(
+        910_000..910_200,
+        SMALL_TURNING,
+        true,
+        true,
+        check_warm,
+    ));
+}
+
+#[test]
+fn engine_matches_brute_force_lexicographically_with_objects_that_turn_and_like_scenes() {
+    assert_clean(run_with(
+        920_000..920_200,
+        SMALL_TURNING,
+        true,
+        true,
+        check_like,
+    ));
 }
 
 #[test]

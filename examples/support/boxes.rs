@@ -28,6 +28,8 @@ pub fn block(class: &str, i: usize, pos: Option<(i64, i64)>) -> Object {
         width: 20,
         height: 20,
         fixed: false,
+        turnable: false,
+        turned: false,
     }
 }
 

@@ -63,7 +63,8 @@ pub struct PyObject {
 #[pymethods]
 impl PyObject {
     #[new]
-    #[pyo3(signature = (id, cls, width, height, x = None, y = None, fixed = false))]
+    #[pyo3(signature = (id, cls, width, height, x = None, y = None, fixed = false, turnable = false, turned = false))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         id: String,
         cls: String,
@@ -72,6 +73,8 @@ impl PyObject {
         x: Option<i64>,
         y: Option<i64>,
         fixed: bool,
+        turnable: bool,
+        turned: bool,
     ) -> Self {
         PyObject {
             inner: CoreObject {
@@ -82,6 +85,8 @@ impl PyObject {
                 width,
                 height,
                 fixed,
+                turnable,
+                turned,
             },
         }
     }
@@ -113,6 +118,22 @@ impl PyObject {
     fn fixed(&self) -> bool {
         self.inner.fixed
     }
+    /// Whether the object may be placed turned by 90°.
+    #[getter]
+    fn turnable(&self) -> bool {
+        self.inner.turnable
+    }
+    /// Whether the (placed) object lies turned: its footprint is
+    /// `height × width`.
+    #[getter]
+    fn turned(&self) -> bool {
+        self.inner.turned
+    }
+    /// The `(width, height)` it occupies: its size, swapped when turned.
+    #[getter]
+    fn footprint(&self) -> (i64, i64) {
+        self.inner.footprint()
+    }
     /// Whether the object has a position.
     #[getter]
     fn placed(&self) -> bool {
@@ -133,12 +154,14 @@ impl PyObject {
             _ => String::new(),
         };
         format!(
-            "Object(id={:?}, cls={:?}, width={}, height={}{pos}{})",
+            "Object(id={:?}, cls={:?}, width={}, height={}{pos}{}{}{})",
             o.id,
             o.class,
             o.width,
             o.height,
-            if o.fixed { ", fixed=True" } else { "" }
+            if o.fixed { ", fixed=True" } else { "" },
+            if o.turnable { ", turnable=True" } else { "" },
+            if o.turned { ", turned=True" } else { "" }
         )
     }
 }
@@ -335,8 +358,15 @@ fn space_from(v: &Bound<'_, PyAny>, path: &str) -> Result<CoreSpace, SceneError>
 
 fn object_from(v: &Bound<'_, PyAny>, path: &str, index: usize) -> Result<CoreObject, SceneError> {
     let d = dict(v, path)?;
-    let (mut id, mut class, mut x, mut y, mut w, mut h, mut fixed) =
-        (None, None, None, None, None, None, false);
+    let (mut id, mut class, mut x, mut y, mut w, mut h) = (None, None, None, None, None, None);
+    let (mut fixed, mut turnable, mut turned) = (false, false, false);
+    let boolean = |v: &Bound<'_, PyAny>, p: &str| match v.cast::<PyBool>() {
+        Ok(b) => Ok(b.is_true()),
+        Err(_) => Err(json_err(
+            p,
+            format!("invalid type: {}, expected a boolean", unexpected(v)),
+        )),
+    };
     for (k, v) in d.iter() {
         let key = key_str(&k, path)?;
         let p = join(path, &key);
@@ -347,20 +377,16 @@ fn object_from(v: &Bound<'_, PyAny>, path: &str, index: usize) -> Result<CoreObj
             "y" => y = opt_int(&v, &p)?,
             "width" => w = Some(int(&v, &p)?),
             "height" => h = Some(int(&v, &p)?),
-            "fixed" => match v.cast::<PyBool>() {
-                Ok(b) => fixed = b.is_true(),
-                Err(_) => {
-                    return Err(json_err(
-                        &p,
-                        format!("invalid type: {}, expected a boolean", unexpected(&v)),
-                    ))
-                }
-            },
+            "fixed" => fixed = boolean(&v, &p)?,
+            "turnable" => turnable = boolean(&v, &p)?,
+            "turned" => turned = boolean(&v, &p)?,
             _ => {
                 return Err(unknown(
                     &p,
                     &key,
-                    &["id", "class", "x", "y", "width", "height", "fixed"],
+                    &[
+                        "id", "class", "x", "y", "width", "height", "fixed", "turnable", "turned",
+                    ],
                 ))
             }
         }
@@ -373,6 +399,8 @@ fn object_from(v: &Bound<'_, PyAny>, path: &str, index: usize) -> Result<CoreObj
         width: w.ok_or_else(|| missing(path, "width"))?,
         height: h.ok_or_else(|| missing(path, "height"))?,
         fixed,
+        turnable,
+        turned,
         class,
     })
 }
@@ -437,6 +465,12 @@ pub(crate) fn scene_to_dict<'py>(py: Python<'py>, s: &CoreScene) -> PyResult<Bou
         d.set_item("height", o.height)?;
         if o.fixed {
             d.set_item("fixed", true)?;
+        }
+        if o.turnable {
+            d.set_item("turnable", true)?;
+        }
+        if o.turned {
+            d.set_item("turned", true)?;
         }
         objects.push(d);
     }

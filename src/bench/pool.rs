@@ -108,6 +108,7 @@ pub fn formula_text(f: &Formula) -> String {
         match f {
             Formula::Atom(a) => out.push_str(&a.to_string()),
             Formula::Shape(s) => out.push_str(&s.to_string()),
+            Formula::Turned(c) => out.push_str(&format!("turned({c})")),
             Formula::Not(g) => {
                 out.push('!');
                 go(g, 3, out);

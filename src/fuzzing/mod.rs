@@ -322,6 +322,8 @@ fn demos(u: &mut Unstructured) -> AResult<Vec<Scene>> {
                 width: size.0,
                 height: size.1,
                 fixed: false,
+                turnable: false,
+                turned: false,
             };
             let r = o.rect().unwrap_or_else(|| unreachable!("placed"));
             let fits = r.inside(&space.rect())

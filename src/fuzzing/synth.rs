@@ -83,6 +83,8 @@ fn problem(u: &mut Unstructured) -> AResult<Scene> {
             width: w,
             height: h,
             fixed: kind == 0,
+            turnable: false,
+            turned: false,
         });
     }
     Ok(Scene {

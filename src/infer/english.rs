@@ -215,6 +215,7 @@ fn predicate(f: &Formula) -> Pred {
     match f {
         Formula::Atom(a) => pos(atom_phrase(a)),
         Formula::Shape(sh) => pos(format!("{} (with the others)", sh.kind.verb())),
+        Formula::Turned(_) => pos("lies turned".to_string()),
         Formula::Not(g) => match atom_of(g) {
             Some(a) if a.has_default_quant() => {
                 let d = a.rel.dir.word();
@@ -243,6 +244,10 @@ fn predicate(f: &Formula) -> Pred {
                     }
                 }
             }
+            _ if matches!(**g, Formula::Turned(_)) => Pred::Neg {
+                no: "lies turned".into(),
+                not: "does not lie turned".into(),
+            },
             _ => generic(f),
         },
         Formula::Or(v) => {
@@ -294,6 +299,7 @@ fn generic_inner(f: &Formula, top: bool) -> String {
     match f {
         Formula::Atom(a) => atom_phrase(a),
         Formula::Shape(sh) => sh.to_string(),
+        Formula::Turned(_) => "lies turned".to_string(),
         Formula::Not(g) => format!("not {}", generic_inner(g, false)),
         Formula::And(v) => wrap(
             v.iter()
@@ -442,6 +448,11 @@ fn atom_implies(a: &Atom, b: &Atom, contact: Contact) -> bool {
 pub(crate) fn implies(f: &Formula, g: &Formula, contact: Contact) -> bool {
     if f.subject() != g.subject() {
         return false;
+    }
+    // The truth table is over relation atoms; an orientation statement is
+    // not one, so only a formula implies itself there.
+    if f.mentions_turns() || g.mentions_turns() {
+        return f == g;
     }
     let mut atoms: Vec<&Atom> = Vec::new();
     for a in f.atoms().into_iter().chain(g.atoms()) {

@@ -9,6 +9,10 @@
 //! space) whose interior overlaps nothing placed so far. An object that finds
 //! no free position in [`MAX_TRIES`] draws makes the whole scene start over;
 //! after [`MAX_RESAMPLES`] restarts the objects are declared unplaceable.
+//! An object that turns (not square, and `turned` or `turnable` in the
+//! demonstration; docs/language.md#orientation) lies turned or not with
+//! probability ½ each, drawn before its position (both orientations that
+//! fit the space; one that does not fit is never drawn).
 //!
 //! # Practical
 //!
@@ -59,8 +63,18 @@ struct Plan {
     /// Occupancy with only the fixed objects placed.
     fixed: Occupancy,
     /// Movable object indices and their number of grid positions along x
-    /// and y (`kx ∈ 0..nx`).
-    movable: Vec<(usize, i64, i64)>,
+    /// and y (`kx ∈ 0..nx`), as demonstrated and, for an object that turns
+    /// and fits turned too, turned.
+    movable: Vec<(usize, Positions, Option<Positions>)>,
+}
+
+/// Grid positions along x and y, and the orientation (turned or not) they
+/// are for.
+#[derive(Debug, Clone, Copy)]
+struct Positions {
+    nx: i64,
+    ny: i64,
+    turned: bool,
 }
 
 /// The `(word, mask)` pieces of a bitset row that cover bits
@@ -128,17 +142,35 @@ impl Plan {
             if o.fixed {
                 continue;
             }
-            if o.width > space.w || o.height > space.h {
+            // Both orientations of an object that turns, the others as
+            // demonstrated.
+            let turns = o.is_oblong() && (o.turned || o.turnable);
+            let fits = |(w, h): (i64, i64), turned: bool| {
+                (w <= space.w && h <= space.h).then_some(Positions {
+                    nx: (space.w - w) / g + 1,
+                    ny: (space.h - h) / g + 1,
+                    turned,
+                })
+            };
+            let given = fits(o.footprint(), o.turned);
+            let other = if turns {
+                let (w, h) = o.footprint();
+                fits((h, w), !o.turned)
+            } else {
+                None
+            };
+            let (ow, oh) = o.footprint();
+            let Some(first) = given.or(other) else {
                 return Err(InferError::CannotPlace {
                     demo: demo_index,
                     object: o.id.clone(),
                     reason: format!(
                         "it is {}x{}, larger than the {}x{} space",
-                        o.width, o.height, space.w, space.h
+                        ow, oh, space.w, space.h
                     ),
                 });
-            }
-            movable.push((i, (space.w - o.width) / g + 1, (space.h - o.height) / g + 1));
+            };
+            movable.push((i, first, given.and(other)));
         }
         let aligned = scene.objects.iter().all(|o| {
             o.width % g == 0
@@ -204,9 +236,15 @@ impl Plan {
             order.shuffle(rng);
             let mut ok = true;
             for &m in &order {
-                let (i, nx, ny) = self.movable[m];
+                let (i, given, other) = self.movable[m];
+                let p = match other {
+                    Some(other) if rng.random_bool(0.5) => other,
+                    _ => given,
+                };
+                let Positions { nx, ny, turned } = p;
+                scene.objects[i].turned = turned;
                 let o = &scene.objects[i];
-                let (w, h) = (o.width, o.height);
+                let (w, h) = o.footprint();
                 let mut placed = None;
                 for _ in 0..MAX_TRIES {
                     let kx = rng.random_range(0..nx);

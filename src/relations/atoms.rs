@@ -123,6 +123,8 @@ pub struct ClassAtoms {
     class_of: Vec<usize>,
     counts: Vec<TargetCount>,
     rects: Vec<Option<Rect>>,
+    /// Per object: placed, turned and not square.
+    turned: Vec<bool>,
     /// Per interned landmark id: the fixed, placed object with that id.
     landmarks: Vec<Option<usize>>,
     contact: Contact,
@@ -182,6 +184,11 @@ impl ClassAtoms {
             class_of,
             counts,
             rects,
+            turned: scene
+                .objects
+                .iter()
+                .map(|o| o.is_placed() && o.turned && o.is_oblong())
+                .collect(),
             landmarks,
             contact,
         }
@@ -249,6 +256,12 @@ impl ClassAtoms {
     /// The rectangle of object `obj` (`None` when unplaced).
     pub fn rect(&self, obj: usize) -> Option<Rect> {
         self.rects.get(obj).copied().flatten()
+    }
+
+    /// Whether object `obj` lies turned (placed, `turned`, not square;
+    /// docs/language.md#orientation).
+    pub fn lies_turned(&self, obj: usize) -> bool {
+        self.turned.get(obj).copied().unwrap_or(false)
     }
 
     /// The contact mode the table was built with.

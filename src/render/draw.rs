@@ -99,7 +99,8 @@ pub(super) fn tray_layout(scene: &Scene, s: f64) -> (Vec<TrayItem<'_>>, f64) {
         let pad = 10.0;
         let (mut cx, mut cy, mut row_h) = (pad, 26.0, 0.0f64);
         for o in &unplaced {
-            let (w, h) = (o.width as f64 * s, o.height as f64 * s);
+            let (fw, fh) = o.footprint();
+            let (w, h) = (fw as f64 * s, fh as f64 * s);
             if cx > pad && cx + w > tray_w - pad {
                 cx = pad;
                 cy += row_h + pad;
@@ -206,6 +207,8 @@ pub(super) fn write_shown(
                 width: w,
                 height: h,
                 fixed: false,
+                turnable: false,
+                turned: false,
             };
             if let Some((x, y, w, h)) = f.to_screen(&probe) {
                 let _ = writeln!(
@@ -382,7 +385,7 @@ fn draw_object(out: &mut String, o: &Object, rect: (f64, f64, f64, f64), fill: &
     let opacity = if ghost { " opacity=\"0.6\"" } else { "" };
     let _ = write!(
         out,
-        "<g class=\"object {kind}\" data-id=\"{id}\"{opacity}><title>{id} ({class})</title>\
+        "<g class=\"object {kind}{turned}\" data-id=\"{id}\"{opacity}><title>{id} ({class}{turned_title})</title>\
          <rect class=\"obj\" x=\"{x}\" y=\"{y}\" width=\"{w}\" height=\"{h}\" fill=\"{fill}\" \
          stroke=\"{stroke}\" stroke-width=\"1\"/>",
         id = esc(&o.id),
@@ -392,7 +395,28 @@ fn draw_object(out: &mut String, o: &Object, rect: (f64, f64, f64, f64), fill: &
         w = n(w),
         h = n(h),
         stroke = darker(fill),
+        turned = if o.turned { " turned" } else { "" },
+        turned_title = if o.turned { ", turned" } else { "" },
     );
+    if o.turned {
+        // A turned object's mark: a small quarter-turn arrow in its
+        // north-east corner (a curve and its head), in the outline's colour.
+        let r = (w.min(h) * 0.3).clamp(2.0, 9.0);
+        let (ax, ay) = (x + w - r - 1.5, y + 1.5);
+        let _ = write!(
+            out,
+            "<path class=\"turn-mark\" d=\"M {x0} {y0} A {r} {r} 0 0 1 {x1} {y1} l {hx} 0 l 0 {hy}\" \
+             fill=\"none\" stroke=\"{stroke}\" stroke-width=\"1.6\"/>",
+            x0 = n(ax),
+            y0 = n(ay),
+            r = n(r),
+            x1 = n(ax + r),
+            y1 = n(ay + r),
+            hx = n(-r * 0.5),
+            hy = n(-r * 0.5),
+            stroke = darker(fill),
+        );
+    }
     let len = o.id.chars().count().max(1) as f64;
     let flat = (h * 0.55).min(w * 0.88 / (CHAR_W * len));
     let upright = (w * 0.55).min(h * 0.88 / (CHAR_W * len));

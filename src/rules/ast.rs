@@ -148,6 +148,9 @@ pub enum Formula {
     Atom(Atom),
     /// A group statement's shape (only as a group rule's whole formula).
     Shape(Shape),
+    /// `turned(A)`: the subject (of class `A`) lies turned by 90°
+    /// (docs/language.md#orientation); never true of a square object.
+    Turned(String),
     /// Negation.
     Not(Box<Formula>),
     /// Conjunction.
@@ -170,7 +173,7 @@ impl Formula {
         while let Some(f) = stack.pop() {
             match f {
                 Formula::Atom(a) => out.push(a),
-                Formula::Shape(_) => {}
+                Formula::Shape(_) | Formula::Turned(_) => {}
                 Formula::Not(g) => stack.push(g),
                 Formula::And(v) | Formula::Or(v) => stack.extend(v.iter().rev()),
             }
@@ -187,6 +190,7 @@ impl Formula {
             match f {
                 Formula::Atom(a) => return &a.subject,
                 Formula::Shape(s) => return &s.class,
+                Formula::Turned(c) => return c,
                 Formula::Not(g) => f = g,
                 Formula::And(v) | Formula::Or(v) => match v.first() {
                     Some(g) => f = g,
@@ -196,10 +200,20 @@ impl Formula {
         }
     }
 
+    /// Whether an orientation statement `turned(A)` occurs in the formula.
+    pub fn mentions_turns(&self) -> bool {
+        match self {
+            Formula::Turned(_) => true,
+            Formula::Atom(_) | Formula::Shape(_) => false,
+            Formula::Not(g) => g.mentions_turns(),
+            Formula::And(v) | Formula::Or(v) => v.iter().any(Formula::mentions_turns),
+        }
+    }
+
     /// Nesting depth (an atom has depth 1).
     pub fn depth(&self) -> usize {
         match self {
-            Formula::Atom(_) | Formula::Shape(_) => 1,
+            Formula::Atom(_) | Formula::Shape(_) | Formula::Turned(_) => 1,
             Formula::Not(g) => 1 + g.depth(),
             Formula::And(v) | Formula::Or(v) => 1 + v.iter().map(Formula::depth).max().unwrap_or(0),
         }
@@ -225,11 +239,13 @@ impl Formula {
 
     /// Evaluate with a function giving each atom's value (a per-object
     /// formula; a [`Formula::Shape`], which is about the whole class, reads
-    /// as false here — group rules are decided by [`crate::shapes::check`]).
+    /// as false here — group rules are decided by [`crate::shapes::check`];
+    /// so does [`Formula::Turned`], which is about the object, not a
+    /// relation: see [`Formula::mentions_turns`]).
     pub fn eval(&self, atom: &mut impl FnMut(&Atom) -> bool) -> bool {
         match self {
             Formula::Atom(a) => atom(a),
-            Formula::Shape(_) => false,
+            Formula::Shape(_) | Formula::Turned(_) => false,
             Formula::Not(g) => !g.eval(atom),
             Formula::And(v) => v.iter().all(|g| g.eval(atom)),
             Formula::Or(v) => v.iter().any(|g| g.eval(atom)),

@@ -515,6 +515,7 @@ impl Builder<'_> {
             match c.as_rule() {
                 R::not_op => nots += 1,
                 R::atom => inner = Some(self.atom(c)),
+                R::turned => inner = Some(self.turned(c)),
                 R::group => {
                     inner = c
                         .into_inner()
@@ -582,6 +583,32 @@ impl Builder<'_> {
             Some(q) => Atom::quantified(rel, subject, q, target),
             None => Atom::new(rel, subject, target),
         })
+    }
+
+    /// `turned(A)`: an orientation statement about the subject.
+    fn turned(&mut self, p: Pair<'_, R>) -> Formula {
+        let span = span_of(&p);
+        self.atoms.push(span);
+        let mut subject = String::new();
+        for c in p.into_inner() {
+            if c.as_rule() != R::subject {
+                continue;
+            }
+            match subject_kind(c) {
+                Subject::Class(s) => {
+                    subject = s;
+                    self.subjects.push((subject.clone(), span));
+                }
+                Subject::Other(text, at, _) => {
+                    self.diags.push(Diagnostic::new(
+                        DiagnosticKind::Syntax,
+                        at,
+                        format!("expected a class name, found `{text}`: `turned` is about the subject class's objects"),
+                    ));
+                }
+            }
+        }
+        Formula::Turned(subject)
     }
 
     /// An atom's target: the written quantifier (if valid) and the object.

@@ -36,6 +36,11 @@ fn write_formula(f: &Formula, out: &mut String) {
     match f {
         Formula::Atom(a) => out.push_str(&a.to_string()),
         Formula::Shape(sh) => out.push_str(&sh.to_string()),
+        Formula::Turned(c) => {
+            out.push_str("turned(");
+            out.push_str(c);
+            out.push(')');
+        }
         Formula::Not(g) => {
             out.push('!');
             write_operand(g, 3, out);

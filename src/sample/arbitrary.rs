@@ -47,6 +47,8 @@ impl<'a> Arbitrary<'a> for Scene {
                 width: w,
                 height: h,
                 fixed,
+                turnable: false,
+                turned: false,
             };
             if fixed || u.arbitrary::<bool>()? {
                 let gx = u.int_in_range(0..=(nx - w / grid))?;

@@ -344,7 +344,7 @@ impl Sampler {
         let impossible = self.model.soft.iter().any(|t| t.lit == Lit::FALSE);
         let target = match self.opts.quality {
             Quality::Optimum => {
-                let r = crate::synth::synthesize(&self.problem, &self.rules, &self.synth_opts)?;
+                let r = crate::synth::synthesize(&self.unturned(), &self.rules, &self.synth_opts)?;
                 match r.status {
                     Status::Infeasible => {
                         self.fail(SampleError::Infeasible(r.conflict.unwrap_or_default()));
@@ -407,16 +407,25 @@ impl Sampler {
         Ok(())
     }
 
+    /// The problem as the sampler's model places it: every object as
+    /// given, none turned (the model has no orientation choice yet), so the
+    /// optimum and the reasons for no layout are those of the layouts it
+    /// draws.
+    fn unturned(&self) -> Scene {
+        let mut p = self.problem.clone();
+        for o in &mut p.objects {
+            o.turnable = false;
+        }
+        p
+    }
+
     /// The hint tables: interchangeable groups, like positions.
     fn tables(&mut self) {
         let p = &self.problem;
         let mut groups: BTreeMap<(String, i64, i64), Vec<usize>> = BTreeMap::new();
         for (i, o) in p.objects.iter().enumerate() {
             if let (Coord::Var(vx), Coord::Var(_)) = self.model.coords[i] {
-                groups
-                    .entry((o.class.clone(), o.width, o.height))
-                    .or_default()
-                    .push(vx);
+                groups.entry(like_key(o)).or_default().push(vx);
             }
         }
         self.groups = groups.into_values().collect();
@@ -429,7 +438,7 @@ impl Sampler {
                 };
                 if (x - ox) % g == 0 && (y - oy) % g == 0 {
                     self.like
-                        .entry((o.class.clone(), o.width, o.height))
+                        .entry(like_key(o))
                         .or_default()
                         .push(((x - ox) / g, (y - oy) / g));
                 }
@@ -455,7 +464,7 @@ impl Sampler {
                 .map(|d| d.saturating_duration_since(Instant::now())),
             ..self.synth_opts.clone()
         };
-        let r = crate::synth::synthesize(&self.problem, &self.rules, &opts)?;
+        let r = crate::synth::synthesize(&self.unturned(), &self.rules, &opts)?;
         let quality = match self.opts.quality {
             Quality::MinScore(x) => format!("scores at least {x}"),
             _ => "keeps every rule (score 1)".to_string(),
@@ -479,7 +488,7 @@ impl Sampler {
         for gi in 0..self.groups.len() {
             let group = &self.groups[gi];
             let o = &self.problem.objects[self.model.vars[group[0]].object];
-            let like = self.like.get(&(o.class.clone(), o.width, o.height));
+            let like = self.like.get(&like_key(o));
             // The y variable of an object follows its x variable.
             let (ux, uy) = (
                 self.model.vars[group[0]].ub,
@@ -579,6 +588,12 @@ pub(crate) fn grid_values(model: &Model, scene: &Scene) -> Vec<i64> {
 /// height)` of unplaced objects, their positions, sorted.
 pub type LayoutKey = Vec<(String, i64, i64, Vec<(i64, i64)>)>;
 
+/// An object's class and footprint (how hints and layouts group objects).
+fn like_key(o: &crate::scene::Object) -> (String, i64, i64) {
+    let (w, h) = o.footprint();
+    (o.class.clone(), w, h)
+}
+
 /// The layout of `scene` (a complete scene of `problem`) up to swapping
 /// interchangeable objects: per group of unplaced objects of `problem` with
 /// the same class and size, their positions, sorted. Two scenes are the
@@ -589,8 +604,10 @@ pub fn canonical_key(problem: &Scene, scene: &Scene) -> LayoutKey {
         if p.is_placed() {
             continue;
         }
+        // By the layout's footprint: the same blocks at the same places,
+        // one of them turned, are another layout.
         groups
-            .entry((p.class.clone(), p.width, p.height))
+            .entry(like_key(s))
             .or_default()
             .push((s.x.unwrap_or_default(), s.y.unwrap_or_default()));
     }

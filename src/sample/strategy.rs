@@ -192,7 +192,7 @@ pub fn atom_strategy(subject: &'static str) -> impl Strategy<Value = Formula> {
 /// Flatten nested same-operator chains the way the parser does.
 fn normalize(f: Formula) -> Formula {
     match f {
-        Formula::Atom(_) | Formula::Shape(_) => f,
+        Formula::Atom(_) | Formula::Shape(_) | Formula::Turned(_) => f,
         Formula::Not(g) => Formula::not(normalize(*g)),
         Formula::And(v) => {
             let mut out = Vec::new();

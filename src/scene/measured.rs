@@ -212,6 +212,13 @@ fn snappings(objects: &[Value], (sx, sy): (i64, i64), grid: i64, reach: f64) -> 
         else {
             continue;
         };
+        // A turned object occupies its footprint, height × width (a
+        // `turned` that is not a boolean is refused by the exact reader).
+        let (w, h) = if o.get("turned").and_then(Value::as_bool) == Some(true) {
+            (h, w)
+        } else {
+            (w, h)
+        };
         let near = |v: f64, l: &i64| (*l as f64 - v).abs() <= reach + 1e-9;
         let xs: Vec<i64> = lines(x, sx, grid)
             .into_iter()
@@ -634,6 +641,34 @@ mod tests {
         let s = &m.scenes[0];
         assert_eq!(s.objects[0].x, Some(10));
         assert_eq!(s.objects[1].x, Some(20));
+    }
+
+    #[test]
+    fn a_turned_block_is_snapped_with_its_footprint() {
+        // a is 10 wide and 20 high; turned it covers 20 × 10. Measured at
+        // x 16 its nearest line is 20 (20..40), and b's at 34 is 30: only
+        // the footprint shows that those overlap, so snapping must move
+        // one of them, and keep the orientation.
+        let t = scene(
+            r#"{"id":"a","class":"R","x":16,"y":0,"width":10,"height":20,"turned":true},
+               {"id":"b","class":"R","x":34,"y":0,"width":10,"height":10}"#,
+        );
+        let m = measured_from_json(&t, None).expect("read");
+        let s = &m.scenes[0];
+        assert!(s.objects[0].turned);
+        let (a, b) = (s.objects[0].rect(), s.objects[1].rect());
+        assert_eq!(
+            (a, b),
+            (
+                Some(crate::scene::Rect::new(10, 0, 20, 10)),
+                Some(crate::scene::Rect::new(30, 0, 10, 10))
+            )
+        );
+        // Unturned, a is 10 wide: both take their nearest lines.
+        let plain = t.replace(r#","turned":true"#, "");
+        let m = measured_from_json(&plain, None).expect("read");
+        let xs: Vec<_> = m.scenes[0].objects.iter().map(|o| o.x).collect();
+        assert_eq!(xs, [Some(20), Some(30)]);
     }
 
     #[test]

@@ -93,6 +93,11 @@ pub struct Object {
     pub height: i64,
     /// A fixed object never moves (walls).
     pub fixed: bool,
+    /// A movable object that may be placed turned by 90° (docs/scenes.md#turns).
+    pub turnable: bool,
+    /// A placed object lying turned by 90°: its footprint is
+    /// `height × width` ([`Object::footprint`]).
+    pub turned: bool,
 }
 
 impl Object {
@@ -106,6 +111,8 @@ impl Object {
             width,
             height,
             fixed: false,
+            turnable: false,
+            turned: false,
         }
     }
 
@@ -128,6 +135,33 @@ impl Object {
             width,
             height,
             fixed: true,
+            turnable: false,
+            turned: false,
+        }
+    }
+
+    /// The same object, allowed to turn (builder style).
+    #[must_use]
+    pub fn with_turnable(mut self) -> Self {
+        self.turnable = true;
+        self
+    }
+
+    /// The same object, lying turned (builder style).
+    #[must_use]
+    pub fn with_turned(mut self) -> Self {
+        self.turned = true;
+        self
+    }
+
+    /// The footprint `(w, h)` the object occupies: `(width, height)`, or
+    /// `(height, width)` when it lies turned. Every geometric consumer
+    /// (relations, evaluation, synthesis, rendering) goes through this.
+    pub const fn footprint(&self) -> (i64, i64) {
+        if self.turned {
+            (self.height, self.width)
+        } else {
+            (self.width, self.height)
         }
     }
 
@@ -135,9 +169,17 @@ impl Object {
     pub const fn is_placed(&self) -> bool {
         self.x.is_some() && self.y.is_some()
     }
-    /// The occupied rectangle, when placed.
+    /// The occupied rectangle (the [`Object::footprint`] at the
+    /// position), when placed.
     pub fn rect(&self) -> Option<Rect> {
-        Some(Rect::new(self.x?, self.y?, self.width, self.height))
+        let (w, h) = self.footprint();
+        Some(Rect::new(self.x?, self.y?, w, h))
+    }
+
+    /// Whether the object's two sides differ, so that turning it changes
+    /// its footprint.
+    pub const fn is_oblong(&self) -> bool {
+        self.width != self.height
     }
 }
 
@@ -187,6 +229,9 @@ pub enum SceneErrorKind {
     Outside,
     /// Two placed objects whose interiors overlap.
     Overlap,
+    /// `turned` on an object without a position, or `turnable` on a
+    /// fixed object (docs/scenes.md#turns).
+    BadTurn,
 }
 
 /// Why a scene (or a demonstrations file) is invalid.
@@ -301,6 +346,10 @@ struct ObjectJson {
     height: i64,
     #[serde(default, skip_serializing_if = "is_false")]
     fixed: bool,
+    #[serde(default, skip_serializing_if = "is_false")]
+    turnable: bool,
+    #[serde(default, skip_serializing_if = "is_false")]
+    turned: bool,
 }
 
 /// A JSON integer as `i64`: `-0` (which JSON readers hand over as a
@@ -408,6 +457,8 @@ impl SceneJson {
                 width: o.width,
                 height: o.height,
                 fixed: o.fixed,
+                turnable: o.turnable,
+                turned: o.turned,
             })
             .collect();
         Scene {
@@ -432,6 +483,8 @@ impl SceneJson {
                     width: o.width,
                     height: o.height,
                     fixed: o.fixed,
+                    turnable: o.turnable,
+                    turned: o.turned,
                 })
                 .collect(),
         }

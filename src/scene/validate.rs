@@ -9,9 +9,21 @@ impl Scene {
     /// Check docs/scenes.md#geometry: coordinates, sizes and grid within
     /// [`crate::limits::MAX_SCENE_COORD`], sizes ≥ 1, grid ≥ 1, unique ids, class
     /// names that are identifiers, fixed objects placed, `x` and `y` given
-    /// together, placed objects inside the space, no two interiors
-    /// overlapping.
+    /// together, `turned` only on placed objects and `turnable` only on
+    /// movable ones, placed objects (their footprints) inside the space,
+    /// no two interiors overlapping.
     pub fn validate(&self) -> Result<(), SceneError> {
+        self.validate_with(false)
+    }
+
+    /// [`Scene::validate`], except that an unplaced object may carry
+    /// `turned` (a `turnable` one): synthesis' own problems with an
+    /// orientation chosen for each turnable object.
+    pub(crate) fn validate_oriented(&self) -> Result<(), SceneError> {
+        self.validate_with(true)
+    }
+
+    fn validate_with(&self, oriented: bool) -> Result<(), SceneError> {
         self.check_count()?;
         // Range first: after these checks every edge and every difference
         // of edges fits easily in i64 (see `crate::limits`).
@@ -19,7 +31,7 @@ impl Scene {
         self.check_space()?;
         let mut ids = HashSet::new();
         for (i, o) in self.objects.iter().enumerate() {
-            self.check_object(i, o, &mut ids)?;
+            self.check_object(i, o, &mut ids, oriented)?;
         }
         self.check_overlaps()
     }
@@ -117,6 +129,7 @@ impl Scene {
         i: usize,
         o: &'s Object,
         ids: &mut HashSet<&'s str>,
+        oriented: bool,
     ) -> Result<(), SceneError> {
         let path = format!("objects[{i}]");
         if !super::is_identifier(&o.class) {
@@ -160,6 +173,7 @@ impl Scene {
             ));
         }
         Self::check_placement(&path, o)?;
+        Self::check_turn(&path, o, oriented)?;
         self.check_inside(path, o)
     }
 
@@ -182,6 +196,36 @@ impl Scene {
                 path,
                 format!(
                     "fixed object `{}` has no position; fixed objects must be placed",
+                    cut(&o.id)
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// `turned` only on a placed object (an unplaced one has no
+    /// orientation yet: `turnable` says it may get one), `turnable` only
+    /// on a movable one (a fixed object stands as it is given, turned or
+    /// not).
+    fn check_turn(path: &str, o: &Object, oriented: bool) -> Result<(), SceneError> {
+        if o.turned && !o.is_placed() && !(oriented && o.turnable) {
+            return Err(SceneError::invalid(
+                SceneErrorKind::BadTurn,
+                format!("{path}.turned"),
+                format!(
+                    "object `{}` is turned but has no position; `turned` describes a placed object \
+                     (to let synthesis turn it, write \"turnable\": true)",
+                    cut(&o.id)
+                ),
+            ));
+        }
+        if o.turnable && o.fixed {
+            return Err(SceneError::invalid(
+                SceneErrorKind::BadTurn,
+                format!("{path}.turnable"),
+                format!(
+                    "fixed object `{}` is turnable; a fixed object never moves nor turns \
+                     (give its footprint, or \"turned\": true, instead)",
                     cut(&o.id)
                 ),
             ));

@@ -9,6 +9,9 @@
 //! numerator over **all** placed objects is. It keeps the largest
 //! numerator.
 //!
+//! An unplaced `turnable` object that is not square is tried in both
+//! orientations (its domain holds the positions of both footprints).
+//!
 //! There is no pruning by rules and no symmetry breaking: the point is to be
 //! obviously correct, not fast. The search space is the product of the
 //! per-object domain sizes; [`solve`] refuses (returns
@@ -144,14 +147,29 @@ fn run(
     let free: Vec<usize> = (0..problem.objects.len())
         .filter(|&i| !problem.objects[i].is_placed())
         .collect();
-    let domains: Vec<Vec<Rect>> = free
+    let domains: Vec<Vec<(Rect, bool)>> = free
         .iter()
         .map(|&i| {
             let o = &problem.objects[i];
-            grid_positions(problem, o.width, o.height)
-                .into_iter()
-                .map(|(x, y)| Rect::new(x, y, o.width, o.height))
-                .filter(|r| placed.iter().all(|p| !p.interiors_overlap(r)))
+            // A turnable object that is not square lies either way.
+            let turns: &[bool] = if o.turnable && o.is_oblong() {
+                &[false, true]
+            } else {
+                &[false]
+            };
+            turns
+                .iter()
+                .flat_map(|&t| {
+                    let (w, h) = if t {
+                        (o.height, o.width)
+                    } else {
+                        (o.width, o.height)
+                    };
+                    grid_positions(problem, w, h)
+                        .into_iter()
+                        .map(move |(x, y)| (Rect::new(x, y, w, h), t))
+                })
+                .filter(|(r, _)| placed.iter().all(|p| !p.interiors_overlap(r)))
                 .collect()
         })
         .collect();
@@ -190,7 +208,7 @@ struct Search<'a> {
     problem: &'a Scene,
     scene: Scene,
     free: &'a [usize],
-    domains: &'a [Vec<Rect>],
+    domains: &'a [Vec<(Rect, bool)>],
     chosen: Vec<Rect>,
     result: BruteResult,
 }
@@ -202,18 +220,20 @@ impl Search<'_> {
             return;
         }
         let obj = self.free[depth];
-        for &r in &self.domains[depth] {
+        for &(r, turned) in &self.domains[depth] {
             if self.chosen.iter().any(|c| c.interiors_overlap(&r)) {
                 continue;
             }
             self.scene.objects[obj].x = Some(r.x);
             self.scene.objects[obj].y = Some(r.y);
+            self.scene.objects[obj].turned = turned;
             self.chosen.push(r);
             self.dfs(depth + 1);
             self.chosen.pop();
         }
         self.scene.objects[obj].x = None;
         self.scene.objects[obj].y = None;
+        self.scene.objects[obj].turned = false;
     }
 
     fn leaf(&mut self) {
@@ -253,6 +273,8 @@ mod tests {
             width: w,
             height: w,
             fixed,
+            turnable: false,
+            turned: false,
         }
     }
 

@@ -12,7 +12,7 @@
 //!    `⌈w/g⌉` grid steps, so each object owns the half-open index box
 //!    `[k, k + ⌈w/g⌉) × [l, l + ⌈h/g⌉)`, disjoint from every other's, all
 //!    inside `⌈W/g⌉ × ⌈H/g⌉` cells: their sum bounds the count.
-//! 3. **One size.** `n` objects of one size `w × h` need
+//! 3. **One size.** `n` objects of one footprint `w × h` that may not turn need
 //!    `n ≤ ⌊(p_x − 1 + c)/c⌋ · ⌊(p_y − 1 + d)/d⌋` with `p` the positions per
 //!    axis and `c = ⌈w/g⌉`, `d = ⌈h/g⌉` (each index box holds exactly one
 //!    point of the lattice `(c·i, d·j)`, `i, j ≥ 1`).
@@ -68,12 +68,15 @@ pub(super) fn cannot_fit(problem: &Scene) -> bool {
     if footprints > cells(sw) * cells(sh) {
         return true;
     }
-    // 3. Per size.
+    // 3. Per footprint, over the objects that may not turn (a turnable
+    // group may split between two footprints; areas and grid footprints
+    // above are the same either way).
     let mut sizes: Vec<(i64, i64, i128)> = Vec::new();
-    for o in &movable {
-        match sizes.iter_mut().find(|k| k.0 == o.width && k.1 == o.height) {
+    for o in movable.iter().filter(|o| !o.turnable) {
+        let (w, h) = o.footprint();
+        match sizes.iter_mut().find(|k| k.0 == w && k.1 == h) {
             Some(k) => k.2 += 1,
-            None => sizes.push((o.width, o.height, 1)),
+            None => sizes.push((w, h, 1)),
         }
     }
     sizes.iter().any(|&(w, h, n)| {

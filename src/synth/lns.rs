@@ -539,6 +539,8 @@ mod tests {
                 width: 10,
                 height: 10,
                 fixed: false,
+                turnable: false,
+                turned: false,
             })
             .collect();
         objects.push(Object::fixed_at("bar", "F", 0, 40, 80, 10));
@@ -625,6 +627,8 @@ mod tests {
                 width: 10,
                 height: 10 + 10 * (i % 2),
                 fixed: false,
+                turnable: false,
+                turned: false,
             })
             .collect();
         objects.push(Object::fixed_at("bar", "F", 0, 30, 50, 10));

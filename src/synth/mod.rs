@@ -75,12 +75,14 @@ pub(crate) mod model;
 pub mod report;
 mod resemblance_terms;
 mod solve;
+mod turns;
 mod verify;
 mod warm;
 mod weights;
 
 pub use driver::Strategy;
 pub use lns::LnsOptions;
+pub use turns::MAX_ORIENTATION_CHOICES;
 pub use verify::{verify_solution, VerifyError};
 
 /// Limits and switches for one solve.
@@ -294,6 +296,10 @@ pub enum SynthError {
     /// file, not of the problem).
     #[error("the rule weights are too large for the solver: divided by their common factor, the weights of all (object, rule) terms total more than 2^30; expected smaller weights")]
     WeightsTooLarge,
+    /// What was asked is not built yet for this problem; the message says
+    /// what (e.g. `--emit` of a problem with objects that turn).
+    #[error("{0}")]
+    Unsupported(String),
     /// The layout the engine found fails the independent check
     /// ([`verify_solution`]): a bug in rccpack, never the input's fault.
     #[error("internal error: the layout found fails the independent check: {0}")]
@@ -343,7 +349,7 @@ pub const MAX_POSITIONS: i64 = 1 << 18;
 /// [`MAX_POSITIONS`]). [`synthesize`] checks this first; callers that build
 /// `model::Model`s themselves must too.
 pub(crate) fn check_problem(problem: &Scene) -> Result<(), SynthError> {
-    problem.validate()?;
+    problem.validate_oriented()?;
     check_ranges(problem)
 }
 
@@ -405,7 +411,15 @@ fn check_ranges(problem: &Scene) -> Result<(), SynthError> {
         if o.is_placed() {
             continue;
         }
-        for (axis, space, size) in [("x", sp.width, o.width), ("y", sp.height, o.height)] {
+        // A turnable object may lie either way: its smaller side along an
+        // axis gives the most positions.
+        let (w, h) = if o.turnable {
+            let m = o.width.min(o.height);
+            (m, m)
+        } else {
+            o.footprint()
+        };
+        for (axis, space, size) in [("x", sp.width, w), ("y", sp.height, h)] {
             // Within ±2^28 (checked above): no overflow.
             let n = if space < size {
                 0
@@ -493,7 +507,29 @@ pub(crate) fn objective_model_encoded(
 ///
 /// The returned score is the evaluator's, recomputed from the output scene.
 /// Errors are reserved for unusable input; infeasibility is a [`Status`].
+///
+/// Unplaced objects marked `turnable` may lie turned in the layout
+/// (docs/guide.md#objects-that-turn): every orientation choice is solved
+/// (at most [`MAX_ORIENTATION_CHOICES`]), so `optimal` and `infeasible`
+/// hold over every orientation.
 pub fn synthesize(
+    problem: &Scene,
+    rules: &RuleSet,
+    opts: &SynthOptions,
+) -> Result<SynthResult, SynthError> {
+    // The problem as given: an unplaced object may not lie turned yet.
+    problem.validate()?;
+    let groups = turns::turn_groups(problem);
+    if groups.is_empty() {
+        synthesize_fixed(problem, rules, opts)
+    } else {
+        turns::synthesize_turning(problem, rules, opts, &groups)
+    }
+}
+
+/// [`synthesize`] with every object's orientation given (an unplaced
+/// object lies turned when `turned` is set).
+fn synthesize_fixed(
     problem: &Scene,
     rules: &RuleSet,
     opts: &SynthOptions,

@@ -51,7 +51,8 @@ pub(super) fn resemblance_terms(
         let (Coord::Var(x), Coord::Var(y)) = model.coords[i] else {
             continue;
         };
-        let key = (o.class.as_str(), o.width, o.height);
+        let (w, h) = o.footprint();
+        let key = (o.class.as_str(), w, h);
         let map = match maps.get(&key) {
             Some(m) => m.clone(),
             None => {

@@ -44,6 +44,16 @@ pub enum VerifyError {
         /// Its id.
         id: String,
     },
+    /// An object lies turned that may not turn (not `turnable` in the
+    /// problem), a placed object's orientation changed, or `turnable`
+    /// changed.
+    #[error("objects[{index}] `{id}`: its orientation (`turned`/`turnable`) changed and it may not turn")]
+    TurnChanged {
+        /// Its index.
+        index: usize,
+        /// Its id.
+        id: String,
+    },
     /// An object has no position.
     #[error("objects[{index}] `{id}` is not placed")]
     Unplaced {
@@ -176,6 +186,20 @@ fn check_object(
     }
     if p.fixed != s.fixed {
         return Err(VerifyError::FixedChanged {
+            index: i,
+            id: p.id.clone(),
+        });
+    }
+    // A placed object keeps its orientation; an unplaced one lies turned
+    // only when it may turn.
+    let turn_ok = p.turnable == s.turnable
+        && if p.is_placed() {
+            p.turned == s.turned
+        } else {
+            !s.turned || p.turnable
+        };
+    if !turn_ok {
+        return Err(VerifyError::TurnChanged {
             index: i,
             id: p.id.clone(),
         });

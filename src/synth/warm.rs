@@ -82,10 +82,7 @@ fn wanted(model: &Model, problem: &Scene) -> BTreeMap<Key, Vec<usize>> {
     let mut wanted: BTreeMap<Key, Vec<usize>> = BTreeMap::new();
     for (o, obj) in problem.objects.iter().enumerate() {
         if let (Coord::Var(_), Coord::Var(_)) = model.coords[o] {
-            wanted
-                .entry((obj.class.clone(), obj.width, obj.height))
-                .or_default()
-                .push(o);
+            wanted.entry(key(obj)).or_default().push(o);
         }
     }
     wanted
@@ -99,7 +96,7 @@ fn usable_positions(model: &Model, wanted: &BTreeMap<Key, Vec<usize>>, s: &Scene
         let (Some(x), Some(y)) = (obj.x, obj.y) else {
             continue;
         };
-        let key = (obj.class.clone(), obj.width, obj.height);
+        let key = key(obj);
         let Some(objs) = wanted.get(&key) else {
             continue;
         };
@@ -175,7 +172,10 @@ fn mosaic(
     let mut taken: Vec<Rect> = problem
         .objects
         .iter()
-        .filter_map(|o| Some((o.x?, o.y?, o.width, o.height)))
+        .filter_map(|o| {
+            let (w, h) = o.footprint();
+            Some((o.x?, o.y?, w, h))
+        })
         .collect();
     let mut chosen: Positions = BTreeMap::new();
     for &si in order {
@@ -205,6 +205,12 @@ fn mosaic(
 
 /// `(x, y, width, height)` in real units.
 type Rect = (i64, i64, i64, i64);
+
+/// An object's key: its class and footprint.
+fn key(o: &crate::scene::Object) -> Key {
+    let (w, h) = o.footprint();
+    (o.class.clone(), w, h)
+}
 
 fn overlaps(a: &Rect, b: &Rect) -> bool {
     a.0 < b.0 + b.2 && b.0 < a.0 + a.2 && a.1 < b.1 + b.3 && b.1 < a.1 + a.3

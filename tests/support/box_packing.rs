@@ -57,6 +57,8 @@ pub fn obj(id: &str, class: &str, w: i64, h: i64, pos: Option<(i64, i64)>, fixed
         width: w,
         height: h,
         fixed,
+        turnable: false,
+        turned: false,
     }
 }
 

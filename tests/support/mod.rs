@@ -126,3 +126,4 @@ pub fn median<T: Copy + PartialOrd + Default>(v: &[T]) -> T {
 pub mod box_packing;
 pub mod cases;
 pub mod formulas;
+pub mod turn_packing;

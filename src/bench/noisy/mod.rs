@@ -283,10 +283,11 @@ pub fn slip(demos: &[Scene], rules: &RuleSet, rng: &mut ChaCha8Rng) -> Option<(V
         let o = &scene.objects[i];
         let g = scene.grid;
         let mut places: Vec<(i64, i64)> = Vec::new();
+        let (ow, oh) = o.footprint();
         let mut x = sp.x;
-        while x + o.width <= sp.x + sp.w {
+        while x + ow <= sp.x + sp.w {
             let mut y = sp.y;
-            while y + o.height <= sp.y + sp.h {
+            while y + oh <= sp.y + sp.h {
                 places.push((x, y));
                 y += g;
             }

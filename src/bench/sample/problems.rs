@@ -13,6 +13,8 @@ fn block(id: &str, class: &str, w: i64, h: i64) -> Object {
         width: w,
         height: h,
         fixed: false,
+        turnable: false,
+        turned: false,
     }
 }
 

@@ -369,6 +369,8 @@ pub(crate) fn block(class: &str, k: usize, w: i64, h: i64, at: Option<Rect>) -> 
         width: w,
         height: h,
         fixed: false,
+        turnable: false,
+        turned: false,
     }
 }
 

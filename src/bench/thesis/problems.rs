@@ -63,6 +63,8 @@ pub fn with_blocks(mut scene: Scene, classes: &[&str]) -> Scene {
             width: BLOCK,
             height: BLOCK,
             fixed: false,
+            turnable: false,
+            turned: false,
         });
     }
     scene

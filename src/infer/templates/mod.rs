@@ -271,6 +271,33 @@ pub const GROUP_TEMPLATES: &[Template] = &[
     },
 ];
 
+/// Third-edition orientation templates over a subject class whose objects
+/// turn in the demonstrations (an object of the class that is not square
+/// lies turned in one, or is `turnable`): "every `A` lies turned", "no `A`
+/// lies turned" (docs/language.md#orientation).
+pub const ORIENTATION_TEMPLATES: &[Template] = &[
+    Template {
+        name: "{A}_turned",
+        scope: EACH,
+        build: |t| Formula::Turned(t.subject.to_string()),
+    },
+    Template {
+        name: "{A}_not_turned",
+        scope: EACH,
+        build: |t| Formula::not(Formula::Turned(t.subject.to_string())),
+    },
+];
+
+/// Whether class `class` turns in `demos`: some object of it that is not
+/// square lies turned or is `turnable` (the orientation templates are
+/// generated for it).
+pub fn class_turns(demos: &[Scene], class: &str) -> bool {
+    demos
+        .iter()
+        .flat_map(|s| &s.objects)
+        .any(|o| o.class == class && !o.fixed && o.is_oblong() && (o.turned || o.turnable))
+}
+
 /// Every template table, for the names `crate::priors` accepts as a kind's
 /// template. A new table is added here too (a test checks that every
 /// generated statement's template is listed).
@@ -281,6 +308,7 @@ pub const TABLES: &[&[Template]] = &[
     SUBJECT_TEMPLATES,
     LANDMARK_TEMPLATES,
     GROUP_TEMPLATES,
+    ORIENTATION_TEMPLATES,
 ];
 
 /// The template named `name` in [`TABLES`].
@@ -422,6 +450,11 @@ pub fn generate_with_origins(demos: &[Scene], which: Templates) -> (RuleSet, Vec
             for t in GROUP_TEMPLATES {
                 out.expand(t, subject, &Target::Any);
             }
+            if class_turns(demos, subject) {
+                for t in ORIENTATION_TEMPLATES {
+                    out.expand(t, subject, &Target::Any);
+                }
+            }
         }
     }
     (RuleSet::new(out.rules), out.origins)
@@ -453,7 +486,7 @@ pub fn estimate_set(demos: &[Scene], which: Templates) -> usize {
         each += targets * per(FLUSH_PAIR_TEMPLATES) + per(SELF_TEMPLATES);
     }
     if which == Templates::Third {
-        each += per(GROUP_TEMPLATES);
+        each += per(GROUP_TEMPLATES) + per(ORIENTATION_TEMPLATES);
     }
     movable.saturating_mul(each)
 }

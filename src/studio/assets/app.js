@@ -190,6 +190,23 @@ function flashRefused(o) {
   setTimeout(() => f.remove(), 900);
 }
 
+// Turn the selected block by a quarter turn (a square one has nothing to
+// turn), unless it would then overlap or leave the table.
+function turnSelected() {
+  const o = state.placed.find((p) => p.id === state.selected);
+  if (!o || o.width === o.height) return;
+  const turned = { ...o, turned: !o.turned };
+  if (!turned.turned) delete turned.turned;
+  const why = refusal(turned);
+  if (why) {
+    toast(`Turn refused: ${why}.`, 'error');
+    flashRefused(turned);
+    return;
+  }
+  state.placed = state.placed.map((p) => (p.id === o.id ? turned : p));
+  redraw();
+}
+
 function deleteSelected() {
   if (!state.selected) return;
   state.placed = state.placed.filter((o) => o.id !== state.selected);
@@ -753,6 +770,8 @@ async function main() {
   document.addEventListener('pointerup', endDrag);
   $('board').addEventListener('pointerdown', (ev) => {
     if (state.boardMode !== 'edit') return;
+    // The right button turns a block (`contextmenu` below); it does not drag.
+    if (ev.button !== 0) return;
     const g = ev.target.closest('.obj');
     if (!g || g.classList.contains('fixed')) { state.selected = null; redraw(); return; }
     const o = state.placed.find((p) => p.id === g.dataset.id);
@@ -761,6 +780,15 @@ async function main() {
   document.addEventListener('keydown', (ev) => {
     if (ev.target.closest('input, textarea')) return;
     if ((ev.key === 'Delete' || ev.key === 'Backspace') && state.selected) { ev.preventDefault(); deleteSelected(); }
+    if ((ev.key === 't' || ev.key === 'T') && state.selected) { ev.preventDefault(); turnSelected(); }
+  });
+  $('board').addEventListener('contextmenu', (ev) => {
+    if (state.boardMode !== 'edit') return;
+    const g = ev.target.closest('.obj');
+    if (!g || g.classList.contains('fixed')) return;
+    ev.preventDefault();
+    state.selected = g.dataset.id;
+    turnSelected();
   });
   $('btn-delete').onclick = deleteSelected;
   $('btn-clear').onclick = () => { state.placed = []; state.selected = null; redraw(); };

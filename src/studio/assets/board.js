@@ -21,12 +21,20 @@ export function textOn(hex) {
   return l > 165 ? '#222222' : '#ffffff';
 }
 
+// What an object covers: its size, height × width when it lies turned.
+export function footprint(o) {
+  return o.turned ? { w: o.height, h: o.width } : { w: o.width, h: o.height };
+}
+
 export function overlaps(a, b) {
-  return a.x < b.x + b.width && b.x < a.x + a.width && a.y < b.y + b.height && b.y < a.y + a.height;
+  const fa = footprint(a);
+  const fb = footprint(b);
+  return a.x < b.x + fb.w && b.x < a.x + fa.w && a.y < b.y + fb.h && b.y < a.y + fa.h;
 }
 
 export function inside(o, s) {
-  return o.x >= s.x && o.y >= s.y && o.x + o.width <= s.x + s.width && o.y + o.height <= s.y + s.height;
+  const f = footprint(o);
+  return o.x >= s.x && o.y >= s.y && o.x + f.w <= s.x + s.width && o.y + f.h <= s.y + s.height;
 }
 
 // Geometry of a drawing: world (north up) -> SVG user units (y down).
@@ -38,7 +46,10 @@ export class View {
   sx(x) { return x - this.space.x + this.m; }
   sy(y) { return this.space.y + this.space.height - y + this.m; }
   // Screen rect of an object.
-  rect(o) { return { x: this.sx(o.x), y: this.sy(o.y + o.height), w: o.width, h: o.height }; }
+  rect(o) {
+    const f = footprint(o);
+    return { x: this.sx(o.x), y: this.sy(o.y + f.h), w: f.w, h: f.h };
+  }
   // World point from SVG user units.
   world(px, py) { return { x: px - this.m + this.space.x, y: this.space.y + this.space.height - (py - this.m) }; }
   get width() { return this.space.width + 2 * this.m; }
@@ -97,6 +108,14 @@ export function drawObject(layer, view, o, opts) {
   const fill = o.fixed ? opts.fixedColour : (opts.colours[o.class] || '#888888');
   const g = el('g', { class: o.fixed ? 'obj fixed' : 'obj', 'data-id': o.id }, layer);
   el('rect', { x: r.x, y: r.y, width: r.w, height: r.h, fill, stroke: darker(fill), 'stroke-width': 1 }, g);
+  if (o.turned) {
+    // A quarter-turn arrow in the north-east corner, as `rccpack render` draws it.
+    const q = Math.max(2, Math.min(9, Math.min(r.w, r.h) * 0.3));
+    const ax = r.x + r.w - q - 1.5;
+    const ay = r.y + 1.5;
+    el('path', { class: 'turn-mark', d: `M ${ax} ${ay} A ${q} ${q} 0 0 1 ${ax + q} ${ay + q} l ${-q / 2} 0 l 0 ${-q / 2}`,
+      fill: 'none', stroke: darker(fill), 'stroke-width': 1.6, 'pointer-events': 'none' }, g);
+  }
   if (!o.fixed && !opts.thumb && Math.min(r.w, r.h) >= 12) {
     const t = el('text', { x: r.x + r.w / 2, y: r.y + r.h / 2, 'font-size': Math.min(r.w, r.h) * 0.5,
       'text-anchor': 'middle', 'dominant-baseline': 'central', fill: textOn(fill), 'pointer-events': 'none' }, g);

@@ -162,6 +162,18 @@ fn emitted_encoded(
     opts: &SynthOptions,
     connectivity: super::model::Connectivity,
 ) -> Result<Emitted, SynthError> {
+    problem.validate()?;
+    if let Some(i) = problem
+        .objects
+        .iter()
+        .position(|o| !o.is_placed() && o.turnable && o.is_oblong())
+    {
+        return Err(SynthError::Unsupported(format!(
+            "objects[{i}] `{}` is turnable: the emitted model has no orientation choice yet; \
+             expected a problem without \"turnable\" objects for --emit (synth solves it)",
+            problem.objects[i].id
+        )));
+    }
     let encoding = super::model::Encoding {
         connectivity,
         ..super::model::Encoding::from_env()

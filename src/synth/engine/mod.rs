@@ -622,6 +622,8 @@ mod tests {
                     width: 10,
                     height: 10,
                     fixed: false,
+                    turnable: false,
+                    turned: false,
                 })
                 .chain([Object::fixed_at("f", "F", 20, 10, 10, 10)])
                 .collect(),

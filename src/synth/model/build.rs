@@ -130,12 +130,13 @@ impl Model {
             interned: HashMap::new(),
         };
         for (i, o) in problem.objects.iter().enumerate() {
-            m.sizes.push((o.width, o.height));
+            let (w, h) = o.footprint();
+            m.sizes.push((w, h));
             match (o.x, o.y) {
                 (Some(x), Some(y)) => m.coords.push((Coord::Const(x), Coord::Const(y))),
                 _ => {
-                    let ux = floor_div(sp.width - o.width, g);
-                    let uy = floor_div(sp.height - o.height, g);
+                    let ux = floor_div(sp.width - w, g);
+                    let uy = floor_div(sp.height - h, g);
                     if ux < 0 || uy < 0 {
                         m.too_large.push(i);
                     }

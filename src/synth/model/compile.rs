@@ -227,6 +227,12 @@ impl Model {
             // Only a group rule's whole formula (posted by `post_rules`);
             // read per object it is false, as in the evaluator.
             Formula::Shape(_) => Lit::FALSE,
+            // Every orientation is given in the model's problem (the
+            // orientation choices are solved one by one, `synth::turns`).
+            Formula::Turned(_) => {
+                let ob = &problem.objects[o];
+                Lit::Const(ob.turned && ob.is_oblong())
+            }
             Formula::Not(g) => !self.formula(g, o, problem, contact, cache),
             Formula::And(v) => {
                 let ls = v

@@ -386,6 +386,8 @@ mod tests {
             width: w,
             height: h,
             fixed: false,
+            turnable: false,
+            turned: false,
         }
     }
 

@@ -76,7 +76,9 @@ impl Model {
     }
 
     pub(super) fn post_symmetry(&mut self, problem: &Scene) {
-        // Groups of unplaced objects with the same class and size.
+        // Groups of unplaced objects with the same class, size and
+        // turnability (a turnable object is not interchangeable with one
+        // that may not turn).
         let mut groups: Vec<Vec<usize>> = Vec::new();
         for (i, o) in problem.objects.iter().enumerate() {
             if o.is_placed() {
@@ -84,7 +86,9 @@ impl Model {
             }
             match groups.iter_mut().find(|g| {
                 let p = &problem.objects[g[0]];
-                p.class == o.class && p.width == o.width && p.height == o.height
+                p.class == o.class
+                    && (p.width, p.height, p.turned) == (o.width, o.height, o.turned)
+                    && p.turnable == o.turnable
             }) {
                 Some(g) => g.push(i),
                 None => groups.push(vec![i]),

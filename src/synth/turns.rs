@@ -1,0 +1,397 @@
+//! Objects that turn (docs/guide.md#objects-that-turn): a problem whose
+//! unplaced objects may lie turned by 90° is solved as one exact solve per
+//! *orientation choice*, and the best layout over the choices is the
+//! answer.
+//!
+//! Objects of one class and size that may turn are interchangeable (rules
+//! name classes, resemblance and warm starts match class and footprint),
+//! so a choice is how many of each such group lie turned — the first `t`
+//! of the group in problem order — not which: `Π (nᵍ + 1)` choices, at most
+//! [`MAX_ORIENTATION_CHOICES`] (past that, only the flat choice is solved,
+//! and the problem is refused unless its layout keeps every rule). A square object never turns (its footprint
+//! is the same). Each choice is the same problem with `turned` set on the
+//! chosen objects, solved (and verified) like any other problem, so:
+//!
+//! - `optimal` means every choice was solved to optimality or proven
+//!   infeasible: the layout is optimal over every orientation;
+//! - `infeasible` means every choice was proven infeasible: no layout in
+//!   any orientation (the conflict is the union of the choices' conflicts);
+//! - a limit (time, nodes, Ctrl-C) is shared by the choices in turn; what
+//!   is left unsolved makes the result `feasible` or `unknown`;
+//! - without a second objective (`like`), a layout that satisfies every
+//!   rule (the numerator is the total weight) ends the search: no choice
+//!   can score more, so the choices left are not solved.
+
+use super::{
+    synthesize_fixed, verify_solution, Conflict, Progress, ProgressFn, Resemblance, SolveStats,
+    Status, SynthError, SynthOptions, SynthResult,
+};
+use crate::rules::RuleSet;
+use crate::scene::Scene;
+use std::sync::atomic::Ordering;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+/// Most orientation choices (`Π (nᵍ + 1)` over the groups of
+/// interchangeable turnable objects) one synthesis tries.
+pub const MAX_ORIENTATION_CHOICES: u128 = 256;
+
+/// The groups of interchangeable objects that may turn: unplaced,
+/// `turnable`, not square, of one class and size; indices in problem
+/// order. Empty: the problem has no orientation to choose.
+pub(crate) fn turn_groups(problem: &Scene) -> Vec<Vec<usize>> {
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for (i, o) in problem.objects.iter().enumerate() {
+        if o.is_placed() || !o.turnable || !o.is_oblong() {
+            continue;
+        }
+        match groups.iter_mut().find(|g| {
+            let p = &problem.objects[g[0]];
+            p.class == o.class && (p.width, p.height) == (o.width, o.height)
+        }) {
+            Some(g) => g.push(i),
+            None => groups.push(vec![i]),
+        }
+    }
+    groups
+}
+
+/// How many orientation choices `groups` give (saturating).
+pub(crate) fn choice_count(groups: &[Vec<usize>]) -> u128 {
+    groups
+        .iter()
+        .fold(1u128, |acc, g| acc.saturating_mul(g.len() as u128 + 1))
+}
+
+/// Every orientation choice, as turned counts per group, the choice with
+/// nothing turned first (then the first group's count varying fastest).
+fn choices(groups: &[Vec<usize>]) -> Vec<Vec<usize>> {
+    let mut out = vec![vec![0; groups.len()]];
+    loop {
+        let mut next = out[out.len() - 1].clone();
+        let mut g = 0;
+        loop {
+            if g == groups.len() {
+                return out;
+            }
+            if next[g] < groups[g].len() {
+                next[g] += 1;
+                break;
+            }
+            next[g] = 0;
+            g += 1;
+        }
+        out.push(next);
+    }
+}
+
+/// The problem with the first `turned[g]` objects of every group turned.
+fn oriented(problem: &Scene, groups: &[Vec<usize>], turned: &[usize]) -> Scene {
+    let mut p = problem.clone();
+    for (g, &t) in groups.iter().zip(turned) {
+        for &i in &g[..t] {
+            p.objects[i].turned = true;
+        }
+    }
+    p
+}
+
+/// One choice's outcome, kept for the combination.
+struct Solved {
+    result: SynthResult,
+    /// When its solve started, since the whole solve's start.
+    offset: Duration,
+}
+
+/// [`super::synthesize`] for a problem with orientation choices (`groups`
+/// from [`turn_groups`], not empty).
+pub(super) fn synthesize_turning(
+    problem: &Scene,
+    rules: &RuleSet,
+    opts: &SynthOptions,
+    groups: &[Vec<usize>],
+) -> Result<SynthResult, SynthError> {
+    let count = choice_count(groups);
+    // Past the limit only the flat choice is tried: enough when its layout
+    // keeps every rule, else the problem is refused.
+    let too_many = count > MAX_ORIENTATION_CHOICES;
+    let all = if too_many {
+        vec![vec![0; groups.len()]]
+    } else {
+        choices(groups)
+    };
+    let start = Instant::now();
+    let deadline = opts.time_limit.and_then(|t| start.checked_add(t));
+    // The best score reported so far: progress reports only improvements
+    // over every choice, timed from the whole solve's start.
+    let reported = Arc::new(Mutex::new(f64::NEG_INFINITY));
+    let mut nodes_used: u64 = 0;
+    let mut solved: Vec<Solved> = Vec::new();
+    let (mut stopped, mut maximum) = (false, false);
+    for turned in all {
+        let cancelled = opts
+            .cancel
+            .as_ref()
+            .is_some_and(|c| c.load(Ordering::Relaxed));
+        let now = Instant::now();
+        let time_left = deadline.map(|d| d.saturating_duration_since(now));
+        let nodes_left = opts.node_limit.map(|n| n.saturating_sub(nodes_used));
+        if cancelled || time_left == Some(Duration::ZERO) || nodes_left == Some(0) {
+            stopped = true;
+            break;
+        }
+        let offset = now.duration_since(start);
+        let mut sub = opts.clone();
+        sub.time_limit = time_left;
+        sub.node_limit = nodes_left;
+        sub.progress = opts.progress.as_ref().map(|f| {
+            let (f, reported) = (f.clone(), Arc::clone(&reported));
+            ProgressFn(Arc::new(move |p: &Progress| {
+                let mut best = reported.lock().unwrap_or_else(|e| e.into_inner());
+                if p.score > *best {
+                    *best = p.score;
+                    (f.0)(&Progress {
+                        score: p.score,
+                        elapsed: offset + p.elapsed,
+                    });
+                }
+            }))
+        });
+        let choice = oriented(problem, groups, &turned);
+        let result = synthesize_fixed(&choice, rules, &sub)?;
+        nodes_used = nodes_used.saturating_add(result.stats.nodes);
+        let top = opts.like.is_none() && at_maximum(&result);
+        solved.push(Solved { result, offset });
+        if top {
+            maximum = true;
+            break;
+        }
+    }
+    if too_many && !maximum {
+        let objects: usize = groups.iter().map(Vec::len).sum();
+        return Err(SynthError::TooLarge(format!(
+            "{objects} turnable objects in {} groups of one class and size give {count} orientation choices, \
+             more than the {MAX_ORIENTATION_CHOICES} synthesis tries (and the layout with none turned breaks a rule); \
+             expected fewer turnable objects (drop \"turnable\" from some, or make interchangeable ones the same class and size)",
+            groups.len()
+        )));
+    }
+    let mut out = combine(solved, stopped, opts.like.is_some(), maximum);
+    out.stats.time_ms = start.elapsed().as_secs_f64() * 1000.0;
+    if let Some(scene) = &out.scene {
+        verify_solution(problem, scene, rules, opts.contact).map_err(SynthError::Unverified)?;
+    }
+    Ok(out)
+}
+
+/// Whether a result's layout satisfies every rule (its numerator is the
+/// total weight): no layout scores more.
+fn at_maximum(r: &SynthResult) -> bool {
+    r.evaluation
+        .as_ref()
+        .is_some_and(|e| e.hard_ok() && e.satisfied_weight >= e.total_weight)
+}
+
+/// The numerator of a result's layout (`None` without one).
+fn numerator(r: &SynthResult) -> Option<f64> {
+    r.evaluation.as_ref().map(|e| e.satisfied_weight)
+}
+
+/// The best layout over the choices, its status and bounds (see the
+/// module's documentation). `stopped`: a limit struck before every choice
+/// was tried; `maximum`: the last choice solved found a layout that
+/// satisfies every rule, so the choices left cannot score more.
+fn combine(mut solved: Vec<Solved>, stopped: bool, like: bool, maximum: bool) -> SynthResult {
+    let ms = |d: Duration| d.as_secs_f64() * 1000.0;
+    let mut stats = SolveStats::default();
+    for s in &solved {
+        stats.nodes += s.result.stats.nodes;
+        stats.conflicts += s.result.stats.conflicts;
+    }
+    stats.time_to_first_ms = solved
+        .iter()
+        .filter_map(|s| Some(ms(s.offset) + s.result.stats.time_to_first_ms?))
+        .reduce(f64::min);
+    let all_proven = maximum
+        || !stopped
+            && solved
+                .iter()
+                .all(|s| matches!(s.result.status, Status::Optimal | Status::Infeasible));
+    // The best: the largest numerator, then the smallest resemblance cost,
+    // then the earliest choice.
+    let cost = |r: &SynthResult| r.resemblance.map_or(0, |x| x.cost);
+    let mut best: Option<usize> = None;
+    for (i, s) in solved.iter().enumerate() {
+        let Some(n) = numerator(&s.result) else {
+            continue;
+        };
+        let better = match best {
+            None => true,
+            Some(b) => {
+                let bn = numerator(&solved[b].result).unwrap_or(f64::NEG_INFINITY);
+                n > bn || (n == bn && cost(&s.result) < cost(&solved[b].result))
+            }
+        };
+        if better {
+            best = Some(i);
+        }
+    }
+    let Some(b) = best else {
+        let infeasible = all_proven && !solved.is_empty();
+        let conflict = infeasible.then(|| union_conflict(&solved));
+        return SynthResult::without_layout(
+            if infeasible {
+                Status::Infeasible
+            } else {
+                Status::Unknown
+            },
+            conflict,
+            stats,
+        );
+    };
+    // A bound on every choice's score: the largest of their bounds (an
+    // infeasible choice has none to add); a choice left unsolved, or
+    // stopped without a bound, leaves the score unbounded.
+    let bounded = !stopped
+        && solved
+            .iter()
+            .all(|s| s.result.status == Status::Infeasible || s.result.score_bound.is_some());
+    let score_bound = if maximum {
+        solved[b].result.evaluation.as_ref().map(|e| e.score)
+    } else {
+        bounded.then(|| {
+            solved
+                .iter()
+                .filter_map(|s| s.result.score_bound)
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
+    };
+    let best_num = numerator(&solved[b].result);
+    let resemblance = like
+        .then(|| resemblance_over(&solved, b, best_num, all_proven))
+        .flatten();
+    let offset = solved[b].offset;
+    let mut result = solved.swap_remove(b).result;
+    stats.time_to_best_ms = result.stats.time_to_best_ms.map(|t| ms(offset) + t);
+    result.status = if all_proven {
+        Status::Optimal
+    } else {
+        Status::Feasible
+    };
+    result.stats = stats;
+    result.score_bound = score_bound;
+    result.resemblance = resemblance;
+    result.conflict = None;
+    result
+}
+
+/// The second objective over the choices: the best layout's cost, proven
+/// when every choice was proven and every choice with the same numerator
+/// proved its cost; the bound is the least over the choices that may hold
+/// a layout with that numerator.
+fn resemblance_over(
+    solved: &[Solved],
+    b: usize,
+    best_num: Option<f64>,
+    all_proven: bool,
+) -> Option<Resemblance> {
+    let own = solved[b].result.resemblance?;
+    let rivals = solved.iter().filter(|s| {
+        s.result.status != Status::Infeasible
+            && (s.result.status != Status::Optimal || numerator(&s.result) == best_num)
+    });
+    let mut bound = own.bound;
+    let mut proven = own.proven && all_proven;
+    for s in rivals {
+        match s.result.resemblance {
+            Some(r) => {
+                bound = bound.min(r.bound);
+                proven &= r.proven;
+            }
+            None => {
+                bound = 0;
+                proven = false;
+            }
+        }
+    }
+    Some(Resemblance {
+        cost: own.cost,
+        proven: proven && bound == own.cost,
+        bound: bound.min(own.cost),
+    })
+}
+
+/// Every choice infeasible: the objects cannot fit when they cannot in
+/// any choice; the hard rules are those named by any choice (together
+/// with the geometry they rule out every orientation; minimal per choice,
+/// not necessarily over all).
+fn union_conflict(solved: &[Solved]) -> Conflict {
+    let mut c = Conflict {
+        objects_cannot_fit: true,
+        ..Conflict::default()
+    };
+    for s in solved {
+        let Some(k) = &s.result.conflict else {
+            c.objects_cannot_fit = false;
+            continue;
+        };
+        c.objects_cannot_fit &= k.objects_cannot_fit;
+        c.limit_struck |= k.limit_struck;
+        for r in &k.hard_rules {
+            if !c.hard_rules.contains(r) {
+                c.hard_rules.push(r.clone());
+            }
+        }
+    }
+    if c.objects_cannot_fit {
+        c.hard_rules.clear();
+    }
+    c
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Object, Space};
+
+    fn problem(objects: Vec<Object>) -> Scene {
+        Scene::new(
+            Space {
+                x: 0,
+                y: 0,
+                width: 40,
+                height: 20,
+            },
+            10,
+            objects,
+        )
+        .expect("valid")
+    }
+
+    #[test]
+    fn groups_are_turnable_oblong_unplaced_objects_of_one_class_and_size() {
+        let p = problem(vec![
+            Object::movable("a", "A", 20, 10).with_turnable(),
+            Object::movable("b", "A", 20, 10),
+            Object::movable("c", "A", 10, 10).with_turnable(),
+            Object::movable("d", "A", 20, 10).with_turnable(),
+            Object::movable("e", "B", 20, 10).with_turnable(),
+            Object::placed("f", "A", 0, 0, 10, 20).with_turnable(),
+        ]);
+        assert_eq!(turn_groups(&p), vec![vec![0, 3], vec![4]]);
+        assert_eq!(choice_count(&turn_groups(&p)), 3 * 2);
+    }
+
+    #[test]
+    fn choices_count_the_turned_objects_of_every_group_once() {
+        let groups = vec![vec![0, 1], vec![2]];
+        let c = choices(&groups);
+        assert_eq!(c.len(), 6);
+        assert_eq!(c[0], vec![0, 0]);
+        let mut sorted = c.clone();
+        sorted.sort();
+        sorted.dedup();
+        assert_eq!(sorted.len(), 6, "{c:?}");
+        assert!(c.iter().all(|t| t[0] <= 2 && t[1] <= 1));
+    }
+}
