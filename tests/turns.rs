@@ -715,8 +715,13 @@ fn past_256_orientation_choices_only_a_flat_layout_keeping_every_rule_is_returne
     let kept = rules("rule a_west: DR_W(A, S)\n");
     let r = synthesize(&problem, &kept, &SynthOptions::default()).expect("flat keeps every rule");
     assert_eq!(r.status, Status::Optimal);
-    verify_solution(&problem, r.scene.as_ref().expect("layout"), &kept, Contact::Point)
-        .expect("verified");
+    verify_solution(
+        &problem,
+        r.scene.as_ref().expect("layout"),
+        &kept,
+        Contact::Point,
+    )
+    .expect("verified");
     let broken = rules("rule a_on_end: turned(A)\n");
     let e = synthesize(&problem, &broken, &SynthOptions::default()).expect_err("refused");
     assert!(e.to_string().contains("512 orientation choices"), "{e}");
