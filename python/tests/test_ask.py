@@ -21,7 +21,14 @@ def test_ask_matches_cli_oracle(example: Path, tmp_path: Path, pilot_oracle: Ora
     # nothing written to the folder
     assert sorted(p.name for p in task.iterdir()) == sorted(p.name for p in example.iterdir())
     files, stdout = cli_session
-    asked = re.findall(r"^question \d+: `([^`]+)` .* -> (acceptable|not acceptable)", stdout, re.M)
+    # "question 3: `RULE` (reading) -> …" or, for a group, "question 1: 2
+    # rules (RULE, OTHER) -> …": the first rule is the question's
+    asked = [
+        (single or first, verdict)
+        for single, first, verdict in re.findall(
+            r"^question \d+: (?:`([^`]+)` .*|\d+ rules \(([^,)]+)[^)]*\)) -> (acceptable|not acceptable)", stdout, re.M
+        )
+    ]
     assert [(q.rule, q.accepted) for q in result.questions] == [(r, a == "acceptable") for r, a in asked]
     assert result.learned_rcc.encode() == files["learned.rcc"]
     assert result.answers_json.encode() == files["answers.json"]

@@ -152,13 +152,9 @@ impl ProbeChecker {
         free: &[usize],
         nodes: Option<u64>,
     ) -> Checked {
-        let mut assume: Vec<usize> = (0..self.held).filter(|j| !targets.contains(j)).collect();
-        for &k in targets {
-            let Some(neg) = self.negation_of[k] else {
-                return Checked::Proven;
-            };
-            assume.push(neg);
-        }
+        let Some(mut assume) = self.breaking(targets) else {
+            return Checked::Proven;
+        };
         assume.extend(
             self.pins
                 .iter()
@@ -177,14 +173,20 @@ impl ProbeChecker {
         targets: &[usize],
         nodes: Option<u64>,
     ) -> Checked {
+        match self.breaking(targets) {
+            Some(assume) => self.solve(&assume, nodes),
+            None => Checked::Proven,
+        }
+    }
+
+    /// The assumptions "every held rule but `targets` holds, and each of
+    /// `targets` breaks"; `None` when one of them cannot break at all.
+    fn breaking(&self, targets: &[usize]) -> Option<Vec<usize>> {
         let mut assume: Vec<usize> = (0..self.held).filter(|j| !targets.contains(j)).collect();
         for &k in targets {
-            let Some(neg) = self.negation_of[k] else {
-                return Checked::Proven;
-            };
-            assume.push(neg);
+            assume.push(self.negation_of[k]?);
         }
-        self.solve(&assume, nodes)
+        Some(assume)
     }
 
     /// Whether object `i` of the scene can move (it has a pin).

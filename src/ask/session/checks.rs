@@ -186,17 +186,8 @@ impl Asker {
         key: &(String, Vec<String>),
     ) -> Result<Option<Checked>, AskError> {
         let t = std::time::Instant::now();
-        // At most half of what is left: an undecided check leaves the
-        // other half to the demonstrations' edits and the probe search.
         let c = self.checker(checker)?;
-        let want = self
-            .opts
-            .probe
-            .check_nodes
-            .unwrap_or(u64::MAX)
-            .min(self.meter.borrow().half_nodes(c.weight()));
-        let deadline = self.meter.borrow().deadline();
-        let Some(grant) = self.meter.borrow().grant(want, c.weight()) else {
+        let Some((want, grant, deadline)) = self.check_grant(c) else {
             return Ok(None);
         };
         let first = if self.opts.reuse {
@@ -228,6 +219,26 @@ impl Asker {
             t.elapsed().as_secs_f64() * 1e3
         );
         Ok(Some(checked))
+    }
+
+    /// The nodes a check on `c` may use: what it wants (the check budget,
+    /// at most half of what is left: an undecided check leaves the other
+    /// half to the demonstrations' edits and the probe search), what the
+    /// question's meter grants now, and the meter's deadline; `None` when
+    /// the question's budget is spent.
+    pub(super) fn check_grant(
+        &self,
+        c: &ProbeChecker,
+    ) -> Option<(u64, u64, Option<std::time::Instant>)> {
+        let want = self
+            .opts
+            .probe
+            .check_nodes
+            .unwrap_or(u64::MAX)
+            .min(self.meter.borrow().half_nodes(c.weight()));
+        let deadline = self.meter.borrow().deadline();
+        let grant = self.meter.borrow().grant(want, c.weight())?;
+        Some((want, grant, deadline))
     }
 
     /// A check on a fresh checker of the premises and the rule only (a

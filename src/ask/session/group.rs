@@ -240,14 +240,7 @@ impl Asker {
             return Ok(Some(true));
         }
         let c = self.checker(checker)?;
-        let want = self
-            .opts
-            .probe
-            .check_nodes
-            .unwrap_or(u64::MAX)
-            .min(self.meter.borrow().half_nodes(c.weight()));
-        let deadline = self.meter.borrow().deadline();
-        let Some(grant) = self.meter.borrow().grant(want, c.weight()) else {
+        let Some((_, grant, deadline)) = self.check_grant(c) else {
             return Ok(None);
         };
         c.set_deadline(deadline);
@@ -334,27 +327,7 @@ impl Asker {
     fn pool_group_probe(&self, set: &[usize]) -> Option<Probe> {
         let at = self.pool_breaking_exactly(set)?;
         let scene = self.pool.borrow().scenes[at].clone();
-        let asked =
-            crate::rules::RuleSet::new(set.iter().map(|&j| self.held.rules[j].clone()).collect());
-        let mut broken: Vec<String> = Vec::new();
-        for r in crate::eval::evaluate(&scene, &asked, self.opts.probe.contact).rules {
-            for v in r.violators {
-                if !broken.contains(&v) {
-                    broken.push(v);
-                }
-            }
-        }
-        Some(Probe {
-            rule: self.held.rules[set[0]].name.clone(),
-            cost: self
-                .like
-                .as_ref()
-                .map_or(0, |l| l.cost(&self.problem, &scene)),
-            scene,
-            broken,
-            time_ms: 0.0,
-            edit: None,
-        })
+        Some(self.probe_of(set, scene))
     }
 }
 

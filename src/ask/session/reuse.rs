@@ -46,12 +46,29 @@ impl Asker {
             .position(|h| !h[k] && (0..n).filter(|&j| premise(j)).all(|j| h[j]))?;
         let scene = pool.scenes[at].clone();
         drop(pool);
-        let one = RuleSet::new(vec![self.held.rules[k].clone()]);
-        let broken = crate::eval::evaluate(&scene, &one, self.opts.probe.contact).rules[0]
-            .violators
-            .clone();
-        Some(Probe {
-            rule: self.held.rules[k].name.clone(),
+        Some(self.probe_of(&[k], scene))
+    }
+
+    /// `scene` (a layout of the problem) as the probe of the held rules
+    /// `targets` (`targets[0]` names it): the objects breaking any of them,
+    /// its resemblance cost.
+    pub(super) fn probe_of(&self, targets: &[usize], scene: Scene) -> Probe {
+        let asked = RuleSet::new(
+            targets
+                .iter()
+                .map(|&j| self.held.rules[j].clone())
+                .collect(),
+        );
+        let mut broken: Vec<String> = Vec::new();
+        for r in crate::eval::evaluate(&scene, &asked, self.opts.probe.contact).rules {
+            for v in r.violators {
+                if !broken.contains(&v) {
+                    broken.push(v);
+                }
+            }
+        }
+        Probe {
+            rule: self.held.rules[targets[0]].name.clone(),
             cost: self
                 .like
                 .as_ref()
@@ -60,7 +77,7 @@ impl Asker {
             broken,
             time_ms: 0.0,
             edit: None,
-        })
+        }
     }
 
     /// The key of held rule `k` that stays the same when learning is
