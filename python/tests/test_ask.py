@@ -35,7 +35,13 @@ def test_ask_matches_cli_oracle(example: Path, tmp_path: Path, pilot_oracle: Ora
     assert rccpack.scenes_to_json(result.demos).encode() == files["demos.json"]
     progress = result.progress
     assert progress["asked"] == len(result.questions) == len(asked) > 0
-    assert progress["dropped"] + progress["confirmed"] == progress["asked"]
+    # an accepted probe drops every rule it asked about (a group: all of
+    # them); a rejected single rule is confirmed, a rejected group is not,
+    # and the one left of a rejected group is confirmed without a question
+    assert progress["dropped"] == sum(len(q.group) or 1 for q in result.questions if q.accepted)
+    assert progress["confirmed"] == progress["deduced"] + sum(
+        1 for q in result.questions if q.accepted is False and not q.group
+    )
     q = result.questions[0]
     assert q.probe.complete and q.english and q.statement
 
