@@ -26,6 +26,7 @@ mod bench;
 mod check;
 mod io;
 mod learn;
+mod oracle;
 mod priors;
 mod render;
 mod run;
