@@ -310,3 +310,30 @@ fn a_resumed_session_narrows_the_same_group() {
         "no group was rejected in eight questions"
     );
 }
+
+/// A hand-edited `group` in answers.json is refused, naming the answer and
+/// what a group must be.
+#[test]
+fn a_bad_group_in_the_answers_is_refused() {
+    let (problem, demos, _) = example();
+    let mut asker =
+        Asker::new(problem.clone(), demos.clone(), None, Vec::new(), options()).unwrap();
+    let q = asker.next_question().unwrap().expect("a question");
+    assert!(q.group.len() >= 2, "the box's first question is a group");
+    asker.answer(&q, false).unwrap();
+    let good = asker.answers().to_vec();
+    for edit in [
+        vec![q.rule.clone()],
+        vec![q.group[1].rule.clone(), q.rule.clone()],
+        vec![q.rule.clone(), q.rule.clone()],
+    ] {
+        let mut answers = good.clone();
+        answers[0].group = edit.clone();
+        let e = Asker::new(problem.clone(), demos.clone(), None, answers, options())
+            .err()
+            .unwrap_or_else(|| panic!("{edit:?} accepted"))
+            .to_string();
+        assert!(e.starts_with("answers[0]: group: "), "{e}");
+        assert!(e.contains("two or more distinct rule names"), "{e}");
+    }
+}

@@ -97,6 +97,9 @@ fn is_directed(word: &str) -> bool {
 pub(super) struct Families {
     counts: HashMap<String, (u32, u32)>,
     evidence: Vec<(f64, bool)>,
+    /// The classes of the problem and the demonstrations (what a family
+    /// makes anonymous).
+    classes: BTreeSet<String>,
 }
 
 impl Families {
@@ -133,7 +136,10 @@ impl Asker {
     /// The families of every rule the answers settled.
     pub(super) fn families(&self) -> Families {
         let classes = self.class_names();
-        let mut f = Families::default();
+        let mut f = Families {
+            classes: classes.clone(),
+            ..Families::default()
+        };
         let mut note = |name: &str, meant: bool| {
             if let Some(text) = self.statement_of(name) {
                 f.add(family(&text, &classes, false), meant);
@@ -189,14 +195,14 @@ impl Asker {
         if let Some(prior) = stmt.and_then(|s| s.prior.as_ref()) {
             base = 0.5 * (base + prior.prior.clamp(0.0, 1.0));
         }
-        let classes = self.class_names();
+        let classes = &families.classes;
         let text = self.text(k);
         let (m, h) = [false, true]
             .iter()
             .map(|&g| {
                 families
                     .counts
-                    .get(&family(&text, &classes, g))
+                    .get(&family(&text, classes, g))
                     .copied()
                     .unwrap_or_default()
             })

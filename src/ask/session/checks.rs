@@ -75,25 +75,30 @@ impl Asker {
         })
     }
 
-    /// The probe for rule `k` keeping every held rule but `k` and those in
-    /// `equivalent`.
-    pub(super) fn search(&self, k: usize, equivalent: &[bool]) -> Result<Known, AskError> {
+    /// The options of a probe search under the question's budget: the
+    /// demonstrations to resemble, the nodes the meter grants now and its
+    /// deadline; `None` when the budget is spent.
+    pub(super) fn probe_search_options(&self) -> Option<ProbeOptions> {
         let mut opts = ProbeOptions {
             like: self.like.clone(),
             ..self.opts.probe.clone()
         };
-        {
-            let meter = self.meter.borrow();
-            let want = opts.node_limit.unwrap_or(u64::MAX);
-            let Some(nodes) = meter.grant(want, self.weight.get()) else {
-                return Ok(Known::Unknown);
-            };
-            opts.node_limit = Some(nodes);
-            if let Some(d) = meter.deadline() {
-                let left = d.saturating_duration_since(std::time::Instant::now());
-                opts.time_limit = Some(opts.time_limit.map_or(left, |t| t.min(left)));
-            }
+        let meter = self.meter.borrow();
+        let want = opts.node_limit.unwrap_or(u64::MAX);
+        opts.node_limit = Some(meter.grant(want, self.weight.get())?);
+        if let Some(d) = meter.deadline() {
+            let left = d.saturating_duration_since(std::time::Instant::now());
+            opts.time_limit = Some(opts.time_limit.map_or(left, |t| t.min(left)));
         }
+        Some(opts)
+    }
+
+    /// The probe for rule `k` keeping every held rule but `k` and those in
+    /// `equivalent`.
+    pub(super) fn search(&self, k: usize, equivalent: &[bool]) -> Result<Known, AskError> {
+        let Some(opts) = self.probe_search_options() else {
+            return Ok(Known::Unknown);
+        };
         let keep: Vec<usize> = (0..self.held.rules.len())
             .filter(|&j| j == k || !equivalent[j])
             .collect();

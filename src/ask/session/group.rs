@@ -30,7 +30,7 @@ use super::belief::GROUP_CHANCE;
 use super::{AskError, Asked, Asker, Known, Question};
 use crate::ask::answers::Answer;
 use crate::ask::checker::{Checked, ProbeChecker};
-use crate::ask::probe::{search_group_probe, Probe, ProbeOptions, ProbeOutcome};
+use crate::ask::probe::{search_group_probe, Probe, ProbeOutcome};
 use std::collections::BTreeSet;
 
 /// At most this many rules are tried for one group (each try is a check).
@@ -289,22 +289,9 @@ impl Asker {
     /// The group's probe searched under the question's budget (`None`: the
     /// budget found none).
     fn search_group(&self, set: &[usize]) -> Result<Option<Probe>, AskError> {
-        let mut opts = ProbeOptions {
-            like: self.like.clone(),
-            ..self.opts.probe.clone()
+        let Some(opts) = self.probe_search_options() else {
+            return Ok(None);
         };
-        {
-            let meter = self.meter.borrow();
-            let want = opts.node_limit.unwrap_or(u64::MAX);
-            let Some(nodes) = meter.grant(want, self.weight.get()) else {
-                return Ok(None);
-            };
-            opts.node_limit = Some(nodes);
-            if let Some(d) = meter.deadline() {
-                let left = d.saturating_duration_since(std::time::Instant::now());
-                opts.time_limit = Some(opts.time_limit.map_or(left, |t| t.min(left)));
-            }
-        }
         let t = std::time::Instant::now();
         let (found, nodes) = search_group_probe(&self.problem, &self.held, set, &opts)?;
         self.meter.borrow_mut().spend(nodes, self.weight.get());

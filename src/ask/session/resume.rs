@@ -11,6 +11,22 @@ use crate::scene::Scene;
 /// `demos` — one saved in the answers but not yet in the demonstrations
 /// (an abort between the two writes) is added again.
 pub(super) fn check_answers(answers: &[Answer], demos: &mut Vec<Scene>) -> Result<(), AskError> {
+    // A group question's answer names two rules or more, its own first.
+    for (i, a) in answers.iter().enumerate() {
+        let distinct: std::collections::BTreeSet<&String> = a.group.iter().collect();
+        if !a.group.is_empty()
+            && (a.group.len() < 2 || distinct.len() != a.group.len() || a.group[0] != a.rule)
+        {
+            return Err(AskError::BadAnswer {
+                index: i,
+                why: format!(
+                    "group: {:?} is not a group question's rules; expected two or more distinct rule names, `{}` first (or no `group` for a question about one rule)",
+                    a.group.iter().map(|g| crate::limits::cut(g)).collect::<Vec<_>>(),
+                    crate::limits::cut(&a.rule)
+                ),
+            });
+        }
+    }
     // A session never asks about a rule twice: a second answer about
     // one (a hand edit) contradicts or repeats the first.
     for (i, a) in answers.iter().enumerate() {
