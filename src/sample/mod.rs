@@ -729,14 +729,40 @@ impl Totals {
 /// [`Branch`] per orientation choice (the choice with nothing turned
 /// first); one branch, the problem as given, when nothing turns.
 fn orientation_branches(problem: &Scene) -> Result<(Vec<Vec<usize>>, Vec<Branch>), SampleError> {
-    let branch = |turned: Vec<usize>, problem: Scene| Branch {
-        turned,
-        problem,
-        model: None,
-        engine: None,
-        groups: Vec::new(),
-        done: false,
+    let Some((turning, choices)) = orientation_choices(problem, MAX_SAMPLE_ORIENTATIONS) else {
+        let objects = (problem.objects.iter())
+            .filter(|o| !o.is_placed() && o.turnable && o.is_oblong())
+            .count();
+        return Err(SampleError::Synth(SynthError::TooLarge(format!(
+            "{objects} turnable objects give more than the {MAX_SAMPLE_ORIENTATIONS} orientation \
+             choices sampling draws from; expected fewer turnable objects (drop \"turnable\" from \
+             some, or make interchangeable ones the same class and size)"
+        ))));
     };
+    let branches = (choices.into_iter())
+        .map(|(turned, problem)| Branch {
+            turned,
+            problem,
+            model: None,
+            engine: None,
+            groups: Vec::new(),
+            done: false,
+        })
+        .collect();
+    Ok((turning, branches))
+}
+
+/// The orientation choices of `problem`'s turnable objects: the groups of
+/// interchangeable ones (unplaced, `turnable`, oblong, one class and size;
+/// indices in problem order) and per choice how many of each group lie
+/// turned — the first ones of the group — with the problem oriented that
+/// way (those objects `turned`, the rest of the groups no longer
+/// `turnable`), the choice with nothing turned first. One choice, the
+/// problem as given, when nothing turns; `None` past `max` choices.
+pub(crate) type OrientationChoices = (Vec<Vec<usize>>, Vec<(Vec<usize>, Scene)>);
+
+/// See [`OrientationChoices`].
+pub(crate) fn orientation_choices(problem: &Scene, max: usize) -> Option<OrientationChoices> {
     let mut by_kind: BTreeMap<(String, i64, i64), Vec<usize>> = BTreeMap::new();
     for (i, o) in problem.objects.iter().enumerate() {
         if !o.is_placed() && o.turnable && o.is_oblong() {
@@ -744,20 +770,14 @@ fn orientation_branches(problem: &Scene) -> Result<(Vec<Vec<usize>>, Vec<Branch>
         }
     }
     let turning: Vec<Vec<usize>> = by_kind.into_values().collect();
-    let count = (turning.iter()).try_fold(1usize, |acc, g| acc.checked_mul(g.len() + 1));
-    let count = match count {
-        Some(c) if c <= MAX_SAMPLE_ORIENTATIONS => c,
-        _ => {
-            let objects: usize = turning.iter().map(Vec::len).sum();
-            return Err(SampleError::Synth(SynthError::TooLarge(format!(
-                "{objects} turnable objects in {} groups of one class and size give more than the \
-                 {MAX_SAMPLE_ORIENTATIONS} orientation choices sampling draws from; expected fewer \
-                 turnable objects (drop \"turnable\" from some)",
-                turning.len()
-            ))));
-        }
-    };
-    let mut branches = Vec::with_capacity(count);
+    let count = (turning.iter()).try_fold(1usize, |acc, g| acc.checked_mul(g.len() + 1))?;
+    if count > max {
+        return None;
+    }
+    if turning.is_empty() {
+        return Some((turning, vec![(Vec::new(), problem.clone())]));
+    }
+    let mut out = Vec::with_capacity(count);
     for c in 0..count {
         // Choice `c` in mixed radix: the first group's count fastest.
         let mut rest = c;
@@ -774,12 +794,9 @@ fn orientation_branches(problem: &Scene) -> Result<(Vec<Vec<usize>>, Vec<Branch>
             }
             turned.push(t);
         }
-        if turning.is_empty() {
-            p = problem.clone();
-        }
-        branches.push(branch(turned, p));
+        out.push((turned, p));
     }
-    Ok((turning, branches))
+    Some((turning, out))
 }
 
 /// The hint groups of a model: interchangeable unplaced objects (one class
