@@ -88,28 +88,35 @@ fn same_seed_same_layouts_other_seed_other_order() {
     assert_ne!(a, run(4));
 }
 
+/// What drawing to the end must return, per quality, from every layout
+/// brute force finds (its key and numerator): the optimum ones for
+/// `Optimum`, all of them for `MinScore(0)`.
+fn wanted(
+    all: &[(rccpack::sample::LayoutKey, f64)],
+) -> Vec<(Quality, BTreeSet<rccpack::sample::LayoutKey>)> {
+    let best = all
+        .iter()
+        .map(|(_, n)| *n)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let keys = |keep: &dyn Fn(f64) -> bool| -> BTreeSet<_> {
+        all.iter()
+            .filter(|(_, n)| keep(*n))
+            .map(|(k, _)| k.clone())
+            .collect()
+    };
+    vec![
+        (Quality::Optimum, keys(&|n| (n - best).abs() < 1e-9)),
+        (Quality::MinScore(0.0), keys(&|_| true)),
+    ]
+}
+
 #[test]
 fn drawing_to_the_end_returns_exactly_the_brute_force_layouts() {
     for (name, problem, rules) in tiny_problems() {
         let all = enumerate(&problem, &rules, Contact::Point, 1 << 22).unwrap();
-        let best = all
-            .iter()
-            .map(|(_, n)| *n)
-            .fold(f64::NEG_INFINITY, f64::max);
         let total = rules.rules.len();
         assert!(total > 0);
-        for (quality, keep) in [
-            (
-                Quality::Optimum,
-                Box::new(|n: f64| (n - best).abs() < 1e-9) as Box<dyn Fn(f64) -> bool>,
-            ),
-            (Quality::MinScore(0.0), Box::new(|_| true)),
-        ] {
-            let want: BTreeSet<_> = all
-                .iter()
-                .filter(|(_, n)| keep(*n))
-                .map(|(k, _)| k.clone())
-                .collect();
+        for (quality, want) in wanted(&all) {
             for repair in [Repair::Random, Repair::Activity] {
                 let o = SampleOptions {
                     repair,
@@ -377,22 +384,7 @@ fn turnable_blocks_are_sampled_in_both_orientations_and_drawing_to_the_end_finds
     for p in &oriented {
         all.extend(enumerate(p, &rules, Contact::Point, 1 << 22).unwrap());
     }
-    let best = all
-        .iter()
-        .map(|(_, n)| *n)
-        .fold(f64::NEG_INFINITY, f64::max);
-    for (quality, keep) in [
-        (
-            Quality::Optimum,
-            Box::new(|n: f64| (n - best).abs() < 1e-9) as Box<dyn Fn(f64) -> bool>,
-        ),
-        (Quality::MinScore(0.0), Box::new(|_| true)),
-    ] {
-        let want: BTreeSet<_> = all
-            .iter()
-            .filter(|(_, n)| keep(*n))
-            .map(|(k, _)| k.clone())
-            .collect();
+    for (quality, want) in wanted(&all) {
         let mut sampler = sample(&problem, &rules, &opts(quality, 5)).unwrap();
         let got: Vec<Scene> = sampler.by_ref().collect::<Result<_, _>>().unwrap();
         assert_eq!(sampler.state(), State::Exhausted, "{quality:?}");
