@@ -354,16 +354,61 @@ fn turnable_problem() -> (Scene, Vec<Scene>) {
         Object::movable("s", "S", 10, 10),
     ];
     let problem = Scene::new(space, 10, objects).unwrap();
-    let mut oriented = Vec::new();
-    for turned in 0..4u32 {
-        let mut p = problem.clone();
-        for (k, o) in p.objects.iter_mut().take(2).enumerate() {
-            o.turned = turned & (1 << k) != 0;
-            o.turnable = o.turned;
-        }
-        oriented.push(p);
-    }
+    let oriented = every_orientation(&problem);
     (problem, oriented)
+}
+
+/// `problem` in every orientation of its turnable objects: each subset of
+/// them given `turned`, the others not turnable.
+fn every_orientation(problem: &Scene) -> Vec<Scene> {
+    let turnable: Vec<usize> = (0..problem.objects.len())
+        .filter(|&i| problem.objects[i].turnable)
+        .collect();
+    (0..1u32 << turnable.len())
+        .map(|m| {
+            let mut p = problem.clone();
+            for (k, &i) in turnable.iter().enumerate() {
+                let o = &mut p.objects[i];
+                o.turned = m & (1 << k) != 0;
+                o.turnable = o.turned;
+            }
+            p
+        })
+        .collect()
+}
+
+#[test]
+fn a_box_that_fits_only_turned_is_sampled_turned_to_the_last_layout() {
+    // Four 20×10 blocks and a 10×10 one fill a 30×30 box only when a
+    // block stands on end (docs/guide.md#objects-that-turn).
+    use rccpack::scene::{Object, Space};
+    let space = Space {
+        x: 0,
+        y: 0,
+        width: 30,
+        height: 30,
+    };
+    let mut objects = vec![Object::movable("s", "S", 10, 10)];
+    objects.extend((0..4).map(|i| Object::movable(&format!("l{i}"), "L", 20, 10).with_turnable()));
+    let problem = Scene::new(space, 10, objects).unwrap();
+    let rules = RuleSet::new(Vec::new());
+    let mut want = BTreeSet::new();
+    for p in every_orientation(&problem) {
+        want.extend(
+            enumerate(&p, &rules, Contact::Point, 1 << 22)
+                .unwrap()
+                .into_iter()
+                .map(|(k, _)| k),
+        );
+    }
+    assert!(!want.is_empty());
+    let mut sampler = sample(&problem, &rules, &opts(Quality::AllRules, 3)).unwrap();
+    let got: Vec<Scene> = sampler.by_ref().collect::<Result<_, _>>().unwrap();
+    assert_eq!(sampler.state(), State::Exhausted);
+    check_all(&problem, &rules, &got, 1.0);
+    assert!(got.iter().all(|s| turned_ls(s) >= 1));
+    let keys: BTreeSet<_> = got.iter().map(|s| canonical_key(&problem, s)).collect();
+    assert_eq!(keys, want);
 }
 
 /// How many `L` blocks lie turned in a layout.
