@@ -177,6 +177,11 @@ fn quick_cli_run_exits_zero_and_problems_rerun() {
         serde_json::from_str(&std::fs::read_to_string(out.join("tasks.json")).unwrap()).unwrap();
     // 2 tasks × 2 sizes + the example at 5 per class.
     assert_eq!(json["rows"].as_array().unwrap().len(), 5);
+    // Without --turnable, tasks.json has none of its fields.
+    let text = std::fs::read_to_string(out.join("tasks.json")).unwrap();
+    for key in ["turnable", "habits_", "orientation", "not_applicable"] {
+        assert!(!text.contains(key), "{key} in tasks.json");
+    }
     for f in ["task00-1x.json", "task01-1.5x.rcc", "example-5.demos.json"] {
         assert!(problems.join(f).is_file(), "{f} missing");
     }
