@@ -22,11 +22,12 @@ pub struct LearnParams {
     /// The template set used when no statements are given (default: the
     /// second edition, docs/guide.md#learning).
     pub templates: Templates,
-    /// Slip rate `η` in [0, 0.5): the chance that one object of a
-    /// demonstration is not where the demonstrator meant it
-    /// (docs/guide.md#slips). A statement broken in one demonstration only
-    /// (of at least three) stays a candidate, weighed with this noise; 0 is
-    /// the thesis's model, exactly (default [`DEFAULT_SLIP_RATE`]).
+    /// Slip rate `η` in [0, 0.5): the chance that a movable block of a
+    /// demonstration is not where the demonstrator meant it, but put down
+    /// at random (docs/guide.md#slips). A statement broken in one
+    /// demonstration only (of at least three) is weighed as meant when a
+    /// block likelier a slip than not repairs it; 0 is the thesis's model,
+    /// exactly (default [`DEFAULT_SLIP_RATE`]).
     pub slip_rate: f64,
 }
 

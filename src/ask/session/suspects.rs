@@ -16,8 +16,7 @@ use std::collections::BTreeSet;
 pub struct SuspectQuestion {
     /// The demonstration's index in `demos.json`.
     pub demonstration: usize,
-    /// Its objects that break the rules, the one breaking the most first
-    /// (the likely slip, outlined in the picture).
+    /// Its block likeliest a slip (outlined in the picture): one block.
     pub objects: Vec<String>,
     /// Every rule it breaks that the other demonstrations keep.
     pub breaks: Vec<String>,

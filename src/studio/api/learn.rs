@@ -158,8 +158,8 @@ struct LearnResponse {
     source: &'static str,
     /// Statements weighed.
     statements: usize,
-    /// With a slip rate: the objects that break rules the other
-    /// demonstrations keep, most rules broken first (docs/guide.md#slips).
+    /// With a slip rate: the blocks likelier slips than not, with the
+    /// learned rules they break, the likeliest first (docs/guide.md#slips).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     suspects: Vec<crate::infer::Suspect>,
 }
