@@ -196,7 +196,13 @@ pub fn sample(
         warm_start: opts.like.clone(),
         ..SynthOptions::default()
     };
-    let (model, coefs, _) = crate::synth::objective_model(problem, rules, &synth_opts)?;
+    // Orientations as given (see `Sampler::unturned`): no orientation
+    // variable in the sampler's model.
+    let mut as_given = problem.clone();
+    for o in &mut as_given.objects {
+        o.turnable = false;
+    }
+    let (model, coefs, _) = crate::synth::objective_model(&as_given, rules, &synth_opts)?;
     let mut sampler = Sampler {
         problem: problem.clone(),
         rules: rules.clone(),

@@ -32,6 +32,16 @@ use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+/// Whether orientations are enumerated (one solve per choice) rather than
+/// chosen by the model's orientation variables: with a second objective
+/// (`like`: the resemblance costs assume each object's footprint), or
+/// when `RCCPACK_TURNS=enumerate` asks for it (to compare the two).
+pub(crate) fn enumerate(opts: &SynthOptions) -> bool {
+    static FORCED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    opts.like.is_some()
+        || *FORCED.get_or_init(|| std::env::var("RCCPACK_TURNS").as_deref() == Ok("enumerate"))
+}
+
 /// Most orientation choices (`Π (nᵍ + 1)` over the groups of
 /// interchangeable turnable objects) one synthesis tries.
 pub const MAX_ORIENTATION_CHOICES: u128 = 256;
@@ -85,12 +95,15 @@ fn choices(groups: &[Vec<usize>]) -> Vec<Vec<usize>> {
     }
 }
 
-/// The problem with the first `turned[g]` objects of every group turned.
+/// The problem with the first `turned[g]` objects of every group turned
+/// and the others flat: every orientation given (no object of a group
+/// keeps `turnable`, so the model has no orientation variable).
 fn oriented(problem: &Scene, groups: &[Vec<usize>], turned: &[usize]) -> Scene {
     let mut p = problem.clone();
     for (g, &t) in groups.iter().zip(turned) {
-        for &i in &g[..t] {
-            p.objects[i].turned = true;
+        for (k, &i) in g.iter().enumerate() {
+            p.objects[i].turned = k < t;
+            p.objects[i].turnable = false;
         }
     }
     p
@@ -158,7 +171,13 @@ pub(super) fn synthesize_turning(
             }))
         });
         let choice = oriented(problem, groups, &turned);
-        let result = synthesize_fixed(&choice, rules, &sub)?;
+        let mut result = synthesize_fixed(&choice, rules, &sub)?;
+        // The layout names the objects as the problem does.
+        if let Some(scene) = &mut result.scene {
+            for (o, p) in scene.objects.iter_mut().zip(&problem.objects) {
+                o.turnable = p.turnable;
+            }
+        }
         nodes_used = nodes_used.saturating_add(result.stats.nodes);
         let top = opts.like.is_none() && at_maximum(&result);
         solved.push(Solved { result, offset });

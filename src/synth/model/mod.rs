@@ -170,15 +170,18 @@ pub enum Connectivity {
     Circuit,
 }
 
-/// An integer grid-index variable with domain `0..=ub`.
+/// An integer grid-index variable with domain `0..=ub`, or an object's
+/// orientation variable (`turn`: domain `0..=1`, 1 when it lies turned).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct IntVar {
-    /// The object it positions.
+    /// The object it positions (or turns).
     pub object: usize,
-    /// Which coordinate.
+    /// Which coordinate (`Axis::X` for an orientation variable).
     pub axis: Axis,
     /// Upper bound of the domain (the lower bound is 0).
     pub ub: i64,
+    /// An orientation variable, not a coordinate.
+    pub turn: bool,
 }
 
 /// One coordinate of an object in the model.
@@ -259,8 +262,13 @@ pub struct Model {
     pub vars: Vec<IntVar>,
     /// Per object: `(x, y)` coordinates.
     pub coords: Vec<(Coord, Coord)>,
-    /// Per object: `(width, height)`.
+    /// Per object: `(width, height)`: its footprint as given (flat for an
+    /// object with an orientation variable, see [`Model::turn_vars`]).
     pub sizes: Vec<(i64, i64)>,
+    /// Per object: its orientation variable (an index into
+    /// [`Model::vars`], after every coordinate variable), for an unplaced,
+    /// `turnable`, oblong object not already `turned`; `None` otherwise.
+    pub turn_vars: Vec<Option<usize>>,
     /// Boolean definitions, children before parents.
     pub bools: Vec<BoolDef>,
     /// Clauses that must hold (the symmetry fallback; non-overlap only
@@ -289,6 +297,10 @@ impl Model {
     /// The coordinate, in this model, of the object and axis that `v` (a
     /// variable of this or of another model of the same problem) positions.
     pub fn coord_of(&self, v: &IntVar) -> Coord {
+        if v.turn {
+            // An orientation variable: this model's, or none (`Const`).
+            return self.turn_vars[v.object].map_or(Coord::Const(0), Coord::Var);
+        }
         let (cx, cy) = self.coords[v.object];
         match v.axis {
             Axis::X => cx,
@@ -328,6 +340,27 @@ impl Model {
         }
     }
 
+    /// Whether the model has an orientation variable.
+    pub fn has_turns(&self) -> bool {
+        self.turn_vars.iter().any(Option::is_some)
+    }
+
+    /// Whether object `o` lies turned under values `vals` (always false
+    /// without an orientation variable: its footprint is `sizes[o]`).
+    pub fn turned_in(&self, o: usize, vals: &[i64]) -> bool {
+        self.turn_vars[o].is_some_and(|t| vals[t] == 1)
+    }
+
+    /// Object `o`'s footprint `(width, height)` under values `vals`.
+    pub fn footprint_in(&self, o: usize, vals: &[i64]) -> (i64, i64) {
+        let (w, h) = self.sizes[o];
+        if self.turned_in(o, vals) {
+            (h, w)
+        } else {
+            (w, h)
+        }
+    }
+
     fn axis_origin(&self, axis: Axis) -> i64 {
         match axis {
             Axis::X => self.origin.0,
@@ -356,13 +389,17 @@ impl Model {
         out
     }
 
-    /// The complete scene for grid values `vals`.
+    /// The complete scene for grid values `vals` (an object whose
+    /// orientation variable is 1 lies `turned`).
     pub fn scene(&self, problem: &Scene, vals: &[i64]) -> Scene {
         let mut s = problem.clone();
         for (i, o) in s.objects.iter_mut().enumerate() {
             if let (Coord::Var(vx), Coord::Var(vy)) = self.coords[i] {
                 o.x = Some(self.origin.0 + self.grid * vals[vx]);
                 o.y = Some(self.origin.1 + self.grid * vals[vy]);
+            }
+            if self.turned_in(i, vals) {
+                o.turned = true;
             }
         }
         s
