@@ -429,12 +429,8 @@ fn check_conflict(case: &Case, c: &rccpack::synth::Conflict) -> Result<(), Strin
             "conflict {names:?} is feasible on its own (not a conflict)"
         ));
     }
-    // With objects that turn, the conflict is the union of every
-    // orientation's (docs/guide.md#objects-that-turn): a conflict, not
-    // necessarily a minimal one.
-    if case.scene.objects.iter().any(|o| o.turnable) {
-        return Ok(());
-    }
+    // With objects that turn too: the orientations are the model's
+    // variables, so the conflict is one solve's, minimal.
     for i in 0..names.len() {
         let rest: Vec<&str> = names
             .iter()
@@ -1148,6 +1144,17 @@ fn engine_matches_brute_force_with_objects_that_turn_lns_and_warm_starts() {
         true,
         true,
         check_warm,
+    ));
+}
+
+#[test]
+fn engine_matches_brute_force_with_objects_that_turn_and_lns_forced_on() {
+    assert_clean(run_with(
+        930_000..930_200,
+        SMALL_TURNING,
+        true,
+        true,
+        check_lns,
     ));
 }
 

@@ -634,6 +634,55 @@ mod tests {
         }
     }
 
+    /// With orientation variables: every pair literal is the geometry of
+    /// the footprints the orientation values give, and the model's
+    /// clauses hold exactly when every object lies inside the space and
+    /// no two overlap.
+    #[test]
+    fn pair_literals_and_containment_follow_the_orientation_variables() {
+        let mut scene = Scene {
+            space: Space {
+                x: 0,
+                y: 0,
+                width: 40,
+                height: 30,
+            },
+            grid: 10,
+            objects: vec![
+                obj("a", "A", 20, 10, None).with_turnable(),
+                // Flat it fits only at x ≤ 30; turned (30 × 10) at x ≤ 10.
+                obj("b", "B", 10, 30, None).with_turnable(),
+                obj("c", "C", 10, 10, None).with_turnable(),
+                obj("f", "F", 10, 20, Some((30, 10))),
+            ],
+        };
+        scene.objects[3].fixed = true;
+        for contact in Contact::ALL {
+            let m = Model::build(&scene, &RuleSet::default(), opts(contact, false));
+            // a and b turn, the square c does not.
+            assert_eq!(m.turn_vars, vec![Some(6), Some(7), None, None]);
+            assert_eq!((m.vars[2].ub, m.vars[3].ub), (3, 2));
+            let seen = check_pairs(&scene, contact);
+            assert!(seen.iter().all(|e| *e == (true, true)), "{seen:?}");
+            let mut inside = 0;
+            each_assignment(&m, |vals| {
+                let bools = m.eval_bools(vals);
+                let clauses = m.clauses.iter().all(|c| c.iter().any(|l| l.value(&bools)));
+                let s = m.scene(&scene, vals);
+                let within = s.objects.iter().all(|o| {
+                    let r = o.rect().expect("placed");
+                    r.x2() <= 40 && r.y2() <= 30
+                });
+                // (A model with orientation variables states non-overlap
+                // as clauses too.)
+                assert_eq!(clauses, within && m.non_overlapping(vals), "{vals:?}");
+                inside += usize::from(within);
+            });
+            // a: 3·3 flat + 4·2 turned; b: 4·1 + 2·3; c: 4·3.
+            assert_eq!(inside, (9 + 8) * (4 + 6) * 12);
+        }
+    }
+
     fn at(rel: Relation, q: Quant, t: &Target) -> Formula {
         Formula::Atom(Atom::quantified(rel, "A", q, t.clone()))
     }
