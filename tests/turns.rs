@@ -393,7 +393,7 @@ fn hard_orientation_rules_over_the_chosen_footprint() {
 }
 
 #[test]
-fn synth_writes_turned_in_the_layout_and_the_cli_refuses_emit_with_turns() {
+fn synth_writes_turned_in_the_layout_and_emits_the_orientation_variables() {
     let dir = scratch("turns-cli");
     let problem = write_file(&dir, "problem.json", &pinwheel(true).to_json());
     let rules_file = write_file(&dir, "none.rcc", "");
@@ -426,8 +426,19 @@ fn synth_writes_turned_in_the_layout_and_the_cli_refuses_emit_with_turns() {
         "--emit",
         emit.to_str().expect("utf-8"),
     ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stdout(&o));
-    assert!(stderr(&o).contains("turnable"), "{}", stderr(&o));
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let model: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&emit).expect("emitted")).expect("json");
+    let turns: Vec<&serde_json::Value> = (model["vars"].as_array().expect("vars").iter())
+        .filter(|v| v["axis"] == "turn")
+        .collect();
+    let ls = layout.objects.iter().filter(|o| o.class == "L").count();
+    assert_eq!(
+        turns.len(),
+        ls,
+        "one orientation variable per turnable block"
+    );
+    assert!(turns.iter().all(|v| v["ub"] == 1));
 }
 
 #[test]

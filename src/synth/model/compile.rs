@@ -66,7 +66,7 @@ impl Model {
     /// objects whose far edge it names: `∨ (orientation ∧ a − b ≥ k)` —
     /// exact, since exactly one case's orientation holds. Without an
     /// orientation variable involved it is the one literal it always was.
-    fn edge_ge(
+    pub(super) fn edge_ge(
         &mut self,
         axis: Axis,
         (a, ea): (usize, Edge),
@@ -76,12 +76,15 @@ impl Model {
         let ca = self.offsets(a, ea, axis);
         let cb = self.offsets(b, eb, axis);
         if ca.len() == 1 && cb.len() == 1 {
-            return self.diff_ge(axis, a, b, cb[0].1 - ca[0].1 + plus);
+            return self.diff_ge(axis, a, b, (cb[0].1 - ca[0].1).saturating_add(plus));
         }
         let mut cases = Vec::with_capacity(ca.len() * cb.len());
         for &(la, oa) in &ca {
             for &(lb, ob) in &cb {
-                cases.push(([la, lb], self.diff_ge(axis, a, b, ob - oa + plus)));
+                cases.push((
+                    [la, lb],
+                    self.diff_ge(axis, a, b, (ob - oa).saturating_add(plus)),
+                ));
             }
         }
         // The same bound in every case: no split needed.
