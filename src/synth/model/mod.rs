@@ -7,6 +7,26 @@
 //! `0..=⌊(space.width − width)/grid⌋` (resp. height), so the whole object lies
 //! inside the space. Fixed and already-placed objects are constants.
 //!
+//! # Objects that turn
+//!
+//! An unplaced, `turnable`, oblong object not already `turned` also gets
+//! an *orientation variable* `t` (domain `0..=1`, 1 when it lies turned;
+//! after every coordinate variable in [`Model::vars`], `IntVar::turn`
+//! set, [`Model::turn_vars`]). Its grid domains are the union of both
+//! orientations' (`0..=max(⌊(W−w)/g⌋, ⌊(W−h)/g⌋)`), with each
+//! orientation's own bounds as clauses (`t → gx ≤ ⌊(W−h)/g⌋`, …). A
+//! comparison that names its far edge becomes a case split over the
+//! orientations of the (at most two) objects involved, e.g.
+//! `x_a − x_b ≥ w_b` is `(¬t_b ∧ x_a − x_b ≥ w_b) ∨ (t_b ∧ x_a − x_b ≥ h_b)`,
+//! built from the same `Ge`/`DiffGe`/`And` definitions (`t` itself is
+//! `Ge { t, 1 }`), so every Boolean stays a function of the variables'
+//! values and nothing downstream needs a new kind. A model without an
+//! orientation variable is exactly the model it always was. Non-overlap
+//! of a model with one is stated pairwise (the engine's non-overlap
+//! propagator assumes constant sizes); the cumulatives give such an
+//! object the square of its smaller side (sound either way); resemblance
+//! terms leave it out (`synthesize` with `like` enumerates orientations).
+//!
 //! # Booleans
 //!
 //! Every Boolean is defined *exactly* (both directions) by a [`BoolDef`]:
