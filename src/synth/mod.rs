@@ -522,10 +522,12 @@ pub fn synthesize(
     // The problem as given: an unplaced object may not lie turned yet.
     problem.validate()?;
     let groups = turns::turn_groups(problem);
-    if groups.is_empty() || !turns::enumerate(opts) {
+    if groups.is_empty() {
         synthesize_fixed(problem, rules, opts)
-    } else {
+    } else if turns::enumerate(opts) {
         turns::synthesize_turning(problem, rules, opts, &groups)
+    } else {
+        turns::synthesize_model(problem, rules, opts, &groups)
     }
 }
 
