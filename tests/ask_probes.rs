@@ -861,3 +861,117 @@ fn a_session_agrees_with_enumeration() {
         "{sessions} {questions} {implied} {with_edits}"
     );
 }
+
+/// A session whose meant statement is about orientation ("every L lies
+/// turned", "no L lies turned") asks about it with a probe that turns a
+/// block over — a demonstration edit first — which the evaluator and the
+/// checker confirm, and whose `turned` flags survive in the answer.
+#[test]
+fn a_session_breaks_an_orientation_rule_by_turning_a_block() {
+    use rccpack::ask::{AnswersFile, AskOptions, Asker};
+    use rccpack::rules::parse_rules;
+    use rccpack::scene::Space;
+    let space = Space {
+        x: 0,
+        y: 0,
+        width: 80,
+        height: 40,
+    };
+    for (text, on_end) in [
+        ("rule L_on_end: turned(L)\nrule S_east: DR_E(S, L)\n", true),
+        ("rule L_flat: !turned(L)\nrule S_east: DR_E(S, L)\n", false),
+    ] {
+        let held = parse_rules(text).unwrap();
+        let l = |id: &str, x, y| {
+            let o = Object::placed(id, "L", x, y, 20, 10).with_turnable();
+            if on_end {
+                o.with_turned()
+            } else {
+                o
+            }
+        };
+        // Two L blocks (on end or flat) west of an S, in five places.
+        let demos: Vec<Scene> = (0..5)
+            .map(|d| {
+                let objects = vec![
+                    l("l1", 10 * d, 0),
+                    l("l2", 10 * d + 10, 20),
+                    Object::placed("s", "S", 70, 0, 10, 10),
+                ];
+                Scene::new(space, 10, objects).unwrap()
+            })
+            .collect();
+        let problem = Scene::new(
+            space,
+            10,
+            vec![
+                Object::movable("l1", "L", 20, 10).with_turnable(),
+                Object::movable("l2", "L", 20, 10).with_turnable(),
+                Object::movable("s", "S", 10, 10),
+            ],
+        )
+        .unwrap();
+        let mut asker = Asker::new(
+            problem.clone(),
+            demos,
+            Some(held.clone()),
+            Vec::new(),
+            AskOptions::default(),
+        )
+        .unwrap();
+        let name = &held.rules[0].name;
+        let mut asked = false;
+        while let Some(q) = asker.next_question().unwrap() {
+            if &q.rule != name {
+                asker.answer(&q, true).unwrap();
+                continue;
+            }
+            asked = true;
+            let s = &q.probe.scene;
+            // It breaks the rule asked about and keeps every other held one.
+            let ev = evaluate(s, asker.held(), Contact::Point);
+            for r in &ev.rules {
+                let broken = r.satisfied < r.subjects;
+                let about = r.name == q.rule || q.also_broken.contains(&r.name);
+                assert_eq!(broken, about, "{text}: {}", r.name);
+            }
+            // Some L lies the other way than the demonstrator's.
+            assert!(
+                s.objects
+                    .iter()
+                    .any(|o| o.class == "L" && o.turned != on_end),
+                "{text}: {s:?}"
+            );
+            match &q.probe.edit {
+                // A demonstration with a block turned over: the evaluator
+                // agrees with the checker, nothing overlaps.
+                Some(e) => {
+                    s.validate().unwrap();
+                    let m = e.moved.iter().find(|m| m.id.starts_with('l')).unwrap();
+                    assert_eq!(m.turned, on_end, "{text}: where it was");
+                }
+                None => {
+                    verify_solution(&problem, s, &RuleSet::new(Vec::new()), Contact::Point).unwrap()
+                }
+            }
+            let a = asker.answer(&q, false).unwrap().clone();
+            let file = AnswersFile {
+                answers: vec![a.clone()],
+            };
+            let back = AnswersFile::from_json(&file.to_json()).unwrap();
+            assert_eq!(back.answers[0].probe, a.probe, "{text}");
+            assert_eq!(back.answers[0].edit, a.edit, "{text}");
+        }
+        assert!(
+            asked,
+            "{text}: never asked: held {:?}, unasked {:?}",
+            asker
+                .held()
+                .rules
+                .iter()
+                .map(|r| &r.name)
+                .collect::<Vec<_>>(),
+            asker.unasked()
+        );
+    }
+}

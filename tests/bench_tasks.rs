@@ -177,6 +177,11 @@ fn quick_cli_run_exits_zero_and_problems_rerun() {
         serde_json::from_str(&std::fs::read_to_string(out.join("tasks.json")).unwrap()).unwrap();
     // 2 tasks × 2 sizes + the example at 5 per class.
     assert_eq!(json["rows"].as_array().unwrap().len(), 5);
+    // Without --turnable, tasks.json has none of its fields.
+    let text = std::fs::read_to_string(out.join("tasks.json")).unwrap();
+    for key in ["turnable", "habits_", "orientation", "not_applicable"] {
+        assert!(!text.contains(key), "{key} in tasks.json");
+    }
     for f in ["task00-1x.json", "task01-1.5x.rcc", "example-5.demos.json"] {
         assert!(problems.join(f).is_file(), "{f} missing");
     }
@@ -236,4 +241,210 @@ fn bad_flags_are_refused() {
         assert!(e.contains(names), "{args:?}: message names {names}: {e}");
         assert!(!out.exists(), "{args:?}: refused before writing");
     }
+}
+
+/// Generated tasks without `--turnable` are those of earlier versions,
+/// byte for byte: the demonstrations, problems and learned rules of seed
+/// 0's first two tasks, kept in `tests/fixtures/tasks-seed0.txt` (written
+/// before `--turnable` existed; regenerate with `RCCPACK_BLESS=1` only on
+/// purpose).
+#[test]
+fn generated_tasks_without_turnable_are_unchanged() {
+    let mut cfg = TasksConfig::quick(0, Duration::from_secs(1));
+    cfg.example_counts.clear();
+    let mut text = String::new();
+    for t in all_tasks(&cfg).expect("tasks") {
+        text.push_str(&format!("# task {}: {}\n", t.index, t.style));
+        text.push_str(&rccpack::scene::scenes_to_json(&t.demos));
+        text.push('\n');
+        for p in &t.problems {
+            text.push_str(&format!("# {}\n{}\n", p.name, p.scene.to_json()));
+        }
+        text.push_str(&t.rcc);
+    }
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/tasks-seed0.txt"
+    );
+    if std::env::var_os("RCCPACK_BLESS").is_some() {
+        std::fs::write(path, &text).unwrap();
+    }
+    let want = std::fs::read_to_string(path).expect("tests/fixtures/tasks-seed0.txt");
+    assert!(text == want, "the generated tasks changed");
+}
+
+/// `--turnable`: the oblong classes turn, the demonstrator lays each flat
+/// or stands it on end, and the classes, habits and box are those of the
+/// flat tasks (the coins come from a stream of their own).
+#[test]
+fn turnable_tasks_turn_the_oblong_classes_and_stand_some_on_end() {
+    use rccpack::bench::tasks::Orientation;
+    use rccpack::rules::Formula;
+    let mut cfg = TasksConfig::quick(0, Duration::from_secs(1));
+    cfg.example_counts.clear();
+    cfg.tasks = 6;
+    let flat = all_tasks(&cfg).expect("tasks");
+    cfg.turnable = true;
+    let turning = all_tasks(&cfg).expect("tasks");
+    assert_eq!(all_tasks(&cfg).unwrap(), turning, "same seed, same tasks");
+    let (mut on_end, mut laid_flat, mut learned) = (0, 0, 0);
+    for (f, t) in flat.iter().zip(&turning) {
+        assert_eq!(
+            f.demos[0].space, t.demos[0].space,
+            "task {}: same box",
+            t.index
+        );
+        for (fc, tc) in f.classes.iter().zip(&t.classes) {
+            assert_eq!(
+                (&fc.class, fc.width, fc.height, fc.max_count, fc.habit),
+                (&tc.class, tc.width, tc.height, tc.max_count, tc.habit)
+            );
+            assert_eq!(fc.orientation, Orientation::Fixed);
+            let oblong = tc.width != tc.height;
+            assert_eq!(tc.orientation != Orientation::Fixed, oblong, "{}", tc.class);
+            // Every block of the class in the demonstrations: turnable when
+            // the class turns, turned when it stands on end.
+            for o in t.demos.iter().flat_map(|d| &d.objects) {
+                if o.class == tc.class {
+                    assert_eq!((o.width, o.height), (tc.width, tc.height), "own size");
+                    assert_eq!(o.turnable, oblong);
+                    assert_eq!(o.turned, tc.orientation == Orientation::OnEnd);
+                }
+            }
+            for p in &t.problems {
+                for o in p.scene.objects.iter().filter(|o| o.class == tc.class) {
+                    assert!(!o.is_placed() && o.turnable == oblong && !o.turned);
+                }
+            }
+            let meant = tc.orientation.meant(&tc.class);
+            match tc.orientation {
+                Orientation::OnEnd => on_end += 1,
+                Orientation::Flat => laid_flat += 1,
+                Orientation::Fixed => assert!(meant.is_none()),
+            }
+            if let Some(m) = meant {
+                let want = if tc.orientation == Orientation::OnEnd {
+                    Formula::Turned(tc.class.clone())
+                } else {
+                    Formula::not(Formula::Turned(tc.class.clone()))
+                };
+                assert_eq!(m, want);
+                learned += usize::from(t.rules.rules.iter().any(|r| r.formula == m));
+            }
+        }
+    }
+    assert!(
+        on_end > 0 && laid_flat > 0,
+        "on end {on_end}, flat {laid_flat}"
+    );
+    // Every demonstration keeps the habit: learning keeps it (at most one
+    // miss over the six tasks).
+    assert!(
+        learned + 1 >= on_end + laid_flat,
+        "{learned} of {}",
+        on_end + laid_flat
+    );
+}
+
+/// A peer whose emitted model cannot turn a block is "n/a (turnable)",
+/// not a failure: in the line, the peer cell and the failure count.
+#[test]
+fn a_peer_that_cannot_turn_blocks_is_not_applicable_not_failed() {
+    use rccpack::bench::peers::Peer;
+    use rccpack::bench::tasks::{
+        peer_not_applicable, row_line, solve_peer, summarize, table_text, TaskRow,
+    };
+    use rccpack::synth::{synthesize, verify_solution, SynthError};
+    let mut cfg = TasksConfig::quick(0, Duration::from_secs(1));
+    cfg.example_counts.clear();
+    cfg.tasks = 1;
+    cfg.turnable = true;
+    let t = all_tasks(&cfg).unwrap().remove(0);
+    let p = &t.problems[0];
+    assert!(p.scene.objects.iter().any(|o| o.turnable), "{}", t.style);
+    let verify = |a: &rccpack::scene::Scene,
+                  b: &rccpack::scene::Scene,
+                  r: &rccpack::rules::RuleSet,
+                  c| { verify_solution(a, b, r, c).map_err(|e| e.to_string()) };
+    let engine = rccpack::bench::Solver {
+        solve: &synthesize,
+        verify: &verify,
+    };
+    let opts = rccpack::bench::tasks::solve_options(&cfg, &[], false);
+    match rccpack::synth::emit::emitted(&p.scene, &t.rules, &opts) {
+        Err(SynthError::Unsupported(_)) => {}
+        // The emitted model turns blocks: the peers run (`.ci/run`).
+        _ => return,
+    }
+    let row = solve_peer(engine, &cfg, &p.scene, &t.rules, Peer::CpSat);
+    assert!(peer_not_applicable(&row), "{row:?}");
+    let so = rccpack::bench::tasks::solve_once(engine, &p.scene, &t.rules, &opts);
+    let task_row = TaskRow {
+        series: TaskSeries::Tasks,
+        task: 0,
+        size_index: 0,
+        size: p.size.clone(),
+        name: p.name.clone(),
+        movable: p.movable,
+        rules: t.rules.rules.len(),
+        score_only: so,
+        like: None,
+        peers: vec![row],
+        turnable: p.scene.objects.iter().filter(|o| o.turnable).count(),
+        habits_learned: Some([1, 1]),
+    };
+    let line = row_line(&task_row);
+    assert!(line.contains("cp-sat n/a (turnable)"), "{line}");
+    assert!(!line.contains("failed"), "{line}");
+    let summary = summarize(&[task_row]);
+    let cell = &summary[0].peers[0];
+    assert_eq!((cell.failures, cell.not_applicable, cell.proven), (0, 1, 0));
+    let text = table_text(&summary);
+    assert!(text.contains("n/a (turnable) 1"), "{text}");
+    assert!(text.contains("turnable"), "{text}");
+}
+
+/// `bench tasks --turnable` runs, every layout checked, and its table says
+/// how many turnable blocks and orientation habits there were.
+#[test]
+fn turnable_cli_run_reports_orientation_habits() {
+    let out = crate::support::scratch("bench-tasks-turnable").join("out");
+    let o = crate::support::command()
+        .args([
+            "bench",
+            "tasks",
+            "--turnable",
+            "--tasks",
+            "2",
+            "--sizes",
+            "1",
+            "--no-example",
+            "--no-like",
+            "--time-limit",
+            "0.5",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(
+        stdout.contains("turnable, stood on end") || stdout.contains("turnable, laid flat"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("turnable    learned    kept_so"),
+        "{stdout}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("tasks.json")).unwrap()).unwrap();
+    assert_eq!(json["config"]["turnable"], true);
+    let rows = json["rows"].as_array().unwrap();
+    assert!(rows.iter().any(|r| r["turnable"].as_u64().unwrap_or(0) > 0));
+    let _ = std::fs::remove_dir_all(&out);
 }

@@ -88,28 +88,35 @@ fn same_seed_same_layouts_other_seed_other_order() {
     assert_ne!(a, run(4));
 }
 
+/// What drawing to the end must return, per quality, from every layout
+/// brute force finds (its key and numerator): the optimum ones for
+/// `Optimum`, all of them for `MinScore(0)`.
+fn wanted(
+    all: &[(rccpack::sample::LayoutKey, f64)],
+) -> Vec<(Quality, BTreeSet<rccpack::sample::LayoutKey>)> {
+    let best = all
+        .iter()
+        .map(|(_, n)| *n)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let keys = |keep: &dyn Fn(f64) -> bool| -> BTreeSet<_> {
+        all.iter()
+            .filter(|(_, n)| keep(*n))
+            .map(|(k, _)| k.clone())
+            .collect()
+    };
+    vec![
+        (Quality::Optimum, keys(&|n| (n - best).abs() < 1e-9)),
+        (Quality::MinScore(0.0), keys(&|_| true)),
+    ]
+}
+
 #[test]
 fn drawing_to_the_end_returns_exactly_the_brute_force_layouts() {
     for (name, problem, rules) in tiny_problems() {
         let all = enumerate(&problem, &rules, Contact::Point, 1 << 22).unwrap();
-        let best = all
-            .iter()
-            .map(|(_, n)| *n)
-            .fold(f64::NEG_INFINITY, f64::max);
         let total = rules.rules.len();
         assert!(total > 0);
-        for (quality, keep) in [
-            (
-                Quality::Optimum,
-                Box::new(|n: f64| (n - best).abs() < 1e-9) as Box<dyn Fn(f64) -> bool>,
-            ),
-            (Quality::MinScore(0.0), Box::new(|_| true)),
-        ] {
-            let want: BTreeSet<_> = all
-                .iter()
-                .filter(|(_, n)| keep(*n))
-                .map(|(k, _)| k.clone())
-                .collect();
+        for (quality, want) in wanted(&all) {
             for repair in [Repair::Random, Repair::Activity] {
                 let o = SampleOptions {
                     repair,
@@ -328,4 +335,155 @@ fn cpsat_baseline_layouts_are_valid() {
     let b = rccpack::bench::sample::cpsat_baseline(&problem, &rules, Contact::Point, &first, 5, 0)
         .unwrap();
     assert_eq!((b.spread.layouts, b.invalid), (5, 0));
+}
+
+/// A tiny problem with two turnable 20×10 blocks `L` and a square `S` in
+/// a 30×30 box, and every orientation of it (the turned blocks given
+/// `turned`, the others not turnable), for brute force.
+fn turnable_problem() -> (Scene, Vec<Scene>) {
+    use rccpack::scene::{Object, Space};
+    let space = Space {
+        x: 0,
+        y: 0,
+        width: 30,
+        height: 30,
+    };
+    let objects = vec![
+        Object::movable("l0", "L", 20, 10).with_turnable(),
+        Object::movable("l1", "L", 20, 10).with_turnable(),
+        Object::movable("s", "S", 10, 10),
+    ];
+    let problem = Scene::new(space, 10, objects).unwrap();
+    let oriented = every_orientation(&problem);
+    (problem, oriented)
+}
+
+/// `problem` in every orientation of its turnable objects: each subset of
+/// them given `turned`, the others not turnable.
+fn every_orientation(problem: &Scene) -> Vec<Scene> {
+    let turnable: Vec<usize> = (0..problem.objects.len())
+        .filter(|&i| problem.objects[i].turnable)
+        .collect();
+    (0..1u32 << turnable.len())
+        .map(|m| {
+            let mut p = problem.clone();
+            for (k, &i) in turnable.iter().enumerate() {
+                let o = &mut p.objects[i];
+                o.turned = m & (1 << k) != 0;
+                o.turnable = o.turned;
+            }
+            p
+        })
+        .collect()
+}
+
+#[test]
+fn a_box_that_fits_only_turned_is_sampled_turned_to_the_last_layout() {
+    // Four 20×10 blocks and a 10×10 one fill a 30×30 box only when a
+    // block stands on end (docs/guide.md#objects-that-turn).
+    use rccpack::scene::{Object, Space};
+    let space = Space {
+        x: 0,
+        y: 0,
+        width: 30,
+        height: 30,
+    };
+    let mut objects = vec![Object::movable("s", "S", 10, 10)];
+    objects.extend((0..4).map(|i| Object::movable(&format!("l{i}"), "L", 20, 10).with_turnable()));
+    let problem = Scene::new(space, 10, objects).unwrap();
+    let rules = RuleSet::new(Vec::new());
+    let mut want = BTreeSet::new();
+    for p in every_orientation(&problem) {
+        want.extend(
+            enumerate(&p, &rules, Contact::Point, 1 << 22)
+                .unwrap()
+                .into_iter()
+                .map(|(k, _)| k),
+        );
+    }
+    assert!(!want.is_empty());
+    let mut sampler = sample(&problem, &rules, &opts(Quality::AllRules, 3)).unwrap();
+    let got: Vec<Scene> = sampler.by_ref().collect::<Result<_, _>>().unwrap();
+    assert_eq!(sampler.state(), State::Exhausted);
+    check_all(&problem, &rules, &got, 1.0);
+    assert!(got.iter().all(|s| turned_ls(s) >= 1));
+    let keys: BTreeSet<_> = got.iter().map(|s| canonical_key(&problem, s)).collect();
+    assert_eq!(keys, want);
+}
+
+/// How many `L` blocks lie turned in a layout.
+fn turned_ls(s: &Scene) -> usize {
+    s.objects
+        .iter()
+        .filter(|o| o.class == "L" && o.turned)
+        .count()
+}
+
+#[test]
+fn turnable_blocks_are_sampled_in_both_orientations_and_drawing_to_the_end_finds_every_layout() {
+    // Brute force over every orientation of every block: the layouts
+    // keeping the hard rule, with their numerators.
+    let (problem, oriented) = turnable_problem();
+    let rules = parse_rules("rule s_low hard: !DR_N(S, L)\nrule l_touch: EC_N(L, *)\n").unwrap();
+    let mut all: Vec<(rccpack::sample::LayoutKey, f64)> = Vec::new();
+    for p in &oriented {
+        all.extend(enumerate(p, &rules, Contact::Point, 1 << 22).unwrap());
+    }
+    for (quality, want) in wanted(&all) {
+        let mut sampler = sample(&problem, &rules, &opts(quality, 5)).unwrap();
+        let got: Vec<Scene> = sampler.by_ref().collect::<Result<_, _>>().unwrap();
+        assert_eq!(sampler.state(), State::Exhausted, "{quality:?}");
+        check_all(&problem, &rules, &got, 0.0);
+        let keys: BTreeSet<_> = got.iter().map(|s| canonical_key(&problem, s)).collect();
+        assert_eq!(keys, want, "{quality:?}");
+        // Every number of turned blocks occurs among the layouts.
+        let counts: BTreeSet<usize> = got.iter().map(turned_ls).collect();
+        assert_eq!(counts, BTreeSet::from([0, 1, 2]), "{quality:?}");
+    }
+}
+
+#[test]
+fn turnable_blocks_lie_turned_in_a_fair_share_of_the_first_samples_same_seed_same_layouts() {
+    // The bundled example with four turnable 20×10 blocks added: the first
+    // layouts drawn turn some of them and leave others flat.
+    let (mut problem, mut rules) = box_task();
+    for i in 0..4 {
+        problem
+            .objects
+            .push(rccpack::scene::Object::movable(&format!("l{i}"), "L", 20, 10).with_turnable());
+    }
+    rules
+        .rules
+        .extend(parse_rules("rule l_low: DR_S(L, R)\n").unwrap().rules);
+    let draw = |seed| -> Vec<Scene> {
+        sample(&problem, &rules, &opts(Quality::AllRules, seed))
+            .unwrap()
+            .take(30)
+            .collect::<Result<_, _>>()
+            .unwrap()
+    };
+    let layouts = draw(11);
+    assert_eq!(layouts.len(), 30);
+    check_all(&problem, &rules, &layouts, 1.0);
+    let turned: usize = layouts.iter().map(turned_ls).sum();
+    let share = turned as f64 / (4.0 * layouts.len() as f64);
+    assert!((0.2..=0.8).contains(&share), "turned share {share}");
+    assert_eq!(draw(11), layouts, "same seed, same layouts");
+}
+
+#[test]
+fn a_hard_orientation_rule_is_kept_by_every_sample() {
+    let (problem, _) = turnable_problem();
+    for (text, want) in [
+        ("rule on_end hard: turned(L)\n", 2),
+        ("rule flat hard: !turned(L)\n", 0),
+    ] {
+        let rules = parse_rules(text).unwrap();
+        let mut sampler = sample(&problem, &rules, &opts(Quality::MinScore(0.0), 2)).unwrap();
+        let got: Vec<Scene> = sampler.by_ref().collect::<Result<_, _>>().unwrap();
+        assert_eq!(sampler.state(), State::Exhausted);
+        assert!(!got.is_empty());
+        check_all(&problem, &rules, &got, 0.0);
+        assert!(got.iter().all(|s| turned_ls(s) == want), "{text}");
+    }
 }

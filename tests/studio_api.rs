@@ -1514,7 +1514,7 @@ fn studio_refuses_a_bad_priors_file_naming_the_field() {
 }
 
 /// "Check rules" with a slip rate asks first whether the demonstration
-/// that looks like a slip is meant; "not like that" sets it aside (journaled
+/// that looks like a slip is meant; "not like that" makes it a slip for sure (journaled
 /// as `rccpack ask` journals it), demos.json untouched.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn ask_asks_about_a_suspect_first() {
@@ -1559,7 +1559,10 @@ async fn ask_asks_about_a_suspect_first() {
         demos
     );
     let rcc = std::fs::read_to_string(dir.join("learned.rcc")).unwrap();
-    assert!(rcc.contains("is set aside: answered as a slip"), "{rcc}");
+    assert!(
+        rcc.contains("answered as a slip; it no longer counts"),
+        "{rcc}"
+    );
     // A question without a suspect has no `suspect` field.
     let v = next_question(&app).await;
     if let Some(q) = v["question"].as_object() {

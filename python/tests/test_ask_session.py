@@ -144,7 +144,8 @@ def test_a_suspect_is_asked_about_first_both_ways(example: Path, tmp_path: Path)
     with rccpack.AskSession(d, save=False) as s:
         q = s.next_question()
         assert q is not None and q.suspect is None
-    # "No": a slip, set aside; journaled, not asked again after a resume.
+    # "No": a slip, no longer counted against the rules it breaks; journaled,
+    # not asked again after a resume.
     with rccpack.AskSession(d, slip_rate=0.01) as s:
         q = s.next_question()
         assert q is not None and q.suspect == 5 and q.broken[0] == "r4", q
@@ -152,7 +153,7 @@ def test_a_suspect_is_asked_about_first_both_ways(example: Path, tmp_path: Path)
         assert a.suspect == 5 and a.accepted is False
     answers = json.loads((d / "answers.json").read_text())["answers"]
     assert answers[0]["suspect"]["demonstration"] == 5
-    assert "demonstration 5 is set aside" in (d / "learned.rcc").read_text()
+    assert "demonstration 5: `r4` answered as a slip" in (d / "learned.rcc").read_text()
     assert (d / "demos.json").read_text() == demos_before
     with rccpack.AskSession(d, slip_rate=0.01) as s:
         assert s.resumed == 1

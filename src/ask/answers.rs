@@ -46,8 +46,9 @@ pub struct Answer {
     /// When the question asked whether a demonstration that looks like a
     /// slip is as the person meant it (`probe` is that demonstration):
     /// which one and the rules it breaks. Accepted: it is meant, and the
-    /// rules it breaks are dropped; rejected: a slip, set aside from
-    /// learning (it stays in `demos.json`), and the rules confirmed.
+    /// rules it breaks are dropped; rejected: its likeliest slip is a slip
+    /// for sure, so it no longer counts against the rules it breaks (it
+    /// stays in `demos.json`), and those rules are confirmed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub suspect: Option<SuspectAnswer>,
     /// For a group question (docs/guide.md#questions): every rule the

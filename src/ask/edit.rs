@@ -76,6 +76,10 @@ pub struct Moved {
     pub x: i64,
     /// Its y in the demonstration.
     pub y: i64,
+    /// Whether it lay turned in the demonstration (an edit may turn a
+    /// block over, in place or as it moves).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub turned: bool,
 }
 
 /// The classes whose objects may move to break `rule`: its subject classes
@@ -154,6 +158,17 @@ pub(crate) struct EditSearch<'a> {
     pub time_limit: Option<Duration>,
     /// Stops every solve when set.
     pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    /// The class and size of the problem's turnable blocks: a moved block
+    /// of one of them may also turn over (as may a block the demonstration
+    /// marks `turnable` or `turned`).
+    pub turnable: Vec<(String, i64, i64)>,
+}
+
+/// Whether an edit may turn `o` over: oblong, and `turnable`, `turned`,
+/// or of a class and size in `kinds`.
+pub(super) fn may_turn(o: &crate::scene::Object, kinds: &[(String, i64, i64)]) -> bool {
+    o.is_oblong()
+        && (o.turnable || o.turned || kinds.contains(&(o.class.clone(), o.width, o.height)))
 }
 
 impl EditSearch<'_> {
@@ -211,7 +226,7 @@ impl EditSearch<'_> {
         for (n, (d, free)) in tries.into_iter().take(MAX_SOLVES).enumerate() {
             let demo = &self.demos[d];
             if checkers[d].is_none() {
-                match ProbeChecker::pinned(demo, held, &popts) {
+                match ProbeChecker::pinned(demo, held, &popts, &self.turnable) {
                     Ok(c) => checkers[d] = Some(c),
                     Err(_) => continue,
                 }
@@ -258,8 +273,13 @@ impl EditSearch<'_> {
         let nodes = meter.grant(EDIT_NODES, 1)?;
         let mut scene = demo.clone();
         for &i in free {
-            scene.objects[i].x = None;
-            scene.objects[i].y = None;
+            let o = &mut scene.objects[i];
+            // Unplaced, its orientation is synthesis' choice when it may
+            // turn (a turned block always may).
+            o.turnable = may_turn(o, &self.turnable);
+            o.turned = false;
+            o.x = None;
+            o.y = None;
         }
         let opts = SynthOptions {
             contact: self.contact,
@@ -309,11 +329,12 @@ impl EditSearch<'_> {
             .objects
             .iter()
             .zip(&layout.objects)
-            .filter(|(a, b)| (a.x, a.y) != (b.x, b.y))
+            .filter(|(a, b)| (a.x, a.y, a.turned) != (b.x, b.y, b.turned))
             .map(|(a, _)| Moved {
                 id: a.id.clone(),
                 x: a.x.unwrap_or(0),
                 y: a.y.unwrap_or(0),
+                turned: a.turned,
             })
             .collect();
         let mut broken: Vec<String> = Vec::new();

@@ -135,7 +135,7 @@ fn show_question(q: &Question, number: usize, picture: &Path) -> Result<()> {
             cut_list(&s.breaks.iter().map(String::as_str).collect::<Vec<_>>(), 6)
         ))?;
         outln(format!("  rule {}: {}", q.rule, q.english))?;
-        outln("  yes: it is meant, and those rules are dropped; no: a slip, set aside from learning (demos.json keeps it)")?;
+        outln("  yes: it is meant, and those rules are dropped; no: a slip, it no longer counts against them (demos.json keeps it)")?;
         outln(format!("  picture: {}", picture.display()))?;
         return Ok(());
     }
@@ -472,7 +472,7 @@ fn question_loop(a: &AskArgs, session: &mut Session) -> Result<LoopEnd> {
                     if accepted {
                         "meant: rules dropped"
                     } else {
-                        "a slip: set aside, rules confirmed"
+                        "a slip: it no longer counts, rules confirmed"
                     }
                 ),
                 None if !q.group.is_empty() => format!(

@@ -86,27 +86,18 @@ pub(crate) fn find_candidates(
     out
 }
 
-/// A statement broken in one demonstration only: a slip, perhaps
-/// (docs/guide.md#slips).
+/// A statement broken in one demonstration only: by a slip, perhaps
+/// (docs/guide.md#slips). In a learning result, the slip that repairs it.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
 pub struct Exception {
     /// The demonstration that breaks it (0-based).
     pub demo: usize,
     /// The objects that break it there: for a per-object statement every
     /// subject object that does not satisfy it; for a scene-level or group
-    /// statement the object first named as breaking it, if any.
+    /// statement the object first named as breaking it, if any. In a
+    /// learning result ([`crate::infer::StatementResult::exception`]): the
+    /// one slip that repairs it.
     pub objects: Vec<String>,
-}
-
-impl Exception {
-    /// `f`, the exceptions counted against the statement: the breaking
-    /// objects of a per-object statement, one demonstration otherwise.
-    pub fn count(&self, scope: Scope) -> u64 {
-        match scope {
-            Scope::Each => self.objects.len().max(1) as u64,
-            Scope::Scene(_) | Scope::Group => 1,
-        }
-    }
 }
 
 /// For each statement broken in exactly one of at least three
@@ -132,20 +123,7 @@ pub(crate) fn find_exceptions(
             continue;
         };
         let d = first.demo;
-        let holds_elsewhere = (d + 1..demos.len()).all(|e| {
-            let scene = &demos[e];
-            let a = &atoms[e];
-            match r.scope {
-                Scope::Each => (0..scene.objects.len())
-                    .filter(|&i| a.is_placed(i) && a.class_of(i) == r.subject)
-                    .all(|i| r.formula.eval(a, i)),
-                Scope::Group => r.scene_holds(a, scene.objects.len()),
-                Scope::Scene(q) => {
-                    let (c, m) = r.count(a, scene.objects.len());
-                    q.holds(c, m)
-                }
-            }
-        });
+        let holds_elsewhere = (d + 1..demos.len()).all(|e| holds_in(r, &demos[e], &atoms[e]));
         if !holds_elsewhere {
             continue;
         }
@@ -162,4 +140,20 @@ pub(crate) fn find_exceptions(
         out[k] = Some(Exception { demo: d, objects });
     }
     out
+}
+
+/// Whether `r` holds in `scene` (`atoms` its atom table): every subject
+/// object satisfies a per-object statement, a group or scene-level
+/// statement holds.
+pub(crate) fn holds_in(r: &CompiledRule, scene: &Scene, atoms: &ClassAtoms) -> bool {
+    match r.scope {
+        Scope::Each => (0..scene.objects.len())
+            .filter(|&i| atoms.is_placed(i) && atoms.class_of(i) == r.subject)
+            .all(|i| r.formula.eval(atoms, i)),
+        Scope::Group => r.scene_holds(atoms, scene.objects.len()),
+        Scope::Scene(q) => {
+            let (c, m) = r.count(atoms, scene.objects.len());
+            q.holds(c, m)
+        }
+    }
 }

@@ -3,6 +3,7 @@
 //! the posteriors and the order of the learned rules.
 
 use super::checks::{check_demo_landmarks, check_demos, check_statements};
+use super::slips::{Answered, Evidence, Slip, Weighed};
 use super::{
     english, find_candidates, find_exceptions, templates, ClassStats, Exception, InferError,
     LearnParams, Learned, NullModel, Posterior, Provenance, StatementResult, StatementSource,
@@ -39,13 +40,14 @@ pub struct LearnOptions<'a> {
     /// passes, [`InferError::Cancelled`] once the flag is set (both checked
     /// per random scene of the null model).
     pub stop: Stop,
-    /// Demonstrations the person named as a slip (indices into the
-    /// demonstrations): learning leaves them out; every demonstration
-    /// index in the result still counts over all of them.
-    pub set_aside: &'a [usize],
-    /// Demonstrations the person confirmed as meant, exceptions and all: a
-    /// statement one of them breaks is not held with an exception (with a
-    /// slip rate), so it is no candidate.
+    /// Demonstrations the person answered as holding a slip (indices into
+    /// the demonstrations): with a slip rate, the likeliest slip of each is
+    /// a slip for sure (docs/guide.md#questions-about-suspects), so it no
+    /// longer counts against the rules it breaks.
+    pub slipped: &'a [usize],
+    /// Demonstrations the person confirmed as meant, exceptions and all: no
+    /// slip is looked for there, so a statement one of them breaks is no
+    /// candidate.
     pub meant: &'a [usize],
 }
 
@@ -83,9 +85,6 @@ pub fn learn_with(
     params: &LearnParams,
     opts: &LearnOptions<'_>,
 ) -> Result<Learned, InferError> {
-    if !opts.set_aside.is_empty() {
-        return learn_setting_aside(demos, statements, params, opts);
-    }
     let priors = opts.priors;
     params.validate()?;
     check_demos(demos)?;
@@ -143,7 +142,18 @@ pub fn learn_with(
         scene_epsilon,
         priors: st.priors.as_deref(),
     };
-    let mut results = weigh(set, &broken, &exceptions, &counts, &numbers);
+    let chances = chances(set, &broken, &exceptions, &counts, &numbers);
+    let slips = find_slips(
+        demos,
+        &classes,
+        &compiled,
+        params,
+        &broken,
+        &exceptions,
+        &chances,
+        opts,
+    );
+    let mut results = weigh(set, &broken, &chances, &slips, &numbers);
     let order = rank(&mut results, params.contact);
     let used: Vec<bool> = (0..classes.len()).map(|c| subjects.contains(&c)).collect();
     Ok(Learned {
@@ -159,51 +169,8 @@ pub fn learn_with(
         statements: results,
         order,
         priors: priors.map(|p| crate::priors::apply::summary(p, st.ruled_out)),
+        slips,
     })
-}
-
-/// [`learn_with`] without the demonstrations `opts.set_aside`: learned
-/// from the others, with every demonstration index (where a statement is
-/// broken, an exception) renumbered to count over all of `demos`.
-fn learn_setting_aside(
-    demos: &[Scene],
-    statements: Option<&RuleSet>,
-    params: &LearnParams,
-    opts: &LearnOptions<'_>,
-) -> Result<Learned, InferError> {
-    if let Some(&d) = opts.set_aside.iter().find(|&&d| d >= demos.len()) {
-        return Err(InferError::BadParameter {
-            param: "set_aside",
-            value: d.to_string(),
-            expected: "the index of a demonstration",
-        });
-    }
-    let kept: Vec<usize> = (0..demos.len())
-        .filter(|i| !opts.set_aside.contains(i))
-        .collect();
-    let sub: Vec<Scene> = kept.iter().map(|&i| demos[i].clone()).collect();
-    let meant: Vec<usize> = kept
-        .iter()
-        .enumerate()
-        .filter(|(_, i)| opts.meant.contains(i))
-        .map(|(j, _)| j)
-        .collect();
-    let inner = LearnOptions {
-        priors: opts.priors,
-        stop: opts.stop.clone(),
-        set_aside: &[],
-        meant: &meant,
-    };
-    let mut learned = learn_with(&sub, statements, params, &inner)?;
-    for st in &mut learned.statements {
-        if let Some(p) = &mut st.broken_by {
-            p.demo = kept[p.demo];
-        }
-        if let Some(e) = &mut st.exception {
-            e.demo = kept[e.demo];
-        }
-    }
-    Ok(learned)
 }
 
 /// The statements learning weighs, with their priors.
@@ -340,26 +307,117 @@ struct Numbers<'a> {
     priors: Option<&'a [crate::priors::StatementPrior]>,
 }
 
-/// Every statement's result: for a candidate its chance rate, posterior
-/// and whether it is learned at the cutoff.
-fn weigh(
+/// A weighed statement's chance numbers.
+#[derive(Debug, Clone, Copy)]
+struct Chance {
+    /// Random subjects (scene-level: random scenes) satisfying it.
+    satisfied: u64,
+    q: f64,
+    epsilon: f64,
+    /// Subjects in the demonstrations (scene-level: demonstrations).
+    n: u64,
+    /// `π`, the prior that it is not meant.
+    prior: f64,
+}
+
+/// Per statement, its chance numbers when weighed (candidates, and with
+/// a slip rate the statements broken in one demonstration only).
+fn chances(
     set: &RuleSet,
     broken: &[Option<Provenance>],
     exceptions: &[Option<Exception>],
     counts: &[u64],
     x: &Numbers,
+) -> Vec<Option<Chance>> {
+    let params = x.params;
+    let mut ci = 0;
+    set.rules
+        .iter()
+        .enumerate()
+        .map(|(k, rule)| {
+            if broken[k].is_some() && exceptions[k].is_none() {
+                return None;
+            }
+            let st = &x.stats[x.subjects[k]];
+            let (n, trials, epsilon) = match rule.scope {
+                Scope::Each => (st.demo_objects, st.sample_objects, st.epsilon),
+                Scope::Scene(_) | Scope::Group => {
+                    (x.demos as u64, params.samples as u64, x.scene_epsilon)
+                }
+            };
+            let satisfied = counts[ci];
+            ci += 1;
+            Some(Chance {
+                satisfied,
+                q: satisfied as f64 / trials.max(1) as f64,
+                epsilon,
+                n,
+                prior: x.priors.map_or(params.prior, |p| 1.0 - p[k].prior),
+            })
+        })
+        .collect()
+}
+
+/// The slips among the demonstrations ([`super::slips`]), none at slip
+/// rate 0.
+#[allow(clippy::too_many_arguments)]
+fn find_slips(
+    demos: &[Scene],
+    classes: &ClassIndex,
+    compiled: &[CompiledRule],
+    params: &LearnParams,
+    broken: &[Option<Provenance>],
+    exceptions: &[Option<Exception>],
+    chances: &[Option<Chance>],
+    opts: &LearnOptions<'_>,
+) -> Vec<Slip> {
+    if params.slip_rate <= 0.0 {
+        return Vec::new();
+    }
+    let weighed: Vec<Option<Weighed>> = chances
+        .iter()
+        .map(|c| {
+            c.map(|c| Weighed {
+                p: super::posterior::chance_p(c.q, c.epsilon),
+                log10_posterior: Posterior::new(c.q, c.epsilon, c.n, c.prior).log10_posterior,
+            })
+        })
+        .collect();
+    let candidate: Vec<bool> = broken.iter().map(Option::is_none).collect();
+    let evidence = Evidence {
+        classes,
+        rules: compiled,
+        contact: params.contact,
+        exceptions,
+        candidate: &candidate,
+        weighed: &weighed,
+    };
+    let answered = Answered {
+        meant: opts.meant,
+        slipped: opts.slipped,
+    };
+    super::slips::find(demos, &evidence, params.slip_rate, answered)
+}
+
+/// Every statement's result: for a candidate its chance rate, posterior
+/// and whether it is learned at the cutoff; for a statement a slip
+/// repairs, the same with the slip's chance mixed in.
+fn weigh(
+    set: &RuleSet,
+    broken: &[Option<Provenance>],
+    chances: &[Option<Chance>],
+    slips: &[Slip],
+    x: &Numbers,
 ) -> Vec<StatementResult> {
     let params = x.params;
     let mut results: Vec<StatementResult> = Vec::with_capacity(set.rules.len());
-    let mut ci = 0;
     for (k, rule) in set.rules.iter().enumerate() {
         let st = &x.stats[x.subjects[k]];
-        let (n, trials, epsilon) = match rule.scope {
-            Scope::Each => (st.demo_objects, st.sample_objects, st.epsilon),
-            Scope::Scene(_) | Scope::Group => {
-                (x.demos as u64, params.samples as u64, x.scene_epsilon)
-            }
+        let n = match rule.scope {
+            Scope::Each => st.demo_objects,
+            Scope::Scene(_) | Scope::Group => x.demos as u64,
         };
+        let repaired_by = slips.iter().find(|s| s.repairs.contains(&k));
         let mut r = StatementResult {
             index: k,
             name: rule.name.clone(),
@@ -368,7 +426,10 @@ fn weigh(
             subject: rule.subject().to_string(),
             candidate: broken[k].is_none(),
             broken_by: broken[k].clone(),
-            exception: exceptions[k].clone(),
+            exception: repaired_by.map(|s| Exception {
+                demo: s.demonstration,
+                objects: vec![s.object.clone()],
+            }),
             n,
             satisfied: None,
             q: None,
@@ -378,15 +439,20 @@ fn weigh(
             english: english::statement_reading(rule.scope, &rule.formula),
             prior: x.priors.map(|p| p[k].clone()),
         };
-        if r.candidate || r.exception.is_some() {
-            let sat = counts[ci];
-            ci += 1;
-            let q = sat as f64 / trials.max(1) as f64;
-            let prior = x.priors.map_or(params.prior, |p| 1.0 - p[k].prior);
-            let f = r.exception.as_ref().map_or(0, |e| e.count(rule.scope));
-            let post = Posterior::with_slips(q, epsilon, r.n, f, params.slip_rate, prior);
-            r.satisfied = Some(sat);
-            r.q = Some(q);
+        let post = match (chances[k], repaired_by) {
+            (Some(c), _) if r.candidate => Some(Posterior::new(c.q, c.epsilon, c.n, c.prior)),
+            (Some(c), Some(s)) => Some(Posterior::repaired(
+                c.q,
+                c.epsilon,
+                c.n,
+                c.prior,
+                s.log10_odds,
+            )),
+            _ => None,
+        };
+        if let (Some(post), Some(c)) = (post, chances[k]) {
+            r.satisfied = Some(c.satisfied);
+            r.q = Some(c.q);
             r.learned = post.learned(params.cutoff);
             r.posterior = Some(post);
         }

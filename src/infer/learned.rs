@@ -94,6 +94,9 @@ pub struct Learned {
     pub order: Vec<usize>,
     /// With priors: the library's summary and the statements left out.
     pub priors: Option<crate::priors::PriorsUsed>,
+    /// The demonstrations' blocks judged slips (docs/guide.md#slips), at
+    /// most one per demonstration; none at slip rate 0.
+    pub slips: Vec<super::Slip>,
 }
 
 /// Format a number for a comment: 4 significant digits.
@@ -113,57 +116,48 @@ fn short(v: f64) -> String {
     }
 }
 
-/// A demonstration's object that breaks rules the other demonstrations
-/// keep: a slip, perhaps (docs/guide.md#slips).
+/// A demonstration's block that is likelier a slip than meant, breaking
+/// rules the other demonstrations keep (docs/guide.md#slips).
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
 pub struct Suspect {
     /// The demonstration (0-based, as in the demonstrations file).
     pub demonstration: usize,
-    /// The object's id (empty when a scene-level rule names no object).
+    /// The block's id.
     pub object: String,
     /// The learned rules it breaks, strongest first.
     pub breaks: Vec<String>,
 }
 
 impl Learned {
-    /// The suspects: per demonstration and object, the learned rules held
-    /// with an exception there; most rules broken first (then by
-    /// demonstration and object).
+    /// The suspects: each slip ([`Learned::slips`]) with the learned rules
+    /// it breaks (strongest first), the likeliest slip first (then by
+    /// demonstration); a slip that breaks no learned rule is left out.
     pub fn suspects(&self) -> Vec<Suspect> {
-        let mut by: std::collections::BTreeMap<(usize, String), Vec<String>> =
-            std::collections::BTreeMap::new();
-        for &k in &self.order {
-            let st = &self.statements[k];
-            let Some(e) = &st.exception else {
-                continue;
-            };
-            if e.objects.is_empty() {
-                by.entry((e.demo, String::new()))
-                    .or_default()
-                    .push(st.name.clone());
-            }
-            for o in &e.objects {
-                by.entry((e.demo, o.clone()))
-                    .or_default()
-                    .push(st.name.clone());
-            }
-        }
-        let mut out: Vec<Suspect> = by
-            .into_iter()
-            .map(|((demonstration, object), breaks)| Suspect {
-                demonstration,
-                object,
-                breaks,
-            })
-            .collect();
-        out.sort_by(|a, b| {
-            b.breaks
-                .len()
-                .cmp(&a.breaks.len())
+        let mut slips: Vec<&super::Slip> = self.slips.iter().collect();
+        slips.sort_by(|a, b| {
+            b.log10_odds
+                .total_cmp(&a.log10_odds)
                 .then(a.demonstration.cmp(&b.demonstration))
-                .then(a.object.cmp(&b.object))
         });
-        out
+        slips
+            .into_iter()
+            .map(|slip| Suspect {
+                demonstration: slip.demonstration,
+                object: slip.object.clone(),
+                breaks: self
+                    .order
+                    .iter()
+                    .map(|&k| &self.statements[k])
+                    .filter(|st| {
+                        st.exception.as_ref().is_some_and(|e| {
+                            e.demo == slip.demonstration && e.objects.contains(&slip.object)
+                        })
+                    })
+                    .map(|st| st.name.clone())
+                    .collect(),
+            })
+            .filter(|s| !s.breaks.is_empty())
+            .collect()
     }
 
     /// The learned rules, strongest first, each with `p P` and comments (the

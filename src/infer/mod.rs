@@ -39,6 +39,7 @@ mod null_model;
 mod params;
 mod posterior;
 mod report;
+mod slips;
 pub mod templates;
 
 pub(crate) use candidates::{find_candidates, find_exceptions};
@@ -52,6 +53,7 @@ pub use null_model::NullModel;
 pub use params::{LearnParams, DEFAULT_SLIP_RATE, SUGGESTED_SLIP_RATE};
 pub use posterior::Posterior;
 pub use report::{Report, ReportParams, ReportStatement};
+pub use slips::Slip;
 pub use templates::Templates;
 
 use crate::rules::{print_formula, Formula, Scope};

@@ -71,46 +71,27 @@ pub struct Posterior {
     pub log10_posterior: f64,
 }
 
-/// `log10` of the posterior that a statement is not meant when `f` of its
-/// `n` subjects break it, with slip rate `η` (docs/guide.md#slips): by
-/// chance each subject keeps it with `p` and breaks it with `1 − p`; meant,
-/// each keeps it with `1 − η + η·p` and breaks it with `η·(1 − p)` (a slip
-/// lands at random). `η = 0, f = 0` is the thesis's `log10 P`; with `η = 0`
-/// a statement some subject breaks is never meant (the caller does not ask).
-pub(crate) fn log10_posterior_with_slips(p: f64, n: u64, f: u64, eta: f64, prior: f64) -> f64 {
-    let kept = n.saturating_sub(f) as f64;
-    let f = f as f64;
-    let l0 = kept * p.log10() + if f > 0.0 { f * (1.0 - p).log10() } else { 0.0 };
-    let keep1 = 1.0 - eta + eta * p;
-    let l1 = kept * keep1.log10()
-        + if f > 0.0 {
-            f * (eta * (1.0 - p)).log10()
-        } else {
-            0.0
-        };
-    let a = prior.log10() + l0;
-    let b = (1.0 - prior).log10() + l1;
-    a - log10_sum(a, b)
+/// `log10 P` of a statement that a slip repairs (docs/guide.md#slips):
+/// `P = s·P' + (1 − s)`, with `P'` the posterior as if the slipped object
+/// were left out and `s` the chance that it is a slip, from the slip's
+/// `log10` odds. Never below `P'`, never above 1, falling as the odds rise;
+/// with odds 0 (`s = 0`, slip rate 0) it is 1: the thesis's verdict on a
+/// broken statement.
+pub(crate) fn log10_posterior_repaired(log10_p_corrected: f64, log10_odds: f64) -> f64 {
+    let log10_s = -log10_sum(0.0, -log10_odds);
+    let log10_not_slip = -log10_sum(0.0, log10_odds);
+    log10_sum(log10_s + log10_p_corrected, log10_not_slip).min(0.0)
 }
 
 impl Posterior {
-    /// With slips (docs/guide.md#slips): `f` of the `n`
-    /// subjects break the statement, slip rate `eta`; `log10_likelihood`
-    /// is the chance likelihood of what was seen. A statement nothing
-    /// breaks (`f = 0`) is weighed exactly as [`Posterior::new`] weighs it,
-    /// whatever `eta`: what every demonstration keeps is learned as before,
-    /// and slips only enter for statements with exceptions.
-    pub fn with_slips(q: f64, epsilon: f64, n: u64, f: u64, eta: f64, prior: f64) -> Self {
-        if f == 0 {
-            return Posterior::new(q, epsilon, n, prior);
-        }
-        let p = chance_p(q, epsilon).min(1.0 - 1e-12);
-        let kept = n.saturating_sub(f);
-        let log10_likelihood = log10_likelihood(p, kept) + f as f64 * (1.0 - p).log10();
+    /// A statement that a slip repairs (docs/guide.md#slips): the chance
+    /// likelihood and posterior `P'` of `n` subjects all keeping it (the
+    /// slip left out), mixed with "not meant" by the slip's `log10` odds.
+    pub fn repaired(q: f64, epsilon: f64, n: u64, prior: f64, log10_odds: f64) -> Self {
+        let corrected = Posterior::new(q, epsilon, n, prior);
         Posterior {
-            p,
-            log10_likelihood,
-            log10_posterior: log10_posterior_with_slips(p, n, f, eta, prior),
+            log10_posterior: log10_posterior_repaired(corrected.log10_posterior, log10_odds),
+            ..corrected
         }
     }
 
@@ -187,40 +168,33 @@ mod tests {
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig { cases: 256, ..Default::default() })]
 
-        /// Law: at slip rate 0 with nothing broken, the thesis's posterior
-        /// exactly.
+        /// Law: a repaired statement's posterior lies between the
+        /// corrected posterior `P'` and 1 (normalised: a mixture of the two
+        /// hypotheses).
         #[test]
-        fn slips_at_rate_zero_are_the_thesis(q in 1e-6..1.0f64, n in 1u64..500, prior in 0.01..0.99f64) {
-            let a = Posterior::new(q, 1e-6, n, prior);
-            let b = Posterior::with_slips(q, 1e-6, n, 0, 0.0, prior);
-            proptest::prop_assert_eq!(a, b);
+        fn a_repaired_posterior_is_a_probability_between(corrected in -300.0..0.0f64, odds in -50.0..300.0f64) {
+            let p = log10_posterior_repaired(corrected, odds);
+            proptest::prop_assert!(p <= 0.0 && p >= corrected - 1e-12, "{p} vs {corrected}");
         }
 
-        /// Law: every further exception makes "not meant" more likely
-        /// (monotone in the number of exceptions).
+        /// Law: the likelier the slip, the likelier the statements it
+        /// repairs are meant (monotone in the odds); a slip that is sure
+        /// gives the corrected posterior.
         #[test]
-        fn more_exceptions_raise_the_posterior(p in 0.01..0.99f64, n in 4u64..300, eta in 0.001..0.4f64, prior in 0.05..0.95f64) {
-            let mut last = f64::NEG_INFINITY;
-            for f in 0..4u64.min(n) {
-                let now = log10_posterior_with_slips(p, n, f, eta, prior);
-                proptest::prop_assert!(now >= last - 1e-12, "f {f}: {now} < {last}");
-                last = now;
-            }
+        fn likelier_slips_lower_the_posterior(corrected in -300.0..-0.01f64, a in -50.0..300.0f64, d in 0.0..100.0f64) {
+            let lo = log10_posterior_repaired(corrected, a);
+            let hi = log10_posterior_repaired(corrected, a + d);
+            proptest::prop_assert!(hi <= lo + 1e-12, "{hi} > {lo}");
+            let sure = log10_posterior_repaired(corrected, 400.0);
+            proptest::prop_assert!((sure - corrected).abs() < 1e-9, "{sure} vs {corrected}");
         }
+    }
 
-        /// Law: the per-subject probabilities of each hypothesis sum to 1
-        /// (the likelihoods are normalised), and the posterior is a
-        /// probability.
-        #[test]
-        fn slip_likelihoods_are_normalised(p in 0.0..1.0f64, eta in 0.0..0.5f64, n in 1u64..100, f in 0u64..3, prior in 0.01..0.99f64) {
-            let meant = (1.0 - eta + eta * p) + eta * (1.0 - p);
-            let chance = p + (1.0 - p);
-            proptest::prop_assert!((meant - 1.0).abs() < 1e-12 && (chance - 1.0).abs() < 1e-12);
-            let f = f.min(n);
-            proptest::prop_assume!(p > 0.0 && p < 1.0 && (eta > 0.0 || f == 0));
-            let post = log10_posterior_with_slips(p, n, f, eta, prior);
-            proptest::prop_assert!(post <= 1e-12, "{post}");
-        }
+    /// At slip rate 0 (odds `−∞`) a broken statement keeps the thesis's
+    /// verdict: not meant.
+    #[test]
+    fn no_slip_leaves_a_broken_statement_not_meant() {
+        assert_eq!(log10_posterior_repaired(-50.0, f64::NEG_INFINITY), 0.0);
     }
 
     #[test]

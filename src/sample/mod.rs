@@ -31,6 +31,20 @@
 //! returned. A limit (per layout or overall) ends it with
 //! [`SampleError::LimitReached`].
 //!
+//! # Objects that turn
+//!
+//! Unplaced `turnable` objects (docs/guide.md#objects-that-turn) are
+//! grouped by class and size, as synthesis groups them; an *orientation
+//! choice* says how many of each group lie turned (at most
+//! [`MAX_SAMPLE_ORIENTATIONS`] choices). Each choice has its own engine,
+//! built when first drawn from; each layout comes from a choice drawn
+//! uniformly (from the seeded generator) among those not yet exhausted, so
+//! turned and flat blocks both show up early. A choice whose engine proves
+//! it has no further layout is exhausted; when every choice is, every
+//! layout has been returned (layouts of different choices differ in some
+//! footprint, so they are never the same layout). The optimum is the one
+//! [`crate::synth::synthesize`] finds over every orientation.
+//!
 //! # Distribution
 //!
 //! The layouts are **not** drawn uniformly. Each one is "the layout the
@@ -196,13 +210,7 @@ pub fn sample(
         warm_start: opts.like.clone(),
         ..SynthOptions::default()
     };
-    // Orientations as given (see `Sampler::unturned`): no orientation
-    // variable in the sampler's model.
-    let mut as_given = problem.clone();
-    for o in &mut as_given.objects {
-        o.turnable = false;
-    }
-    let (model, coefs, _) = crate::synth::objective_model(&as_given, rules, &synth_opts)?;
+    let (turning, branches) = orientation_branches(problem)?;
     let mut sampler = Sampler {
         problem: problem.clone(),
         rules: rules.clone(),
@@ -216,12 +224,10 @@ pub fn sample(
             ..opts.clone()
         },
         synth_opts,
-        model,
-        coefs,
-        engine: None,
+        turning,
+        branches,
         rng: ChaCha8Rng::seed_from_u64(opts.seed),
         like: BTreeMap::new(),
-        groups: Vec::new(),
         target: None,
         min_score: None,
         found: 0,
@@ -230,6 +236,9 @@ pub fn sample(
         state: State::Running,
         deadline,
     };
+    // The first choice (nothing turned) is built at once: bad rules and
+    // weights are errors of `sample` itself.
+    sampler.build_model(0)?;
     sampler.prepare()?;
     Ok(sampler)
 }
@@ -254,17 +263,18 @@ pub struct Sampler {
     rules: RuleSet,
     opts: SampleOptions,
     synth_opts: SynthOptions,
-    model: Model,
-    coefs: Vec<i64>,
-    engine: Option<Engine>,
+    /// The groups of interchangeable turnable objects (unplaced, oblong,
+    /// one class and size), indices in problem order.
+    turning: Vec<Vec<usize>>,
+    /// The orientation choices of the turnable objects (one when nothing
+    /// turns): each its own model and engine.
+    branches: Vec<Branch>,
     rng: ChaCha8Rng,
     /// Per `(class, width, height)`: grid positions in the like scenes.
     like: BTreeMap<(String, i64, i64), Vec<(i64, i64)>>,
-    /// Groups of interchangeable unplaced objects: their x variables, in
-    /// the symmetry order.
-    groups: Vec<Vec<usize>>,
-    /// The objective every layout reaches, and whether it is proven optimal
-    /// (for [`Quality::Optimum`]).
+    /// The objective every layout reaches (the whole integer objective,
+    /// constant terms included, the same in every orientation choice), and
+    /// whether it is proven optimal (for [`Quality::Optimum`]).
     target: Option<(i64, bool)>,
     /// [`Quality::MinScore`]: layouts below it are excluded and skipped.
     min_score: Option<f64>,
@@ -310,18 +320,14 @@ impl Sampler {
         self.target.map(|(_, p)| p)
     }
 
-    fn limits(&self, per_layout: bool) -> Limits {
+    fn limits(&self, b: usize) -> Limits {
         let now = Instant::now();
-        let per = if per_layout {
-            self.opts.layout_time_limit.and_then(|t| now.checked_add(t))
-        } else {
-            None
-        };
+        let per = self.opts.layout_time_limit.and_then(|t| now.checked_add(t));
         let deadline = match (self.deadline, per) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
         };
-        let used = self.engine.as_ref().map_or(0, |e| e.nodes());
+        let used = self.branches[b].engine.as_ref().map_or(0, |e| e.nodes());
         Limits {
             deadline,
             node_limit: self.opts.layout_node_limit.map(|n| used.saturating_add(n)),
@@ -329,28 +335,29 @@ impl Sampler {
         }
     }
 
-    /// The docs/language.md#the-score integer numerator to reach, the engine, the hint tables.
+    /// The model of orientation choice `b` and its hint groups (built
+    /// once).
+    fn build_model(&mut self, b: usize) -> Result<(), SynthError> {
+        if self.branches[b].model.is_some() {
+            return Ok(());
+        }
+        let br = &self.branches[b];
+        let (model, coefs, _) =
+            crate::synth::objective_model(&br.problem, &self.rules, &self.synth_opts)?;
+        let groups = hint_groups(&model, &br.problem);
+        let br = &mut self.branches[b];
+        br.groups = groups;
+        br.model = Some((model, coefs));
+        Ok(())
+    }
+
+    /// The docs/language.md#the-score integer numerator to reach, the hint
+    /// tables, and the engine when nothing turns.
     fn prepare(&mut self) -> Result<(), SampleError> {
-        let var_total: i64 = self
-            .model
-            .soft
-            .iter()
-            .zip(&self.coefs)
-            .filter(|(t, _)| matches!(t.lit, Lit::Var { .. }))
-            .map(|(_, &c)| c)
-            .sum();
-        let constant: i64 = self
-            .model
-            .soft
-            .iter()
-            .zip(&self.coefs)
-            .filter(|(t, _)| t.lit == Lit::TRUE)
-            .map(|(_, &c)| c)
-            .sum();
-        let impossible = self.model.soft.iter().any(|t| t.lit == Lit::FALSE);
-        let target = match self.opts.quality {
+        self.tables();
+        match self.opts.quality {
             Quality::Optimum => {
-                let r = crate::synth::synthesize(&self.unturned(), &self.rules, &self.synth_opts)?;
+                let r = crate::synth::synthesize(&self.problem, &self.rules, &self.synth_opts)?;
                 match r.status {
                     Status::Infeasible => {
                         self.fail(SampleError::Infeasible(r.conflict.unwrap_or_default()));
@@ -362,43 +369,74 @@ impl Sampler {
                     }
                     Status::Optimal | Status::Feasible => {
                         let scene = r.scene.as_ref().expect("a solution has a scene");
-                        let vals = self.values_of(scene);
-                        let v = self.model.objective_value(&self.coefs, &vals);
-                        self.target = Some((v, r.status == Status::Optimal));
-                        v
+                        let b = self.branch_of(scene);
+                        self.build_model(b)?;
+                        let scene = self.in_branch_order(scene);
+                        let (model, coefs) = self.branches[b].model.as_ref().expect("built");
+                        let v = model.objective_value(coefs, &grid_values(model, &scene));
+                        let whole = v + Totals::of(model, coefs).constant;
+                        self.target = Some((whole, r.status == Status::Optimal));
                     }
                 }
             }
-            Quality::AllRules => {
-                if impossible {
-                    // Some object can never keep some rule: look no further.
-                    self.no_layout()?;
-                    return Ok(());
-                }
-                var_total
+            Quality::MinScore(x) => self.min_score = Some(x),
+            Quality::AllRules => {}
+        }
+        // Nothing turns: the engine at once, as the single choice.
+        if self.branches.len() == 1 && !self.start_engine(0)? {
+            self.fail(SampleError::LimitReached { found: 0 });
+        }
+        Ok(())
+    }
+
+    /// The integer numerator choice `b`'s engine must reach (its own
+    /// variable terms; the constant ones are the choice's); `None` when no
+    /// layout of this choice reaches the quality asked for.
+    fn branch_target(&self, model: &Model, coefs: &[i64]) -> Option<i64> {
+        let t = Totals::of(model, coefs);
+        match self.opts.quality {
+            Quality::Optimum => {
+                let (whole, _) = self.target?;
+                let k = whole - t.constant;
+                (k <= t.variable).then_some(k)
             }
+            // Some object can never keep some rule: look no further.
+            Quality::AllRules => (!t.impossible).then_some(t.variable),
             Quality::MinScore(x) => {
-                self.min_score = Some(x);
                 // Conservative: the integer weights are rounded (at most
                 // half a unit each), so a layout with score ≥ x has at least
                 // this integer numerator; the evaluator decides exactly.
-                let total = (var_total + constant) as f64;
-                let n = self.model.soft.len() as f64;
-                let k = (x * total - n).ceil() as i64 - constant;
-                k.max(0)
+                let total = (t.variable + t.constant) as f64;
+                let n = model.soft.len() as f64;
+                let k = (x * total - n).ceil() as i64 - t.constant;
+                Some(k.max(0))
+            }
+        }
+    }
+
+    /// Build choice `b`'s engine with "objective ≥ target", or mark the
+    /// choice done when none of its layouts can reach the target.
+    /// `Ok(false)`: the time limit struck while it was built.
+    fn start_engine(&mut self, b: usize) -> Result<bool, SynthError> {
+        self.build_model(b)?;
+        let (model, coefs) = self.branches[b].model.as_ref().expect("built");
+        let target = match self.branch_target(model, coefs) {
+            Some(t) if model.too_large.is_empty() => t,
+            _ => {
+                self.branches[b].done = true;
+                return Ok(true);
             }
         };
         let Some(mut engine) = Engine::with_resemblance_until(
-            &self.model,
+            model,
             self.opts.seed,
             false,
-            Some(&self.coefs),
+            Some(coefs),
             &[],
             self.deadline,
         )?
         else {
-            self.fail(SampleError::LimitReached { found: 0 });
-            return Ok(());
+            return Ok(false);
         };
         if target > 0 {
             engine.add(Fact::ObjectiveAtLeast(target));
@@ -408,35 +446,70 @@ impl Sampler {
         if self.opts.repair == Repair::Random {
             engine.random_search();
         }
-        self.engine = Some(engine);
-        self.tables();
-        Ok(())
+        self.branches[b].engine = Some(engine);
+        Ok(true)
     }
 
-    /// The problem as the sampler's model places it: every object as
-    /// given, none turned (the model has no orientation choice yet), so the
-    /// optimum and the reasons for no layout are those of the layouts it
-    /// draws.
-    fn unturned(&self) -> Scene {
-        let mut p = self.problem.clone();
-        for o in &mut p.objects {
-            o.turnable = false;
+    /// The orientation choice whose engine draws the next layout: uniform
+    /// among those not exhausted (no draw when one is left); `None` when
+    /// every choice is exhausted.
+    fn pick(&mut self) -> Option<usize> {
+        let alive: Vec<usize> = (0..self.branches.len())
+            .filter(|&b| !self.branches[b].done)
+            .collect();
+        match alive.len() {
+            0 => None,
+            1 => Some(alive[0]),
+            k => Some(alive[self.rng.random_range(0..k)]),
         }
-        p
     }
 
-    /// The hint tables: interchangeable groups, like positions.
-    fn tables(&mut self) {
-        let p = &self.problem;
-        let mut groups: BTreeMap<(String, i64, i64), Vec<usize>> = BTreeMap::new();
-        for (i, o) in p.objects.iter().enumerate() {
-            if let (Coord::Var(vx), Coord::Var(_)) = self.model.coords[i] {
-                groups.entry(like_key(o)).or_default().push(vx);
+    /// The orientation choice a layout of the problem lies in: how many of
+    /// each group of turnable objects it turns.
+    fn branch_of(&self, scene: &Scene) -> usize {
+        let turned: Vec<usize> = (self.turning.iter())
+            .map(|g| g.iter().filter(|&&i| scene.objects[i].turned).count())
+            .collect();
+        (self.branches.iter())
+            .position(|br| br.turned == turned)
+            .unwrap_or(0)
+    }
+
+    /// `scene` with the turned objects of every group of turnable objects
+    /// first (they are interchangeable), as its orientation choice has them.
+    fn in_branch_order(&self, scene: &Scene) -> Scene {
+        let mut s = scene.clone();
+        for g in &self.turning {
+            let mut at: Vec<(bool, Option<i64>, Option<i64>)> = (g.iter())
+                .map(|&i| (!s.objects[i].turned, s.objects[i].x, s.objects[i].y))
+                .collect();
+            at.sort_by_key(|a| a.0);
+            for (&i, (flat, x, y)) in g.iter().zip(at) {
+                let o = &mut s.objects[i];
+                (o.turned, o.x, o.y) = (!flat, x, y);
             }
         }
-        self.groups = groups.into_values().collect();
-        let (ox, oy) = self.model.origin;
-        let g = self.model.grid;
+        s
+    }
+
+    /// The layout of choice `b`'s solution `v`: the problem's objects
+    /// placed, turned as the choice turns them.
+    fn layout(&self, b: usize, v: &[i64]) -> Scene {
+        let (model, _) = self.branches[b].model.as_ref().expect("built");
+        let mut s = model.scene(&self.branches[b].problem, v);
+        for (o, p) in s.objects.iter_mut().zip(&self.problem.objects) {
+            o.turnable = p.turnable;
+        }
+        s
+    }
+
+    /// The like tables: positions per class and footprint.
+    fn tables(&mut self) {
+        let Some((model, _)) = self.branches[0].model.as_ref() else {
+            return;
+        };
+        let (ox, oy) = model.origin;
+        let g = model.grid;
         for s in &self.opts.like {
             for o in s.objects.iter().filter(|o| !o.fixed) {
                 let (Some(x), Some(y)) = (o.x, o.y) else {
@@ -452,11 +525,6 @@ impl Sampler {
         }
     }
 
-    /// Grid values of a complete scene of this problem.
-    fn values_of(&self, scene: &Scene) -> Vec<i64> {
-        grid_values(&self.model, scene)
-    }
-
     fn fail(&mut self, e: SampleError) {
         self.pending = Some(e);
     }
@@ -470,7 +538,7 @@ impl Sampler {
                 .map(|d| d.saturating_duration_since(Instant::now())),
             ..self.synth_opts.clone()
         };
-        let r = crate::synth::synthesize(&self.unturned(), &self.rules, &opts)?;
+        let r = crate::synth::synthesize(&self.problem, &self.rules, &opts)?;
         let quality = match self.opts.quality {
             Quality::MinScore(x) => format!("scores at least {x}"),
             _ => "keeps every rule (score 1)".to_string(),
@@ -486,20 +554,20 @@ impl Sampler {
         Ok(())
     }
 
-    /// A random hint: every movable object at a random grid position
-    /// (interchangeable objects' positions sorted into the symmetry
-    /// order), objects in a random order.
-    fn hint(&mut self) -> Vec<(usize, i64)> {
+    /// A random hint for choice `b`: every movable object at a random grid
+    /// position (interchangeable objects' positions sorted into the
+    /// symmetry order), objects in a random order.
+    fn hint(&mut self, b: usize) -> Vec<(usize, i64)> {
+        let br = &self.branches[b];
+        let Some((model, _)) = br.model.as_ref() else {
+            return Vec::new();
+        };
         let mut per_object: Vec<[(usize, i64); 2]> = Vec::new();
-        for gi in 0..self.groups.len() {
-            let group = &self.groups[gi];
-            let o = &self.problem.objects[self.model.vars[group[0]].object];
+        for group in &br.groups {
+            let o = &br.problem.objects[model.vars[group[0]].object];
             let like = self.like.get(&like_key(o));
             // The y variable of an object follows its x variable.
-            let (ux, uy) = (
-                self.model.vars[group[0]].ub,
-                self.model.vars[group[0] + 1].ub,
-            );
+            let (ux, uy) = (model.vars[group[0]].ub, model.vars[group[0] + 1].ub);
             let mut pos: Vec<(i64, i64)> = (0..group.len())
                 .map(|_| match like {
                     Some(l) if !l.is_empty() && self.rng.random_bool(0.5) => {
@@ -516,6 +584,39 @@ impl Sampler {
         per_object.shuffle(&mut self.rng);
         per_object.into_iter().flatten().collect()
     }
+
+    /// The next layout of choice `b` (its engine started): `Ok(None)` when
+    /// the choice has no further layout.
+    fn draw(&mut self, b: usize) -> Result<Option<Scene>, SampleError> {
+        loop {
+            let limits = self.limits(b);
+            let hint = self.hint(b);
+            let Some(engine) = self.branches[b].engine.as_mut() else {
+                return Ok(None);
+            };
+            engine.hint_in_order(&hint);
+            match engine.solve(&[], &limits) {
+                Verdict::Solution(v) => {
+                    engine.exclude(&v);
+                    let scene = self.layout(b, &v);
+                    if let Some(x) = self.min_score {
+                        let e = evaluate(&scene, &self.rules, self.opts.contact);
+                        // The engine's bound is conservative; the evaluator
+                        // decides (with a rounding tolerance).
+                        if e.score < x - 1e-9 {
+                            self.skipped += 1;
+                            continue;
+                        }
+                    }
+                    return Ok(Some(scene));
+                }
+                Verdict::Infeasible(_) => return Ok(None),
+                Verdict::Unknown => {
+                    return Err(SampleError::LimitReached { found: self.found });
+                }
+            }
+        }
+    }
 }
 
 impl Iterator for Sampler {
@@ -530,41 +631,43 @@ impl Iterator for Sampler {
             return Some(Err(e));
         }
         loop {
-            let limits = self.limits(true);
-            let hint = self.hint();
-            let engine = self.engine.as_mut()?;
-            engine.hint_in_order(&hint);
-            match engine.solve(&[], &limits) {
-                Verdict::Solution(v) => {
-                    engine.exclude(&v);
-                    let scene = self.model.scene(&self.problem, &v);
-                    if let Some(x) = self.min_score {
-                        let e = evaluate(&scene, &self.rules, self.opts.contact);
-                        // The engine's bound is conservative; the evaluator
-                        // decides (with a rounding tolerance).
-                        if e.score < x - 1e-9 {
-                            self.skipped += 1;
-                            continue;
-                        }
+            let Some(b) = self.pick() else {
+                if self.found > 0 {
+                    self.state = State::Exhausted;
+                    return None;
+                }
+                // Nothing at all of this quality: say why.
+                self.state = State::Stopped;
+                if let Err(e) = self.no_layout() {
+                    return Some(Err(e));
+                }
+                return self.pending.take().map(Err);
+            };
+            if self.branches[b].engine.is_none() {
+                let started = match self.start_engine(b) {
+                    Ok(s) => s,
+                    Err(e) => {
+                        self.state = State::Stopped;
+                        return Some(Err(e.into()));
                     }
+                };
+                if !started {
+                    self.state = State::Stopped;
+                    return Some(Err(SampleError::LimitReached { found: self.found }));
+                }
+                if self.branches[b].done {
+                    continue;
+                }
+            }
+            match self.draw(b) {
+                Ok(Some(scene)) => {
                     self.found += 1;
                     return Some(Ok(scene));
                 }
-                Verdict::Infeasible(_) => {
-                    if self.found > 0 {
-                        self.state = State::Exhausted;
-                        return None;
-                    }
-                    // Nothing at all of this quality: say why.
+                Ok(None) => self.branches[b].done = true,
+                Err(e) => {
                     self.state = State::Stopped;
-                    if let Err(e) = self.no_layout() {
-                        return Some(Err(e));
-                    }
-                    return self.pending.take().map(Err);
-                }
-                Verdict::Unknown => {
-                    self.state = State::Stopped;
-                    return Some(Err(SampleError::LimitReached { found: self.found }));
+                    return Some(Err(e));
                 }
             }
         }
@@ -572,6 +675,141 @@ impl Iterator for Sampler {
 }
 
 impl std::iter::FusedIterator for Sampler {}
+
+/// Most orientation choices (`Π (nᵍ + 1)` over the groups of
+/// interchangeable turnable objects) a sampler draws from.
+pub const MAX_SAMPLE_ORIENTATIONS: usize = 256;
+
+/// One orientation choice of a problem's turnable objects: the first
+/// `turned[g]` objects of group `g` lie turned, the others flat.
+struct Branch {
+    /// Turned objects per group of turnable objects.
+    turned: Vec<usize>,
+    /// The problem with every orientation given.
+    problem: Scene,
+    /// Its model and integer objective coefficients (built when first
+    /// drawn from).
+    model: Option<(Model, Vec<i64>)>,
+    engine: Option<Engine>,
+    /// Groups of interchangeable unplaced objects: their x variables, in
+    /// the symmetry order.
+    groups: Vec<Vec<usize>>,
+    /// Every layout of this choice has been returned (or none reaches the
+    /// target).
+    done: bool,
+}
+
+/// The integer objective's parts in one model.
+struct Totals {
+    /// The coefficients of the terms the layout decides.
+    variable: i64,
+    /// The coefficients of the terms true in every layout.
+    constant: i64,
+    /// Some term is false in every layout.
+    impossible: bool,
+}
+
+impl Totals {
+    fn of(model: &Model, coefs: &[i64]) -> Totals {
+        let sum = |keep: &dyn Fn(Lit) -> bool| -> i64 {
+            (model.soft.iter().zip(coefs))
+                .filter(|(t, _)| keep(t.lit))
+                .map(|(_, &c)| c)
+                .sum()
+        };
+        Totals {
+            variable: sum(&|l| matches!(l, Lit::Var { .. })),
+            constant: sum(&|l| l == Lit::TRUE),
+            impossible: model.soft.iter().any(|t| t.lit == Lit::FALSE),
+        }
+    }
+}
+
+/// The groups of interchangeable turnable objects of `problem` and one
+/// [`Branch`] per orientation choice (the choice with nothing turned
+/// first); one branch, the problem as given, when nothing turns.
+fn orientation_branches(problem: &Scene) -> Result<(Vec<Vec<usize>>, Vec<Branch>), SampleError> {
+    let Some((turning, choices)) = orientation_choices(problem, MAX_SAMPLE_ORIENTATIONS) else {
+        let objects = (problem.objects.iter())
+            .filter(|o| !o.is_placed() && o.turnable && o.is_oblong())
+            .count();
+        return Err(SampleError::Synth(SynthError::TooLarge(format!(
+            "{objects} turnable objects give more than the {MAX_SAMPLE_ORIENTATIONS} orientation \
+             choices sampling draws from; expected fewer turnable objects (drop \"turnable\" from \
+             some, or make interchangeable ones the same class and size)"
+        ))));
+    };
+    let branches = (choices.into_iter())
+        .map(|(turned, problem)| Branch {
+            turned,
+            problem,
+            model: None,
+            engine: None,
+            groups: Vec::new(),
+            done: false,
+        })
+        .collect();
+    Ok((turning, branches))
+}
+
+/// The orientation choices of `problem`'s turnable objects: the groups of
+/// interchangeable ones (unplaced, `turnable`, oblong, one class and size;
+/// indices in problem order) and per choice how many of each group lie
+/// turned — the first ones of the group — with the problem oriented that
+/// way (those objects `turned`, the rest of the groups no longer
+/// `turnable`), the choice with nothing turned first. One choice, the
+/// problem as given, when nothing turns; `None` past `max` choices.
+pub(crate) type OrientationChoices = (Vec<Vec<usize>>, Vec<(Vec<usize>, Scene)>);
+
+/// See [`OrientationChoices`].
+pub(crate) fn orientation_choices(problem: &Scene, max: usize) -> Option<OrientationChoices> {
+    let mut by_kind: BTreeMap<(String, i64, i64), Vec<usize>> = BTreeMap::new();
+    for (i, o) in problem.objects.iter().enumerate() {
+        if !o.is_placed() && o.turnable && o.is_oblong() {
+            by_kind.entry(like_key(o)).or_default().push(i);
+        }
+    }
+    let turning: Vec<Vec<usize>> = by_kind.into_values().collect();
+    let count = (turning.iter()).try_fold(1usize, |acc, g| acc.checked_mul(g.len() + 1))?;
+    if count > max {
+        return None;
+    }
+    if turning.is_empty() {
+        return Some((turning, vec![(Vec::new(), problem.clone())]));
+    }
+    let mut out = Vec::with_capacity(count);
+    for c in 0..count {
+        // Choice `c` in mixed radix: the first group's count fastest.
+        let mut rest = c;
+        let mut p = problem.clone();
+        let mut turned = Vec::with_capacity(turning.len());
+        for g in &turning {
+            let t = rest % (g.len() + 1);
+            rest /= g.len() + 1;
+            for (k, &i) in g.iter().enumerate() {
+                // The orientation is given: turned (and marked turnable, as
+                // an oriented problem has it) or flat.
+                p.objects[i].turned = k < t;
+                p.objects[i].turnable = k < t;
+            }
+            turned.push(t);
+        }
+        out.push((turned, p));
+    }
+    Some((turning, out))
+}
+
+/// The hint groups of a model: interchangeable unplaced objects (one class
+/// and footprint), their x variables in the symmetry order.
+fn hint_groups(model: &Model, problem: &Scene) -> Vec<Vec<usize>> {
+    let mut groups: BTreeMap<(String, i64, i64), Vec<usize>> = BTreeMap::new();
+    for (i, o) in problem.objects.iter().enumerate() {
+        if let (Coord::Var(vx), Coord::Var(_)) = model.coords[i] {
+            groups.entry(like_key(o)).or_default().push(vx);
+        }
+    }
+    groups.into_values().collect()
+}
 
 /// The grid value of every variable of `model` in `scene` (a complete
 /// scene of the problem the model was built for).

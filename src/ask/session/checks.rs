@@ -401,6 +401,10 @@ impl Asker {
             seed: self.opts.probe.seed,
             time_limit: self.opts.probe.time_limit,
             cancel: self.opts.probe.cancel.clone(),
+            turnable: (self.problem.objects.iter())
+                .filter(|o| o.turnable && o.is_oblong())
+                .map(|o| (o.class.clone(), o.width, o.height))
+                .collect(),
         };
         let t = std::time::Instant::now();
         let found = search.find_group(&self.held, targets, checkers, &mut self.meter.borrow_mut());

@@ -202,8 +202,9 @@ pub struct Asker {
     /// problem checker's, once one is built).
     weight: std::cell::Cell<u64>,
     open: Option<String>,
-    /// Demonstrations answered as slips: left out of learning.
-    set_aside: BTreeSet<usize>,
+    /// Demonstrations answered as holding a slip: its likeliest slip is
+    /// one for sure when learning.
+    slipped: BTreeSet<usize>,
     /// Demonstrations answered as meant, exceptions and all.
     meant: BTreeSet<usize>,
     /// Rules of a rejected group not settled yet: at least one of them is
@@ -288,8 +289,8 @@ impl Asker {
         answers: Vec<Answer>,
         opts: AskOptions,
     ) -> Result<Asker, AskError> {
-        let (set_aside, meant) = suspect_answers(&answers);
-        let learned = learn_session(&demos, statements.as_ref(), &opts, &set_aside, &meant)?;
+        let (slipped, meant) = suspect_answers(&answers);
+        let learned = learn_session(&demos, statements.as_ref(), &opts, &slipped, &meant)?;
         // A confirmed rule must be one of the task's statements (a hand
         // edit or a renamed rule would be counted confirmed and marked
         // nowhere).
@@ -339,7 +340,7 @@ impl Asker {
             edit_tried: Default::default(),
             weight: std::cell::Cell::new(1),
             open: None,
-            set_aside,
+            slipped,
             meant,
             pending,
             deduced,
@@ -396,15 +397,21 @@ impl Asker {
     /// `learned.rcc`: [`Learned::to_rcc`] with the confirmed rules marked.
     pub fn learned_rcc(&self) -> String {
         let mut out = self.learned.rcc_header();
-        if !self.set_aside.is_empty() {
+        if !self.slipped.is_empty() {
             // In the header, before its closing blank line.
             let blank = out.ends_with("\n\n");
             if blank {
                 out.pop();
             }
-            for d in &self.set_aside {
+            for d in &self.slipped {
+                let object = self
+                    .learned
+                    .slips
+                    .iter()
+                    .find(|s| s.demonstration == *d)
+                    .map_or(String::new(), |s| format!(" `{}`", s.object));
                 out.push_str(&format!(
-                    "# demonstration {d} is set aside: answered as a slip (answers.json)\n"
+                    "# demonstration {d}:{object} answered as a slip; it no longer counts against the rules it breaks (answers.json)\n"
                 ));
             }
             if blank {
@@ -522,12 +529,12 @@ impl Asker {
         let a = self.answer_record(q, accepted);
         if let Some(s) = &q.suspect {
             // A demonstration meant as it is (its exceptions are meant: the
-            // rules it breaks are no candidates) or a slip (set aside from
-            // learning, the rules confirmed); learning is redone either way.
+            // rules it breaks are no candidates) or a slip (its likeliest
+            // slip sure, the rules confirmed); learning is redone either way.
             if accepted {
                 self.meant.insert(s.demonstration);
             } else {
-                self.set_aside.insert(s.demonstration);
+                self.slipped.insert(s.demonstration);
                 self.confirmed.extend(s.breaks.iter().cloned());
             }
             let demos = self.demos.clone();
@@ -560,7 +567,7 @@ impl Asker {
             &demos,
             self.statements.as_ref(),
             &self.opts,
-            &self.set_aside,
+            &self.slipped,
             &self.meant,
         )?;
         {

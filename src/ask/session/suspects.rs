@@ -1,6 +1,6 @@
 //! Suspects (docs/guide.md#questions-about-suspects): the question whether
 //! a demonstration that breaks rules the others keep is as the person
-//! meant it, and learning with the answers — slips set aside, meant
+//! meant it, and learning with the answers — a slip sure, meant
 //! demonstrations' exceptions no longer allowed.
 
 use super::{AskOptions, Asker, Question};
@@ -25,31 +25,31 @@ pub struct SuspectQuestion {
 
 /// The demonstrations answered as slips and as meant in `answers`.
 pub(super) fn suspect_answers(answers: &[Answer]) -> (BTreeSet<usize>, BTreeSet<usize>) {
-    let mut set_aside = BTreeSet::new();
+    let mut slipped = BTreeSet::new();
     let mut meant = BTreeSet::new();
     for a in answers {
         if let Some(s) = &a.suspect {
             if a.accepted {
                 meant.insert(s.demonstration);
             } else {
-                set_aside.insert(s.demonstration);
+                slipped.insert(s.demonstration);
             }
         }
     }
-    (set_aside, meant)
+    (slipped, meant)
 }
 
-/// Learn as the session learns: with the session's priors, leaving out the
-/// demonstrations answered as slips, and no exception in one answered as
-/// meant.
+/// Learn as the session learns: with the session's priors, the likeliest
+/// slip of each demonstration answered as holding one sure, and no
+/// exception in one answered as meant.
 pub(super) fn learn_session(
     demos: &[Scene],
     statements: Option<&RuleSet>,
     opts: &AskOptions,
-    set_aside: &BTreeSet<usize>,
+    slipped: &BTreeSet<usize>,
     meant: &BTreeSet<usize>,
 ) -> Result<Learned, InferError> {
-    let set_aside: Vec<usize> = set_aside.iter().copied().collect();
+    let slipped: Vec<usize> = slipped.iter().copied().collect();
     let meant: Vec<usize> = meant.iter().copied().collect();
     // The flag that stops the probe searches stops learning too.
     let stop = match &opts.probe.cancel {
@@ -63,7 +63,7 @@ pub(super) fn learn_session(
         &crate::infer::LearnOptions {
             priors: opts.priors.as_deref(),
             stop,
-            set_aside: &set_aside,
+            slipped: &slipped,
             meant: &meant,
         },
     )
@@ -77,7 +77,7 @@ impl Asker {
     pub(super) fn suspect_question(&self) -> Option<Question> {
         let suspects = self.learned.suspects();
         let first = suspects.iter().find(|s| {
-            !self.meant.contains(&s.demonstration) && !self.set_aside.contains(&s.demonstration)
+            !self.meant.contains(&s.demonstration) && !self.slipped.contains(&s.demonstration)
         })?;
         let d = first.demonstration;
         let mut objects: Vec<String> = Vec::new();
@@ -116,8 +116,8 @@ impl Asker {
         })
     }
 
-    /// The demonstrations answered as slips, left out of learning.
-    pub fn set_aside(&self) -> impl Iterator<Item = usize> + '_ {
-        self.set_aside.iter().copied()
+    /// The demonstrations answered as holding a slip.
+    pub fn slipped(&self) -> impl Iterator<Item = usize> + '_ {
+        self.slipped.iter().copied()
     }
 }

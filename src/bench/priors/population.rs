@@ -181,6 +181,7 @@ pub fn population_task(
                     height,
                     max_count: maxes[i],
                     habit: habits[i],
+                    orientation: crate::bench::tasks::Orientation::Fixed,
                 }
             })
             .collect();

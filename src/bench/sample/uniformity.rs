@@ -27,8 +27,10 @@ pub fn enumerate(
     let domains: Vec<Vec<(i64, i64)>> = free
         .iter()
         .map(|&i| {
-            let o = &problem.objects[i];
-            grid_positions(problem, o.width, o.height)
+            // An object given turned (an orientation choice) covers its
+            // footprint.
+            let (w, h) = problem.objects[i].footprint();
+            grid_positions(problem, w, h)
         })
         .collect();
     let size = domains

@@ -3,7 +3,7 @@
 //! seeded stream.
 
 use super::place::{block, box_for, make_demos, BoxGeom};
-use super::style::{ClassSpec, Corner, Habit, WallSide};
+use super::style::{ClassSpec, Corner, Habit, Orientation, WallSide};
 use super::{
     groups, scaled, size_label, BenchTask, TaskGenError, TaskProblem, TaskSeries, TasksConfig,
     BLOCK_SIZES, BOX_FOR, EXAMPLE_DEMOS, EXAMPLE_PROBLEM, TASK_CLASSES,
@@ -113,6 +113,9 @@ pub(crate) fn draw_maxes(k: usize, rng: &mut ChaCha8Rng) -> Vec<usize> {
 /// and `cfg.sizes`' values).
 pub fn generate_task(cfg: &TasksConfig, index: usize) -> Result<BenchTask, TaskGenError> {
     let mut rng = task_rng(cfg.seed, index);
+    // `--turnable`: the orientation habits from a stream of their own, so
+    // that the flat tasks' draws are untouched.
+    let mut turns = cfg.turnable.then(|| turn_rng(cfg.seed, index));
     let largest = cfg.sizes.iter().copied().fold(BOX_FOR, f64::max);
     const TRIES: usize = 20;
     for _ in 0..TRIES {
@@ -128,16 +131,29 @@ pub fn generate_task(cfg: &TasksConfig, index: usize) -> Result<BenchTask, TaskG
                     height: h,
                     max_count: maxes[i],
                     habit: habits[i],
+                    orientation: Orientation::Fixed,
                 }
             })
             .collect();
-        let geom = box_for(&classes, largest, &mut rng);
-        let Some(demos) = make_demos(&geom, &classes, &mut rng) else {
+        let mut classes = classes;
+        if let Some(r) = turns.as_mut() {
+            orient(&mut classes, r);
+        }
+        // The blocks as the demonstrations lay them.
+        let laid = laid(&classes);
+        let geom = box_for(&laid, largest, &mut rng);
+        let Some(mut demos) = make_demos(&geom, &laid, &mut rng) else {
             continue;
         };
+        for d in &mut demos {
+            turn_blocks(d, &classes);
+        }
         let (rules, rcc) = learn_with(&demos, index, cfg.templates)?;
         let style = style_text(&classes);
-        let problems = problems_in(&geom, &classes, &cfg.sizes, &format!("task{index:02}"));
+        let mut problems = problems_in(&geom, &classes, &cfg.sizes, &format!("task{index:02}"));
+        for p in &mut problems {
+            turn_blocks(&mut p.scene, &classes);
+        }
         return Ok(BenchTask {
             series: TaskSeries::Tasks,
             index,
@@ -155,6 +171,60 @@ pub fn generate_task(cfg: &TasksConfig, index: usize) -> Result<BenchTask, TaskG
     })
 }
 
+/// The stream of task `task`'s orientation habits (`--turnable`).
+fn turn_rng(seed: u64, task: usize) -> ChaCha8Rng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream((1u64 << 40) + task as u64);
+    rng
+}
+
+/// Every oblong class turns; a fair coin per class says whether the
+/// demonstrator stands its blocks on end or lays them flat.
+fn orient(classes: &mut [ClassSpec], rng: &mut ChaCha8Rng) {
+    for c in classes.iter_mut().filter(|c| c.width != c.height) {
+        c.orientation = if rng.random_bool(0.5) {
+            Orientation::OnEnd
+        } else {
+            Orientation::Flat
+        };
+    }
+}
+
+/// The classes with the footprint the demonstrations give their blocks
+/// (a class stood on end: height × width).
+fn laid(classes: &[ClassSpec]) -> Vec<ClassSpec> {
+    let mut out = classes.to_vec();
+    for c in out
+        .iter_mut()
+        .filter(|c| c.orientation == Orientation::OnEnd)
+    {
+        (c.width, c.height) = (c.height, c.width);
+    }
+    out
+}
+
+/// The blocks of `scene` (placed by [`laid`] sizes, or unplaced) as their
+/// class's orientation has them: `turnable` when the class turns, and a
+/// placed block of a class stood on end its own size, `turned`.
+fn turn_blocks(scene: &mut Scene, classes: &[ClassSpec]) {
+    for o in scene.objects.iter_mut().filter(|o| !o.fixed) {
+        let Some(c) = classes.iter().find(|c| c.class == o.class) else {
+            continue;
+        };
+        match c.orientation {
+            Orientation::Fixed => {}
+            Orientation::Flat => o.turnable = true,
+            Orientation::OnEnd => {
+                o.turnable = true;
+                if o.is_placed() {
+                    (o.width, o.height) = (c.width, c.height);
+                    o.turned = true;
+                }
+            }
+        }
+    }
+}
+
 /// The style in words, e.g. `R 20x20 ≤4: band on the S wall; G 30x30 ≤3:
 /// north of R`.
 pub(super) fn style_text(classes: &[ClassSpec]) -> String {
@@ -162,11 +232,16 @@ pub(super) fn style_text(classes: &[ClassSpec]) -> String {
         .iter()
         .map(|c| {
             format!(
-                "{} {}x{} ≤{}: {}",
+                "{} {}x{} ≤{}{}: {}",
                 c.class,
                 c.width,
                 c.height,
                 c.max_count,
+                match c.orientation {
+                    Orientation::Fixed => "",
+                    Orientation::Flat => " turnable, laid flat",
+                    Orientation::OnEnd => " turnable, stood on end",
+                },
                 c.habit.describe(classes)
             )
         })

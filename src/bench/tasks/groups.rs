@@ -185,6 +185,7 @@ fn draw_group_classes(k: usize, rng: &mut ChaCha8Rng) -> Vec<ClassSpec> {
                 height: h,
                 max_count: rng.random_range(3..=4),
                 habit: habits[i],
+                orientation: crate::bench::tasks::Orientation::Fixed,
             }
         })
         .collect()

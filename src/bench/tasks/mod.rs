@@ -33,6 +33,13 @@
 //! 6. **Problems.** For every size `m` in the configuration, `⌈m·M_c⌉`
 //!    unplaced blocks of each class in the task's box.
 //!
+//! With [`TasksConfig::turnable`] (`--turnable`), every oblong class's
+//! blocks are `turnable` (in the problems and the demonstrations), and per
+//! such class a coin from a stream of its own (so the classes, habits and
+//! box are drawn as without it) says whether the demonstrator lays every
+//! block flat or stands every one on end ([`Orientation`]): the meant
+//! statement is then "no A lies turned" or "every A lies turned".
+//!
 //! # The bundled example, scaled
 //!
 //! `examples/box-packing` (compiled in): rules learned from its
@@ -70,8 +77,11 @@ use place::{demo_scene, rotated, Placer};
 pub use report::{
     row_line, summarize, table_text, PeerCell, TaskReport, TasksReport, TasksSummary,
 };
-pub use solve::{run_tasks, solve_once, solve_options, solve_peer, SolveRow, TaskRow, TasksEvent};
-pub use style::{ClassSpec, Corner, Habit, WallSide};
+pub use solve::{
+    peer_not_applicable, run_tasks, solve_once, solve_options, solve_peer, SolveRow, TaskRow,
+    TasksEvent, PEER_NOT_APPLICABLE,
+};
+pub use style::{ClassSpec, Corner, Habit, Orientation, WallSide};
 
 pub mod groups;
 
@@ -218,6 +228,11 @@ pub struct TasksConfig {
     /// The templates rules are learned with.
     #[serde(serialize_with = "ser_templates")]
     pub templates: Templates,
+    /// Generated tasks: the oblong classes' blocks turn, and the
+    /// demonstrator lays each such class flat or stands it on end
+    /// ([`Orientation`]); off, the tasks are those of earlier versions.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub turnable: bool,
 }
 
 fn ser_templates<S: serde::Serializer>(t: &Templates, s: S) -> Result<S::Ok, S::Error> {
@@ -240,6 +255,7 @@ impl TasksConfig {
             peers: Vec::new(),
             groups: 0,
             templates: Templates::default(),
+            turnable: false,
         }
     }
 

@@ -76,7 +76,30 @@ pub fn row_line(r: &TaskRow) -> String {
     if let Some(l) = &r.like {
         line.push_str(&format!("; like {}", solve(l)));
     }
+    if r.turnable > 0 {
+        line.push_str(&format!("; {} turnable", r.turnable));
+    }
+    let share = |v: Option<[usize; 2]>| v.map(|[k, n]| format!("{k}/{n}"));
+    if let Some(l) = share(r.habits_learned) {
+        let kept = |s: &SolveRow| share(s.habits_kept).unwrap_or_else(|| "-".into());
+        line.push_str(&format!(
+            ", orientation habits learned {l}, kept {}{}",
+            kept(&r.score_only),
+            r.like
+                .as_ref()
+                .map(|l| format!(" (like {})", kept(l)))
+                .unwrap_or_default()
+        ));
+    }
     for p in &r.peers {
+        if super::solve::peer_not_applicable(p) {
+            line.push_str(&format!(
+                "; {} {}",
+                p.peer,
+                super::solve::PEER_NOT_APPLICABLE
+            ));
+            continue;
+        }
         let status = p
             .status
             .map(|st| format!("{st:?}").to_lowercase())
@@ -102,6 +125,13 @@ pub struct PeerCell {
     pub rccpack_above: usize,
     /// Peer failures or layouts the checker rejected.
     pub failures: usize,
+    /// Problems the peer's emitted model cannot hold (turnable blocks).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub not_applicable: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// Aggregates of one (series, size) cell.
@@ -149,6 +179,19 @@ pub struct TasksSummary {
     pub shapes_kept: Option<[usize; 2]>,
     /// Group tasks: demonstrated shapes kept over shapes, with `like`.
     pub like_shapes_kept: Option<[usize; 2]>,
+    /// `--turnable`: the most turnable blocks in a problem.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub turnable_max: usize,
+    /// `--turnable`: orientation habits learned over habits (one per
+    /// class that turns, per problem).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub habits_learned: Option<[usize; 2]>,
+    /// `--turnable`: orientation habits the score-only layouts keep.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub habits_kept: Option<[usize; 2]>,
+    /// `--turnable`: orientation habits the `like` layouts keep.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub like_habits_kept: Option<[usize; 2]>,
 }
 
 /// One [`TasksSummary`] per (series, size), in series then size order.
@@ -179,10 +222,11 @@ fn summarize_cell(series: TaskSeries, si: usize, cell: &[&TaskRow]) -> TasksSumm
             .flat_map(|r| std::iter::once(&r.score_only).chain(r.like.as_ref()))
     };
     let so_median = median(&times);
-    let sum_kept = |rows: &mut dyn Iterator<Item = &SolveRow>| {
-        rows.filter_map(|s| s.shapes_kept)
-            .reduce(|a, b| [a[0] + b[0], a[1] + b[1]])
-    };
+    let add = |a: [usize; 2], b: [usize; 2]| [a[0] + b[0], a[1] + b[1]];
+    let sum_kept =
+        |rows: &mut dyn Iterator<Item = &SolveRow>| rows.filter_map(|s| s.shapes_kept).reduce(add);
+    let sum_habits =
+        |rows: &mut dyn Iterator<Item = &SolveRow>| rows.filter_map(|s| s.habits_kept).reduce(add);
     let like_median = (!likes.is_empty()).then(|| median(&like_times));
     TasksSummary {
         series,
@@ -214,6 +258,10 @@ fn summarize_cell(series: TaskSeries, si: usize, cell: &[&TaskRow]) -> TasksSumm
         peers: peer_cells(cell),
         shapes_kept: sum_kept(&mut cell.iter().map(|r| &r.score_only)),
         like_shapes_kept: sum_kept(&mut likes.iter().copied()),
+        turnable_max: cell.iter().map(|r| r.turnable).max().unwrap_or(0),
+        habits_learned: cell.iter().filter_map(|r| r.habits_learned).reduce(add),
+        habits_kept: sum_habits(&mut cell.iter().map(|r| &r.score_only)),
+        like_habits_kept: sum_habits(&mut likes.iter().copied()),
     }
 }
 
@@ -229,9 +277,17 @@ fn peer_cells(cell: &[&TaskRow]) -> Vec<PeerCell> {
     peer_names
         .into_iter()
         .map(|peer| {
-            let pc: Vec<(&TaskRow, &PeerRow)> = cell
+            let all: Vec<(&TaskRow, &PeerRow)> = cell
                 .iter()
                 .filter_map(|r| r.peers.iter().find(|p| p.peer == peer).map(|p| (*r, p)))
+                .collect();
+            let not_applicable = all
+                .iter()
+                .filter(|(_, p)| super::solve::peer_not_applicable(p))
+                .count();
+            let pc: Vec<(&TaskRow, &PeerRow)> = all
+                .into_iter()
+                .filter(|(_, p)| !super::solve::peer_not_applicable(p))
                 .collect();
             let pt: Vec<f64> = pc.iter().map(|(_, p)| p.time_ms).collect();
             PeerCell {
@@ -252,6 +308,7 @@ fn peer_cells(cell: &[&TaskRow]) -> Vec<PeerCell> {
                     .iter()
                     .filter(|(_, p)| p.status.is_none() || p.verified == Some(false))
                     .count(),
+                not_applicable,
                 peer,
             }
         })
@@ -284,10 +341,40 @@ pub fn table_text(summary: &[TasksSummary]) -> String {
     if summary.iter().any(|r| r.shapes_kept.is_some()) {
         shapes_table(&mut s, summary);
     }
+    if summary.iter().any(|r| r.turnable_max > 0) {
+        habits_table(&mut s, summary);
+    }
     if summary.iter().any(|r| !r.peers.is_empty()) {
         peers_table(&mut s, summary);
     }
     s
+}
+
+/// `--turnable`: the most turnable blocks in a problem, and how many
+/// orientation habits were learned and kept, score-only and with `like`.
+fn habits_table(s: &mut String, summary: &[TasksSummary]) {
+    let _ = writeln!(
+        s,
+        "\n{:<8} {:<8} {:>5} {:>8} {:>10} {:>10} {:>10}",
+        "series", "size", "probs", "turnable", "learned", "kept_so", "kept_like"
+    );
+    let share = |v: Option<[usize; 2]>| match v {
+        Some([k, n]) => format!("{k}/{n}"),
+        None => "-".into(),
+    };
+    for r in summary.iter().filter(|r| r.turnable_max > 0) {
+        let _ = writeln!(
+            s,
+            "{:<8} {:<8} {:>5} {:>8} {:>10} {:>10} {:>10}",
+            r.series.name(),
+            r.size,
+            r.problems,
+            r.turnable_max,
+            share(r.habits_learned),
+            share(r.habits_kept),
+            share(r.like_habits_kept)
+        );
+    }
 }
 
 /// rccpack's table: one line per (series, size), score-only and `like`.
@@ -390,10 +477,10 @@ fn peers_table(s: &mut String, summary: &[TasksSummary]) {
                 ms(r.median_ms),
                 p.rccpack_below,
                 p.rccpack_above,
-                if p.failures > 0 {
-                    format!("  failures {}", p.failures)
-                } else {
-                    String::new()
+                match (p.failures, p.not_applicable) {
+                    (0, 0) => String::new(),
+                    (f, 0) => format!("  failures {f}"),
+                    (f, n) => format!("  failures {f}, {} {n}", super::solve::PEER_NOT_APPLICABLE),
                 }
             );
         }

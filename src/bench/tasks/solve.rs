@@ -56,6 +56,11 @@ pub struct SolveRow {
     /// Group tasks: of the classes demonstrated with a group shape, how
     /// many keep it in the layout, `[kept, classes]`.
     pub shapes_kept: Option<[usize; 2]>,
+    /// `--turnable`: of the classes that turn, how many the layout keeps
+    /// the demonstrator's orientation habit for (every block on end, or
+    /// every one flat), `[kept, classes]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub habits_kept: Option<[usize; 2]>,
     /// The layout (not written to `tasks.json`).
     #[serde(skip)]
     pub layout: Option<Scene>,
@@ -81,6 +86,7 @@ pub fn solve_once(
         verified: None,
         error: None,
         shapes_kept: None,
+        habits_kept: None,
         layout: None,
     };
     match res {
@@ -108,6 +114,18 @@ pub fn solve_once(
     row
 }
 
+/// What a peer's error starts with when its emitted model cannot hold the
+/// problem's turnable blocks: the cell is "n/a (turnable)", not a failure.
+pub const PEER_NOT_APPLICABLE: &str = "n/a (turnable)";
+
+/// Whether a peer's row is [`PEER_NOT_APPLICABLE`].
+pub fn peer_not_applicable(p: &PeerRow) -> bool {
+    p.status.is_none()
+        && p.error
+            .as_deref()
+            .is_some_and(|e| e.starts_with(PEER_NOT_APPLICABLE))
+}
+
 /// Run `peer` on the emitted (score-only) model of a problem; its layout
 /// is scored by the evaluator and checked.
 pub fn solve_peer(
@@ -129,6 +147,13 @@ pub fn solve_peer(
     let opts = solve_options(cfg, &[], false);
     let e = match crate::synth::emit::emitted(scene, rules, &opts) {
         Ok(e) => e,
+        // The emitted model cannot say that a block turns: no cell to fill.
+        Err(e @ crate::synth::SynthError::Unsupported(_))
+            if scene.objects.iter().any(|o| o.turnable) =>
+        {
+            row.error = Some(format!("{PEER_NOT_APPLICABLE}: {e}"));
+            return row;
+        }
         Err(e) => {
             row.error = Some(e.to_string());
             return row;
@@ -179,6 +204,55 @@ pub struct TaskRow {
     pub like: Option<SolveRow>,
     /// The peers on the score-only model.
     pub peers: Vec<PeerRow>,
+    /// `--turnable`: the problem's turnable blocks.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub turnable: usize,
+    /// `--turnable`: of the classes that turn, how many orientation habits
+    /// learning kept as the meant statement (`turned(A)` or
+    /// `!turned(A)`), `[learned, classes]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub habits_learned: Option<[usize; 2]>,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
+/// The classes of `t` that turn, with the statement their demonstrator
+/// means.
+fn habits(t: &BenchTask) -> Vec<(&str, crate::rules::Formula)> {
+    (t.classes.iter())
+        .filter_map(|c| Some((c.class.as_str(), c.orientation.meant(&c.class)?)))
+        .collect()
+}
+
+/// Of the classes of `t` that turn, how many have their meant orientation
+/// statement among the learned rules; `None` when no class turns.
+pub(crate) fn habits_learned(t: &BenchTask) -> Option<[usize; 2]> {
+    let h = habits(t);
+    let learned = (h.iter())
+        .filter(|(_, f)| {
+            (t.rules.rules.iter()).any(|r| r.scope == crate::rules::Scope::Each && &r.formula == f)
+        })
+        .count();
+    (!h.is_empty()).then_some([learned, h.len()])
+}
+
+/// Of the classes of `t` that turn, how many `layout` keeps the
+/// demonstrator's habit for (the evaluator reads the meant statement);
+/// `None` when no class turns.
+pub(crate) fn habits_kept(t: &BenchTask, layout: &Scene, contact: Contact) -> Option<[usize; 2]> {
+    let h = habits(t);
+    let rules = RuleSet::new(
+        (h.iter())
+            .map(|(c, f)| crate::rules::Rule::new(format!("habit_{c}"), f.clone()))
+            .collect(),
+    );
+    let e = crate::eval::evaluate(layout, &rules, contact);
+    let kept = (e.rules.iter())
+        .filter(|r| r.satisfied == r.subjects)
+        .count();
+    (!h.is_empty()).then_some([kept, h.len()])
 }
 
 /// What the benchmark is doing, for a progress bar.
@@ -228,6 +302,9 @@ fn solve_problem(
         label: format!("{} {what}", p.name),
     };
     let kept = |mut row: SolveRow, opts: &SynthOptions| {
+        if let Some(l) = &row.layout {
+            row.habits_kept = habits_kept(t, l, opts.contact);
+        }
         if t.series == TaskSeries::Groups {
             row.shapes_kept = row.layout.as_ref().map(|l| {
                 let (k, n) = groups::shapes_kept(t, l, opts.contact);
@@ -265,6 +342,8 @@ fn solve_problem(
         score_only,
         like,
         peers,
+        turnable: p.scene.objects.iter().filter(|o| o.turnable).count(),
+        habits_learned: habits_learned(t),
     }
 }
 

@@ -106,4 +106,41 @@ pub struct ClassSpec {
     pub max_count: usize,
     /// How the demonstrations place it.
     pub habit: Habit,
+    /// Whether its blocks turn (`bench tasks --turnable`), and how the
+    /// demonstrations lay them.
+    #[serde(skip_serializing_if = "Orientation::is_fixed")]
+    pub orientation: Orientation,
+}
+
+/// Whether a class's blocks turn (`bench tasks --turnable`: the oblong
+/// classes do), and the demonstrator's orientation habit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Orientation {
+    /// Not turnable: square blocks, or a run without `--turnable`.
+    #[default]
+    Fixed,
+    /// Turnable; every demonstration lays every block flat.
+    Flat,
+    /// Turnable; every demonstration stands every block on end (turned).
+    OnEnd,
+}
+
+impl Orientation {
+    /// Not turnable.
+    pub fn is_fixed(&self) -> bool {
+        *self == Orientation::Fixed
+    }
+
+    /// The orientation statement a demonstrator with this habit means:
+    /// `turned(A)` ("every A lies turned") or `!turned(A)` ("no A lies
+    /// turned"); `None` when the blocks do not turn.
+    pub fn meant(&self, class: &str) -> Option<crate::rules::Formula> {
+        let t = crate::rules::Formula::Turned(class.to_string());
+        match self {
+            Orientation::Fixed => None,
+            Orientation::Flat => Some(crate::rules::Formula::not(t)),
+            Orientation::OnEnd => Some(t),
+        }
+    }
 }

@@ -69,6 +69,13 @@ pub(super) struct TasksArgs {
     /// table says how many layouts keep the demonstrated shapes.
     #[arg(long, value_parser = clap::value_parser!(u16).range(0..=1000))]
     groups: Option<u16>,
+    /// Generated tasks with blocks that turn: every oblong class's blocks
+    /// are turnable, and the demonstrator lays each such class flat or
+    /// stands every block on end (a coin per class); the report says how
+    /// many orientation habits were learned and kept. Peers whose model
+    /// cannot turn a block show "n/a (turnable)".
+    #[arg(long)]
+    turnable: bool,
     /// Templates to learn with (default third: with the group statements).
     #[arg(long, default_value = "third", value_name = "first|second|third")]
     templates: rccpack::infer::Templates,
@@ -101,6 +108,11 @@ pub(super) fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
         "(proven = score-only solves proved optimal; median/max = score-only wall time; like_pr = like solves with score and cost proven; like/so = like median / score-only median; rcc_below / rcc_above = problems where rccpack's score-only score is below / above the peer's) — {:.0} s in all",
         started.elapsed().as_secs_f64()
     );
+    if cfg.turnable {
+        println!(
+            "(turnable = most turnable blocks in a problem; learned = orientation habits, one per class that turns and problem, whose statement learning kept; kept_so / kept_like = those the score-only / like layouts keep)"
+        );
+    }
     let bad = failed_solves(&report);
     if !bad.is_empty() {
         println!(
@@ -149,6 +161,7 @@ fn tasks_config(a: &TasksArgs, limit: Duration) -> TasksConfig {
         cfg.groups = usize::from(n);
     }
     cfg.templates = a.templates;
+    cfg.turnable = a.turnable;
     cfg.like = !a.no_like;
     cfg.warm_start = !a.no_warm_start;
     cfg.lns = !a.no_lns;
@@ -180,6 +193,9 @@ fn print_tasks(cfg: &TasksConfig, limit: Duration, all: &[tasks::BenchTask]) {
         if cfg.warm_start { ", warm start" } else { "" },
         if cfg.lns { "" } else { ", no LNS" },
     );
+    if cfg.turnable {
+        println!("  oblong blocks turnable; each such class laid flat or stood on end");
+    }
     for t in all {
         println!(
             "  {} {:>2}: {} demos, {} rules; objects {}; {}",

@@ -212,8 +212,8 @@ struct AnswerSummary {
     /// For an accepted probe: its index in `demos.json`.
     demo: Option<usize>,
     rule: String,
-    /// For a question about a suspect: the demonstration (set aside when
-    /// not accepted).
+    /// For a question about a suspect: the demonstration (holding a slip
+    /// when not accepted).
     #[serde(skip_serializing_if = "Option::is_none")]
     suspect: Option<usize>,
 }

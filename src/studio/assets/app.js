@@ -655,7 +655,7 @@ function applyAsk(d) {
     : q.statement;
   $('ask-question').dataset.group = String(group.length);
   $('ask-broken').textContent = s
-    ? `It breaks ${s.breaks.join(', ')}, which the other demonstrations keep. Looks right: it is meant, and those rules are dropped. Not like that: a slip; it is set aside from learning (demos.json keeps it).`
+    ? `It breaks ${s.breaks.join(', ')}, which the other demonstrations keep. Looks right: it is meant, and those rules are dropped. Not like that: a slip; it no longer counts against those rules (demos.json keeps it).`
     : group.length
     ? `It breaks all ${group.length}; every other learned rule holds. Acceptable: none of them is meant, all are dropped. Not acceptable: at least one is meant, and the next questions find which.`
     : q.broken.length
@@ -715,7 +715,7 @@ async function askAnswer(accepted) {
   if (q.suspect) {
     toast(accepted
       ? `Demonstration #${q.suspect.demonstration + 1} is meant: dropped ${q.suspect.breaks.join(', ')}.`
-      : `Demonstration #${q.suspect.demonstration + 1} set aside as a slip; confirmed ${q.suspect.breaks.join(', ')}.`, 'ok');
+      : `Demonstration #${q.suspect.demonstration + 1} holds a slip; it no longer counts, confirmed ${q.suspect.breaks.join(', ')}.`, 'ok');
   } else if (accepted) {
     const what = (q.group || []).length ? `${q.group.length} rules (${q.group.map((g) => g.rule).join(', ')})` : q.rule;
     toast(`Dropped ${what}: the layout is now demonstration #${r.data.answer.demo + 1}.`, 'ok');
