@@ -297,7 +297,7 @@ pub enum SynthError {
     #[error("the rule weights are too large for the solver: divided by their common factor, the weights of all (object, rule) terms total more than 2^30; expected smaller weights")]
     WeightsTooLarge,
     /// What was asked is not built yet for this problem; the message says
-    /// what (e.g. `--emit` of a problem with objects that turn).
+    /// what.
     #[error("{0}")]
     Unsupported(String),
     /// The layout the engine found fails the independent check
