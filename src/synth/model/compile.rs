@@ -102,9 +102,17 @@ impl Model {
     /// orientation literal that gives it: one case `(true, offset)`
     /// unless `e` is a far edge of an object with an orientation variable.
     fn offsets(&mut self, o: usize, e: Edge, axis: Axis) -> Vec<(Lit, i64)> {
-        if !e.is_far() {
-            return vec![(Lit::TRUE, 0)];
+        if e.is_far() {
+            self.sides(o, axis)
+        } else {
+            vec![(Lit::TRUE, 0)]
         }
+    }
+
+    /// Object `o`'s footprint side along `axis`, under the orientation
+    /// literal that gives it: one case `(true, side)` without an
+    /// orientation variable, else `(¬t, flat side)` and `(t, other side)`.
+    pub(super) fn sides(&mut self, o: usize, axis: Axis) -> Vec<(Lit, i64)> {
         let flat = self.size(o, axis);
         match self.turn_vars[o] {
             None => vec![(Lit::TRUE, flat)],

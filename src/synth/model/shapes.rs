@@ -234,27 +234,12 @@ impl Model {
             let ch = objects.iter().map(|&o| self.sizes[o].1).max().unwrap_or(0);
             return self.block_box_of(objects, cw, ch);
         }
-        // Per object and axis: (orientation literal, footprint side).
-        let sides = |m: &mut Self, o: usize, axis: Axis| -> Vec<(Lit, i64)> {
-            let flat = m.size(o, axis);
-            match m.turn_vars[o] {
-                None => vec![(Lit::TRUE, flat)],
-                Some(t) => {
-                    let across = match axis {
-                        Axis::X => m.sizes[o].1,
-                        Axis::Y => m.sizes[o].0,
-                    };
-                    let turned = m.ge(t, 1);
-                    vec![(!turned, flat), (turned, across)]
-                }
-            }
-        };
         // `max over objects of side = v`: some object has v, none more.
         let max_is = |m: &mut Self, axis: Axis, v: i64| -> Lit {
             let mut some = Vec::new();
             let mut none_more = Vec::new();
             for &o in objects {
-                for (l, side) in sides(m, o, axis) {
+                for (l, side) in m.sides(o, axis) {
                     if side == v {
                         some.push(l);
                     } else if side > v {
@@ -269,7 +254,7 @@ impl Model {
         let values = |m: &mut Self, axis: Axis| -> Vec<i64> {
             let mut v: Vec<i64> = objects
                 .iter()
-                .flat_map(|&o| sides(m, o, axis).into_iter().map(|c| c.1))
+                .flat_map(|&o| m.sides(o, axis).into_iter().map(|c| c.1))
                 .collect();
             v.sort_unstable();
             v.dedup();
