@@ -1,7 +1,11 @@
-//! Objects that turn (docs/guide.md#objects-that-turn): a problem whose
-//! unplaced objects may lie turned by 90° is solved as one exact solve per
-//! *orientation choice*, and the best layout over the choices is the
-//! answer.
+//! Objects that turn (docs/guide.md#objects-that-turn). Without `like`
+//! ([`synthesize_model`]): a short probe with nothing turned, then the one
+//! model with an orientation variable per turnable object
+//! (`model/mod.rs`, "Objects that turn"). With `like` (whose resemblance
+//! costs assume each object's footprint), or `RCCPACK_TURNS=enumerate`
+//! ([`synthesize_turning`]): a problem whose unplaced objects may lie
+//! turned by 90° is solved as one exact solve per *orientation choice*,
+//! and the best layout over the choices is the answer, as follows.
 //!
 //! Objects of one class and size that may turn are interchangeable (rules
 //! name classes, resemblance and warm starts match class and footprint),
@@ -69,11 +73,7 @@ pub(super) fn synthesize_model(
     );
     let flat = oriented(problem, groups, &vec![0; groups.len()]);
     let mut first = synthesize_fixed(&flat, rules, &probe)?;
-    if let Some(scene) = &mut first.scene {
-        for (o, p) in scene.objects.iter_mut().zip(&problem.objects) {
-            o.turnable = p.turnable;
-        }
-    }
+    turnable_as_in(&mut first, problem);
     let elapsed = start.elapsed();
     let time_left = opts.time_limit.map(|t| t.saturating_sub(elapsed));
     let nodes_left = opts.node_limit.map(|n| n.saturating_sub(first.stats.nodes));
@@ -126,7 +126,7 @@ pub(super) fn synthesize_model(
 }
 
 /// Most orientation choices (`Π (nᵍ + 1)` over the groups of
-/// interchangeable turnable objects) one synthesis tries.
+/// interchangeable turnable objects) one synthesis with `like` tries.
 pub const MAX_ORIENTATION_CHOICES: u128 = 256;
 
 /// The groups of interchangeable objects that may turn: unplaced,
@@ -193,6 +193,16 @@ fn oriented(problem: &Scene, groups: &[Vec<usize>], turned: &[usize]) -> Scene {
     p
 }
 
+/// The layout of an oriented problem's result names the objects as
+/// `problem` does: `turnable` as given there.
+fn turnable_as_in(result: &mut SynthResult, problem: &Scene) {
+    if let Some(scene) = &mut result.scene {
+        for (o, p) in scene.objects.iter_mut().zip(&problem.objects) {
+            o.turnable = p.turnable;
+        }
+    }
+}
+
 /// One choice's outcome, kept for the combination.
 struct Solved {
     result: SynthResult,
@@ -256,12 +266,7 @@ pub(super) fn synthesize_turning(
         });
         let choice = oriented(problem, groups, &turned);
         let mut result = synthesize_fixed(&choice, rules, &sub)?;
-        // The layout names the objects as the problem does.
-        if let Some(scene) = &mut result.scene {
-            for (o, p) in scene.objects.iter_mut().zip(&problem.objects) {
-                o.turnable = p.turnable;
-            }
-        }
+        turnable_as_in(&mut result, problem);
         nodes_used = nodes_used.saturating_add(result.stats.nodes);
         let top = opts.like.is_none() && at_maximum(&result);
         solved.push(Solved { result, offset });
