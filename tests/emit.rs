@@ -208,6 +208,40 @@ fn random_case(index: u64) -> Case {
 /// The first case index whose rules include a group statement.
 const GROUP_CASES: u64 = 5000;
 
+/// The first case index of the cases with objects that turn.
+const TURN_CASES: u64 = 9000;
+
+/// [`random_case`] with every movable block `turnable` and a soft
+/// orientation rule (`turned(A)`): the orientation variables' model.
+fn turning_case(index: u64) -> Case {
+    let mut c = random_case(index);
+    for o in c.scene.objects.iter_mut().filter(|o| !o.is_placed()) {
+        o.turnable = true;
+    }
+    let mut rules = c.rules.rules.clone();
+    rules.push(Rule::new("on_end", Formula::Turned("A".into())));
+    c.rules = RuleSet::new(rules);
+    c
+}
+
+/// `n` turning cases and the first `k` packings that fit only turned
+/// (`tests/support/turn_packing.rs`), with the orientation rule.
+fn turning_cases(n: u64, k: usize) -> Vec<Case> {
+    let mut cases: Vec<Case> = (TURN_CASES..TURN_CASES + n).map(turning_case).collect();
+    for (i, scene) in crate::support::turn_packing::packings(k)
+        .into_iter()
+        .enumerate()
+    {
+        cases.push(Case {
+            index: 2_000_000 + i as u64,
+            scene,
+            rules: RuleSet::new(vec![Rule::new("on_end", Formula::Turned("B".into()))]),
+            opts: SynthOptions::default(),
+        });
+    }
+    cases
+}
+
 /// Problems every peer must find infeasible: an object larger than the
 /// space (the trivially infeasible emitted model), and contradicting hard
 /// rules.
@@ -372,6 +406,10 @@ fn grid_values(j: &Value, solution: &Scene) -> Vec<i64> {
             let (c, origin) = match v["axis"].as_str() {
                 Some("x") => (o.x.expect("placed"), ox),
                 Some("y") => (o.y.expect("placed"), oy),
+                Some("turn") => {
+                    assert_eq!(v["ub"], 1);
+                    return i64::from(o.turned);
+                }
                 a => panic!("axis {a:?}"),
             };
             assert_eq!((c - origin) % g, 0, "off the grid");
@@ -408,6 +446,9 @@ fn json_form_holds_on_rccpack_solutions() {
     let mut cases: Vec<Case> = (0..120).map(random_case).collect();
     cases.extend((GROUP_CASES..GROUP_CASES + 60).map(random_case));
     cases.extend(infeasible_cases());
+    cases.extend(turning_cases(40, 8));
+    // Optimal layouts with a block turned, read back from the values.
+    let mut turned = 0;
     for case in &cases {
         let e = emitted(&case.scene, &case.rules, &case.opts).expect("usable problem");
         let text = to_json(&e);
@@ -450,6 +491,15 @@ fn json_form_holds_on_rccpack_solutions() {
                 });
                 assert_eq!(obj, implied_objective(&j, s, case), "case {}", case.index);
                 assert_eq!(Some(obj), e.objective_of(&vals));
+                // The values give the layout back, orientations included.
+                assert_eq!(&e.model.scene(&case.scene, &vals), s, "case {}", case.index);
+                if s.objects.iter().any(|o| o.turned) {
+                    turned += 1;
+                    let with_var = arr(&j["objects"])
+                        .iter()
+                        .filter(|o| !o["turn_var"].is_null());
+                    assert!(with_var.count() > 0, "case {}", case.index);
+                }
             }
             Status::Infeasible => {
                 infeasible += 1;
@@ -464,7 +514,10 @@ fn json_form_holds_on_rccpack_solutions() {
     assert!(solved >= 50, "{solved} solved");
     assert!(infeasible >= 2, "{infeasible} infeasible");
     assert!(seen.iter().all(|&n| n >= 3), "coverage {seen:?}");
-    eprintln!("json: {solved} optimal, {infeasible} infeasible, coverage {seen:?}");
+    assert!(turned >= 10, "{turned} layouts with a block turned");
+    eprintln!(
+        "json: {solved} optimal ({turned} turned), {infeasible} infeasible, coverage {seen:?}"
+    );
 }
 
 /// The MiniZinc text names every variable and Boolean, has the objective
@@ -647,6 +700,7 @@ fn gecode_agrees_with_rccpack() {
     let mut cases: Vec<Case> = (0..55).map(random_case).collect();
     cases.extend((GROUP_CASES..GROUP_CASES + 15).map(random_case));
     cases.extend(infeasible_cases());
+    cases.extend(turning_cases(10, 4));
     against_peer(Peer::Gecode, &cases, Duration::from_secs(10));
     definitions_agree(Peer::Gecode, 1000, 30);
     // Group statements as MiniZinc reachability (`--emit F.mzn`).
@@ -666,6 +720,7 @@ fn cpsat_agrees_with_rccpack() {
     let mut cases: Vec<Case> = (200..222).map(random_case).collect();
     cases.extend((GROUP_CASES + 100..GROUP_CASES + 108).map(random_case));
     cases.extend(infeasible_cases());
+    cases.extend(turning_cases(12, 6));
     against_peer(Peer::CpSat, &cases, Duration::from_secs(10));
     definitions_agree(Peer::CpSat, 2000, 12);
 }

@@ -80,6 +80,10 @@ enum Language {
     /// each movable block `turnable` (a square one never turns): the
     /// engine's orientation choices against brute force's.
     Turning,
+    /// The third edition's cases (group statements) with the turning
+    /// edition's blocks, every movable one `turnable`: shapes whose sizes
+    /// and block cell depend on orientations.
+    TurningShapes,
 }
 
 /// What a run draws.
@@ -112,6 +116,10 @@ const SMALL_TURNING: Sizes = Sizes {
 const SMALL3: Sizes = Sizes {
     spaces: &[(30, 30), (40, 30), (30, 40), (40, 40), (50, 30)],
     language: Language::Third,
+};
+const SMALL3_TURNING: Sizes = Sizes {
+    language: Language::TurningShapes,
+    ..SMALL3
 };
 
 fn random_formula(rng: &mut ChaCha8Rng, subject: &str) -> Formula {
@@ -221,7 +229,8 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
     let mut rng = ChaCha8Rng::seed_from_u64(BASE_SEED);
     rng.set_stream(index);
     let second = sizes.language != Language::First;
-    let third = sizes.language == Language::Third;
+    let third = matches!(sizes.language, Language::Third | Language::TurningShapes);
+    let turning = matches!(sizes.language, Language::Turning | Language::TurningShapes);
     let (w, h) = pick(&mut rng, sizes.spaces);
     let mut objects: Vec<Object> = Vec::new();
     let n_fixed = if second {
@@ -266,7 +275,7 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
             pick(&mut rng, &["A", "B"])
         };
         // Large blocks only now and then: they shrink the domains a lot.
-        let (bw, bh) = if sizes.language == Language::Turning {
+        let (bw, bh) = if turning {
             match rng.random_range(0..8) {
                 0 => (20, 20),
                 1..=3 => (20, 10),
@@ -285,7 +294,7 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
             (side, side)
         };
         let mut o = Object::movable(&format!("{}{}", class.to_lowercase(), i), class, bw, bh);
-        o.turnable = sizes.language == Language::Turning;
+        o.turnable = turning;
         objects.push(o);
     }
     // Already-placed movable objects (subjects and targets that do not
@@ -340,7 +349,7 @@ fn random_case(index: u64, sizes: Sizes) -> Case {
                 .with_scope(scope)
         })
         .collect();
-    if sizes.language == Language::Turning && rng.random_range(0..2) == 0 {
+    if turning && rng.random_range(0..2) == 0 {
         // An orientation statement ("every A lies turned", "no B lies
         // turned", or inside a formula), hard or soft.
         let subject = pick(&mut rng, &["A", "B"]);
@@ -429,12 +438,8 @@ fn check_conflict(case: &Case, c: &rccpack::synth::Conflict) -> Result<(), Strin
             "conflict {names:?} is feasible on its own (not a conflict)"
         ));
     }
-    // With objects that turn, the conflict is the union of every
-    // orientation's (docs/guide.md#objects-that-turn): a conflict, not
-    // necessarily a minimal one.
-    if case.scene.objects.iter().any(|o| o.turnable) {
-        return Ok(());
-    }
+    // With objects that turn too: the orientations are the model's
+    // variables, so the conflict is one solve's, minimal.
     for i in 0..names.len() {
         let rest: Vec<&str> = names
             .iter()
@@ -1148,6 +1153,22 @@ fn engine_matches_brute_force_with_objects_that_turn_lns_and_warm_starts() {
         true,
         true,
         check_warm,
+    ));
+}
+
+#[test]
+fn engine_matches_brute_force_group_shapes_with_objects_that_turn() {
+    assert_clean(run(940_000..940_300, SMALL3_TURNING, true, true));
+}
+
+#[test]
+fn engine_matches_brute_force_with_objects_that_turn_and_lns_forced_on() {
+    assert_clean(run_with(
+        930_000..930_200,
+        SMALL_TURNING,
+        true,
+        true,
+        check_lns,
     ));
 }
 

@@ -377,7 +377,7 @@ impl Lns<'_> {
         let pool = if broken.is_empty() { movable } else { &broken };
         let seed_obj = pool[rng.random_range(0..pool.len())];
         let centre = |o: usize| -> (i64, i64) {
-            let (w, h) = model.sizes[o];
+            let (w, h) = model.footprint_in(o, vals);
             let at = |c: Coord, origin: i64| match c {
                 Coord::Const(v) => v,
                 Coord::Var(i) => origin + model.grid * vals[i],
@@ -434,6 +434,7 @@ impl Lns<'_> {
                 if freed.binary_search(&o).is_err() {
                     obj.x = Some(model.origin.0 + model.grid * vals[vx]);
                     obj.y = Some(model.origin.1 + model.grid * vals[vy]);
+                    obj.turned |= model.turned_in(o, vals);
                 }
             }
         }

@@ -297,7 +297,7 @@ pub enum SynthError {
     #[error("the rule weights are too large for the solver: divided by their common factor, the weights of all (object, rule) terms total more than 2^30; expected smaller weights")]
     WeightsTooLarge,
     /// What was asked is not built yet for this problem; the message says
-    /// what (e.g. `--emit` of a problem with objects that turn).
+    /// what.
     #[error("{0}")]
     Unsupported(String),
     /// The layout the engine found fails the independent check
@@ -509,9 +509,11 @@ pub(crate) fn objective_model_encoded(
 /// Errors are reserved for unusable input; infeasibility is a [`Status`].
 ///
 /// Unplaced objects marked `turnable` may lie turned in the layout
-/// (docs/guide.md#objects-that-turn): every orientation choice is solved
-/// (at most [`MAX_ORIENTATION_CHOICES`]), so `optimal` and `infeasible`
-/// hold over every orientation.
+/// (docs/guide.md#objects-that-turn): the model has an orientation
+/// variable per such object, so `optimal` and `infeasible` hold over every
+/// orientation. With a second objective (`like`), whose costs assume each
+/// object's footprint, every orientation choice is solved in turn instead
+/// (at most [`MAX_ORIENTATION_CHOICES`]).
 pub fn synthesize(
     problem: &Scene,
     rules: &RuleSet,
@@ -522,13 +524,16 @@ pub fn synthesize(
     let groups = turns::turn_groups(problem);
     if groups.is_empty() {
         synthesize_fixed(problem, rules, opts)
-    } else {
+    } else if turns::enumerate(opts) {
         turns::synthesize_turning(problem, rules, opts, &groups)
+    } else {
+        turns::synthesize_model(problem, rules, opts, &groups)
     }
 }
 
-/// [`synthesize`] with every object's orientation given (an unplaced
-/// object lies turned when `turned` is set).
+/// [`synthesize`] on the one model of `problem`: an unplaced object lies
+/// turned when `turned` is set, and may turn (an orientation variable)
+/// when it is `turnable`, oblong and not `turned`.
 fn synthesize_fixed(
     problem: &Scene,
     rules: &RuleSet,

@@ -2,6 +2,10 @@
 //! object that synthesis places and whose class and size the like-scenes
 //! showed, holding the object's grid variables and its distance map.
 //!
+//! An object with an orientation variable (`Model::turn_vars`) has no
+//! term: its cost would depend on the orientation; `synthesize` with
+//! `like` gives every orientation on its own (`synth::turns`).
+//!
 //! The cost of a term is `map.cost[gy·nx + gx]`; the total resemblance cost
 //! is the sum of the terms (objects whose class and size were never shown
 //! have no term: they add nothing). The map's domain is exactly the grid
@@ -51,6 +55,12 @@ pub(super) fn resemblance_terms(
         let (Coord::Var(x), Coord::Var(y)) = model.coords[i] else {
             continue;
         };
+        // An object with an orientation variable has no term: its map
+        // would depend on the orientation (`synthesize` with `like`
+        // solves each orientation choice on its own, without one).
+        if model.turn_vars[i].is_some() {
+            continue;
+        }
         let (w, h) = o.footprint();
         let key = (o.class.as_str(), w, h);
         let map = match maps.get(&key) {

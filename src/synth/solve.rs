@@ -128,7 +128,7 @@ impl Solve<'_> {
             Ok(first) => first,
         };
         on_incumbent(&first);
-        let movable = self.model.vars.len() / 2;
+        let movable = self.model.vars.iter().filter(|v| !v.turn).count() / 2;
         match self.opts.lns.filter(|l| movable >= l.min_objects) {
             Some(lopts) => {
                 let search = lns::Lns {

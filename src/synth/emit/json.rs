@@ -1,7 +1,7 @@
 //! The `rccpack-model/1` JSON form of an emitted model (every field is
 //! described in the parent module's doc).
 
-use super::{axis_name, name_of, starts, Emitted, Start, FORMAT};
+use super::{axis_name, name_of, starts, var_axis_name, Emitted, Start, FORMAT};
 use crate::synth::model::{BoolDef, Coord, Lit};
 use serde::Serialize;
 
@@ -33,6 +33,8 @@ struct JObject<'a> {
     y: Option<i64>,
     x_var: Option<usize>,
     y_var: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    turn_var: Option<usize>,
 }
 
 #[derive(Serialize)]
@@ -165,6 +167,7 @@ fn objects(e: &Emitted) -> Vec<JObject<'_>> {
                 y,
                 x_var,
                 y_var,
+                turn_var: m.turn_vars[i],
             }
         })
         .collect()
@@ -178,7 +181,7 @@ fn vars(e: &Emitted) -> Vec<JVar<'_>> {
         .map(|v| JVar {
             object: v.object,
             object_id: name_of(&e.object_ids, v.object),
-            axis: axis_name(v.axis),
+            axis: var_axis_name(v),
             lb: 0,
             ub: v.ub,
         })

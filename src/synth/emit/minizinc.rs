@@ -1,7 +1,7 @@
 //! The MiniZinc form of an emitted model (described in the parent module's
 //! doc).
 
-use super::{axis_name, name_of, starts, Emitted, Start, FORMAT};
+use super::{axis_name, name_of, starts, var_axis_name, Emitted, Start, FORMAT};
 use crate::synth::model::{BoolDef, Lit};
 use std::fmt::Write as _;
 
@@ -146,7 +146,7 @@ fn variables(s: &mut String, e: &Emitted) {
             v.ub,
             v.object,
             comment(name_of(&e.object_ids, v.object)),
-            axis_name(v.axis)
+            var_axis_name(v)
         );
     }
 }

@@ -48,8 +48,8 @@
 //! | `contact` | `"point"` or `"edge"` (informative: already compiled in) |
 //! | `origin` | `[space.x, space.y]` |
 //! | `grid` | the grid step |
-//! | `objects` | per object of the problem, in order: `{id, class, width, height, x, y, x_var, y_var}`; `x`/`y` are the fixed coordinates (or `null`), `x_var`/`y_var` the grid variables (or `null`): the object's coordinate is `origin + grid·value` |
-//! | `vars` | per grid variable `i`: `{object, object_id, axis ("x"/"y"), lb (always 0), ub}`, domain `lb..=ub` |
+//! | `objects` | per object of the problem, in order: `{id, class, width, height, x, y, x_var, y_var}` and, for an object that may turn, `turn_var`; `x`/`y` are the fixed coordinates (or `null`), `x_var`/`y_var` the grid variables (or `null`): the object's coordinate is `origin + grid·value`; `width`/`height` its footprint unturned |
+//! | `vars` | per grid variable `i`: `{object, object_id, axis ("x"/"y"/"turn"), lb (always 0), ub}`, domain `lb..=ub`; a `"turn"` variable (domain `0..=1`, after every coordinate variable) is an object's orientation: 1 when it lies turned, its footprint then `height × width` |
 //! | `bools` | per Boolean `j` (children before parents), its exact definition `b_j ⇔ …`: `{"op": "ge", var, k}` is `vars[var] ≥ k`; `{"op": "diff_ge", a, b, k}` is `vars[a] − vars[b] ≥ k`; `{"op": "and", lits}` the conjunction; `{"op": "at_least", lits, k}` at least `k` of `lits` true, repeated literals counted with their multiplicity. Group statements' connectivity is written as `and` nodes (a layered reachability circuit), so these four ops are all a reader needs; `{"op": "connected", nodes, edges: [[a, b, lit], …]}` (the graph is connected over the edges whose literal holds) appears only in an [`Emitted`] built by hand from an engine model, never in what [`emitted`] returns |
 //! | literal | `{"var": j, "neg": bool}` (Boolean `j`, negated when `neg`) or `{"const": true/false}` |
 //! | `clauses` | lists of literals, each clause a disjunction that must hold (non-overlap, symmetry fallback, `[]` for a too-large object) |
@@ -60,8 +60,17 @@
 //! | `cumulative` | redundant, implied by non-overlap: `{axis, shift, capacity, tasks}`; per task `{object, start, duration, demand}` with `start` either `{"var": v, "scale": s, "offset": o}` (`s·vars[v] + o`, with `s = grid`, `o = origin + shift` on the axis) or `{"const": c}` (the fixed coordinate plus `shift`) exactly as the engine posts it (`Model::cumulative_shift` makes every start ≥ 0); at every point `t`, the demands of the tasks with `start ≤ t < start + duration` sum to at most `capacity` |
 //! | `too_large` | ids of objects that cannot lie inside the space (the model is then infeasible) |
 //!
-//! A solution is one value per grid variable (`vars` order); the layout is
-//! `model.scene(problem, &values)` (`Model::scene`).
+//! A solution is one value per variable (`vars` order, orientation
+//! variables included); the layout is `model.scene(problem, &values)`
+//! (`Model::scene`: an orientation variable at 1 sets `turned`).
+//!
+//! - **Objects that turn** need no new Boolean kind: an object that may
+//!   turn has an orientation variable (`turn_var`, domain `0..=1`), and
+//!   every comparison naming its far edge is already a disjunction over
+//!   its two orientations of `ge`/`diff_ge`/`and` literals (`Model::pair`),
+//!   as are the bounds of each orientation inside the space (clauses). So
+//!   a reader of format 1 that creates every variable of `vars` solves the
+//!   model unchanged, and its values give the orientations back.
 //!
 //! # The MiniZinc form ([`to_minizinc`])
 //!
@@ -76,7 +85,7 @@
 //! `values = [v0, v1, …]` and `objective = N` (the objective includes
 //! the constant).
 
-use super::model::{Axis, Coord, Cumulative, Lit, Model};
+use super::model::{Axis, Coord, Cumulative, IntVar, Lit, Model};
 use super::{SynthError, SynthOptions};
 use crate::relations::Contact;
 use crate::rules::RuleSet;
@@ -163,17 +172,6 @@ fn emitted_encoded(
     connectivity: super::model::Connectivity,
 ) -> Result<Emitted, SynthError> {
     problem.validate()?;
-    if let Some(i) = problem
-        .objects
-        .iter()
-        .position(|o| !o.is_placed() && o.turnable && o.is_oblong())
-    {
-        return Err(SynthError::Unsupported(format!(
-            "objects[{i}] `{}` is turnable: the emitted model has no orientation choice yet; \
-             expected a problem without \"turnable\" objects for --emit (synth solves it)",
-            problem.objects[i].id
-        )));
-    }
     let encoding = super::model::Encoding {
         connectivity,
         ..super::model::Encoding::from_env()
@@ -206,6 +204,15 @@ pub(super) fn axis_name(a: Axis) -> &'static str {
     match a {
         Axis::X => "x",
         Axis::Y => "y",
+    }
+}
+
+/// A variable's `axis` field: its coordinate, or `"turn"`.
+pub(super) fn var_axis_name(v: &IntVar) -> &'static str {
+    if v.turn {
+        "turn"
+    } else {
+        axis_name(v.axis)
     }
 }
 

@@ -3,10 +3,10 @@
 //! under an [`Encoding`] that never changes what the model means.
 
 use super::bools::floor_div;
-use super::{BuildOptions, Connectivity, Coord, HardRule, IntVar, Model};
+use super::{BuildOptions, Connectivity, Coord, HardRule, IntVar, Lit, Model};
 use crate::relations::Axis;
 use crate::rules::RuleSet;
-use crate::scene::Scene;
+use crate::scene::{Object, Scene};
 use std::collections::HashMap;
 
 /// Most pairs of objects (at least one movable) whose non-overlap the model
@@ -60,6 +60,13 @@ impl Encoding {
     }
 }
 
+/// Whether `o` gets an orientation variable: unplaced, `turnable`, oblong
+/// and not already `turned` (an unplaced object with `turned` set lies
+/// turned: its orientation is given).
+pub(crate) fn has_turn_var(o: &Object) -> bool {
+    !o.is_placed() && o.turnable && !o.turned && o.is_oblong()
+}
+
 impl Model {
     /// Build the model of `problem` with `rules`.
     ///
@@ -84,7 +91,10 @@ impl Model {
         // Pairs with at least one movable object.
         let pairs =
             n * (n.saturating_sub(1)) / 2 - (n - movable) * (n - movable).saturating_sub(1) / 2;
-        let pairwise = pairwise.unwrap_or(pairs <= PAIRWISE_NO_OVERLAP_PAIRS);
+        // The engine's non-overlap propagator assumes constant sizes: a
+        // model with an orientation variable states non-overlap pairwise.
+        let pairwise = pairwise.unwrap_or(pairs <= PAIRWISE_NO_OVERLAP_PAIRS)
+            || problem.objects.iter().any(has_turn_var);
         let mut m = Self::build_core(problem, rules, opts, stop, pairwise, encoding.connectivity)?;
         m.pairwise_no_overlap = pairwise || !m.too_large.is_empty();
         Some(m)
@@ -118,6 +128,7 @@ impl Model {
             vars: Vec::new(),
             coords: Vec::new(),
             sizes: Vec::new(),
+            turn_vars: vec![None; problem.objects.len()],
             bools: Vec::new(),
             clauses: Vec::new(),
             hard: Vec::new(),
@@ -135,8 +146,20 @@ impl Model {
             match (o.x, o.y) {
                 (Some(x), Some(y)) => m.coords.push((Coord::Const(x), Coord::Const(y))),
                 _ => {
-                    let ux = floor_div(sp.width - w, g);
-                    let uy = floor_div(sp.height - h, g);
+                    let mut ux = floor_div(sp.width - w, g);
+                    let mut uy = floor_div(sp.height - h, g);
+                    if has_turn_var(o) {
+                        // Either way: the domain is the union, each
+                        // orientation's bounds are clauses (below).
+                        let (tx, ty) = (floor_div(sp.width - h, g), floor_div(sp.height - w, g));
+                        if tx >= 0 && ty >= 0 {
+                            if ux < 0 || uy < 0 {
+                                (ux, uy) = (tx, ty);
+                            } else {
+                                (ux, uy) = (ux.max(tx), uy.max(ty));
+                            }
+                        }
+                    }
                     if ux < 0 || uy < 0 {
                         m.too_large.push(i);
                     }
@@ -145,11 +168,13 @@ impl Model {
                         object: i,
                         axis: Axis::X,
                         ub: ux.max(0),
+                        turn: false,
                     });
                     m.vars.push(IntVar {
                         object: i,
                         axis: Axis::Y,
                         ub: uy.max(0),
+                        turn: false,
                     });
                     m.coords.push((Coord::Var(vx), Coord::Var(vx + 1)));
                 }
@@ -158,6 +183,7 @@ impl Model {
         if !m.too_large.is_empty() {
             return Some(m);
         }
+        m.post_turn_vars(problem);
         // Non-overlap between every pair with at least one variable object:
         // one clause per pair for a small model (the pair literals also
         // guide the search), else implicit — the engine posts one
@@ -176,6 +202,46 @@ impl Model {
             return None;
         }
         Some(m)
+    }
+
+    /// One orientation variable per object that may turn (after every
+    /// coordinate variable, in object order), and the bounds of each
+    /// orientation: `turned → gx ≤ ⌊(W − h)/g⌋ ∧ gy ≤ ⌊(H − w)/g⌋`, and the
+    /// flat bounds when not turned (an orientation that does not fit at
+    /// all is ruled out by a unit clause).
+    fn post_turn_vars(&mut self, problem: &Scene) {
+        let (sp, g) = (problem.space, problem.grid);
+        for (i, o) in problem.objects.iter().enumerate() {
+            if !has_turn_var(o) {
+                continue;
+            }
+            let t = self.vars.len();
+            self.vars.push(IntVar {
+                object: i,
+                axis: Axis::X,
+                ub: 1,
+                turn: true,
+            });
+            self.turn_vars[i] = Some(t);
+            let (Coord::Var(vx), Coord::Var(vy)) = self.coords[i] else {
+                continue;
+            };
+            let turned = self.ge(t, 1);
+            let (w, h) = (o.width, o.height);
+            for (when, fw, fh) in [(!turned, w, h), (turned, h, w)] {
+                let (ux, uy) = (floor_div(sp.width - fw, g), floor_div(sp.height - fh, g));
+                if ux < 0 || uy < 0 {
+                    self.clauses.push(vec![!when]);
+                    continue;
+                }
+                for (v, u) in [(vx, ux), (vy, uy)] {
+                    let within = !self.ge(v, u + 1);
+                    if within != Lit::TRUE {
+                        self.clauses.push(vec![!when, within]);
+                    }
+                }
+            }
+        }
     }
 
     /// A hard "rule" pinning unplaced object `object` at `(x, y)` (its

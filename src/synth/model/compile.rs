@@ -3,7 +3,7 @@
 //! one literal per (object, rule) or per scene-level rule.
 
 use super::{HardRule, Lit, Model, SoftTerm};
-use crate::relations::{Cmp, Contact, Edge, Op, Quant, Relation, Side};
+use crate::relations::{Axis, Cmp, Contact, Edge, Op, Quant, Relation, Side};
 use crate::rules::{Formula, RuleSet, Scope, Target};
 use crate::scene::Scene;
 use std::collections::HashMap;
@@ -44,17 +44,85 @@ impl Model {
         };
         let axis = c.lhs.1.axis();
         let (p, q) = (obj(c.lhs.0), obj(c.rhs.0));
-        let off = |m: &Self, o: usize, e: Edge| if e.is_far() { m.size(o, axis) } else { 0 };
         // lhs = coord(p) + op, rhs = coord(q) + oq.
-        let (op, oq) = (off(self, p, c.lhs.1), off(self, q, c.rhs.1));
+        let (ep, eq) = (c.lhs.1, c.rhs.1);
         match c.op {
-            Op::Ge => out.push(self.diff_ge(axis, p, q, oq - op)),
-            Op::Gt => out.push(self.diff_ge(axis, p, q, oq - op + 1)),
-            Op::Le => out.push(self.diff_ge(axis, q, p, op - oq)),
-            Op::Lt => out.push(self.diff_ge(axis, q, p, op - oq + 1)),
+            Op::Ge => out.push(self.edge_ge(axis, (p, ep), (q, eq), 0)),
+            Op::Gt => out.push(self.edge_ge(axis, (p, ep), (q, eq), 1)),
+            Op::Le => out.push(self.edge_ge(axis, (q, eq), (p, ep), 0)),
+            Op::Lt => out.push(self.edge_ge(axis, (q, eq), (p, ep), 1)),
             Op::Eq => {
-                out.push(self.diff_ge(axis, p, q, oq - op));
-                out.push(self.diff_ge(axis, q, p, op - oq));
+                out.push(self.edge_ge(axis, (p, ep), (q, eq), 0));
+                out.push(self.edge_ge(axis, (q, eq), (p, ep), 0));
+            }
+        }
+    }
+
+    /// Edge `ea` of object `a` ≥ edge `eb` of object `b` plus `plus`, along
+    /// `axis`: `coord(a) − coord(b) ≥ off(b) − off(a) + plus`, where a far
+    /// edge's offset is the object's size along the axis. The size of an
+    /// object with an orientation variable `t` depends on it, so the
+    /// comparison is split over the orientations of the (at most two)
+    /// objects whose far edge it names: `∨ (orientation ∧ a − b ≥ k)` —
+    /// exact, since exactly one case's orientation holds. Without an
+    /// orientation variable involved it is the one literal it always was.
+    pub(super) fn edge_ge(
+        &mut self,
+        axis: Axis,
+        (a, ea): (usize, Edge),
+        (b, eb): (usize, Edge),
+        plus: i64,
+    ) -> Lit {
+        let ca = self.offsets(a, ea, axis);
+        let cb = self.offsets(b, eb, axis);
+        if ca.len() == 1 && cb.len() == 1 {
+            return self.diff_ge(axis, a, b, (cb[0].1 - ca[0].1).saturating_add(plus));
+        }
+        let mut cases = Vec::with_capacity(ca.len() * cb.len());
+        for &(la, oa) in &ca {
+            for &(lb, ob) in &cb {
+                cases.push((
+                    [la, lb],
+                    self.diff_ge(axis, a, b, (ob - oa).saturating_add(plus)),
+                ));
+            }
+        }
+        // The same bound in every case: no split needed.
+        if cases.iter().all(|c| c.1 == cases[0].1) {
+            return cases[0].1;
+        }
+        let mut disjuncts = Vec::with_capacity(cases.len());
+        for ([la, lb], l) in cases {
+            disjuncts.push(self.and(vec![la, lb, l]));
+        }
+        self.or(disjuncts)
+    }
+
+    /// The offsets of edge `e` of object `o` along `axis`, each under the
+    /// orientation literal that gives it: one case `(true, offset)`
+    /// unless `e` is a far edge of an object with an orientation variable.
+    fn offsets(&mut self, o: usize, e: Edge, axis: Axis) -> Vec<(Lit, i64)> {
+        if e.is_far() {
+            self.sides(o, axis)
+        } else {
+            vec![(Lit::TRUE, 0)]
+        }
+    }
+
+    /// Object `o`'s footprint side along `axis`, under the orientation
+    /// literal that gives it: one case `(true, side)` without an
+    /// orientation variable, else `(¬t, flat side)` and `(t, other side)`.
+    pub(super) fn sides(&mut self, o: usize, axis: Axis) -> Vec<(Lit, i64)> {
+        let flat = self.size(o, axis);
+        match self.turn_vars[o] {
+            None => vec![(Lit::TRUE, flat)],
+            Some(t) => {
+                let across = match axis {
+                    Axis::X => self.sizes[o].1,
+                    Axis::Y => self.sizes[o].0,
+                };
+                let turned = self.ge(t, 1);
+                vec![(!turned, flat), (turned, across)]
             }
         }
     }
@@ -227,12 +295,14 @@ impl Model {
             // Only a group rule's whole formula (posted by `post_rules`);
             // read per object it is false, as in the evaluator.
             Formula::Shape(_) => Lit::FALSE,
-            // Every orientation is given in the model's problem (the
-            // orientation choices are solved one by one, `synth::turns`).
-            Formula::Turned(_) => {
-                let ob = &problem.objects[o];
-                Lit::Const(ob.turned && ob.is_oblong())
-            }
+            // The orientation variable, or the orientation given.
+            Formula::Turned(_) => match self.turn_vars[o] {
+                Some(t) => self.ge(t, 1),
+                None => {
+                    let ob = &problem.objects[o];
+                    Lit::Const(ob.turned && ob.is_oblong())
+                }
+            },
             Formula::Not(g) => !self.formula(g, o, problem, contact, cache),
             Formula::And(v) => {
                 let ls = v

@@ -7,6 +7,26 @@
 //! `0..=⌊(space.width − width)/grid⌋` (resp. height), so the whole object lies
 //! inside the space. Fixed and already-placed objects are constants.
 //!
+//! # Objects that turn
+//!
+//! An unplaced, `turnable`, oblong object not already `turned` also gets
+//! an *orientation variable* `t` (domain `0..=1`, 1 when it lies turned;
+//! after every coordinate variable in [`Model::vars`], `IntVar::turn`
+//! set, [`Model::turn_vars`]). Its grid domains are the union of both
+//! orientations' (`0..=max(⌊(W−w)/g⌋, ⌊(W−h)/g⌋)`), with each
+//! orientation's own bounds as clauses (`t → gx ≤ ⌊(W−h)/g⌋`, …). A
+//! comparison that names its far edge becomes a case split over the
+//! orientations of the (at most two) objects involved, e.g.
+//! `x_a − x_b ≥ w_b` is `(¬t_b ∧ x_a − x_b ≥ w_b) ∨ (t_b ∧ x_a − x_b ≥ h_b)`,
+//! built from the same `Ge`/`DiffGe`/`And` definitions (`t` itself is
+//! `Ge { t, 1 }`), so every Boolean stays a function of the variables'
+//! values and nothing downstream needs a new kind. A model without an
+//! orientation variable is exactly the model it always was. Non-overlap
+//! of a model with one is stated pairwise (the engine's non-overlap
+//! propagator assumes constant sizes); the cumulatives give such an
+//! object the square of its smaller side (sound either way); resemblance
+//! terms leave it out (`synthesize` with `like` enumerates orientations).
+//!
 //! # Booleans
 //!
 //! Every Boolean is defined *exactly* (both directions) by a [`BoolDef`]:
@@ -170,15 +190,18 @@ pub enum Connectivity {
     Circuit,
 }
 
-/// An integer grid-index variable with domain `0..=ub`.
+/// An integer grid-index variable with domain `0..=ub`, or an object's
+/// orientation variable (`turn`: domain `0..=1`, 1 when it lies turned).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct IntVar {
-    /// The object it positions.
+    /// The object it positions (or turns).
     pub object: usize,
-    /// Which coordinate.
+    /// Which coordinate (`Axis::X` for an orientation variable).
     pub axis: Axis,
     /// Upper bound of the domain (the lower bound is 0).
     pub ub: i64,
+    /// An orientation variable, not a coordinate.
+    pub turn: bool,
 }
 
 /// One coordinate of an object in the model.
@@ -259,8 +282,13 @@ pub struct Model {
     pub vars: Vec<IntVar>,
     /// Per object: `(x, y)` coordinates.
     pub coords: Vec<(Coord, Coord)>,
-    /// Per object: `(width, height)`.
+    /// Per object: `(width, height)`: its footprint as given (flat for an
+    /// object with an orientation variable, see [`Model::turn_vars`]).
     pub sizes: Vec<(i64, i64)>,
+    /// Per object: its orientation variable (an index into
+    /// [`Model::vars`], after every coordinate variable), for an unplaced,
+    /// `turnable`, oblong object not already `turned`; `None` otherwise.
+    pub turn_vars: Vec<Option<usize>>,
     /// Boolean definitions, children before parents.
     pub bools: Vec<BoolDef>,
     /// Clauses that must hold (the symmetry fallback; non-overlap only
@@ -289,6 +317,10 @@ impl Model {
     /// The coordinate, in this model, of the object and axis that `v` (a
     /// variable of this or of another model of the same problem) positions.
     pub fn coord_of(&self, v: &IntVar) -> Coord {
+        if v.turn {
+            // An orientation variable: this model's, or none (`Const`).
+            return self.turn_vars[v.object].map_or(Coord::Const(0), Coord::Var);
+        }
         let (cx, cy) = self.coords[v.object];
         match v.axis {
             Axis::X => cx,
@@ -328,6 +360,27 @@ impl Model {
         }
     }
 
+    /// Whether the model has an orientation variable.
+    pub fn has_turns(&self) -> bool {
+        self.turn_vars.iter().any(Option::is_some)
+    }
+
+    /// Whether object `o` lies turned under values `vals` (always false
+    /// without an orientation variable: its footprint is `sizes[o]`).
+    pub fn turned_in(&self, o: usize, vals: &[i64]) -> bool {
+        self.turn_vars[o].is_some_and(|t| vals[t] == 1)
+    }
+
+    /// Object `o`'s footprint `(width, height)` under values `vals`.
+    pub fn footprint_in(&self, o: usize, vals: &[i64]) -> (i64, i64) {
+        let (w, h) = self.sizes[o];
+        if self.turned_in(o, vals) {
+            (h, w)
+        } else {
+            (w, h)
+        }
+    }
+
     fn axis_origin(&self, axis: Axis) -> i64 {
         match axis {
             Axis::X => self.origin.0,
@@ -356,13 +409,17 @@ impl Model {
         out
     }
 
-    /// The complete scene for grid values `vals`.
+    /// The complete scene for grid values `vals` (an object whose
+    /// orientation variable is 1 lies `turned`).
     pub fn scene(&self, problem: &Scene, vals: &[i64]) -> Scene {
         let mut s = problem.clone();
         for (i, o) in s.objects.iter_mut().enumerate() {
             if let (Coord::Var(vx), Coord::Var(vy)) = self.coords[i] {
                 o.x = Some(self.origin.0 + self.grid * vals[vx]);
                 o.y = Some(self.origin.1 + self.grid * vals[vy]);
+            }
+            if self.turned_in(i, vals) {
+                o.turned = true;
             }
         }
         s
@@ -594,6 +651,55 @@ mod tests {
                     "{rel} {contact}: (seen true, seen false)"
                 );
             }
+        }
+    }
+
+    /// With orientation variables: every pair literal is the geometry of
+    /// the footprints the orientation values give, and the model's
+    /// clauses hold exactly when every object lies inside the space and
+    /// no two overlap.
+    #[test]
+    fn pair_literals_and_containment_follow_the_orientation_variables() {
+        let mut scene = Scene {
+            space: Space {
+                x: 0,
+                y: 0,
+                width: 40,
+                height: 30,
+            },
+            grid: 10,
+            objects: vec![
+                obj("a", "A", 20, 10, None).with_turnable(),
+                // Flat it fits only at x ≤ 30; turned (30 × 10) at x ≤ 10.
+                obj("b", "B", 10, 30, None).with_turnable(),
+                obj("c", "C", 10, 10, None).with_turnable(),
+                obj("f", "F", 10, 20, Some((30, 10))),
+            ],
+        };
+        scene.objects[3].fixed = true;
+        for contact in Contact::ALL {
+            let m = Model::build(&scene, &RuleSet::default(), opts(contact, false));
+            // a and b turn, the square c does not.
+            assert_eq!(m.turn_vars, vec![Some(6), Some(7), None, None]);
+            assert_eq!((m.vars[2].ub, m.vars[3].ub), (3, 2));
+            let seen = check_pairs(&scene, contact);
+            assert!(seen.iter().all(|e| *e == (true, true)), "{seen:?}");
+            let mut inside = 0;
+            each_assignment(&m, |vals| {
+                let bools = m.eval_bools(vals);
+                let clauses = m.clauses.iter().all(|c| c.iter().any(|l| l.value(&bools)));
+                let s = m.scene(&scene, vals);
+                let within = s.objects.iter().all(|o| {
+                    let r = o.rect().expect("placed");
+                    r.x2() <= 40 && r.y2() <= 30
+                });
+                // (A model with orientation variables states non-overlap
+                // as clauses too.)
+                assert_eq!(clauses, within && m.non_overlapping(vals), "{vals:?}");
+                inside += usize::from(within);
+            });
+            // a: 3·3 flat + 4·2 turned; b: 4·1 + 2·3; c: 4·3.
+            assert_eq!(inside, (9 + 8) * (4 + 6) * 12);
         }
     }
 

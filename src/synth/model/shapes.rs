@@ -45,7 +45,7 @@
 //! conjunction of difference bounds like the block's.
 
 use super::{Axis, BoolDef, Connectivity, Lit, Model};
-use crate::relations::Contact;
+use crate::relations::{Contact, Edge};
 use crate::shapes::{block_boxes, ShapeKind};
 
 impl Model {
@@ -104,7 +104,8 @@ impl Model {
             ShapeKind::Column => (Axis::X, Axis::Y),
             _ => return None,
         };
-        if self.fixed_pair_overlaps(objects) {
+        // A sum of sizes that depends on orientations: the circuit.
+        if self.fixed_pair_overlaps(objects) || self.any_turns(objects) {
             return None;
         }
         let first = objects[0];
@@ -119,6 +120,11 @@ impl Model {
             .fold(0i64, |s, v| s.saturating_add(v));
         parts.push(self.extent_at_most(along, objects, total));
         Some(self.and(parts))
+    }
+
+    /// Whether an object of `objects` has an orientation variable.
+    fn any_turns(&self, objects: &[usize]) -> bool {
+        objects.iter().any(|&o| self.turn_vars[o].is_some())
     }
 
     /// Whether two fixed (constant) objects of `objects` overlap.
@@ -217,10 +223,62 @@ impl Model {
         self.and(reach)
     }
 
-    /// The class's bounding box fits one of the block's boxes.
+    /// The class's bounding box fits one of the block's boxes, whose cell
+    /// is the largest footprint width × the largest footprint height
+    /// ([`crate::shapes::block_cell`]). With orientation variables the
+    /// cell depends on them: one case per possible cell, `cell = (cw, ch)
+    /// ∧ fits(cw, ch)`, exactly one of which holds.
     fn block_box(&mut self, objects: &[usize]) -> Lit {
-        let cw = objects.iter().map(|&o| self.sizes[o].0).max().unwrap_or(0);
-        let ch = objects.iter().map(|&o| self.sizes[o].1).max().unwrap_or(0);
+        if !self.any_turns(objects) {
+            let cw = objects.iter().map(|&o| self.sizes[o].0).max().unwrap_or(0);
+            let ch = objects.iter().map(|&o| self.sizes[o].1).max().unwrap_or(0);
+            return self.block_box_of(objects, cw, ch);
+        }
+        // `max over objects of side = v`: some object has v, none more.
+        let max_is = |m: &mut Self, axis: Axis, v: i64| -> Lit {
+            let mut some = Vec::new();
+            let mut none_more = Vec::new();
+            for &o in objects {
+                for (l, side) in m.sides(o, axis) {
+                    if side == v {
+                        some.push(l);
+                    } else if side > v {
+                        none_more.push(!l);
+                    }
+                }
+            }
+            let some = m.or(some);
+            none_more.push(some);
+            m.and(none_more)
+        };
+        let values = |m: &mut Self, axis: Axis| -> Vec<i64> {
+            let mut v: Vec<i64> = objects
+                .iter()
+                .flat_map(|&o| m.sides(o, axis).into_iter().map(|c| c.1))
+                .collect();
+            v.sort_unstable();
+            v.dedup();
+            v
+        };
+        let (ws, hs) = (values(self, Axis::X), values(self, Axis::Y));
+        let mut cases = Vec::new();
+        for &cw in &ws {
+            for &ch in &hs {
+                let cell = vec![max_is(self, Axis::X, cw), max_is(self, Axis::Y, ch)];
+                let cell = self.and(cell);
+                if cell == Lit::FALSE {
+                    continue;
+                }
+                let fits = self.block_box_of(objects, cw, ch);
+                cases.push(self.and(vec![cell, fits]));
+            }
+        }
+        self.or(cases)
+    }
+
+    /// The class's bounding box fits one of the block's boxes of cell
+    /// `cw × ch`.
+    fn block_box_of(&mut self, objects: &[usize], cw: i64, ch: i64) -> Lit {
         let mut boxes = Vec::new();
         for (a, b) in block_boxes(objects.len()) {
             let (Some(kx), Some(ky)) = (
@@ -241,14 +299,19 @@ impl Model {
     }
 
     /// `max(c + size) − min(c) ≤ k` over `objects` on `axis`: for every
-    /// ordered pair, `c_j − c_i ≥ size_i − k`.
+    /// ordered pair, `c_j − c_i ≥ size_i − k` (the far edge of `i` at most
+    /// `k` past the near edge of `j`, over `i`'s orientations when it may
+    /// turn).
     fn extent_at_most(&mut self, axis: Axis, objects: &[usize], k: i64) -> Lit {
+        let (near, far) = match axis {
+            Axis::X => (Edge::X, Edge::X2),
+            Axis::Y => (Edge::Y, Edge::Y2),
+        };
         let mut lits = Vec::new();
         for &i in objects {
-            let si = self.size(i, axis);
             for &j in objects {
                 if i != j {
-                    lits.push(self.diff_ge(axis, j, i, si.saturating_sub(k)));
+                    lits.push(self.edge_ge(axis, (j, near), (i, far), k.saturating_neg()));
                 }
             }
         }
@@ -286,12 +349,13 @@ impl Model {
             self.clauses.push(vec![!shape, ge]);
             self.clauses.push(vec![!shape, le]);
         }
-        // The run spans the sum of the sizes along it (non-overlap).
+        // The run spans the sum of the sizes along it (non-overlap; not
+        // stated when the sizes depend on orientations).
         let along = match axis {
             Axis::Y => Axis::X,
             Axis::X => Axis::Y,
         };
-        if self.fixed_pair_overlaps(objects) {
+        if self.fixed_pair_overlaps(objects) || self.any_turns(objects) {
             return;
         }
         let total = objects
