@@ -136,7 +136,6 @@ fn file_io_only_in_the_allowed_modules() {
         &[
             "src/fsutil.rs",
             "src/task/",
-            "src/priors/folder.rs",
             "src/studio/",
             "src/bench/",
             "src/fuzzing/",
@@ -283,23 +282,40 @@ fn every_module_is_documented() {
         .split("\n## ")
         .next()
         .expect("map");
+    // One section per room (`### `src/room/``); a file is named in its
+    // room's section, by its path or by its name beside its folder's path.
+    let sections: Vec<&str> = map.split("\n### ").skip(1).collect();
     let files: BTreeSet<String> = sources().iter().map(|f| unix(f)).collect();
     let missing: Vec<&String> = files
         .iter()
         .filter(|f| {
+            let first = f
+                .trim_start_matches("src/")
+                .split('/')
+                .next()
+                .unwrap_or_default()
+                .trim_end_matches(".rs");
+            let Some(section) = sections.iter().find(|s| {
+                let heading = s.lines().next().unwrap_or_default();
+                heading.contains(&format!("`src/{first}/`"))
+                    || heading.contains(&format!("`src/{first}.rs`"))
+            }) else {
+                return true;
+            };
             let file = Path::new(f.as_str())
                 .file_name()
                 .expect("name")
                 .to_string_lossy()
                 .to_string();
             let dir = Path::new(f.as_str()).parent().map(unix).unwrap_or_default();
-            !(map.contains(f.as_str())
-                || (map.contains(&format!("`{dir}/`")) && map.contains(&format!("`{file}`"))))
+            !(section.contains(f.as_str())
+                || (section.contains(&format!("`{dir}/`"))
+                    && section.contains(&format!("`{file}`"))))
         })
         .collect();
     assert!(
         missing.is_empty(),
-        "source files missing from ARCHITECTURE.md's code map: {missing:?}"
+        "source files missing from their room's section of ARCHITECTURE.md's code map: {missing:?}"
     );
 }
 
@@ -383,18 +399,37 @@ fn the_non_exhaustive_error_enums_are_those_listed() {
     );
 }
 
-/// The code map's rows for `src/` modules: module → the modules it may
-/// use (`None`: any, "library API" or "everything").
-fn may_use_table() -> BTreeMap<String, Option<BTreeSet<String>>> {
+/// One row of ARCHITECTURE.md's layer table: the room's layer (0 at the
+/// bottom) and the rooms it may use (`None`: any below it, "library API"
+/// or "everything").
+#[derive(Debug, Clone)]
+struct Room {
+    layer: u32,
+    may_use: Option<BTreeSet<String>>,
+}
+
+/// The rows of the table under `## Layers` (`| layer | room | may use |`):
+/// module → its [`Room`].
+fn layer_table() -> BTreeMap<String, Room> {
     let doc = architecture_md();
+    let section = doc
+        .split("\n## Layers")
+        .nth(1)
+        .expect("ARCHITECTURE.md has a `## Layers` section")
+        .split("\n## ")
+        .next()
+        .expect("the section");
     let mut table = BTreeMap::new();
-    for line in doc.lines() {
+    for line in section.lines() {
         let cells: Vec<&str> = line.split(" | ").collect();
-        if cells.len() < 3 || !line.starts_with("| `src/") {
+        if cells.len() < 3 || !line.starts_with("| ") {
             continue;
         }
+        let Ok(layer) = cells[0].trim_start_matches("| ").trim().parse::<u32>() else {
+            continue;
+        };
         let may = cells[cells.len() - 1].trim_end_matches('|').trim();
-        let allowed = if may.contains("library API") || may.contains("everything") {
+        let may_use = if may.contains("library API") || may.contains("everything") {
             None
         } else {
             Some(
@@ -404,13 +439,133 @@ fn may_use_table() -> BTreeMap<String, Option<BTreeSet<String>>> {
                     .collect(),
             )
         };
-        for path in quoted(cells[0].trim_start_matches("| ")) {
+        for path in quoted(cells[1]) {
             if let Some(module) = module_of(path) {
-                table.insert(module, allowed.clone());
+                table.insert(
+                    module,
+                    Room {
+                        layer,
+                        may_use: may_use.clone(),
+                    },
+                );
             }
         }
     }
     table
+}
+
+/// The layer table's "may use" column: module → the modules it may use
+/// (`None`: any below it).
+fn may_use_table() -> BTreeMap<String, Option<BTreeSet<String>>> {
+    layer_table()
+        .into_iter()
+        .map(|(module, room)| (module, room.may_use))
+        .collect()
+}
+
+/// The arrows between rooms the code draws: (from, to) → the first
+/// `file:line` naming `to` in `from` (test modules left out).
+fn room_arrows() -> BTreeMap<(String, String), String> {
+    let modules: BTreeSet<String> = sources()
+        .iter()
+        .filter_map(|f| module_of(&unix(f)))
+        .collect();
+    let mut arrows = BTreeMap::new();
+    for f in sources() {
+        let name = unix(&f);
+        let Some(module) = module_of(&name) else {
+            continue;
+        };
+        for (other, line) in crate_references(&f) {
+            if other != module && modules.contains(&other) {
+                arrows
+                    .entry((module.clone(), other))
+                    .or_insert(format!("{name}:{line}"));
+            }
+        }
+    }
+    arrows
+}
+
+/// The arrows that do not point to a lower layer (the same layer counts
+/// as running back: rooms beside each other do not use each other), and
+/// the rooms with no layer.
+fn back_arrows(
+    arrows: &BTreeMap<(String, String), String>,
+    layers: &BTreeMap<String, u32>,
+) -> Vec<String> {
+    let mut wrong = Vec::new();
+    for ((from, to), at) in arrows {
+        match (layers.get(from), layers.get(to)) {
+            (Some(a), Some(b)) if b < a => {}
+            (Some(a), Some(b)) => wrong.push(format!(
+                "{at}: `{from}` (layer {a}) uses `{to}` (layer {b}), which is not below it"
+            )),
+            _ => wrong.push(format!("{at}: `{from}` → `{to}`: a room with no layer")),
+        }
+    }
+    wrong
+}
+
+/// The circles of a graph: one closed path (`a → b → … → a`) per group of
+/// rooms that reach each other, found by depth-first search.
+fn circles(arrows: &BTreeMap<(String, String), String>) -> Vec<Vec<String>> {
+    let mut next: BTreeMap<&str, Vec<&str>> = BTreeMap::new();
+    for (from, to) in arrows.keys() {
+        next.entry(from.as_str()).or_default().push(to.as_str());
+        next.entry(to.as_str()).or_default();
+    }
+    // Reachability by search from every room (the graph is small).
+    let reach = |start: &str| -> BTreeSet<&str> {
+        let mut seen = BTreeSet::new();
+        let mut todo = vec![start];
+        while let Some(v) = todo.pop() {
+            for &w in &next[v] {
+                if seen.insert(w) {
+                    todo.push(w);
+                }
+            }
+        }
+        seen
+    };
+    let reachable: BTreeMap<&str, BTreeSet<&str>> = next.keys().map(|&v| (v, reach(v))).collect();
+    let mut done: BTreeSet<&str> = BTreeSet::new();
+    let mut found = Vec::new();
+    for &v in next.keys() {
+        if done.contains(v) || !reachable[v].contains(v) {
+            continue;
+        }
+        let group: BTreeSet<&str> = reachable[v]
+            .iter()
+            .copied()
+            .filter(|w| reachable[w].contains(v))
+            .collect();
+        done.extend(group.iter().copied());
+        // A shortest closed path through `v`, by breadth-first search.
+        let mut parent: BTreeMap<&str, &str> = BTreeMap::new();
+        let mut queue = std::collections::VecDeque::from([v]);
+        'search: while let Some(u) = queue.pop_front() {
+            for &w in &next[u] {
+                if w == v {
+                    let mut path = vec![u.to_string()];
+                    let mut x = u;
+                    while x != v {
+                        x = parent[x];
+                        path.push(x.to_string());
+                    }
+                    path.reverse();
+                    path.push(v.to_string());
+                    found.push(path);
+                    break 'search;
+                }
+                if group.contains(w) && !parent.contains_key(w) && w != v {
+                    parent.insert(w, u);
+                    queue.push_back(w);
+                }
+            }
+        }
+    }
+    found
 }
 
 /// The top-level module of a path under `src/` (`src/rules/check.rs` →
@@ -584,5 +739,110 @@ fn tests_that_need_a_tool_run_in_ci() {
     assert!(
         missing.is_empty(),
         ".ci/run does not run these ignored tests by name: {missing:?}"
+    );
+}
+
+fn arrows_of(list: &[(&str, &str)]) -> BTreeMap<(String, String), String> {
+    list.iter()
+        .map(|(a, b)| ((a.to_string(), b.to_string()), format!("{a}.rs:1")))
+        .collect()
+}
+
+/// The two checks below find what they are for on a made-up graph.
+#[test]
+fn the_layer_checks_find_back_arrows_and_circles() {
+    let arrows = arrows_of(&[
+        ("task", "priors"),
+        ("priors", "task"),
+        ("infer", "priors"),
+        ("priors", "infer"),
+        ("task", "infer"),
+        ("infer", "scene"),
+    ]);
+    let layers: BTreeMap<String, u32> = [("scene", 0), ("infer", 1), ("priors", 2), ("task", 3)]
+        .into_iter()
+        .map(|(m, l)| (m.to_string(), l))
+        .collect();
+    assert_eq!(
+        back_arrows(&arrows, &layers),
+        [
+            "infer.rs:1: `infer` (layer 1) uses `priors` (layer 2), which is not below it",
+            "priors.rs:1: `priors` (layer 2) uses `task` (layer 3), which is not below it",
+        ]
+    );
+    assert_eq!(
+        circles(&arrows),
+        [vec!["infer", "priors", "infer"]],
+        "one group of rooms that reach each other, one closed path"
+    );
+    let beside = arrows_of(&[("infer", "synth")]);
+    let same: BTreeMap<String, u32> = [("infer", 1), ("synth", 1)]
+        .into_iter()
+        .map(|(m, l)| (m.to_string(), l))
+        .collect();
+    assert_eq!(
+        back_arrows(&beside, &same).len(),
+        1,
+        "rooms beside each other"
+    );
+    assert!(circles(&arrows_of(&[("a", "b"), ("b", "c"), ("a", "c")])).is_empty());
+    let three = circles(&arrows_of(&[
+        ("a", "b"),
+        ("b", "c"),
+        ("c", "a"),
+        ("c", "d"),
+    ]));
+    assert_eq!(three, [vec!["a", "b", "c", "a"]]);
+}
+
+/// Every arrow between rooms points down ARCHITECTURE.md's layer table,
+/// the rooms' graph has no circle, and the table's own "may use" column
+/// names only rooms below each row. Run with `--nocapture` for the counts.
+#[test]
+fn rooms_use_only_rooms_below_them_and_form_no_circle() {
+    let table = layer_table();
+    assert!(table.len() >= 15, "layer table rows found: {table:?}");
+    let layers: BTreeMap<String, u32> = table.iter().map(|(m, r)| (m.clone(), r.layer)).collect();
+    let arrows = room_arrows();
+    let back = back_arrows(&arrows, &layers);
+    let found = circles(&arrows);
+    eprintln!(
+        "rooms {}, arrows {}, arrows running back up {}, circles {}",
+        layers.len(),
+        arrows.len(),
+        back.len(),
+        found.len()
+    );
+    assert!(
+        back.is_empty(),
+        "arrows that do not point down ARCHITECTURE.md's layer table:\n{}",
+        back.join("\n")
+    );
+    assert!(
+        found.is_empty(),
+        "circles between rooms: {}",
+        found
+            .iter()
+            .map(|c| c.join(" → "))
+            .collect::<Vec<_>>()
+            .join("; ")
+    );
+    let mut wrong = Vec::new();
+    for (module, room) in &table {
+        for other in room.may_use.iter().flatten() {
+            match layers.get(other) {
+                Some(l) if *l < room.layer => {}
+                Some(l) => wrong.push(format!(
+                    "`{module}` (layer {}) may use `{other}` (layer {l})",
+                    room.layer
+                )),
+                None => wrong.push(format!("`{module}` may use `{other}`, which has no row")),
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "the layer table's \"may use\" column names a room not below the row:\n{}",
+        wrong.join("\n")
     );
 }

@@ -50,7 +50,7 @@ const VOC: Vocabulary = Vocabulary {
     absent: "a0",
 };
 
-/// Every side touched by something, flush: a docs/guide.md#learning-like shape with many
+/// Every side touched by something, flush: a shape like the templates' (docs/guide.md#learning), with many
 /// shared literals.
 fn flush_shape(subject: &str) -> Formula {
     Formula::And(

@@ -533,8 +533,8 @@ fn learned_file_parses_back() {
 }
 
 /// Generated template names are readable identifiers, unique, with the
-/// docs/guide.md#learning shapes present (both editions) and the docs/guide.md#learning shapes present in the
-/// second.
+/// first edition's shapes present in every edition and the second
+/// edition's shapes present from the second on (docs/guide.md#learning).
 #[test]
 fn template_names_are_readable() {
     let demos = synthetic_demos();

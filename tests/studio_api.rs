@@ -1416,7 +1416,7 @@ fn library_priors(tag: &str) -> rccpack::priors::Priors {
         std::fs::copy(examples.join(name).join(learned), d.join("learned.rcc")).unwrap();
         dirs.push(d);
     }
-    rccpack::priors::folder::library(&dirs, &rccpack::priors::PriorParams::default()).unwrap()
+    rccpack::task::library::library(&dirs, &rccpack::priors::PriorParams::default()).unwrap()
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

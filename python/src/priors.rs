@@ -9,8 +9,9 @@ use crate::task::task_error;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use rccpack_core::priors::{
-    combine, counts_from_json_list, folder, PriorParams, Priors, PriorsError as CorePriorsError,
+    combine, counts_from_json_list, PriorParams, Priors, PriorsError as CorePriorsError,
 };
+use rccpack_core::task::library::{self, LibraryError};
 use rccpack_core::task::TaskError;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -43,13 +44,10 @@ fn priors_error(e: &CorePriorsError, file: Option<&Path>) -> PyErr {
 /// A folder's error: reading its files as `Task.load` raises them
 /// (`FileNotFoundError`, `SceneError`, `RulesError`); learning's with the
 /// folder named.
-fn folder_error(e: CorePriorsError) -> PyErr {
-    match e {
-        CorePriorsError::Task { dir, source } => match *source {
-            TaskError::Learn(e) => learn_error_in(&dir, e),
-            other => task_error(other),
-        },
-        other => priors_error(&other, None),
+fn folder_error(e: LibraryError) -> PyErr {
+    match *e.source {
+        TaskError::Learn(source) => learn_error_in(&e.dir, source),
+        other => task_error(other),
     }
 }
 
@@ -102,7 +100,7 @@ pub fn task_counts(
 ) -> PyResult<Py<PyAny>> {
     let p = params(4, 10, templates, contact)?;
     let counts = py
-        .detach(|| guard(|| folder::task_counts(&folder, &p)))?
+        .detach(|| guard(|| library::task_counts(&folder, &p)))?
         .map_err(folder_error)?;
     Ok(json_loads(py, &counts.to_json(&p))?.unbind())
 }

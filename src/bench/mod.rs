@@ -2,7 +2,8 @@
 //! thesis`), its tables and its chart; realistic tasks (`rccpack bench
 //! tasks`).
 //!
-//! * [`pool`] — the pilot rules and docs/guide.md#learning templates, built through the AST;
+//! * [`pool`] — the pilot rules and the template statements
+//!   (docs/guide.md#learning), built through the AST;
 //! * [`thesis`] — the seeded study generator and runner (solver injected, so
 //!   tests can run it on any engine);
 //! * [`chart`] — the PNG chart (plotters, embedded font);

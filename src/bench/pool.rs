@@ -55,7 +55,7 @@ pub fn pilot_rules() -> Vec<Rule> {
     out
 }
 
-/// The docs/guide.md#learning template statements for one subject class over `targets`
+/// The template statements (docs/guide.md#learning) for one subject class over `targets`
 /// (class names or `*`), named `dr_n_b_r`, `ec_n_b_r`, `not_dr_n_b_r`,
 /// `b_touches_r`, `b_among_r`, `b_corner`.
 pub fn templates(subject: &str, targets: &[&str]) -> Vec<Rule> {

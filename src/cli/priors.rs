@@ -6,9 +6,10 @@ use super::{read_text_at_most, write_file, Reported};
 use anyhow::Result;
 use clap::Args;
 use rccpack::infer::Templates;
-use rccpack::priors::{folder, PriorParams, Priors, PriorsError};
+use rccpack::priors::{PriorParams, Priors};
 use rccpack::relations::Contact;
 use rccpack::task::files;
+use rccpack::task::library::{self, LibraryError};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -128,7 +129,7 @@ pub fn run(a: PriorsArgs) -> Result<ExitCode> {
         .build()
         .map_err(|e| Reported(format!("error: cannot start the threads: {e}")))?;
     let priors = pool
-        .install(|| folder::library(&dirs, &params))
+        .install(|| library::library(&dirs, &params))
         .map_err(|e| Reported(priors_error_text(&e)))?;
     let text = priors.to_json();
     match &a.output {
@@ -148,15 +149,12 @@ pub fn run(a: PriorsArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn priors_error_text(e: &PriorsError) -> String {
-    match e {
-        PriorsError::Task { dir, source } => format!(
-            "error: task {}: {}",
-            dir.display(),
-            super::task_error_text(source)
-        ),
-        other => format!("error: {other}"),
-    }
+fn priors_error_text(e: &LibraryError) -> String {
+    format!(
+        "error: task {}: {}",
+        e.dir.display(),
+        super::task_error_text(&e.source)
+    )
 }
 
 /// Read `--priors FILE`; errors name the file and the field.

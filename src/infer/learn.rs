@@ -35,7 +35,7 @@ pub struct LearnOptions<'a> {
     /// statement gets the prior of its kind (`π = 1 − prior`), a statement
     /// of a ruled-out kind is left out of the statements, and given
     /// statements keep `params.prior`. `None`: the parameters' prior.
-    pub priors: Option<&'a crate::priors::Priors>,
+    pub priors: Option<&'a crate::infer::priors::Priors>,
     /// When to give up: [`InferError::TimeLimit`] once the deadline
     /// passes, [`InferError::Cancelled`] once the flag is set (both checked
     /// per random scene of the null model).
@@ -168,7 +168,7 @@ pub fn learn_with(
         scene_epsilon,
         statements: results,
         order,
-        priors: priors.map(|p| crate::priors::apply::summary(p, st.ruled_out)),
+        priors: priors.map(|p| crate::infer::priors::apply::summary(p, st.ruled_out)),
         slips,
     })
 }
@@ -178,9 +178,9 @@ struct Statements<'a> {
     set: Cow<'a, RuleSet>,
     source: StatementSource,
     /// Per statement, with priors.
-    priors: Option<Vec<crate::priors::StatementPrior>>,
+    priors: Option<Vec<crate::infer::priors::StatementPrior>>,
     /// Generated statements the priors left out.
-    ruled_out: Vec<crate::priors::RuledOut>,
+    ruled_out: Vec<crate::infer::priors::RuledOut>,
 }
 
 /// The given statements, checked, or the templates' over the
@@ -191,7 +191,7 @@ fn statement_set<'a>(
     demos: &[Scene],
     statements: Option<&'a RuleSet>,
     params: &LearnParams,
-    priors: Option<&crate::priors::Priors>,
+    priors: Option<&crate::infer::priors::Priors>,
     classes: &ClassIndex,
     class_count: usize,
 ) -> Result<Statements<'a>, InferError> {
@@ -206,7 +206,7 @@ fn statement_set<'a>(
             Statements {
                 set: Cow::Borrowed(s),
                 source: StatementSource::Given,
-                priors: priors.map(|_| crate::priors::apply::given(s, params.prior)),
+                priors: priors.map(|_| crate::infer::priors::apply::given(s, params.prior)),
                 ruled_out: Vec::new(),
             }
         }
@@ -218,7 +218,8 @@ fn statement_set<'a>(
             let (set, origins) = templates::generate_with_origins(demos, params.templates);
             let (set, used, ruled_out) = match priors {
                 Some(p) => {
-                    let (set, used, out) = crate::priors::apply::generated(p, demos, set, &origins);
+                    let (set, used, out) =
+                        crate::infer::priors::apply::generated(p, demos, set, &origins);
                     (set, Some(used), out)
                 }
                 None => (set, None, Vec::new()),
@@ -304,7 +305,7 @@ struct Numbers<'a> {
     /// Per statement, its subject class.
     subjects: &'a [usize],
     scene_epsilon: f64,
-    priors: Option<&'a [crate::priors::StatementPrior]>,
+    priors: Option<&'a [crate::infer::priors::StatementPrior]>,
 }
 
 /// A weighed statement's chance numbers.

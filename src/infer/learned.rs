@@ -61,7 +61,7 @@ pub struct StatementResult {
     pub english: String,
     /// With priors ([`learn_with`](super::learn_with)): the statement's prior and
     /// where it came from; `None` without.
-    pub prior: Option<crate::priors::StatementPrior>,
+    pub prior: Option<crate::infer::priors::StatementPrior>,
 }
 
 /// Where the statements came from.
@@ -70,7 +70,7 @@ pub struct StatementResult {
 pub enum StatementSource {
     /// A statement file.
     Given,
-    /// The docs/guide.md#learning templates.
+    /// The template set (docs/guide.md#learning).
     Templates,
 }
 
@@ -93,7 +93,7 @@ pub struct Learned {
     /// (smallest posterior; ties by statement order).
     pub order: Vec<usize>,
     /// With priors: the library's summary and the statements left out.
-    pub priors: Option<crate::priors::PriorsUsed>,
+    pub priors: Option<crate::infer::priors::PriorsUsed>,
     /// The demonstrations' blocks judged slips (docs/guide.md#slips), at
     /// most one per demonstration; none at slip rate 0.
     pub slips: Vec<super::Slip>,

@@ -38,6 +38,7 @@ mod learned;
 mod null_model;
 mod params;
 mod posterior;
+pub(crate) mod priors;
 mod report;
 mod slips;
 pub mod templates;

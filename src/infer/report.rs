@@ -89,7 +89,7 @@ pub struct Report {
     pub scene_epsilon: Option<f64>,
     /// With priors: the library's summary and the statements left out.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub priors: Option<crate::priors::PriorsUsed>,
+    pub priors: Option<crate::infer::priors::PriorsUsed>,
     /// Every statement, in statement order.
     pub statements: Vec<ReportStatement>,
     /// With a slip rate: the objects that break rules the other
@@ -163,7 +163,7 @@ pub struct ReportStatement {
     pub implied_by: Option<String>,
     /// With priors: the statement's prior and its source.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub prior: Option<crate::priors::StatementPrior>,
+    pub prior: Option<crate::infer::priors::StatementPrior>,
     /// With a slip rate: broken in one demonstration only, that
     /// demonstration and the objects breaking it there.
     #[serde(skip_serializing_if = "Option::is_none")]

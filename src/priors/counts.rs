@@ -21,9 +21,10 @@
 //! keys with at least one candidate, as [`super::task_counts`] makes them.
 
 use super::estimate::{Count, PriorParams, TaskCounts};
-use super::file::{hex, unhex};
+use super::file::unhex;
 use super::kind;
 use super::PriorsError;
+use crate::infer::priors::hex;
 use crate::infer::Templates;
 use crate::limits::cut;
 use crate::relations::Contact;

@@ -28,8 +28,8 @@
 
 use super::kind::{self, Kind};
 use super::Priors;
-use crate::infer::{self, templates, InferError, Templates};
-use crate::relations::Contact;
+pub use crate::infer::priors::{fnv1a, PriorParams, FNV_BASIS};
+use crate::infer::{self, templates, InferError};
 use crate::rules::RuleSet;
 use crate::scene::Scene;
 use std::collections::{BTreeMap, HashSet};
@@ -55,43 +55,6 @@ pub struct TaskCounts {
     /// Per kind key (only kinds with at least one candidate).
     pub kinds: BTreeMap<String, Count>,
 }
-
-/// Parameters of the estimator (and of the candidates it counts).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct PriorParams {
-    /// The shrinkage strength `m` in pseudo-candidates, ≥ 1 (default 4).
-    pub strength: u32,
-    /// Rule a kind out after this many tasks in which it was a candidate
-    /// and never kept; 0: never rule out (default 10).
-    pub rule_out_after: u64,
-    /// The template set whose statements are counted (default third, as learning).
-    pub templates: Templates,
-    /// The contact mode candidates are found with (default point).
-    pub contact: Contact,
-}
-
-impl Default for PriorParams {
-    fn default() -> Self {
-        PriorParams {
-            strength: 4,
-            rule_out_after: 10,
-            templates: Templates::Third,
-            contact: Contact::Point,
-        }
-    }
-}
-
-/// FNV-1a, 64 bits, over `bytes`, continuing from `h`.
-pub fn fnv1a(mut h: u64, bytes: &[u8]) -> u64 {
-    for &b in bytes {
-        h ^= u64::from(b);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    h
-}
-
-/// The FNV-1a offset basis.
-pub const FNV_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
 
 /// The hash of one task's inputs: each part's length and bytes, in order
 /// (`demos.json`, `learned.rcc`).

@@ -21,38 +21,15 @@
 //! on reading, the hash is recomputed and every `prior` and `ruled_out` is
 //! recomputed from the counts and compared, so a hand edit is caught.
 
-use super::estimate::{self, Count, NodeCounts, PriorParams};
-use super::kind::{self, Kind};
+use super::estimate::{self, Count, NodeCounts};
+use super::kind;
 use super::{Priors, PriorsError};
+use crate::infer::priors::{hex, PriorParams};
+pub use crate::infer::priors::{KindEntry, VERSION};
 use crate::infer::Templates;
 use crate::relations::Contact;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-
-/// The format's version string.
-pub const VERSION: &str = "rccpack-priors/1";
-
-/// One node of the hierarchy, as written.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct KindEntry {
-    /// The node's key (`*`, `TEMPLATE`, `TEMPLATE/ROLE`, `TEMPLATE/ROLE/DIR`).
-    pub kind: String,
-    /// Candidates over the library.
-    pub candidates: u64,
-    /// Of these, kept.
-    pub kept: u64,
-    /// Of these, confirmed.
-    pub confirmed: u64,
-    /// Tasks with a candidate of the node.
-    pub tasks: u64,
-    /// Tasks that kept one.
-    pub tasks_kept: u64,
-    /// The probability that a candidate of the kind is a rule.
-    pub prior: f64,
-    /// Left out of the statements when learning.
-    pub ruled_out: bool,
-}
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -78,10 +55,6 @@ struct FileForm {
     parameters: Parameters,
     kinds: Vec<KindEntry>,
     hash: String,
-}
-
-pub(super) fn hex(h: u64) -> String {
-    format!("fnv1a64:{h:016x}")
 }
 
 pub(super) fn unhex(field: &str, s: &str) -> Result<u64, PriorsError> {
@@ -130,30 +103,6 @@ impl Priors {
             inputs,
             kinds,
         }
-    }
-
-    fn hash(&self) -> u64 {
-        let mut text = format!(
-            "{VERSION}\n{}\n{}\n{}\n{:016x}\n{}\n{}\n",
-            self.params.templates,
-            self.params.contact,
-            self.tasks,
-            self.inputs,
-            self.params.strength,
-            self.params.rule_out_after
-        );
-        for k in &self.kinds {
-            text.push_str(&format!(
-                "{} {} {} {} {} {}\n",
-                k.kind, k.candidates, k.kept, k.confirmed, k.tasks, k.tasks_kept
-            ));
-        }
-        estimate::fnv1a(estimate::FNV_BASIS, text.as_bytes())
-    }
-
-    /// The content hash as written in the file (`fnv1a64:…`).
-    pub fn hash_text(&self) -> String {
-        hex(self.hash())
     }
 
     /// The file's text (pretty JSON, a final newline).
@@ -206,23 +155,6 @@ impl Priors {
         }
         check_recomputed(&form.kinds, &priors.kinds)?;
         Ok(priors)
-    }
-
-    /// The node that decides `kind`: the most specific of its nodes in the
-    /// file (the root at least).
-    pub fn lookup(&self, kind: &Kind) -> &KindEntry {
-        for key in kind.path().iter().rev() {
-            if let Ok(i) = self.kinds.binary_search_by(|e| e.kind.as_str().cmp(key)) {
-                return &self.kinds[i];
-            }
-        }
-        self.root()
-    }
-
-    /// The root node.
-    pub fn root(&self) -> &KindEntry {
-        // `from_nodes` always has the root, which sorts first (`*` < `{`).
-        &self.kinds[0]
     }
 }
 

@@ -17,43 +17,27 @@
 //!
 //! # Practical
 //!
-//! Per task: [`folder::task_counts`] (reads `demos.json` and `learned.rcc`)
-//! or the pure [`estimate::task_counts`]. For a library:
-//! [`folder::library`] (streams the folders over rayon's threads; the same
-//! bytes on any number of threads) or [`combine`] on counts gathered
+//! Per task: [`crate::task::library::task_counts`] (reads `demos.json` and
+//! `learned.rcc`) or the pure [`estimate::task_counts`]. For a library:
+//! [`crate::task::library::library`] (streams the folders over rayon's
+//! threads; the same bytes on any number of threads) or [`combine`] on counts gathered
 //! elsewhere: [`TaskCounts::to_json`] / [`TaskCounts::from_json`] carry one
 //! task's counts as plain data ([`counts`]; Python's `task_counts` /
 //! `combine_priors`, a Dask cluster).
 //! [`Priors::to_json`] / [`Priors::from_json`] write and read the file
 //! ([`mod@file`]).
 
-pub mod apply;
 pub mod counts;
 pub mod estimate;
 pub mod file;
-pub mod folder;
-pub mod kind;
 
+// What learning consumes lives below it, in `infer`; its public paths stay
+// here.
+pub use crate::infer::priors::{apply, kind, KindEntry, PriorParams, Priors, StatementPrior};
 pub use apply::{PriorsUsed, RuledOut};
 pub use counts::{counts_from_json_list, COUNTS_VERSION};
-pub use estimate::{combine, task_counts, Count, PriorParams, TaskCounts};
-pub use file::KindEntry;
+pub use estimate::{combine, task_counts, Count, TaskCounts};
 pub use kind::{Kind, Role};
-
-/// Priors per kind, from a library of tasks.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Priors {
-    /// The estimator's parameters and the candidates' template set and
-    /// contact mode.
-    pub params: PriorParams,
-    /// Tasks in the library.
-    pub tasks: u64,
-    /// Hash of the library's inputs (order-independent).
-    pub inputs: u64,
-    /// Every node of the hierarchy seen in the library (the root first),
-    /// sorted by key.
-    pub kinds: Vec<KindEntry>,
-}
 
 /// Why priors cannot be read or made.
 #[derive(Debug, thiserror::Error)]
@@ -92,14 +76,6 @@ pub enum PriorsError {
         /// The parser's message.
         message: String,
     },
-    /// A task folder of the library cannot be read or counted.
-    #[error("task {}: {source}", dir.display())]
-    Task {
-        /// The folder.
-        dir: std::path::PathBuf,
-        /// Why.
-        source: Box<crate::task::TaskError>,
-    },
 }
 
 impl PriorsError {
@@ -109,16 +85,4 @@ impl PriorsError {
             message,
         }
     }
-}
-
-/// The prior a learning run gave one statement, and where it came from.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct StatementPrior {
-    /// The probability that the statement is intended (`1 − π`).
-    pub prior: f64,
-    /// The statement's kind (`None`: a given statement, no template).
-    pub kind: Option<String>,
-    /// The node of the priors file that gave the prior (the kind itself or
-    /// an ancestor); `None` for a given statement (the uniform prior).
-    pub from: Option<String>,
 }

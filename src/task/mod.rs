@@ -24,6 +24,7 @@
 
 pub mod files;
 pub mod folder;
+pub mod library;
 pub mod session;
 
 use crate::infer::{InferError, LearnOptions, LearnParams, Learned};

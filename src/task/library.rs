@@ -1,18 +1,29 @@
 //! Reading a library of task folders (`rccpack priors`): each folder's
 //! `demos.json` and `learned.rcc` (the rules the person kept, with their
-//! `# confirmed` marks), counted on rayon's threads.
+//! `# confirmed` marks), counted on rayon's threads and combined into
+//! [`Priors`] by [`crate::priors`].
 
-use super::estimate::{self, PriorParams, TaskCounts};
-use super::{Priors, PriorsError};
+use super::{files, read_text_at_most, TaskError};
+use crate::priors::estimate::{self, PriorParams, TaskCounts};
+use crate::priors::Priors;
 use crate::rules::parse_rules;
 use crate::scene::scenes_from_json;
-use crate::task::{files, read_text_at_most, TaskError};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
+/// A task folder of the library that cannot be read or counted.
+#[derive(Debug, thiserror::Error)]
+#[error("task {}: {source}", dir.display())]
+pub struct LibraryError {
+    /// The folder.
+    pub dir: PathBuf,
+    /// Why.
+    pub source: Box<TaskError>,
+}
+
 /// Count one task folder.
-pub fn task_counts(dir: &Path, params: &PriorParams) -> Result<TaskCounts, PriorsError> {
-    let wrap = |source: TaskError| PriorsError::Task {
+pub fn task_counts(dir: &Path, params: &PriorParams) -> Result<TaskCounts, LibraryError> {
+    let wrap = |source: TaskError| LibraryError {
         dir: dir.to_path_buf(),
         source: Box::new(source),
     };
@@ -45,8 +56,8 @@ pub fn task_counts(dir: &Path, params: &PriorParams) -> Result<TaskCounts, Prior
 /// them. The first failing folder (in `dirs` order) is the error. The
 /// result does not depend on the number of threads nor on the order of
 /// `dirs`.
-pub fn library(dirs: &[PathBuf], params: &PriorParams) -> Result<Priors, PriorsError> {
-    let counts: Vec<Result<TaskCounts, PriorsError>> =
+pub fn library(dirs: &[PathBuf], params: &PriorParams) -> Result<Priors, LibraryError> {
+    let counts: Vec<Result<TaskCounts, LibraryError>> =
         dirs.par_iter().map(|d| task_counts(d, params)).collect();
     let counts: Vec<TaskCounts> = counts.into_iter().collect::<Result<_, _>>()?;
     Ok(estimate::combine(&counts, params))
