@@ -65,8 +65,33 @@ pub struct RunArgs {
 
 pub fn run(a: RunArgs) -> Result<ExitCode> {
     let out = a.out.clone().unwrap_or_else(|| a.dir.clone());
-    // Outputs are never inputs: `--like` or `--priors` naming a file `run`
-    // writes in OUT is refused before anything is read or written.
+    refuse_outputs_as_inputs(&a, &out)?;
+    // The folder `run` writes is locked as `ask` and the studio lock it:
+    // nothing is written while another session writes there.
+    let lock = folder::lock(&out).map_err(|e| Reported(format!("error: {e}")))?;
+    // Every input is read and checked before anything is written.
+    let (task, opts, sources) = read_inputs(&a)?;
+    // The time limit covers the whole command: learning stops at it (exit
+    // 3, nothing learned), synthesis gets what is left. A curated
+    // learned.rcc (confirmed by `ask` or the studio, or edited) is never
+    // lost: confirmed marks carry over to the rules learned again
+    // unchanged, and a file that would still change is kept as a backup.
+    let start = std::time::Instant::now();
+    let ran = folder::run_locked(&lock, start, &task, &a.dir, &out, &opts)
+        .map_err(|e| sources.error(e))?;
+    let said = folder::summary(&ran);
+    for line in &said.stdout {
+        outln(line)?;
+    }
+    if let Some(line) = &said.stderr {
+        ewriteln!("{line}");
+    }
+    Ok(ExitCode::from(exit_code(ran.ending())))
+}
+
+/// Outputs are never inputs: `--like` or `--priors` naming a file `run`
+/// writes in `out` is refused before anything is read or written.
+fn refuse_outputs_as_inputs(a: &RunArgs, out: &Path) -> Result<()> {
     let written: Vec<PathBuf> = [
         files::LEARNED,
         files::LEARNED_BACKUP,
@@ -88,11 +113,39 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
             ("--like", a.like.as_deref()),
             ("--priors", a.priors.as_deref()),
         ],
-    )?;
-    // The folder `run` writes is locked as `ask` and the studio lock it:
-    // nothing is written while another session writes there.
-    let lock = folder::lock(&out).map_err(|e| Reported(format!("error: {e}")))?;
-    // Every input is read and checked before anything is written.
+    )
+}
+
+/// Where a run's inputs came from, for its error messages.
+struct Sources {
+    problem: PathBuf,
+    demos: PathBuf,
+    statements: Option<PathBuf>,
+    /// The statements' text as read.
+    text: String,
+}
+
+impl Sources {
+    /// A failed run in the CLI's words, naming the file at fault.
+    fn error(&self, e: FolderError) -> anyhow::Error {
+        match e {
+            FolderError::Task(TaskError::Learn(e)) => {
+                learn_error(e, &self.demos, self.statements.as_deref(), &self.text)
+            }
+            FolderError::Task(e) => Reported(format!(
+                "error: {}: {}",
+                self.problem.display(),
+                super::task_error_text(&e)
+            ))
+            .into(),
+            e => Reported(format!("error: {e}")).into(),
+        }
+    }
+}
+
+/// Read and check every input of the run: the task, the options it runs
+/// with, and where each input came from.
+fn read_inputs(a: &RunArgs) -> Result<(Task, RunOptions, Sources)> {
     let problem_path = a.dir.join(files::PROBLEM);
     let problem = read_scene(&problem_path)?;
     let like = match a.like.as_deref() {
@@ -104,7 +157,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     let demos = super::io::read_demos(&demos_path, a.tolerance)?.scenes;
     let priors = super::priors::read_priors_opt(a.priors.as_deref())?;
     let statements = a.dir.join(files::STATEMENTS);
-    let statements_path = statements.exists().then_some(statements.as_path());
+    let statements_path = statements.exists().then_some(statements);
     let params = LearnParams {
         samples: a.samples,
         cutoff: a.cutoff,
@@ -117,7 +170,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     params
         .validate()
         .map_err(|e| Reported(format!("error: {}", super::learn_error_text(&e))))?;
-    let (statements, text) = read_statements(statements_path, &demos)?;
+    let (statements, text) = read_statements(statements_path.as_deref(), &demos)?;
     let task = Task {
         demos,
         statements,
@@ -134,33 +187,13 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         like,
         priors: priors.map(Arc::new),
     };
-    // The time limit covers the whole command: learning stops at it (exit
-    // 3, nothing learned), synthesis gets what is left. A curated
-    // learned.rcc (confirmed by `ask` or the studio, or edited) is never
-    // lost: confirmed marks carry over to the rules learned again
-    // unchanged, and a file that would still change is kept as a backup.
-    let start = std::time::Instant::now();
-    let ran =
-        folder::run_locked(&lock, start, &task, &a.dir, &out, &opts).map_err(|e| match e {
-            FolderError::Task(TaskError::Learn(e)) => {
-                learn_error(e, &demos_path, statements_path, &text)
-            }
-            FolderError::Task(e) => Reported(format!(
-                "error: {}: {}",
-                problem_path.display(),
-                super::task_error_text(&e)
-            ))
-            .into(),
-            e => Reported(format!("error: {e}")).into(),
-        })?;
-    let said = folder::summary(&ran);
-    for line in &said.stdout {
-        outln(line)?;
-    }
-    if let Some(line) = &said.stderr {
-        ewriteln!("{line}");
-    }
-    Ok(ExitCode::from(exit_code(ran.ending())))
+    let sources = Sources {
+        problem: problem_path,
+        demos: demos_path,
+        statements: statements_path,
+        text,
+    };
+    Ok((task, opts, sources))
 }
 
 /// The exit code of a run (docs/cli.md): 0 a layout, 2 infeasible, 3 a

@@ -210,87 +210,104 @@ enum Pred {
 }
 
 fn predicate(f: &Formula) -> Pred {
-    let s = f.subject();
     let pos = Pred::Pos;
     match f {
         Formula::Atom(a) => pos(atom_phrase(a)),
         Formula::Shape(sh) => pos(format!("{} (with the others)", sh.kind.verb())),
         Formula::Turned(_) => pos("lies turned".to_string()),
-        Formula::Not(g) => match atom_of(g) {
-            Some(a) if a.has_default_quant() => {
-                let d = a.rel.dir.word();
-                match a.rel.kind {
-                    Kind::DR => {
-                        let t = target_phrase(s, &a.target, "every");
-                        Pred::Neg {
-                            no: format!("is {d} of {t}"),
-                            not: format!("is not {d} of {t}"),
-                        }
+        Formula::Not(g) => negated_predicate(f, g),
+        Formula::Or(v) => pos(disjunction_phrase(f, v)),
+        Formula::And(v) => pos(conjunction_phrase(f, v)),
+    }
+}
+
+/// `f = !g`: a negated atom or `turned` read as "no A …", else the generic
+/// reading.
+fn negated_predicate(f: &Formula, g: &Formula) -> Pred {
+    let s = f.subject();
+    match atom_of(g) {
+        Some(a) if a.has_default_quant() => {
+            let d = a.rel.dir.word();
+            match a.rel.kind {
+                Kind::DR => {
+                    let t = target_phrase(s, &a.target, "every");
+                    Pred::Neg {
+                        no: format!("is {d} of {t}"),
+                        not: format!("is not {d} of {t}"),
                     }
-                    Kind::EC => {
-                        let t = target_phrase(s, &a.target, "any");
-                        Pred::Neg {
-                            no: format!("touches the {d} side of {t}"),
-                            not: format!("does not touch the {d} side of {t}"),
-                        }
+                }
+                Kind::EC => {
+                    let t = target_phrase(s, &a.target, "any");
+                    Pred::Neg {
+                        no: format!("touches the {d} side of {t}"),
+                        not: format!("does not touch the {d} side of {t}"),
                     }
-                    Kind::FL | Kind::AL => {
-                        let t = target_phrase(s, &a.target, "any");
-                        let verb = a.rel.def().verb_phrase();
-                        Pred::Neg {
-                            no: format!("{verb} {t}"),
-                            not: format!("does not satisfy: {verb} {t}"),
-                        }
+                }
+                Kind::FL | Kind::AL => {
+                    let t = target_phrase(s, &a.target, "any");
+                    let verb = a.rel.def().verb_phrase();
+                    Pred::Neg {
+                        no: format!("{verb} {t}"),
+                        not: format!("does not satisfy: {verb} {t}"),
                     }
                 }
             }
-            _ if matches!(**g, Formula::Turned(_)) => Pred::Neg {
-                no: "lies turned".into(),
-                not: "does not lie turned".into(),
-            },
-            _ => generic(f),
+        }
+        _ if matches!(g, Formula::Turned(_)) => Pred::Neg {
+            no: "lies turned".into(),
+            not: "does not lie turned".into(),
         },
-        Formula::Or(v) => {
-            if let Some(t) = four_sides(v, atom_of, Kind::EC, None) {
-                pos(format!("touches {}", target_phrase(s, t, "some")))
-            } else if let Some(t) = four_sides(v, atom_of, Kind::FL, None) {
-                pos(format!("touches {} flush", target_phrase(s, t, "some")))
-            } else if is_corner(v) {
-                pos("touches something on two adjacent sides (a corner)".into())
-            } else if let Some(t) = pair_of(v, Kind::FL, None, Dir::E, Dir::W) {
-                pos(format!(
-                    "lies flush on the east or west side of {}",
-                    target_phrase(s, t, "some")
-                ))
-            } else if let Some(t) = pair_of(v, Kind::FL, None, Dir::N, Dir::S) {
-                pos(format!(
-                    "lies flush on the north or south side of {}",
-                    target_phrase(s, t, "some")
-                ))
-            } else {
-                generic(f)
-            }
+        _ => generic(f),
+    }
+}
+
+/// `f = v[0] | v[1] | …`: the patterns with a name (touching some side, a
+/// corner, flush on two opposite sides), else the generic reading.
+fn disjunction_phrase(f: &Formula, v: &[Formula]) -> String {
+    let s = f.subject();
+    if let Some(t) = four_sides(v, atom_of, Kind::EC, None) {
+        format!("touches {}", target_phrase(s, t, "some"))
+    } else if let Some(t) = four_sides(v, atom_of, Kind::FL, None) {
+        format!("touches {} flush", target_phrase(s, t, "some"))
+    } else if is_corner(v) {
+        "touches something on two adjacent sides (a corner)".into()
+    } else if let Some(t) = pair_of(v, Kind::FL, None, Dir::E, Dir::W) {
+        format!(
+            "lies flush on the east or west side of {}",
+            target_phrase(s, t, "some")
+        )
+    } else if let Some(t) = pair_of(v, Kind::FL, None, Dir::N, Dir::S) {
+        format!(
+            "lies flush on the north or south side of {}",
+            target_phrase(s, t, "some")
+        )
+    } else {
+        generic_phrase(f)
+    }
+}
+
+/// `f = v[0] & v[1] & …`: the patterns with a name (surrounded, touching
+/// nothing, flush wherever it touches, one row or column), else the
+/// generic reading.
+fn conjunction_phrase(f: &Formula, v: &[Formula]) -> String {
+    let s = f.subject();
+    if let Some(t) = four_sides(v, negated_atom, Kind::DR, None) {
+        match t {
+            Target::Any => "is surrounded by other objects".into(),
+            Target::Class(c) if c == s => format!("is among the other {c}s"),
+            Target::Class(c) => format!("is inside the {c}s"),
+            Target::Landmark(id) => format!("is inside {id}"),
         }
-        Formula::And(v) => {
-            if let Some(t) = four_sides(v, negated_atom, Kind::DR, None) {
-                pos(match t {
-                    Target::Any => "is surrounded by other objects".into(),
-                    Target::Class(c) if c == s => format!("is among the other {c}s"),
-                    Target::Class(c) => format!("is inside the {c}s"),
-                    Target::Landmark(id) => format!("is inside {id}"),
-                })
-            } else if let Some(t) = four_sides(v, atom_of, Kind::EC, Some(Quant::No)) {
-                pos(format!("touches {}", target_phrase(s, t, "no")))
-            } else if let Some(t) = contacts_flush(v) {
-                pos(format!("lies flush wherever it touches {}", a_target(s, t)))
-            } else if let Some(t) = pair_of(v, Kind::AL, Some(Quant::Every), Dir::S, Dir::N) {
-                pos(format!("is in one row with {}", aligned_with(s, t)))
-            } else if let Some(t) = pair_of(v, Kind::AL, Some(Quant::Every), Dir::W, Dir::E) {
-                pos(format!("is in one column with {}", aligned_with(s, t)))
-            } else {
-                generic(f)
-            }
-        }
+    } else if let Some(t) = four_sides(v, atom_of, Kind::EC, Some(Quant::No)) {
+        format!("touches {}", target_phrase(s, t, "no"))
+    } else if let Some(t) = contacts_flush(v) {
+        format!("lies flush wherever it touches {}", a_target(s, t))
+    } else if let Some(t) = pair_of(v, Kind::AL, Some(Quant::Every), Dir::S, Dir::N) {
+        format!("is in one row with {}", aligned_with(s, t))
+    } else if let Some(t) = pair_of(v, Kind::AL, Some(Quant::Every), Dir::W, Dir::E) {
+        format!("is in one column with {}", aligned_with(s, t))
+    } else {
+        generic_phrase(f)
     }
 }
 
@@ -317,7 +334,12 @@ fn generic_inner(f: &Formula, top: bool) -> String {
 }
 
 fn generic(f: &Formula) -> Pred {
-    Pred::Pos(format!("satisfies: {}", generic_inner(f, true)))
+    Pred::Pos(generic_phrase(f))
+}
+
+/// The generic reading of `f`: "satisfies: …" and the formula in words.
+fn generic_phrase(f: &Formula) -> String {
+    format!("satisfies: {}", generic_inner(f, true))
 }
 
 /// The plural of a predicate: its first word (the verb) and "its".

@@ -365,31 +365,14 @@ impl<'a> NullModel<'a> {
         contact: Contact,
         stop: &crate::stop::Stop,
     ) -> Result<Vec<u64>, InferError> {
-        // Per demonstration, per class, the object indices.
-        let by_class: Vec<Vec<Vec<usize>>> = self
-            .demos
-            .iter()
-            .map(|s| {
-                let mut v = vec![Vec::new(); classes.len()];
-                for (i, o) in s.objects.iter().enumerate() {
-                    if let Some(c) = classes.get(&o.class) {
-                        v[c].push(i);
-                    }
-                }
-                v
-            })
-            .collect();
+        let by_class = self.objects_by_class(classes);
         let none: Vec<usize> = Vec::new();
         let subjects_of = |d: usize, r: &CompiledRule| -> &[usize] {
             by_class[d].get(r.subject).unwrap_or(&none)
         };
         let first_failure = AtomicUsize::new(usize::MAX);
         type Acc = (Vec<Scene>, Vec<u64>, Option<(usize, InferError)>);
-        let merge_err =
-            |a: Option<(usize, InferError)>, b: Option<(usize, InferError)>| match (a, b) {
-                (Some(x), Some(y)) => Some(if x.0 <= y.0 { x } else { y }),
-                (x, None) | (None, x) => x,
-            };
+        let merge_err = lowest_failure;
         let (counts, err) = (0..samples)
             .into_par_iter()
             .with_min_len(16)
@@ -414,23 +397,8 @@ impl<'a> NullModel<'a> {
                         return (scratch, counts, merge_err(err, Some((i, e))));
                     }
                     let atoms = ClassAtoms::new(scene, classes, contact);
-                    for (k, r) in rules.iter().enumerate() {
-                        if r.scope == Scope::Group {
-                            let n = scene.objects.len();
-                            counts[k] += u64::from(r.scene_holds(&atoms, n));
-                            continue;
-                        }
-                        let objects = subjects_of(d, r);
-                        let c = objects
-                            .iter()
-                            .filter(|&&o| r.formula.eval(&atoms, o))
-                            .count() as u64;
-                        counts[k] += match r.scope {
-                            Scope::Each => c,
-                            Scope::Scene(q) => u64::from(q.holds(c as u32, objects.len() as u32)),
-                            Scope::Group => 0,
-                        };
-                    }
+                    let n = scene.objects.len();
+                    add_counts(&atoms, n, rules, |r| subjects_of(d, r), &mut counts);
                     (scratch, counts, err)
                 },
             )
@@ -448,5 +416,60 @@ impl<'a> NullModel<'a> {
             Some((_, e)) => Err(e),
             None => Ok(counts),
         }
+    }
+
+    /// Per demonstration, per class, the object indices.
+    fn objects_by_class(&self, classes: &ClassIndex) -> Vec<Vec<Vec<usize>>> {
+        self.demos
+            .iter()
+            .map(|s| {
+                let mut v = vec![Vec::new(); classes.len()];
+                for (i, o) in s.objects.iter().enumerate() {
+                    if let Some(c) = classes.get(&o.class) {
+                        v[c].push(i);
+                    }
+                }
+                v
+            })
+            .collect()
+    }
+}
+
+/// Of two failures (sample index, error), the one of the lower sample.
+fn lowest_failure(
+    a: Option<(usize, InferError)>,
+    b: Option<(usize, InferError)>,
+) -> Option<(usize, InferError)> {
+    match (a, b) {
+        (Some(x), Some(y)) => Some(if x.0 <= y.0 { x } else { y }),
+        (x, None) | (None, x) => x,
+    }
+}
+
+/// Add one random scene's counts (its `n` objects' atoms) to `counts`: per
+/// rule, the subject objects that satisfy it, or whether the scene-level
+/// statement holds.
+fn add_counts<'a>(
+    atoms: &ClassAtoms,
+    n: usize,
+    rules: &[CompiledRule],
+    subjects_of: impl Fn(&CompiledRule) -> &'a [usize],
+    counts: &mut [u64],
+) {
+    for (k, r) in rules.iter().enumerate() {
+        if r.scope == Scope::Group {
+            counts[k] += u64::from(r.scene_holds(atoms, n));
+            continue;
+        }
+        let objects = subjects_of(r);
+        let c = objects
+            .iter()
+            .filter(|&&o| r.formula.eval(atoms, o))
+            .count() as u64;
+        counts[k] += match r.scope {
+            Scope::Each => c,
+            Scope::Scene(q) => u64::from(q.holds(c as u32, objects.len() as u32)),
+            Scope::Group => 0,
+        };
     }
 }

@@ -15,10 +15,9 @@
 
 use super::diagnostic::{Diagnostic, DiagnosticKind, LineIndex};
 use super::{
-    Atom, Formula, Quant, Rule, RuleOrigin, RuleSet, RulesError, Scope, Shape, ShapeKind, Span,
-    Strength, Target,
+    Formula, Quant, Rule, RuleOrigin, RuleSet, RulesError, Scope, Shape, ShapeKind, Span, Strength,
 };
-use crate::relations::{Relation, MAX_COUNT};
+use crate::relations::MAX_COUNT;
 use pest::iterators::Pair;
 use pest::Parser as _;
 use std::collections::HashMap;
@@ -35,7 +34,10 @@ pub(super) mod grammar {
 }
 
 use super::syntax_errors::{paren_depth_check, pest_diagnostic, token_depth_check};
+use formula::Builder;
 use grammar::{RccParser, Rule as R};
+
+mod formula;
 
 /// Parse and check `.rcc` text (syntax, one subject per rule, unique names,
 /// modifier ranges).
@@ -125,12 +127,7 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
     let mut name = None;
     let mut strength = Strength::default();
     let mut modifier_span = None;
-    let mut scope = Scope::Each;
-    let mut scope_written: Option<(String, String)> = None;
-    let mut scope_span = None;
-    let mut formula = None;
-    let mut atom_spans = Vec::new();
-    let mut subjects = Vec::new();
+    let mut body = Body::default();
     for p in pair.into_inner() {
         match p.as_rule() {
             R::name => name = Some((p.as_str().to_string(), span_of(&p))),
@@ -141,80 +138,105 @@ fn build_rule(pair: Pair<'_, R>, diags: &mut Vec<Diagnostic>) -> Option<Rule> {
                     Err(d) => diags.push(d),
                 }
             }
-            R::body => {
-                for b in p.into_inner() {
-                    match b.as_rule() {
-                        R::scope => {
-                            scope_span = Some(span_of(&b));
-                            if let Some((q, written, class)) = scene_scope(b, diags) {
-                                scope = Scope::of(q);
-                                if let Some(class) = class {
-                                    scope_written = Some((written, class));
-                                }
-                            }
-                        }
-                        R::shape_stmt => {
-                            scope = Scope::Group;
-                            // A group statement has no atoms; its span
-                            // stands where the atoms' would.
-                            atom_spans.push(span_of(&b));
-                            formula = shape_stmt(b, &mut subjects, diags);
-                        }
-                        R::formula => {
-                            let mut builder = Builder {
-                                atoms: &mut atom_spans,
-                                subjects: &mut subjects,
-                                diags,
-                            };
-                            formula = b.into_inner().next().map(|d| builder.disjunction(d));
-                        }
-                        _ => {}
-                    }
-                }
-            }
+            R::body => body.read(p, diags),
             _ => {}
         }
     }
     let (name, name_span) = name?;
-    let formula = formula?;
-    if let Some((written, class)) = &scope_written {
-        // A scene scope fixes the subject class of every atom.
-        if let Some((other, span)) = subjects.iter().find(|(s, _)| s != class) {
-            diags.push(Diagnostic::new(DiagnosticKind::MixedSubjects,
-                *span,
-                format!(
-                    "rule `{name}` is about `{class}` (`{written} {class}:`), but this atom is about `{other}`: expected every atom's subject to be `{class}`"
-                ),
-            ));
-        }
-    } else if let Some((first, _)) = subjects.first() {
-        // One subject class per rule.
-        if let Some((other, span)) = subjects.iter().find(|(s, _)| s != first) {
-            diags.push(Diagnostic::new(DiagnosticKind::MixedSubjects,
-                *span,
-                format!(
-                    "rule `{name}` mixes subject classes: this atom is about `{other}`, but the rule's first atom is about `{first}`"
-                ),
-            ));
-        }
-    }
+    let formula = body.formula.take()?;
+    body.check_subjects(&name, diags);
     let rule = Rule {
         name,
         strength,
-        scope,
+        scope: body.scope,
         formula,
         comments: Vec::new(),
         origin: Some(RuleOrigin {
             span: whole,
             name: name_span,
             modifier: modifier_span,
-            atoms: atom_spans,
-            scope: scope_span,
+            atoms: body.atom_spans,
+            scope: body.scope_span,
         }),
     };
     // A rule with errors still takes part in the duplicate-name check; the
     // caller drops it since diagnostics were recorded.
     Some(rule)
+}
+
+/// What a rule's body says: its scope, its formula, and where its atoms and
+/// subjects are written.
+#[derive(Default)]
+struct Body {
+    scope: Scope,
+    /// A scene scope's quantifier as written and its class.
+    scope_written: Option<(String, String)>,
+    scope_span: Option<Span>,
+    formula: Option<Formula>,
+    atom_spans: Vec<Span>,
+    subjects: Vec<(String, Span)>,
+}
+
+impl Body {
+    /// Read a `body` pair: a scene scope, then a group statement or a formula.
+    fn read(&mut self, p: Pair<'_, R>, diags: &mut Vec<Diagnostic>) {
+        for b in p.into_inner() {
+            match b.as_rule() {
+                R::scope => {
+                    self.scope_span = Some(span_of(&b));
+                    if let Some((q, written, class)) = scene_scope(b, diags) {
+                        self.scope = Scope::of(q);
+                        if let Some(class) = class {
+                            self.scope_written = Some((written, class));
+                        }
+                    }
+                }
+                R::shape_stmt => {
+                    self.scope = Scope::Group;
+                    // A group statement has no atoms; its span
+                    // stands where the atoms' would.
+                    self.atom_spans.push(span_of(&b));
+                    self.formula = shape_stmt(b, &mut self.subjects, diags);
+                }
+                R::formula => {
+                    let mut builder = Builder {
+                        atoms: &mut self.atom_spans,
+                        subjects: &mut self.subjects,
+                        diags,
+                    };
+                    self.formula = b.into_inner().next().map(|d| builder.disjunction(d));
+                }
+                _ => {}
+            }
+        }
+    }
+
+    /// One subject class per rule: the scene scope's class, or else the
+    /// first atom's.
+    fn check_subjects(&self, name: &str, diags: &mut Vec<Diagnostic>) {
+        let subjects = &self.subjects;
+        if let Some((written, class)) = &self.scope_written {
+            // A scene scope fixes the subject class of every atom.
+            if let Some((other, span)) = subjects.iter().find(|(s, _)| s != class) {
+                diags.push(Diagnostic::new(DiagnosticKind::MixedSubjects,
+                    *span,
+                    format!(
+                        "rule `{name}` is about `{class}` (`{written} {class}:`), but this atom is about `{other}`: expected every atom's subject to be `{class}`"
+                    ),
+                ));
+            }
+        } else if let Some((first, _)) = subjects.first() {
+            // One subject class per rule.
+            if let Some((other, span)) = subjects.iter().find(|(s, _)| s != first) {
+                diags.push(Diagnostic::new(DiagnosticKind::MixedSubjects,
+                    *span,
+                    format!(
+                        "rule `{name}` mixes subject classes: this atom is about `{other}`, but the rule's first atom is about `{first}`"
+                    ),
+                ));
+            }
+        }
+    }
 }
 
 /// A group statement `[!]SHAPE(CLASS)`: its formula (a shape under as many
@@ -468,190 +490,5 @@ fn modifier(p: Pair<'_, R>) -> Result<Strength, Diagnostic> {
         ))
     } else {
         Ok(Strength::P(v))
-    }
-}
-
-struct Builder<'a> {
-    atoms: &'a mut Vec<Span>,
-    subjects: &'a mut Vec<(String, Span)>,
-    diags: &'a mut Vec<Diagnostic>,
-}
-
-impl Builder<'_> {
-    fn disjunction(&mut self, p: Pair<'_, R>) -> Formula {
-        let mut out = Vec::new();
-        for c in p.into_inner().filter(|c| c.as_rule() == R::conjunction) {
-            match self.conjunction(c) {
-                Formula::Or(v) => out.extend(v),
-                f => out.push(f),
-            }
-        }
-        if out.len() == 1 {
-            out.pop().unwrap_or(Formula::Or(Vec::new()))
-        } else {
-            Formula::Or(out)
-        }
-    }
-
-    fn conjunction(&mut self, p: Pair<'_, R>) -> Formula {
-        let mut out = Vec::new();
-        for c in p.into_inner().filter(|c| c.as_rule() == R::unary) {
-            match self.unary(c) {
-                Formula::And(v) => out.extend(v),
-                f => out.push(f),
-            }
-        }
-        if out.len() == 1 {
-            out.pop().unwrap_or(Formula::And(Vec::new()))
-        } else {
-            Formula::And(out)
-        }
-    }
-
-    fn unary(&mut self, p: Pair<'_, R>) -> Formula {
-        let mut nots = 0usize;
-        let mut inner = None;
-        for c in p.into_inner() {
-            match c.as_rule() {
-                R::not_op => nots += 1,
-                R::atom => inner = Some(self.atom(c)),
-                R::turned => inner = Some(self.turned(c)),
-                R::group => {
-                    inner = c
-                        .into_inner()
-                        .find(|g| g.as_rule() == R::disjunction)
-                        .map(|d| self.disjunction(d))
-                }
-                _ => {}
-            }
-        }
-        let mut f = inner.unwrap_or(Formula::Or(Vec::new()));
-        for _ in 0..nots {
-            f = Formula::not(f);
-        }
-        f
-    }
-
-    fn atom(&mut self, p: Pair<'_, R>) -> Formula {
-        let span = span_of(&p);
-        self.atoms.push(span);
-        let mut rel = Relation::ALL[0];
-        let mut subject = String::new();
-        let mut quant = None;
-        let mut target = Target::Any;
-        for c in p.into_inner() {
-            match c.as_rule() {
-                R::relation => match Relation::from_name(c.as_str()) {
-                    Some(r) => rel = r,
-                    None => {
-                        self.diags.push(Diagnostic::new(
-                            DiagnosticKind::UnknownRelation,
-                            span_of(&c),
-                            format!(
-                                "unknown relation `{}`: expected one of {}",
-                                crate::limits::cut(c.as_str()),
-                                Relation::ALL.map(|r| r.name()).join(", ")
-                            ),
-                        ));
-                    }
-                },
-                R::subject => match subject_kind(c) {
-                    Subject::Class(s) => {
-                        subject = s;
-                        self.subjects.push((subject.clone(), span));
-                    }
-                    Subject::Other(text, at, landmark) => {
-                        let message = if landmark {
-                            format!("expected a class name, found `{text}`: the subject of an atom is a class, not a landmark")
-                        } else {
-                            // The first edition's (syntax) message, kept.
-                            format!("expected a class name, found `{text}`")
-                        };
-                        self.diags
-                            .push(Diagnostic::new(DiagnosticKind::Syntax, at, message));
-                    }
-                },
-                R::target => {
-                    let (q, t) = self.target(c);
-                    quant = q;
-                    target = t;
-                }
-                _ => {}
-            }
-        }
-        Formula::Atom(match quant {
-            Some(q) => Atom::quantified(rel, subject, q, target),
-            None => Atom::new(rel, subject, target),
-        })
-    }
-
-    /// `turned(A)`: an orientation statement about the subject.
-    fn turned(&mut self, p: Pair<'_, R>) -> Formula {
-        let span = span_of(&p);
-        self.atoms.push(span);
-        let mut subject = String::new();
-        for c in p.into_inner() {
-            if c.as_rule() != R::subject {
-                continue;
-            }
-            match subject_kind(c) {
-                Subject::Class(s) => {
-                    subject = s;
-                    self.subjects.push((subject.clone(), span));
-                }
-                Subject::Other(text, at, _) => {
-                    self.diags.push(Diagnostic::new(
-                        DiagnosticKind::Syntax,
-                        at,
-                        format!("expected a class name, found `{text}`: `turned` is about the subject class's objects"),
-                    ));
-                }
-            }
-        }
-        Formula::Turned(subject)
-    }
-
-    /// An atom's target: the written quantifier (if valid) and the object.
-    fn target(&mut self, p: Pair<'_, R>) -> (Option<Quant>, Target) {
-        let mut quant_pair = None;
-        let mut target = Target::Any;
-        for c in p.into_inner() {
-            match c.as_rule() {
-                R::quant => quant_pair = Some(c),
-                R::object => {
-                    let text = c.as_str();
-                    target = match c.into_inner().next().map(|o| o.as_rule()) {
-                        Some(R::landmark) => {
-                            Target::Landmark(text.strip_prefix('@').unwrap_or(text).to_string())
-                        }
-                        Some(R::class) => Target::Class(text.to_string()),
-                        _ => Target::Any,
-                    };
-                }
-                _ => {}
-            }
-        }
-        let Some(qp) = quant_pair else {
-            return (None, target);
-        };
-        let written = written_text(qp.as_str());
-        let qspan = words_span(&qp);
-        let q = match quant(qp) {
-            Ok(q) => Some(q),
-            Err(d) => {
-                self.diags.push(d);
-                None
-            }
-        };
-        if let Target::Landmark(id) = &target {
-            self.diags.push(Diagnostic::new(DiagnosticKind::LandmarkQuantifier,
-                qspan,
-                format!(
-                    "quantifier `{written}` before landmark `@{id}`: a landmark takes no quantifier; expected `@{id}` alone"
-                ),
-            ));
-            return (None, target);
-        }
-        (q, target)
     }
 }

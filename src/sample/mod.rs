@@ -66,15 +66,10 @@
 //! and node limits give the same sequence of layouts whatever the number of
 //! threads (time limits can cut a run short at a different point).
 
-use crate::eval::evaluate;
 use crate::relations::Contact;
 use crate::rules::RuleSet;
 use crate::scene::Scene;
-use crate::synth::backend::{Backend, Fact, Limits, Verdict};
-use crate::synth::engine::Engine;
-use crate::synth::model::{Coord, Lit, Model};
 use crate::synth::{Conflict, Status, SynthError, SynthOptions};
-use rand::seq::SliceRandom;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeMap;
@@ -86,6 +81,15 @@ use std::time::{Duration, Instant};
 pub mod arbitrary;
 #[cfg(feature = "proptest")]
 pub mod strategy;
+
+mod draw;
+mod orientations;
+
+pub(crate) use draw::grid_values;
+use draw::Totals;
+pub(crate) use orientations::orientation_choices;
+pub use orientations::MAX_SAMPLE_ORIENTATIONS;
+use orientations::{orientation_branches, Branch};
 
 /// Which layouts count as good enough.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -320,37 +324,6 @@ impl Sampler {
         self.target.map(|(_, p)| p)
     }
 
-    fn limits(&self, b: usize) -> Limits {
-        let now = Instant::now();
-        let per = self.opts.layout_time_limit.and_then(|t| now.checked_add(t));
-        let deadline = match (self.deadline, per) {
-            (Some(a), Some(b)) => Some(a.min(b)),
-            (a, b) => a.or(b),
-        };
-        let used = self.branches[b].engine.as_ref().map_or(0, |e| e.nodes());
-        Limits {
-            deadline,
-            node_limit: self.opts.layout_node_limit.map(|n| used.saturating_add(n)),
-            cancel: self.opts.cancel.clone(),
-        }
-    }
-
-    /// The model of orientation choice `b` and its hint groups (built
-    /// once).
-    fn build_model(&mut self, b: usize) -> Result<(), SynthError> {
-        if self.branches[b].model.is_some() {
-            return Ok(());
-        }
-        let br = &self.branches[b];
-        let (model, coefs, _) =
-            crate::synth::objective_model(&br.problem, &self.rules, &self.synth_opts)?;
-        let groups = hint_groups(&model, &br.problem);
-        let br = &mut self.branches[b];
-        br.groups = groups;
-        br.model = Some((model, coefs));
-        Ok(())
-    }
-
     /// The docs/language.md#the-score integer numerator to reach, the hint
     /// tables, and the engine when nothing turns.
     fn prepare(&mut self) -> Result<(), SampleError> {
@@ -389,67 +362,6 @@ impl Sampler {
         Ok(())
     }
 
-    /// The integer numerator choice `b`'s engine must reach (its own
-    /// variable terms; the constant ones are the choice's); `None` when no
-    /// layout of this choice reaches the quality asked for.
-    fn branch_target(&self, model: &Model, coefs: &[i64]) -> Option<i64> {
-        let t = Totals::of(model, coefs);
-        match self.opts.quality {
-            Quality::Optimum => {
-                let (whole, _) = self.target?;
-                let k = whole - t.constant;
-                (k <= t.variable).then_some(k)
-            }
-            // Some object can never keep some rule: look no further.
-            Quality::AllRules => (!t.impossible).then_some(t.variable),
-            Quality::MinScore(x) => {
-                // Conservative: the integer weights are rounded (at most
-                // half a unit each), so a layout with score ≥ x has at least
-                // this integer numerator; the evaluator decides exactly.
-                let total = (t.variable + t.constant) as f64;
-                let n = model.soft.len() as f64;
-                let k = (x * total - n).ceil() as i64 - t.constant;
-                Some(k.max(0))
-            }
-        }
-    }
-
-    /// Build choice `b`'s engine with "objective ≥ target", or mark the
-    /// choice done when none of its layouts can reach the target.
-    /// `Ok(false)`: the time limit struck while it was built.
-    fn start_engine(&mut self, b: usize) -> Result<bool, SynthError> {
-        self.build_model(b)?;
-        let (model, coefs) = self.branches[b].model.as_ref().expect("built");
-        let target = match self.branch_target(model, coefs) {
-            Some(t) if model.too_large.is_empty() => t,
-            _ => {
-                self.branches[b].done = true;
-                return Ok(true);
-            }
-        };
-        let Some(mut engine) = Engine::with_resemblance_until(
-            model,
-            self.opts.seed,
-            false,
-            Some(coefs),
-            &[],
-            self.deadline,
-        )?
-        else {
-            return Ok(false);
-        };
-        if target > 0 {
-            engine.add(Fact::ObjectiveAtLeast(target));
-        }
-        // The greedy first phase would put every layout bottom-left.
-        engine.found_first();
-        if self.opts.repair == Repair::Random {
-            engine.random_search();
-        }
-        self.branches[b].engine = Some(engine);
-        Ok(true)
-    }
-
     /// The orientation choice whose engine draws the next layout: uniform
     /// among those not exhausted (no draw when one is left); `None` when
     /// every choice is exhausted.
@@ -461,67 +373,6 @@ impl Sampler {
             0 => None,
             1 => Some(alive[0]),
             k => Some(alive[self.rng.random_range(0..k)]),
-        }
-    }
-
-    /// The orientation choice a layout of the problem lies in: how many of
-    /// each group of turnable objects it turns.
-    fn branch_of(&self, scene: &Scene) -> usize {
-        let turned: Vec<usize> = (self.turning.iter())
-            .map(|g| g.iter().filter(|&&i| scene.objects[i].turned).count())
-            .collect();
-        (self.branches.iter())
-            .position(|br| br.turned == turned)
-            .unwrap_or(0)
-    }
-
-    /// `scene` with the turned objects of every group of turnable objects
-    /// first (they are interchangeable), as its orientation choice has them.
-    fn in_branch_order(&self, scene: &Scene) -> Scene {
-        let mut s = scene.clone();
-        for g in &self.turning {
-            let mut at: Vec<(bool, Option<i64>, Option<i64>)> = (g.iter())
-                .map(|&i| (!s.objects[i].turned, s.objects[i].x, s.objects[i].y))
-                .collect();
-            at.sort_by_key(|a| a.0);
-            for (&i, (flat, x, y)) in g.iter().zip(at) {
-                let o = &mut s.objects[i];
-                (o.turned, o.x, o.y) = (!flat, x, y);
-            }
-        }
-        s
-    }
-
-    /// The layout of choice `b`'s solution `v`: the problem's objects
-    /// placed, turned as the choice turns them.
-    fn layout(&self, b: usize, v: &[i64]) -> Scene {
-        let (model, _) = self.branches[b].model.as_ref().expect("built");
-        let mut s = model.scene(&self.branches[b].problem, v);
-        for (o, p) in s.objects.iter_mut().zip(&self.problem.objects) {
-            o.turnable = p.turnable;
-        }
-        s
-    }
-
-    /// The like tables: positions per class and footprint.
-    fn tables(&mut self) {
-        let Some((model, _)) = self.branches[0].model.as_ref() else {
-            return;
-        };
-        let (ox, oy) = model.origin;
-        let g = model.grid;
-        for s in &self.opts.like {
-            for o in s.objects.iter().filter(|o| !o.fixed) {
-                let (Some(x), Some(y)) = (o.x, o.y) else {
-                    continue;
-                };
-                if (x - ox) % g == 0 && (y - oy) % g == 0 {
-                    self.like
-                        .entry(like_key(o))
-                        .or_default()
-                        .push(((x - ox) / g, (y - oy) / g));
-                }
-            }
         }
     }
 
@@ -552,70 +403,6 @@ impl Sampler {
             },
         });
         Ok(())
-    }
-
-    /// A random hint for choice `b`: every movable object at a random grid
-    /// position (interchangeable objects' positions sorted into the
-    /// symmetry order), objects in a random order.
-    fn hint(&mut self, b: usize) -> Vec<(usize, i64)> {
-        let br = &self.branches[b];
-        let Some((model, _)) = br.model.as_ref() else {
-            return Vec::new();
-        };
-        let mut per_object: Vec<[(usize, i64); 2]> = Vec::new();
-        for group in &br.groups {
-            let o = &br.problem.objects[model.vars[group[0]].object];
-            let like = self.like.get(&like_key(o));
-            // The y variable of an object follows its x variable.
-            let (ux, uy) = (model.vars[group[0]].ub, model.vars[group[0] + 1].ub);
-            let mut pos: Vec<(i64, i64)> = (0..group.len())
-                .map(|_| match like {
-                    Some(l) if !l.is_empty() && self.rng.random_bool(0.5) => {
-                        l[self.rng.random_range(0..l.len())]
-                    }
-                    _ => (self.rng.random_range(0..=ux), self.rng.random_range(0..=uy)),
-                })
-                .collect();
-            pos.sort_by_key(|&(x, y)| (y, x));
-            for (&vx, (x, y)) in group.iter().zip(pos) {
-                per_object.push([(vx, x), (vx + 1, y)]);
-            }
-        }
-        per_object.shuffle(&mut self.rng);
-        per_object.into_iter().flatten().collect()
-    }
-
-    /// The next layout of choice `b` (its engine started): `Ok(None)` when
-    /// the choice has no further layout.
-    fn draw(&mut self, b: usize) -> Result<Option<Scene>, SampleError> {
-        loop {
-            let limits = self.limits(b);
-            let hint = self.hint(b);
-            let Some(engine) = self.branches[b].engine.as_mut() else {
-                return Ok(None);
-            };
-            engine.hint_in_order(&hint);
-            match engine.solve(&[], &limits) {
-                Verdict::Solution(v) => {
-                    engine.exclude(&v);
-                    let scene = self.layout(b, &v);
-                    if let Some(x) = self.min_score {
-                        let e = evaluate(&scene, &self.rules, self.opts.contact);
-                        // The engine's bound is conservative; the evaluator
-                        // decides (with a rounding tolerance).
-                        if e.score < x - 1e-9 {
-                            self.skipped += 1;
-                            continue;
-                        }
-                    }
-                    return Ok(Some(scene));
-                }
-                Verdict::Infeasible(_) => return Ok(None),
-                Verdict::Unknown => {
-                    return Err(SampleError::LimitReached { found: self.found });
-                }
-            }
-        }
     }
 }
 
@@ -675,158 +462,6 @@ impl Iterator for Sampler {
 }
 
 impl std::iter::FusedIterator for Sampler {}
-
-/// Most orientation choices (`Π (nᵍ + 1)` over the groups of
-/// interchangeable turnable objects) a sampler draws from.
-pub const MAX_SAMPLE_ORIENTATIONS: usize = 256;
-
-/// One orientation choice of a problem's turnable objects: the first
-/// `turned[g]` objects of group `g` lie turned, the others flat.
-struct Branch {
-    /// Turned objects per group of turnable objects.
-    turned: Vec<usize>,
-    /// The problem with every orientation given.
-    problem: Scene,
-    /// Its model and integer objective coefficients (built when first
-    /// drawn from).
-    model: Option<(Model, Vec<i64>)>,
-    engine: Option<Engine>,
-    /// Groups of interchangeable unplaced objects: their x variables, in
-    /// the symmetry order.
-    groups: Vec<Vec<usize>>,
-    /// Every layout of this choice has been returned (or none reaches the
-    /// target).
-    done: bool,
-}
-
-/// The integer objective's parts in one model.
-struct Totals {
-    /// The coefficients of the terms the layout decides.
-    variable: i64,
-    /// The coefficients of the terms true in every layout.
-    constant: i64,
-    /// Some term is false in every layout.
-    impossible: bool,
-}
-
-impl Totals {
-    fn of(model: &Model, coefs: &[i64]) -> Totals {
-        let sum = |keep: &dyn Fn(Lit) -> bool| -> i64 {
-            (model.soft.iter().zip(coefs))
-                .filter(|(t, _)| keep(t.lit))
-                .map(|(_, &c)| c)
-                .sum()
-        };
-        Totals {
-            variable: sum(&|l| matches!(l, Lit::Var { .. })),
-            constant: sum(&|l| l == Lit::TRUE),
-            impossible: model.soft.iter().any(|t| t.lit == Lit::FALSE),
-        }
-    }
-}
-
-/// The groups of interchangeable turnable objects of `problem` and one
-/// [`Branch`] per orientation choice (the choice with nothing turned
-/// first); one branch, the problem as given, when nothing turns.
-fn orientation_branches(problem: &Scene) -> Result<(Vec<Vec<usize>>, Vec<Branch>), SampleError> {
-    let Some((turning, choices)) = orientation_choices(problem, MAX_SAMPLE_ORIENTATIONS) else {
-        let objects = (problem.objects.iter())
-            .filter(|o| !o.is_placed() && o.turnable && o.is_oblong())
-            .count();
-        return Err(SampleError::Synth(SynthError::TooLarge(format!(
-            "{objects} turnable objects give more than the {MAX_SAMPLE_ORIENTATIONS} orientation \
-             choices sampling draws from; expected fewer turnable objects (drop \"turnable\" from \
-             some, or make interchangeable ones the same class and size)"
-        ))));
-    };
-    let branches = (choices.into_iter())
-        .map(|(turned, problem)| Branch {
-            turned,
-            problem,
-            model: None,
-            engine: None,
-            groups: Vec::new(),
-            done: false,
-        })
-        .collect();
-    Ok((turning, branches))
-}
-
-/// The orientation choices of `problem`'s turnable objects: the groups of
-/// interchangeable ones (unplaced, `turnable`, oblong, one class and size;
-/// indices in problem order) and per choice how many of each group lie
-/// turned — the first ones of the group — with the problem oriented that
-/// way (those objects `turned`, the rest of the groups no longer
-/// `turnable`), the choice with nothing turned first. One choice, the
-/// problem as given, when nothing turns; `None` past `max` choices.
-pub(crate) type OrientationChoices = (Vec<Vec<usize>>, Vec<(Vec<usize>, Scene)>);
-
-/// See [`OrientationChoices`].
-pub(crate) fn orientation_choices(problem: &Scene, max: usize) -> Option<OrientationChoices> {
-    let mut by_kind: BTreeMap<(String, i64, i64), Vec<usize>> = BTreeMap::new();
-    for (i, o) in problem.objects.iter().enumerate() {
-        if !o.is_placed() && o.turnable && o.is_oblong() {
-            by_kind.entry(like_key(o)).or_default().push(i);
-        }
-    }
-    let turning: Vec<Vec<usize>> = by_kind.into_values().collect();
-    let count = (turning.iter()).try_fold(1usize, |acc, g| acc.checked_mul(g.len() + 1))?;
-    if count > max {
-        return None;
-    }
-    if turning.is_empty() {
-        return Some((turning, vec![(Vec::new(), problem.clone())]));
-    }
-    let mut out = Vec::with_capacity(count);
-    for c in 0..count {
-        // Choice `c` in mixed radix: the first group's count fastest.
-        let mut rest = c;
-        let mut p = problem.clone();
-        let mut turned = Vec::with_capacity(turning.len());
-        for g in &turning {
-            let t = rest % (g.len() + 1);
-            rest /= g.len() + 1;
-            for (k, &i) in g.iter().enumerate() {
-                // The orientation is given: turned (and marked turnable, as
-                // an oriented problem has it) or flat.
-                p.objects[i].turned = k < t;
-                p.objects[i].turnable = k < t;
-            }
-            turned.push(t);
-        }
-        out.push((turned, p));
-    }
-    Some((turning, out))
-}
-
-/// The hint groups of a model: interchangeable unplaced objects (one class
-/// and footprint), their x variables in the symmetry order.
-fn hint_groups(model: &Model, problem: &Scene) -> Vec<Vec<usize>> {
-    let mut groups: BTreeMap<(String, i64, i64), Vec<usize>> = BTreeMap::new();
-    for (i, o) in problem.objects.iter().enumerate() {
-        if let (Coord::Var(vx), Coord::Var(_)) = model.coords[i] {
-            groups.entry(like_key(o)).or_default().push(vx);
-        }
-    }
-    groups.into_values().collect()
-}
-
-/// The grid value of every variable of `model` in `scene` (a complete
-/// scene of the problem the model was built for).
-pub(crate) fn grid_values(model: &Model, scene: &Scene) -> Vec<i64> {
-    let (ox, oy) = model.origin;
-    model
-        .vars
-        .iter()
-        .map(|v| {
-            let o = &scene.objects[v.object];
-            match v.axis {
-                crate::relations::Axis::X => (o.x.unwrap_or(ox) - ox) / model.grid,
-                crate::relations::Axis::Y => (o.y.unwrap_or(oy) - oy) / model.grid,
-            }
-        })
-        .collect()
-}
 
 /// A layout up to swapping interchangeable objects: per `(class, width,
 /// height)` of unplaced objects, their positions, sorted.

@@ -93,6 +93,33 @@ pub fn router_with(dir: &Path, opts: StudioOptions) -> Result<Router, StudioErro
         path: dir.join(name),
         message: e.to_string(),
     };
+    let problem = read_problem(dir)?;
+    if files::read_optional(dir, files::DEMOS)
+        .map_err(|e| io(files::DEMOS, e))?
+        .is_none()
+    {
+        files::atomic_write(dir, files::DEMOS, "[]\n").map_err(|e| io(files::DEMOS, e))?;
+    }
+    let problem_json = serde_json::from_str(&problem.to_json()).expect("scene JSON re-parses");
+    let state = Arc::new(AppState {
+        dir: dir.to_path_buf(),
+        priors: opts.priors,
+        problem,
+        problem_json,
+        write_lock: tokio::sync::Mutex::new(()),
+        jobs: std::sync::Mutex::new(std::collections::BTreeMap::new()),
+        next_job: std::sync::atomic::AtomicU64::new(1),
+        ask: Arc::new(tokio::sync::Mutex::new(None)),
+        ask_generation: std::sync::atomic::AtomicU64::new(0),
+        learning: std::sync::Mutex::new(None),
+        learning_jobs: Arc::new(std::sync::atomic::AtomicUsize::new(0)),
+    });
+    Ok(routes(state))
+}
+
+/// The task folder's `problem.json`, read and checked (a missing one is
+/// an error that says a task folder needs it).
+fn read_problem(dir: &Path) -> Result<Scene, StudioError> {
     let path = dir.join(files::PROBLEM);
     let text = match crate::task::read_scene_text(&path) {
         Ok(t) => t,
@@ -120,31 +147,16 @@ pub fn router_with(dir: &Path, opts: StudioOptions) -> Result<Router, StudioErro
             });
         }
     };
-    let problem = Scene::from_json(&text).map_err(|e| StudioError::Problem {
+    Scene::from_json(&text).map_err(|e| StudioError::Problem {
         path: dir.join(files::PROBLEM),
         message: e.to_string(),
-    })?;
-    if files::read_optional(dir, files::DEMOS)
-        .map_err(|e| io(files::DEMOS, e))?
-        .is_none()
-    {
-        files::atomic_write(dir, files::DEMOS, "[]\n").map_err(|e| io(files::DEMOS, e))?;
-    }
-    let problem_json = serde_json::from_str(&problem.to_json()).expect("scene JSON re-parses");
-    let state = Arc::new(AppState {
-        dir: dir.to_path_buf(),
-        priors: opts.priors,
-        problem,
-        problem_json,
-        write_lock: tokio::sync::Mutex::new(()),
-        jobs: std::sync::Mutex::new(std::collections::BTreeMap::new()),
-        next_job: std::sync::atomic::AtomicU64::new(1),
-        ask: Arc::new(tokio::sync::Mutex::new(None)),
-        ask_generation: std::sync::atomic::AtomicU64::new(0),
-        learning: std::sync::Mutex::new(None),
-        learning_jobs: Arc::new(std::sync::atomic::AtomicUsize::new(0)),
-    });
-    Ok(Router::new()
+    })
+}
+
+/// The studio's routes and layers (local, same-origin, body limits) over
+/// `state`.
+fn routes(state: Arc<AppState>) -> Router {
+    Router::new()
         .route("/", get(api::index))
         .route("/assets/{name}", get(api::asset))
         .route("/api/task", get(api::task))
@@ -167,5 +179,5 @@ pub fn router_with(dir: &Path, opts: StudioOptions) -> Result<Router, StudioErro
         .layer(DefaultBodyLimit::max(BODY_LIMIT))
         .layer(RequestBodyLimitLayer::new(BODY_LIMIT))
         .layer(axum::middleware::from_fn(api::json_413))
-        .with_state(state))
+        .with_state(state)
 }

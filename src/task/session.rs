@@ -36,14 +36,18 @@
 //! ```
 
 use super::{files, read_scene, read_statements, read_text, TaskError};
-use crate::ask::{
-    Answer, AnswersFile, AnswersFileError, AskError, AskOptions, Asker, Lookahead, Question,
-};
+use crate::ask::{AnswersFileError, AskError, AskOptions, Asker, Lookahead, Question};
 use crate::fsutil::DirLock;
-use crate::render::{render_to_path, RenderError, RenderOptions};
+use crate::render::RenderError;
 use crate::rules::RuleSet;
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
+
+mod answer;
+mod open;
+mod probes;
+
+pub use probes::write_probe_files;
 
 /// Why a session cannot start or go on. Every variant names its file.
 #[derive(Debug, thiserror::Error)]
@@ -287,19 +291,6 @@ fn write_err(path: PathBuf) -> impl FnOnce(std::io::Error) -> SessionError {
     move |source| SessionError::Write { path, source }
 }
 
-fn take_lock(dir: &Path) -> Result<DirLock, SessionError> {
-    match DirLock::try_lock(dir) {
-        Ok(Some(l)) => Ok(l),
-        Ok(None) => Err(SessionError::Locked {
-            dir: dir.to_path_buf(),
-        }),
-        Err(source) => Err(SessionError::Lock {
-            path: dir.join(crate::fsutil::LOCK_FILE),
-            source,
-        }),
-    }
-}
-
 /// The versions of demos.json, learned.rcc and answers.json on disk.
 fn disk_versions(dir: &Path) -> Result<Versions, SessionError> {
     let one = |name: &'static str| {
@@ -327,93 +318,6 @@ fn ask_path(dir: &Path, e: &AskError) -> PathBuf {
 }
 
 impl Session {
-    /// Start or resume the session of the task folder `dir`: take the folder
-    /// lock ([`Locking::Session`]), read `problem.json`, `demos.json`,
-    /// `statements.rcc` (if any) and `answers.json` (if any), learn, and
-    /// write `learned.rcc` (and `demos.json` when an abort had kept an
-    /// accepted probe out of it) as `rccpack ask` does at its start
-    /// ([`files::write_session_start`]).
-    pub fn open(dir: impl AsRef<Path>, opts: SessionOptions) -> Result<Session, SessionError> {
-        let dir = dir.as_ref();
-        let lock = if opts.save && opts.locking == Locking::Session {
-            Some(take_lock(dir)?)
-        } else {
-            None
-        };
-        let inputs = SessionInputs::read(dir)?;
-        let mut s = Session::open_with(dir, inputs, opts)?;
-        s._lock = lock;
-        Ok(s)
-    }
-
-    /// [`Session::open`] with the task's inputs read by the caller (the
-    /// studio reads them with its own errors); `answers.json` is read here.
-    /// With [`Locking::Session`] the caller's lock is not taken: hold it, or
-    /// use [`Session::open`].
-    pub fn open_with(
-        dir: impl AsRef<Path>,
-        inputs: SessionInputs,
-        opts: SessionOptions,
-    ) -> Result<Session, SessionError> {
-        let dir = dir.as_ref().to_path_buf();
-        let answers_path = dir.join(files::ANSWERS);
-        let answers = if opts.save && answers_path.exists() {
-            AnswersFile::from_json(&read_text(&answers_path)?)
-                .map_err(|source| SessionError::Answers {
-                    path: answers_path.clone(),
-                    source,
-                })?
-                .answers
-        } else {
-            Vec::new()
-        };
-        let resumed = answers.len();
-        let SessionInputs {
-            problem,
-            demos,
-            statements,
-        } = inputs;
-        let asker = Asker::new(
-            problem.clone(),
-            demos.scenes.clone(),
-            statements.clone(),
-            answers,
-            opts.ask.clone(),
-        )
-        .map_err(|e| ask_err(ask_path(&dir, &e))(e))?;
-        let backup = if opts.save {
-            files::write_session_start(&dir, &asker, &demos, resumed).map_err(
-                |(file, source)| SessionError::Write {
-                    path: dir.join(file),
-                    source,
-                },
-            )?
-        } else {
-            false
-        };
-        let versions = if opts.save {
-            disk_versions(&dir)?
-        } else {
-            Default::default()
-        };
-        Ok(Session {
-            dir,
-            _lock: None,
-            problem,
-            statements,
-            opts,
-            asker,
-            open: None,
-            prepared: None,
-            resumed,
-            asked_now: 0,
-            out_of_budget: false,
-            backup,
-            versions,
-            demos_read: demos,
-        })
-    }
-
     /// The loop (held rules, demonstrations, answers, progress).
     pub fn asker(&self) -> &Asker {
         &self.asker
@@ -478,242 +382,4 @@ impl Session {
     pub fn files_changed(&self) -> Result<bool, SessionError> {
         Ok(self.opts.save && disk_versions(&self.dir)? != self.versions)
     }
-
-    /// The next question, its probe written to `probes/probe-N.json` and
-    /// drawn to `probes/probe-N.png` (when saving) as `rccpack ask` does;
-    /// `None` when every held rule is settled, or when the question budget
-    /// is spent ([`Session::out_of_budget`]; no probe file is written then).
-    /// Asking again before answering returns the same question.
-    pub fn next_question(&mut self) -> Result<Option<Shown>, SessionError> {
-        if let Some(open) = &self.open {
-            return Ok(Some(open.shown.clone()));
-        }
-        let next = match self.prepared.take() {
-            Some(q) => q,
-            None => self
-                .asker
-                .next_question()
-                .map_err(ask_err(self.dir.join(files::PROBLEM)))?,
-        };
-        let Some(question) = next else {
-            return Ok(None);
-        };
-        if self.opts.max_questions.is_some_and(|m| self.asked_now >= m) {
-            self.out_of_budget = true;
-            self.prepared = Some(Some(question));
-            return Ok(None);
-        }
-        let number = self.asker.answers().len() + 1;
-        let (json, png) = if self.opts.save && self.opts.probe_files {
-            let (j, p) = write_probe_files(
-                &self.dir,
-                self.asker.held(),
-                &question,
-                number,
-                self.opts.ask.probe.contact,
-            )?;
-            (Some(j), Some(p))
-        } else {
-            (None, None)
-        };
-        let ahead = self
-            .asker
-            .look_ahead(&question, self.opts.lookahead_threads);
-        let shown = Shown {
-            question,
-            number,
-            json,
-            png,
-        };
-        self.open = Some(Open {
-            shown: shown.clone(),
-            ahead,
-        });
-        Ok(Some(shown))
-    }
-
-    /// Refuse to write when a file changed on disk since the session read
-    /// or wrote it.
-    fn check_unchanged(&self) -> Result<(), SessionError> {
-        if self.files_changed()? {
-            return Err(SessionError::Changed {
-                dir: self.dir.clone(),
-            });
-        }
-        Ok(())
-    }
-
-    /// Answer the open question, about `rule` (docs/guide.md#questions):
-    /// accepted → the probe becomes a demonstration and learning is redone;
-    /// rejected → the rule is confirmed. When saving, the answer is
-    /// journaled in `answers.json` before it is applied, then `demos.json`
-    /// (accepted only) and `learned.rcc` are written, each atomically.
-    pub fn answer(&mut self, rule: &str, accepted: bool) -> Result<&Answer, SessionError> {
-        let open_rule = self.open.as_ref().map(|o| o.shown.question.rule.clone());
-        if open_rule.as_deref() != Some(rule) {
-            return Err(SessionError::NotOpen {
-                rule: rule.to_string(),
-                open: open_rule,
-            });
-        }
-        if self.opts.save {
-            // Before the question is taken: refused, it stays open.
-            self.check_unchanged()?;
-        }
-        let open = self.open.take().expect("checked above");
-        if self.opts.save {
-            let mut answers = self.asker.answers().to_vec();
-            answers.push(self.asker.answer_record(&open.shown.question, accepted));
-            files::atomic_write(
-                &self.dir,
-                files::ANSWERS,
-                &AnswersFile { answers }.to_json(),
-            )
-            .map_err(write_err(self.dir.join(files::ANSWERS)))?;
-            self.versions = disk_versions(&self.dir)?;
-        }
-        let (asker, next) = open
-            .ahead
-            .answer(accepted)
-            .map_err(|e| ask_err(ask_path(&self.dir, &e))(e))?;
-        self.asker = asker;
-        self.prepared = Some(next);
-        self.asked_now += 1;
-        if self.opts.save {
-            self.check_unchanged()?;
-            files::write_after_answer(&self.dir, &self.asker, &self.demos_read, accepted).map_err(
-                |(file, source)| SessionError::Write {
-                    path: self.dir.join(file),
-                    source,
-                },
-            )?;
-            self.versions = disk_versions(&self.dir)?;
-        }
-        Ok(self.asker.answers().last().expect("just answered"))
-    }
-
-    /// Take back the last answer (of this session or an earlier one): the
-    /// loop restarts from the answers before it, as a resumed session
-    /// would (an accepted probe leaves the demonstrations again), and the
-    /// files are rewritten. `None` when nothing was answered. What earlier
-    /// checks found is not kept, so the next question is the one a resumed
-    /// session asks (the same as before unless a check reaches its node
-    /// budget).
-    pub fn undo(&mut self) -> Result<Option<Answer>, SessionError> {
-        let mut answers = self.asker.answers().to_vec();
-        let Some(last) = answers.pop() else {
-            return Ok(None);
-        };
-        if self.opts.save {
-            self.check_unchanged()?;
-        }
-        let mut demos = self.asker.demos().to_vec();
-        if last.accepted && last.demo == Some(demos.len().saturating_sub(1)) {
-            demos.pop();
-        }
-        let asker = Asker::new(
-            self.problem.clone(),
-            demos,
-            self.statements.clone(),
-            answers,
-            self.opts.ask.clone(),
-        )
-        .map_err(ask_err(self.dir.join(files::ANSWERS)))?;
-        self.asker = asker;
-        self.open = None;
-        self.prepared = None;
-        self.asked_now = self.asked_now.saturating_sub(1);
-        self.out_of_budget = false;
-        if self.opts.save {
-            let file = AnswersFile {
-                answers: self.asker.answers().to_vec(),
-            };
-            let dir = &self.dir;
-            files::atomic_write(dir, files::ANSWERS, &file.to_json())
-                .map_err(write_err(dir.join(files::ANSWERS)))?;
-            if last.accepted {
-                files::atomic_write(
-                    dir,
-                    files::DEMOS,
-                    &self.demos_read.to_json(self.asker.demos()),
-                )
-                .map_err(write_err(dir.join(files::DEMOS)))?;
-            }
-            files::atomic_write(dir, files::LEARNED, &self.asker.learned_rcc())
-                .map_err(write_err(dir.join(files::LEARNED)))?;
-            self.versions = disk_versions(&self.dir)?;
-        }
-        Ok(Some(last))
-    }
-}
-
-/// Write a question's probe as `rccpack ask` does: `probes/probe-N.json`
-/// (the scene) and `probes/probe-N.png` (drawn with the question's rule,
-/// titled `question N: is this acceptable? (breaks RULE)`). Returns the two
-/// paths.
-pub fn write_probe_files(
-    dir: &Path,
-    held: &RuleSet,
-    q: &Question,
-    number: usize,
-    contact: crate::relations::Contact,
-) -> Result<(PathBuf, PathBuf), SessionError> {
-    let probes = dir.join(files::PROBES);
-    std::fs::create_dir_all(&probes).map_err(write_err(probes.clone()))?;
-    let json = probes.join(format!("probe-{number}.json"));
-    let png = probes.join(format!("probe-{number}.png"));
-    crate::fsutil::atomic_write(&json, q.probe.scene.to_json()).map_err(write_err(json.clone()))?;
-    // The rules the question is about: the probed one, or every rule a
-    // suspect demonstration breaks.
-    let about: Vec<&str> = match &q.suspect {
-        Some(s) => s.breaks.iter().map(String::as_str).collect(),
-        None if !q.group.is_empty() => q.group.iter().map(|g| g.rule.as_str()).collect(),
-        None => vec![q.rule.as_str()],
-    };
-    let rule: Vec<_> = held
-        .rules
-        .iter()
-        .filter(|r| about.contains(&r.name.as_str()))
-        .cloned()
-        .collect();
-    let title = match &q.suspect {
-        Some(s) => format!(
-            "question {number}: demonstration {} as you meant it? (breaks {} rule{} the others keep)",
-            s.demonstration,
-            s.breaks.len(),
-            if s.breaks.len() == 1 { "" } else { "s" }
-        ),
-        // The legend lists them.
-        None if !q.group.is_empty() => format!(
-            "question {number}: is this acceptable? (breaks {} rules)",
-            q.group.len()
-        ),
-        None => format!("question {number}: is this acceptable? (breaks {})", q.rule),
-    };
-    let ropts = RenderOptions {
-        contact,
-        scale: 1.0,
-        title: Some(title),
-        like: None,
-        moved: q
-            .probe
-            .edit
-            .iter()
-            .flat_map(|e| &e.moved)
-            .map(|m| (m.id.clone(), m.x, m.y))
-            .collect(),
-        outlined: q
-            .suspect
-            .as_ref()
-            .and_then(|s| s.objects.first().cloned())
-            .into_iter()
-            .collect(),
-    };
-    render_to_path(&q.probe.scene, Some(&RuleSet::new(rule)), &ropts, &png).map_err(|source| {
-        SessionError::Render {
-            path: png.clone(),
-            source,
-        }
-    })?;
-    Ok((json, png))
 }

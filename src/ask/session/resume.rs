@@ -11,7 +11,13 @@ use crate::scene::Scene;
 /// `demos` — one saved in the answers but not yet in the demonstrations
 /// (an abort between the two writes) is added again.
 pub(super) fn check_answers(answers: &[Answer], demos: &mut Vec<Scene>) -> Result<(), AskError> {
-    // A group question's answer names two rules or more, its own first.
+    check_groups(answers)?;
+    check_asked_once(answers)?;
+    check_demonstrations(answers, demos)
+}
+
+/// A group question's answer names two rules or more, its own first.
+fn check_groups(answers: &[Answer]) -> Result<(), AskError> {
     for (i, a) in answers.iter().enumerate() {
         let distinct: std::collections::BTreeSet<&String> = a.group.iter().collect();
         if !a.group.is_empty()
@@ -27,8 +33,12 @@ pub(super) fn check_answers(answers: &[Answer], demos: &mut Vec<Scene>) -> Resul
             });
         }
     }
-    // A session never asks about a rule twice: a second answer about
-    // one (a hand edit) contradicts or repeats the first.
+    Ok(())
+}
+
+/// A session never asks about a rule twice: a second answer about one (a
+/// hand edit) contradicts or repeats the first.
+fn check_asked_once(answers: &[Answer]) -> Result<(), AskError> {
     for (i, a) in answers.iter().enumerate() {
         // A session never asks the same question twice (a rule of a
         // rejected group is asked about again only alone or in a
@@ -57,6 +67,13 @@ pub(super) fn check_answers(answers: &[Answer], demos: &mut Vec<Scene>) -> Resul
             });
         }
     }
+    Ok(())
+}
+
+/// Suspect answers about demonstrations that exist, and every accepted
+/// probe at its place in `demos` (one saved in the answers but not yet in
+/// the demonstrations is added again).
+fn check_demonstrations(answers: &[Answer], demos: &mut Vec<Scene>) -> Result<(), AskError> {
     for (i, a) in answers.iter().enumerate() {
         if let Some(s) = &a.suspect {
             if s.demonstration >= demos.len() {

@@ -6,6 +6,7 @@ use super::{AskError, Asker, Known, Question};
 use crate::ask::budget::Meter;
 use crate::ask::checker::ProbeChecker;
 use crate::ask::probe::Probe;
+use std::ops::ControlFlow;
 
 /// How a scan for the next question ended.
 pub(super) enum Scan {
@@ -64,34 +65,17 @@ impl Asker {
                     continue;
                 }
                 let probe = match pass {
-                    0 => {
-                        if self.opts.groups
-                            && p[k] < 0.5
-                            && !self.known.contains_key(&name)
-                            && !self.syntactically_implied(k)
-                        {
-                            if let Some(q) =
-                                self.group_question(k, &order, &p, checker, edit_checkers)?
-                            {
-                                return Ok(Scan::Question(Box::new(q)));
-                            }
-                        }
-                        if !self.known.contains_key(&name) {
-                            if decided > 0 && self.meter.borrow().exhausted() {
-                                // Every rule so far is decided or deferred:
-                                // the next scan goes on from here with a
-                                // fresh budget.
-                                return Ok(Scan::OutOfBudget);
-                            }
-                            let known = self.decide_on_problem(k, checker, edit_checkers)?;
-                            decided += 1;
-                            self.known.insert(name.clone(), known);
-                        }
-                        match self.known.get(&name) {
-                            Some(Known::Probe(p)) => Some(p.clone()),
-                            _ => None,
-                        }
-                    }
+                    0 => match self.problem_pass(
+                        k,
+                        &order,
+                        &p,
+                        &mut decided,
+                        checker,
+                        edit_checkers,
+                    )? {
+                        ControlFlow::Break(scan) => return Ok(scan),
+                        ControlFlow::Continue(probe) => probe,
+                    },
                     1 | 2 => {
                         if self.meter.borrow().exhausted() && settled(self) > settled_before {
                             return Ok(Scan::OutOfBudget);
@@ -114,6 +98,44 @@ impl Asker {
             }
         }
         Ok(Scan::Done)
+    }
+
+    /// Pass 0 for rule `k`: a group question when the rule is an unlikely
+    /// habit, else the rule decided on the problem (once); its probe, if
+    /// any. `Break`: the scan ends here (a question, or out of budget).
+    fn problem_pass(
+        &mut self,
+        k: usize,
+        order: &[usize],
+        p: &[f64],
+        decided: &mut usize,
+        checker: &mut Option<ProbeChecker>,
+        edit_checkers: &mut Vec<Option<ProbeChecker>>,
+    ) -> Result<ControlFlow<Scan, Option<Probe>>, AskError> {
+        let name = self.held.rules[k].name.clone();
+        if self.opts.groups
+            && p[k] < 0.5
+            && !self.known.contains_key(&name)
+            && !self.syntactically_implied(k)
+        {
+            if let Some(q) = self.group_question(k, order, p, checker, edit_checkers)? {
+                return Ok(ControlFlow::Break(Scan::Question(Box::new(q))));
+            }
+        }
+        if !self.known.contains_key(&name) {
+            if *decided > 0 && self.meter.borrow().exhausted() {
+                // Every rule so far is decided or deferred: the next scan
+                // goes on from here with a fresh budget.
+                return Ok(ControlFlow::Break(Scan::OutOfBudget));
+            }
+            let known = self.decide_on_problem(k, checker, edit_checkers)?;
+            *decided += 1;
+            self.known.insert(name.clone(), known);
+        }
+        Ok(ControlFlow::Continue(match self.known.get(&name) {
+            Some(Known::Probe(p)) => Some(p.clone()),
+            _ => None,
+        }))
     }
 
     /// Pass 0: the problem first. A rule the others imply there is not

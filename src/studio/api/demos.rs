@@ -109,7 +109,13 @@ fn parse_demo(st: &AppState, body: &[u8]) -> Result<Scene, ApiError> {
         let path = e.path().to_string();
         ApiError::bad(format!("demonstration: {e}")).at(path)
     })?;
-    let p = &st.problem;
+    same_space_and_grid(&scene, &st.problem)?;
+    check_demo_objects(&scene, &st.problem)?;
+    Ok(scene)
+}
+
+/// A demonstration lies in the problem's space, on its grid.
+fn same_space_and_grid(scene: &Scene, p: &Scene) -> Result<(), ApiError> {
     if scene.space != p.space {
         return Err(ApiError::bad(format!(
             "demonstration: space: {}x{} at ({}, {}) differs from {}'s {}x{} at ({}, {})",
@@ -134,6 +140,12 @@ fn parse_demo(st: &AppState, body: &[u8]) -> Result<Scene, ApiError> {
         ))
         .at("grid"));
     }
+    Ok(())
+}
+
+/// Every object of a demonstration placed and one of the problem's kinds,
+/// the problem's fixed objects where they are, at least one movable one.
+fn check_demo_objects(scene: &Scene, p: &Scene) -> Result<(), ApiError> {
     for (i, o) in scene.objects.iter().enumerate() {
         if !o.is_placed() {
             return Err(ApiError::bad(format!(
@@ -187,7 +199,7 @@ fn parse_demo(st: &AppState, body: &[u8]) -> Result<Scene, ApiError> {
         )
         .at("objects"));
     }
-    Ok(scene)
+    Ok(())
 }
 
 /// The body of `GET /api/demos`.
