@@ -88,45 +88,15 @@ pub fn learn_with(
     let priors = opts.priors;
     params.validate()?;
     check_demos(demos)?;
-    let class_list = templates::demo_classes(demos);
-    let mut classes = ClassIndex::default();
-    for (c, _) in &class_list {
-        classes.intern(c);
-    }
-    let st = statement_set(
-        demos,
-        statements,
-        params,
-        priors,
-        &classes,
-        class_list.len(),
-    )?;
+    let (mut classes, class_count) = demo_class_index(demos);
+    let st = statement_set(demos, statements, params, priors, &classes, class_count)?;
     let set = st.set.as_ref();
-    // Every landmark is interned before compiling, so that each scene's
-    // atom table resolves it.
-    for id in set.landmarks() {
-        classes.intern_landmark(&id);
-    }
-    let compiled: Vec<CompiledRule> = set
-        .rules
-        .iter()
-        .map(|r| CompiledRule::compile(r, &mut classes.clone()))
-        .collect();
+    let compiled = compile_statements(set, &mut classes);
     let subjects: Vec<usize> = compiled.iter().map(|r| r.subject).collect();
     debug_assert!(subjects.iter().all(|&c| c < classes.len()), "checked");
 
     let broken = find_candidates(demos, &classes, &compiled, params.contact);
-    let exceptions = if params.slip_rate > 0.0 {
-        find_exceptions(demos, &classes, &compiled, params.contact, &broken)
-    } else {
-        vec![None; compiled.len()]
-    };
-    let mut exceptions = exceptions;
-    for e in &mut exceptions {
-        if e.as_ref().is_some_and(|e| opts.meant.contains(&e.demo)) {
-            *e = None;
-        }
-    }
+    let exceptions = broken_once(demos, &classes, &compiled, params, opts, &broken);
     let weighed: Vec<bool> = (0..compiled.len())
         .map(|k| broken[k].is_none() || exceptions[k].is_some())
         .collect();
@@ -155,15 +125,14 @@ pub fn learn_with(
     );
     let mut results = weigh(set, &broken, &chances, &slips, &numbers);
     let order = rank(&mut results, params.contact);
-    let used: Vec<bool> = (0..classes.len()).map(|c| subjects.contains(&c)).collect();
     Ok(Learned {
         params: *params,
         demos: demos.len(),
         source: st.source,
         classes: stats
             .into_iter()
-            .zip(used)
-            .filter_map(|(s, u)| u.then_some(s))
+            .enumerate()
+            .filter_map(|(c, s)| subjects.contains(&c).then_some(s))
             .collect(),
         scene_epsilon,
         statements: results,
@@ -171,6 +140,50 @@ pub fn learn_with(
         priors: priors.map(|p| crate::infer::priors::apply::summary(p, st.ruled_out)),
         slips,
     })
+}
+
+/// The demonstrations' classes, interned in order, and how many there are.
+fn demo_class_index(demos: &[Scene]) -> (ClassIndex, usize) {
+    let class_list = templates::demo_classes(demos);
+    let mut classes = ClassIndex::default();
+    for (c, _) in &class_list {
+        classes.intern(c);
+    }
+    (classes, class_list.len())
+}
+
+/// `set`'s statements compiled against `classes`, every landmark interned
+/// first so that each scene's atom table resolves it.
+fn compile_statements(set: &RuleSet, classes: &mut ClassIndex) -> Vec<CompiledRule> {
+    for id in set.landmarks() {
+        classes.intern_landmark(&id);
+    }
+    set.rules
+        .iter()
+        .map(|r| CompiledRule::compile(r, &mut classes.clone()))
+        .collect()
+}
+
+/// With a slip rate, per statement the one demonstration breaking it
+/// (none answered as meant); `None` everywhere at rate 0.
+fn broken_once(
+    demos: &[Scene],
+    classes: &ClassIndex,
+    compiled: &[CompiledRule],
+    params: &LearnParams,
+    opts: &LearnOptions<'_>,
+    broken: &[Option<Provenance>],
+) -> Vec<Option<Exception>> {
+    if params.slip_rate <= 0.0 {
+        return vec![None; compiled.len()];
+    }
+    let mut exceptions = find_exceptions(demos, classes, compiled, params.contact, broken);
+    for e in &mut exceptions {
+        if e.as_ref().is_some_and(|e| opts.meant.contains(&e.demo)) {
+            *e = None;
+        }
+    }
+    exceptions
 }
 
 /// The statements learning weighs, with their priors.
