@@ -249,128 +249,218 @@ pub(super) fn minimise_cost(
     limits: &Limits,
     on_incumbent: &mut dyn FnMut(&[i64]),
 ) -> CostOutcome {
-    let Some(mut lo) = backend.cost_bound() else {
-        let c = cost(&best);
-        return CostOutcome {
-            cost: c,
-            values: best,
-            proven: true,
-            bound: c,
-        };
+    let best_cost = cost(&best);
+    let lo = match open_cost_phase(backend, best_cost, limits) {
+        Ok(lo) => lo,
+        Err((proven, bound)) => {
+            return CostOutcome {
+                values: best,
+                cost: best_cost,
+                proven,
+                bound,
+            }
+        }
     };
-    backend.found_first();
-    let mut best_cost = cost(&best);
-    if best_cost <= lo {
-        // Already at the root bound (typically cost 0: every object on a
-        // shown position): nothing to post or search.
-        return CostOutcome {
-            values: best,
-            cost: best_cost,
-            proven: true,
-            bound: best_cost,
-        };
-    }
-    if limits.expired() {
-        // The first phase used the whole limit: posting the second
-        // objective (a second or so at 40 objects) would overrun it.
-        return CostOutcome {
-            values: best,
-            cost: best_cost,
-            proven: false,
-            bound: lo,
-        };
-    }
-    backend.start_cost_phase();
-    lo = lo.max(backend.cost_bound().unwrap_or(lo));
     let num = |v: &[i64]| objective.map_or(0, |o| (o.value)(v));
-    let mut best_num = num(&best);
+    let best_num = num(&best);
     if objective.is_some() {
         backend.add(Fact::ObjectiveAtLeast(best_num));
     }
-    let mut best = best;
-    // Measured on the ten 1.5× and 2× tasks of `bench tasks` (seed 0,
-    // 30 s; docs/performance.md): stepping down first took a median of
-    // 1.5 s at 1.5× where bisection first took 1.9 s; the budgets keep one
-    // hard refutation from taking the whole limit.
-    let mut budget = first_probe_budget().max(1);
-    // Step down from the incumbent first; bisect when a step down runs
-    // out of its budget.
-    let mut step_down = true;
+    let mut search = CostSearch {
+        best,
+        best_cost,
+        best_num,
+        lo,
+        // Measured on the ten 1.5× and 2× tasks of `bench tasks` (seed 0,
+        // 30 s; docs/performance.md): stepping down first took a median of
+        // 1.5 s at 1.5× where bisection first took 1.9 s; the budgets keep
+        // one hard refutation from taking the whole limit.
+        budget: first_probe_budget().max(1),
+        // Step down from the incumbent first; bisect when a step down runs
+        // out of its budget.
+        step_down: true,
+    };
     let out_of_limits =
         |b: &dyn Backend| limits.expired() || limits.node_limit.is_some_and(|n| b.nodes() >= n);
-    let halfway = |lo: u64, best_cost: u64| lo + (best_cost - lo - 1) / 2;
     // A spent limit needs no check here: the backend answers `Unknown` at
     // once, and that arm ends the phase.
-    while lo < best_cost {
-        let mid = if step_down {
-            best_cost - 1
-        } else {
-            halfway(lo, best_cost)
-        };
-        let cap = backend.nodes().saturating_add(budget);
-        let probe_limits = Limits {
-            node_limit: Some(limits.node_limit.map_or(cap, |n| cap.min(n))),
-            ..limits.clone()
-        };
-        let t0 = std::time::Instant::now();
-        let verdict = backend.solve(&[Assumption::CostAtMost(mid)], &probe_limits);
-        log::debug!(
-            "cost ≤ {mid} (floor {lo}, best {best_cost}, budget {budget}): {} in {:.1} ms",
-            match &verdict {
-                Verdict::Solution(v) => format!("cost {}", cost(v)),
-                Verdict::Infeasible(_) => "none".to_string(),
-                Verdict::Unknown => "unknown".to_string(),
-            },
-            t0.elapsed().as_secs_f64() * 1e3
-        );
+    while search.lo < search.best_cost {
+        let mid = search.target();
+        let (verdict, cap) = probe_cost(backend, &search, mid, limits, cost);
         match verdict {
             Verdict::Solution(v) => {
                 let n = num(&v);
-                best_cost = cost(&v);
-                best = v;
-                on_incumbent(&best);
-                if n > best_num {
-                    best_num = n;
-                    // The cost floor was proven for a lower numerator floor;
-                    // it still holds (fewer layouts now).
-                    backend.add(Fact::ObjectiveAtLeast(best_num));
-                }
-                step_down = true;
+                search.improve(backend, v, n, cost, on_incumbent);
             }
-            Verdict::Infeasible(_) => {
-                backend.add(Fact::CostAtLeast(mid + 1));
-                lo = mid + 1;
-                step_down = true;
-            }
+            Verdict::Infeasible(_) => search.refute(backend, mid),
             Verdict::Unknown => {
                 // Below the probe's cap, something other than its budget
                 // stopped the engine: end as at a limit.
                 if out_of_limits(&*backend) || backend.nodes() < cap {
-                    let bound = lo.max(backend.cost_bound().unwrap_or(lo)).min(best_cost);
-                    return CostOutcome {
-                        values: best,
-                        cost: best_cost,
-                        proven: bound >= best_cost,
-                        bound,
-                    };
+                    return search.stopped(&*backend);
                 }
-                if step_down && halfway(lo, best_cost) + 1 < best_cost {
-                    // The step down ran out: try halfway with the same budget.
-                    step_down = false;
+                if search.try_halfway() {
                     continue;
                 }
-                // Both ran out: twice the budget, stepping down again.
-                budget = budget.saturating_mul(2);
-                step_down = true;
+                search.double_budget();
             }
         }
-        lo = lo.max(backend.cost_bound().unwrap_or(lo));
+        search.raise_floor(&*backend);
     }
     CostOutcome {
-        values: best,
-        cost: best_cost,
+        values: search.best,
+        cost: search.best_cost,
         proven: true,
-        bound: best_cost,
+        bound: search.best_cost,
+    }
+}
+
+/// The start of the cost phase for an incumbent of cost `best_cost`: the
+/// proven cost floor to search above, or `Err((proven, bound))` when the
+/// phase ends before its first probe — no cost bound in the backend, the
+/// root bound already reached, or the limit spent by the first phase.
+fn open_cost_phase(
+    backend: &mut dyn Backend,
+    best_cost: u64,
+    limits: &Limits,
+) -> Result<u64, (bool, u64)> {
+    let Some(lo) = backend.cost_bound() else {
+        return Err((true, best_cost));
+    };
+    backend.found_first();
+    if best_cost <= lo {
+        // Already at the root bound (typically cost 0: every object on a
+        // shown position): nothing to post or search.
+        return Err((true, best_cost));
+    }
+    if limits.expired() {
+        // The first phase used the whole limit: posting the second
+        // objective (a second or so at 40 objects) would overrun it.
+        return Err((false, lo));
+    }
+    backend.start_cost_phase();
+    Ok(lo.max(backend.cost_bound().unwrap_or(lo)))
+}
+
+/// One probe of the cost phase: `cost ≤ mid` within the search's node
+/// budget (and the run's limits). Returns the verdict and the node count
+/// the budget capped the probe at.
+fn probe_cost(
+    backend: &mut dyn Backend,
+    search: &CostSearch,
+    mid: u64,
+    limits: &Limits,
+    cost: &dyn Fn(&[i64]) -> u64,
+) -> (Verdict, u64) {
+    let cap = backend.nodes().saturating_add(search.budget);
+    let probe_limits = Limits {
+        node_limit: Some(limits.node_limit.map_or(cap, |n| cap.min(n))),
+        ..limits.clone()
+    };
+    let t0 = std::time::Instant::now();
+    let verdict = backend.solve(&[Assumption::CostAtMost(mid)], &probe_limits);
+    log::debug!(
+        "cost ≤ {mid} (floor {}, best {}, budget {}): {} in {:.1} ms",
+        search.lo,
+        search.best_cost,
+        search.budget,
+        match &verdict {
+            Verdict::Solution(v) => format!("cost {}", cost(v)),
+            Verdict::Infeasible(_) => "none".to_string(),
+            Verdict::Unknown => "unknown".to_string(),
+        },
+        t0.elapsed().as_secs_f64() * 1e3
+    );
+    (verdict, cap)
+}
+
+/// The state of the cost phase's search: the incumbent, its cost and
+/// numerator, the proven cost floor, and how the next probe is chosen.
+struct CostSearch {
+    best: Vec<i64>,
+    best_cost: u64,
+    best_num: i64,
+    lo: u64,
+    budget: u64,
+    step_down: bool,
+}
+
+impl CostSearch {
+    /// Halfway between the proven floor and the incumbent's cost.
+    fn halfway(&self) -> u64 {
+        self.lo + (self.best_cost - self.lo - 1) / 2
+    }
+
+    /// The cost the next probe asks for at most.
+    fn target(&self) -> u64 {
+        if self.step_down {
+            self.best_cost - 1
+        } else {
+            self.halfway()
+        }
+    }
+
+    /// A probe found `values` with numerator `num`: the new incumbent.
+    fn improve(
+        &mut self,
+        backend: &mut dyn Backend,
+        values: Vec<i64>,
+        num: i64,
+        cost: &dyn Fn(&[i64]) -> u64,
+        on_incumbent: &mut dyn FnMut(&[i64]),
+    ) {
+        self.best_cost = cost(&values);
+        self.best = values;
+        on_incumbent(&self.best);
+        if num > self.best_num {
+            self.best_num = num;
+            // The cost floor was proven for a lower numerator floor;
+            // it still holds (fewer layouts now).
+            backend.add(Fact::ObjectiveAtLeast(self.best_num));
+        }
+        self.step_down = true;
+    }
+
+    /// A probe proved no layout costs `mid` or less.
+    fn refute(&mut self, backend: &mut dyn Backend, mid: u64) {
+        backend.add(Fact::CostAtLeast(mid + 1));
+        self.lo = mid + 1;
+        self.step_down = true;
+    }
+
+    /// After a step down ran out of its budget: try halfway with the same
+    /// budget when that is a different probe. Returns whether it is.
+    fn try_halfway(&mut self) -> bool {
+        if self.step_down && self.halfway() + 1 < self.best_cost {
+            self.step_down = false;
+            return true;
+        }
+        false
+    }
+
+    /// Both probes ran out: twice the budget, stepping down again.
+    fn double_budget(&mut self) {
+        self.budget = self.budget.saturating_mul(2);
+        self.step_down = true;
+    }
+
+    /// Take the backend's proven cost floor when it is higher.
+    fn raise_floor(&mut self, backend: &dyn Backend) {
+        self.lo = self.lo.max(backend.cost_bound().unwrap_or(self.lo));
+    }
+
+    /// The outcome when a limit stopped the search.
+    fn stopped(self, backend: &dyn Backend) -> CostOutcome {
+        let bound = self
+            .lo
+            .max(backend.cost_bound().unwrap_or(self.lo))
+            .min(self.best_cost);
+        CostOutcome {
+            values: self.best,
+            cost: self.best_cost,
+            proven: bound >= self.best_cost,
+            bound,
+        }
     }
 }
 

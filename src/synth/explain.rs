@@ -40,28 +40,8 @@ pub(super) fn explain(
             ..Conflict::default()
         });
     }
-    let m0 = Model::build(problem, rules, base);
-    let mut e0 = Engine::new(&m0, opts.seed, false, None)?;
-    let fit = e0.satisfy(limits);
-    stats.nodes += e0.nodes();
-    stats.conflicts += e0.conflicts();
-    drop(e0);
-    match fit {
-        Verdict::Infeasible(_) => {
-            return Ok(Conflict {
-                objects_cannot_fit: true,
-                ..Conflict::default()
-            })
-        }
-        // Whether the objects fit is not known: blame nothing (every hard
-        // rule may be harmless).
-        Verdict::Unknown => {
-            return Ok(Conflict {
-                limit_struck: true,
-                ..Conflict::default()
-            })
-        }
-        Verdict::Solution(_) => {}
+    if let Some(conflict) = unless_objects_fit(problem, rules, base, opts, limits, stats)? {
+        return Ok(conflict);
     }
     // The objects fit, so the hard rules together conflict (the main solve
     // proved it); past the deadline they are named together, unshrunk.
@@ -77,6 +57,50 @@ pub(super) fn explain(
             ..Conflict::default()
         });
     }
+    shrink_hard_rules(problem, rules, base, opts, limits, stats)
+}
+
+/// Solve without the rules: `None` when the objects fit, else the
+/// explanation — they cannot fit, or a limit struck before it was known
+/// (then nothing is blamed: every hard rule may be harmless).
+fn unless_objects_fit(
+    problem: &Scene,
+    rules: &RuleSet,
+    base: BuildOptions,
+    opts: &SynthOptions,
+    limits: &Limits,
+    stats: &mut SolveStats,
+) -> Result<Option<Conflict>, SynthError> {
+    let m0 = Model::build(problem, rules, base);
+    let mut e0 = Engine::new(&m0, opts.seed, false, None)?;
+    let fit = e0.satisfy(limits);
+    stats.nodes += e0.nodes();
+    stats.conflicts += e0.conflicts();
+    drop(e0);
+    Ok(match fit {
+        Verdict::Infeasible(_) => Some(Conflict {
+            objects_cannot_fit: true,
+            ..Conflict::default()
+        }),
+        Verdict::Unknown => Some(Conflict {
+            limit_struck: true,
+            ..Conflict::default()
+        }),
+        Verdict::Solution(_) => None,
+    })
+}
+
+/// A minimal set of conflicting hard rules, by deletion through the driver
+/// on a model with the rules: every solve obeys the limits (a limit keeps
+/// the rule, so the set stays conflicting, perhaps not minimal).
+fn shrink_hard_rules(
+    problem: &Scene,
+    rules: &RuleSet,
+    base: BuildOptions,
+    opts: &SynthOptions,
+    limits: &Limits,
+    stats: &mut SolveStats,
+) -> Result<Conflict, SynthError> {
     let mg = Model::build(
         problem,
         rules,
@@ -86,8 +110,6 @@ pub(super) fn explain(
         },
     );
     let mut eg = Engine::new(&mg, opts.seed, true, None)?;
-    // Deletion through the driver: every solve obeys the limits (a limit
-    // keeps the rule, so the set stays conflicting, perhaps not minimal).
     let all: Vec<usize> = (0..mg.hard.len()).collect();
     let (core, minimal) = driver::shrink_conflict(&mut eg, &all, limits);
     stats.nodes += eg.nodes();

@@ -310,41 +310,13 @@ fn numerator(r: &SynthResult) -> Option<f64> {
 /// was tried; `maximum`: the last choice solved found a layout that
 /// satisfies every rule, so the choices left cannot score more.
 fn combine(mut solved: Vec<Solved>, stopped: bool, like: bool, maximum: bool) -> SynthResult {
-    let ms = |d: Duration| d.as_secs_f64() * 1000.0;
-    let mut stats = SolveStats::default();
-    for s in &solved {
-        stats.nodes += s.result.stats.nodes;
-        stats.conflicts += s.result.stats.conflicts;
-    }
-    stats.time_to_first_ms = solved
-        .iter()
-        .filter_map(|s| Some(ms(s.offset) + s.result.stats.time_to_first_ms?))
-        .reduce(f64::min);
+    let mut stats = summed_stats(&solved);
     let all_proven = maximum
         || !stopped
             && solved
                 .iter()
                 .all(|s| matches!(s.result.status, Status::Optimal | Status::Infeasible));
-    // The best: the largest numerator, then the smallest resemblance cost,
-    // then the earliest choice.
-    let cost = |r: &SynthResult| r.resemblance.map_or(0, |x| x.cost);
-    let mut best: Option<usize> = None;
-    for (i, s) in solved.iter().enumerate() {
-        let Some(n) = numerator(&s.result) else {
-            continue;
-        };
-        let better = match best {
-            None => true,
-            Some(b) => {
-                let bn = numerator(&solved[b].result).unwrap_or(f64::NEG_INFINITY);
-                n > bn || (n == bn && cost(&s.result) < cost(&solved[b].result))
-            }
-        };
-        if better {
-            best = Some(i);
-        }
-    }
-    let Some(b) = best else {
+    let Some(b) = best_choice(&solved) else {
         let infeasible = all_proven && !solved.is_empty();
         let conflict = infeasible.then(|| union_conflict(&solved));
         return SynthResult::without_layout(
@@ -357,23 +329,7 @@ fn combine(mut solved: Vec<Solved>, stopped: bool, like: bool, maximum: bool) ->
             stats,
         );
     };
-    // A bound on every choice's score: the largest of their bounds (an
-    // infeasible choice has none to add); a choice left unsolved, or
-    // stopped without a bound, leaves the score unbounded.
-    let bounded = !stopped
-        && solved
-            .iter()
-            .all(|s| s.result.status == Status::Infeasible || s.result.score_bound.is_some());
-    let score_bound = if maximum {
-        solved[b].result.evaluation.as_ref().map(|e| e.score)
-    } else {
-        bounded.then(|| {
-            solved
-                .iter()
-                .filter_map(|s| s.result.score_bound)
-                .fold(f64::NEG_INFINITY, f64::max)
-        })
-    };
+    let score_bound = score_bound_over(&solved, b, stopped, maximum);
     let best_num = numerator(&solved[b].result);
     let resemblance = like
         .then(|| resemblance_over(&solved, b, best_num, all_proven))
@@ -391,6 +347,70 @@ fn combine(mut solved: Vec<Solved>, stopped: bool, like: bool, maximum: bool) ->
     result.resemblance = resemblance;
     result.conflict = None;
     result
+}
+
+/// A duration in milliseconds.
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1000.0
+}
+
+/// The choices' nodes and conflicts summed, and the earliest first layout
+/// (counted from the start of the first choice).
+fn summed_stats(solved: &[Solved]) -> SolveStats {
+    let mut stats = SolveStats::default();
+    for s in solved {
+        stats.nodes += s.result.stats.nodes;
+        stats.conflicts += s.result.stats.conflicts;
+    }
+    stats.time_to_first_ms = solved
+        .iter()
+        .filter_map(|s| Some(ms(s.offset) + s.result.stats.time_to_first_ms?))
+        .reduce(f64::min);
+    stats
+}
+
+/// The index of the best choice with a layout: the largest numerator, then
+/// the smallest resemblance cost, then the earliest choice.
+fn best_choice(solved: &[Solved]) -> Option<usize> {
+    let cost = |r: &SynthResult| r.resemblance.map_or(0, |x| x.cost);
+    let mut best: Option<usize> = None;
+    for (i, s) in solved.iter().enumerate() {
+        let Some(n) = numerator(&s.result) else {
+            continue;
+        };
+        let better = match best {
+            None => true,
+            Some(b) => {
+                let bn = numerator(&solved[b].result).unwrap_or(f64::NEG_INFINITY);
+                n > bn || (n == bn && cost(&s.result) < cost(&solved[b].result))
+            }
+        };
+        if better {
+            best = Some(i);
+        }
+    }
+    best
+}
+
+/// A bound on every choice's score, `b` the best: its own score when it is
+/// the `maximum`, else the largest of their bounds (an infeasible choice
+/// has none to add); a choice left unsolved, or stopped without a bound,
+/// leaves the score unbounded.
+fn score_bound_over(solved: &[Solved], b: usize, stopped: bool, maximum: bool) -> Option<f64> {
+    let bounded = !stopped
+        && solved
+            .iter()
+            .all(|s| s.result.status == Status::Infeasible || s.result.score_bound.is_some());
+    if maximum {
+        solved[b].result.evaluation.as_ref().map(|e| e.score)
+    } else {
+        bounded.then(|| {
+            solved
+                .iter()
+                .filter_map(|s| s.result.score_bound)
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
+    }
 }
 
 /// The second objective over the choices: the best layout's cost, proven

@@ -120,66 +120,8 @@ impl Model {
         pairwise: bool,
         connectivity: Connectivity,
     ) -> Option<Model> {
-        let sp = problem.space;
-        let g = problem.grid;
-        let mut m = Model {
-            origin: (sp.x, sp.y),
-            grid: g,
-            vars: Vec::new(),
-            coords: Vec::new(),
-            sizes: Vec::new(),
-            turn_vars: vec![None; problem.objects.len()],
-            bools: Vec::new(),
-            clauses: Vec::new(),
-            hard: Vec::new(),
-            soft: Vec::new(),
-            symmetry: Vec::new(),
-            cumulative: Vec::new(),
-            too_large: Vec::new(),
-            pairwise_no_overlap: false,
-            connectivity,
-            interned: HashMap::new(),
-        };
-        for (i, o) in problem.objects.iter().enumerate() {
-            let (w, h) = o.footprint();
-            m.sizes.push((w, h));
-            match (o.x, o.y) {
-                (Some(x), Some(y)) => m.coords.push((Coord::Const(x), Coord::Const(y))),
-                _ => {
-                    let mut ux = floor_div(sp.width - w, g);
-                    let mut uy = floor_div(sp.height - h, g);
-                    if has_turn_var(o) {
-                        // Either way: the domain is the union, each
-                        // orientation's bounds are clauses (below).
-                        let (tx, ty) = (floor_div(sp.width - h, g), floor_div(sp.height - w, g));
-                        if tx >= 0 && ty >= 0 {
-                            if ux < 0 || uy < 0 {
-                                (ux, uy) = (tx, ty);
-                            } else {
-                                (ux, uy) = (ux.max(tx), uy.max(ty));
-                            }
-                        }
-                    }
-                    if ux < 0 || uy < 0 {
-                        m.too_large.push(i);
-                    }
-                    let vx = m.vars.len();
-                    m.vars.push(IntVar {
-                        object: i,
-                        axis: Axis::X,
-                        ub: ux.max(0),
-                        turn: false,
-                    });
-                    m.vars.push(IntVar {
-                        object: i,
-                        axis: Axis::Y,
-                        ub: uy.max(0),
-                        turn: false,
-                    });
-                    m.coords.push((Coord::Var(vx), Coord::Var(vx + 1)));
-                }
-            }
-        }
+        let mut m = Model::empty(problem, connectivity);
+        m.post_coords(problem);
         if !m.too_large.is_empty() {
             return Some(m);
         }
@@ -202,6 +144,62 @@ impl Model {
             return None;
         }
         Some(m)
+    }
+
+    /// A model of `problem`'s space and grid with nothing posted yet.
+    fn empty(problem: &Scene, connectivity: Connectivity) -> Model {
+        let sp = problem.space;
+        Model {
+            origin: (sp.x, sp.y),
+            grid: problem.grid,
+            vars: Vec::new(),
+            coords: Vec::new(),
+            sizes: Vec::new(),
+            turn_vars: vec![None; problem.objects.len()],
+            bools: Vec::new(),
+            clauses: Vec::new(),
+            hard: Vec::new(),
+            soft: Vec::new(),
+            symmetry: Vec::new(),
+            cumulative: Vec::new(),
+            too_large: Vec::new(),
+            pairwise_no_overlap: false,
+            connectivity,
+            interned: HashMap::new(),
+        }
+    }
+
+    /// Each object's footprint and coordinates: constants for a placed
+    /// object, two grid variables (x then y) for one to place, whose upper
+    /// bounds cover every orientation it may take. An object that fits in
+    /// no orientation goes to `too_large`.
+    fn post_coords(&mut self, problem: &Scene) {
+        for (i, o) in problem.objects.iter().enumerate() {
+            let (w, h) = o.footprint();
+            self.sizes.push((w, h));
+            if let (Some(x), Some(y)) = (o.x, o.y) {
+                self.coords.push((Coord::Const(x), Coord::Const(y)));
+                continue;
+            }
+            let (ux, uy) = grid_upper_bounds(problem, o);
+            if ux < 0 || uy < 0 {
+                self.too_large.push(i);
+            }
+            let vx = self.vars.len();
+            self.vars.push(IntVar {
+                object: i,
+                axis: Axis::X,
+                ub: ux.max(0),
+                turn: false,
+            });
+            self.vars.push(IntVar {
+                object: i,
+                axis: Axis::Y,
+                ub: uy.max(0),
+                turn: false,
+            });
+            self.coords.push((Coord::Var(vx), Coord::Var(vx + 1)));
+        }
     }
 
     /// One orientation variable per object that may turn (after every
@@ -269,4 +267,26 @@ impl Model {
         self.hard.push(HardRule { rule: at, lits });
         Some(at)
     }
+}
+
+/// The largest grid coordinates (x, y) of object `o` inside `problem`'s
+/// space, negative when it does not fit; for an object that may turn, the
+/// union of both orientations (each orientation's own bounds are clauses,
+/// see `post_turn_vars`).
+fn grid_upper_bounds(problem: &Scene, o: &Object) -> (i64, i64) {
+    let (sp, g) = (problem.space, problem.grid);
+    let (w, h) = o.footprint();
+    let mut ux = floor_div(sp.width - w, g);
+    let mut uy = floor_div(sp.height - h, g);
+    if has_turn_var(o) {
+        let (tx, ty) = (floor_div(sp.width - h, g), floor_div(sp.height - w, g));
+        if tx >= 0 && ty >= 0 {
+            if ux < 0 || uy < 0 {
+                (ux, uy) = (tx, ty);
+            } else {
+                (ux, uy) = (ux.max(tx), uy.max(ty));
+            }
+        }
+    }
+    (ux, uy)
 }

@@ -4,7 +4,7 @@
 
 use super::{HardRule, Lit, Model, SoftTerm};
 use crate::relations::{Axis, Cmp, Contact, Edge, Op, Quant, Relation, Side};
-use crate::rules::{Formula, RuleSet, Scope, Target};
+use crate::rules::{Formula, Rule, RuleSet, Scope, Target};
 use crate::scene::Scene;
 use std::collections::HashMap;
 
@@ -140,55 +140,22 @@ impl Model {
             if stop() {
                 return false;
             }
-            let subject = rule.subject();
-            let hard = rule.strength.is_hard();
             if rule.scope == Scope::Group {
-                let lit = match rule.formula.shape() {
-                    Some((shape, neg)) => {
-                        let objects: Vec<usize> = (0..problem.objects.len())
-                            .filter(|&o| problem.objects[o].class == shape.class)
-                            .collect();
-                        let l = self.shape(shape.kind, &objects, contact);
-                        if neg {
-                            !l
-                        } else {
-                            l
-                        }
-                    }
-                    // Not a shape formula: the evaluator reads it as false.
-                    None => Lit::FALSE,
-                };
-                if hard {
-                    self.hard.push(HardRule {
-                        rule: ri,
-                        lits: vec![lit],
-                    });
-                } else {
-                    self.soft.push(SoftTerm {
-                        rule: ri,
-                        object: None,
-                        lit,
-                        weight: rule.strength.weight(),
-                    });
-                }
+                let lit = self.group_literal(problem, rule, contact);
+                self.post_scene_wide(ri, rule, lit);
                 continue;
             }
-            let mut lits = Vec::new();
-            let mut objects = Vec::new();
-            for (o, obj) in problem.objects.iter().enumerate() {
-                if obj.class != subject {
-                    continue;
-                }
-                if objects.len() % 256 == 255 && stop() {
-                    return false;
-                }
-                lits.push(self.formula(&rule.formula, o, problem, contact, &mut cache));
-                objects.push(o);
-            }
-            let weight = rule.strength.weight();
+            let Some((lits, objects)) =
+                self.subject_literals(problem, rule, contact, &mut cache, stop)
+            else {
+                return false;
+            };
             match rule.scope {
-                Scope::Each if hard => self.hard.push(HardRule { rule: ri, lits }),
+                Scope::Each if rule.strength.is_hard() => {
+                    self.hard.push(HardRule { rule: ri, lits })
+                }
                 Scope::Each => {
+                    let weight = rule.strength.weight();
                     for (lit, o) in lits.into_iter().zip(objects) {
                         self.soft.push(SoftTerm {
                             rule: ri,
@@ -202,23 +169,75 @@ impl Model {
                 Scope::Group => {}
                 Scope::Scene(q) => {
                     let lit = self.quantify(q, lits);
-                    if hard {
-                        self.hard.push(HardRule {
-                            rule: ri,
-                            lits: vec![lit],
-                        });
-                    } else {
-                        self.soft.push(SoftTerm {
-                            rule: ri,
-                            object: None,
-                            lit,
-                            weight,
-                        });
-                    }
+                    self.post_scene_wide(ri, rule, lit);
                 }
             }
         }
         true
+    }
+
+    /// The literal of a group statement: its shape over the objects of the
+    /// shape's class, negated when the formula is.
+    fn group_literal(&mut self, problem: &Scene, rule: &Rule, contact: Contact) -> Lit {
+        match rule.formula.shape() {
+            Some((shape, neg)) => {
+                let objects: Vec<usize> = (0..problem.objects.len())
+                    .filter(|&o| problem.objects[o].class == shape.class)
+                    .collect();
+                let l = self.shape(shape.kind, &objects, contact);
+                if neg {
+                    !l
+                } else {
+                    l
+                }
+            }
+            // Not a shape formula: the evaluator reads it as false.
+            None => Lit::FALSE,
+        }
+    }
+
+    /// Post the one literal of rule `ri` about the whole scene: a hard rule
+    /// or one soft term with the rule's weight.
+    fn post_scene_wide(&mut self, ri: usize, rule: &Rule, lit: Lit) {
+        if rule.strength.is_hard() {
+            self.hard.push(HardRule {
+                rule: ri,
+                lits: vec![lit],
+            });
+        } else {
+            self.soft.push(SoftTerm {
+                rule: ri,
+                object: None,
+                lit,
+                weight: rule.strength.weight(),
+            });
+        }
+    }
+
+    /// The rule's formula for each object of its subject class, with those
+    /// objects; `None` when `stop` said so first (asked every 256 objects).
+    fn subject_literals(
+        &mut self,
+        problem: &Scene,
+        rule: &Rule,
+        contact: Contact,
+        cache: &mut AtomCache,
+        stop: &dyn Fn() -> bool,
+    ) -> Option<(Vec<Lit>, Vec<usize>)> {
+        let subject = rule.subject();
+        let mut lits = Vec::new();
+        let mut objects = Vec::new();
+        for (o, obj) in problem.objects.iter().enumerate() {
+            if obj.class != subject {
+                continue;
+            }
+            if objects.len() % 256 == 255 && stop() {
+                return None;
+            }
+            lits.push(self.formula(&rule.formula, o, problem, contact, cache));
+            objects.push(o);
+        }
+        Some((lits, objects))
     }
 
     /// How many pairwise relation literals the rules ask for on `problem`
