@@ -101,45 +101,32 @@ pub struct Exception {
 }
 
 /// For each statement broken in exactly one of at least three
-/// demonstrations (`broken` from [`find_candidates`]), that demonstration
-/// and the objects breaking it; `None` for every other statement.
+/// demonstrations (`broken` from [`find_candidates`]), that
+/// demonstration; `None` for every other statement.
 pub(crate) fn find_exceptions(
     demos: &[Scene],
     classes: &ClassIndex,
     rules: &[CompiledRule],
     contact: Contact,
     broken: &[Option<Provenance>],
-) -> Vec<Option<Exception>> {
-    let mut out: Vec<Option<Exception>> = vec![None; rules.len()];
+) -> Vec<Option<usize>> {
     if demos.len() < 3 {
-        return out;
+        return vec![None; rules.len()];
     }
     let atoms: Vec<ClassAtoms> = demos
         .iter()
         .map(|s| ClassAtoms::new(s, classes, contact))
         .collect();
-    for (k, r) in rules.iter().enumerate() {
-        let Some(first) = &broken[k] else {
-            continue;
-        };
-        let d = first.demo;
-        let holds_elsewhere = (d + 1..demos.len()).all(|e| holds_in(r, &demos[e], &atoms[e]));
-        if !holds_elsewhere {
-            continue;
-        }
-        let scene = &demos[d];
-        let a = &atoms[d];
-        let objects: Vec<String> = match r.scope {
-            Scope::Each => (0..scene.objects.len())
-                .filter(|&i| a.is_placed(i) && a.class_of(i) == r.subject)
-                .filter(|&i| !r.formula.eval(a, i))
-                .map(|i| scene.objects[i].id.clone())
-                .collect(),
-            Scope::Scene(_) | Scope::Group => first.object.iter().cloned().collect(),
-        };
-        out[k] = Some(Exception { demo: d, objects });
-    }
-    out
+    rules
+        .iter()
+        .zip(broken)
+        .map(|(r, first)| {
+            let d = first.as_ref()?.demo;
+            (d + 1..demos.len())
+                .all(|e| holds_in(r, &demos[e], &atoms[e]))
+                .then_some(d)
+        })
+        .collect()
 }
 
 /// Whether `r` holds in `scene` (`atoms` its atom table): every subject

@@ -173,17 +173,14 @@ fn broken_once(
     params: &LearnParams,
     opts: &LearnOptions<'_>,
     broken: &[Option<Provenance>],
-) -> Vec<Option<Exception>> {
+) -> Vec<Option<usize>> {
     if params.slip_rate <= 0.0 {
         return vec![None; compiled.len()];
     }
-    let mut exceptions = find_exceptions(demos, classes, compiled, params.contact, broken);
-    for e in &mut exceptions {
-        if e.as_ref().is_some_and(|e| opts.meant.contains(&e.demo)) {
-            *e = None;
-        }
-    }
-    exceptions
+    find_exceptions(demos, classes, compiled, params.contact, broken)
+        .into_iter()
+        .map(|d| d.filter(|d| !opts.meant.contains(d)))
+        .collect()
 }
 
 /// The statements learning weighs, with their priors.
@@ -339,7 +336,7 @@ struct Chance {
 fn chances(
     set: &RuleSet,
     broken: &[Option<Provenance>],
-    exceptions: &[Option<Exception>],
+    exceptions: &[Option<usize>],
     counts: &[u64],
     x: &Numbers,
 ) -> Vec<Option<Chance>> {
@@ -381,7 +378,7 @@ fn find_slips(
     compiled: &[CompiledRule],
     params: &LearnParams,
     broken: &[Option<Provenance>],
-    exceptions: &[Option<Exception>],
+    exceptions: &[Option<usize>],
     chances: &[Option<Chance>],
     opts: &LearnOptions<'_>,
 ) -> Vec<Slip> {

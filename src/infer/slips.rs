@@ -34,7 +34,6 @@
 //! thesis's verdict) at `η = 0`.
 
 use super::candidates::holds_in;
-use super::Exception;
 use crate::eval::CompiledRule;
 use crate::relations::{ClassAtoms, ClassIndex, Contact};
 use crate::rules::Scope;
@@ -97,7 +96,7 @@ pub(crate) struct Evidence<'a> {
     pub contact: Contact,
     /// Per statement, the one demonstration breaking it (`None`: broken in
     /// several, or in none).
-    pub exceptions: &'a [Option<Exception>],
+    pub exceptions: &'a [Option<usize>],
     /// Per statement, whether every demonstration keeps it.
     pub candidate: &'a [bool],
     /// Per statement, its numbers (`None` when not weighed).
@@ -131,9 +130,7 @@ pub(crate) fn find(
             continue;
         }
         let broken_here: Vec<usize> = (0..ev.rules.len())
-            .filter(|&k| {
-                ev.exceptions[k].as_ref().is_some_and(|e| e.demo == d) && ev.weighed[k].is_some()
-            })
+            .filter(|&k| ev.exceptions[k] == Some(d) && ev.weighed[k].is_some())
             .collect();
         if broken_here.is_empty() {
             continue;
