@@ -190,6 +190,28 @@ fn the_library_never_prints() {
     );
 }
 
+/// The library's behaviour is a function of its arguments: no hidden
+/// switch in the environment. Engine tuning is `synth::Tuning`, filled
+/// from `RCCPACK_*` variables by the command line only (`from_env` is
+/// where it reads them).
+#[test]
+fn the_library_never_reads_the_environment() {
+    let found = occurrences(
+        &["env::var", "env::vars"],
+        &[
+            "src/cli/",
+            "src/main.rs",
+            "src/fuzzing/",
+            "src/synth/tuning.rs",
+        ],
+    );
+    assert!(
+        found.is_empty(),
+        "the library reads the environment:\n{}",
+        found.join("\n")
+    );
+}
+
 /// `[dependencies]` of Cargo.toml, as crate names (`-` → `_`).
 fn dependencies() -> Vec<String> {
     let toml = fs::read_to_string(root().join("Cargo.toml")).expect("Cargo.toml");

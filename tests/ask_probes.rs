@@ -391,6 +391,7 @@ fn check_case(case: &Case, t: &mut Tally) {
             explain,
             warm_start: Vec::new(),
             cancel: None,
+            tuning: Default::default(),
         };
         let fail = |t: &mut Tally, why: String| {
             t.failures

@@ -197,3 +197,42 @@ fn debug_log_only_when_asked() {
     let without = rccpack(&args);
     assert!(!stderr(&without).contains("model "), "{}", stderr(&without));
 }
+
+/// The `RCCPACK_*` engine tuning variables: read by the command line only,
+/// a value that is not a choice is a usage error naming it (exit 1), and a
+/// valid choice changes the encoding, never the layout's score.
+#[test]
+fn engine_tuning_comes_from_the_environment_and_never_changes_the_score() {
+    let args = ["synth", PROBLEM, "--rules", PILOT, "--node-limit", "20000"];
+    let with = |name: &str, value: &str| {
+        crate::support::command()
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .env(name, value)
+            .output()
+            .unwrap()
+    };
+    let bad = with("RCCPACK_NO_OVERLAP", "clause");
+    assert_eq!(bad.status.code(), Some(1), "{}", stderr(&bad));
+    assert!(
+        stderr(&bad).contains("RCCPACK_NO_OVERLAP=\"clause\"")
+            && stderr(&bad).contains("expected clauses, propagator or pairs"),
+        "{}",
+        stderr(&bad)
+    );
+    let score = |o: &std::process::Output| {
+        assert!(o.status.success(), "{}", stderr(o));
+        let s = stderr(o);
+        let at = s.find("score ").expect("a score line");
+        s[at..].split_whitespace().nth(1).unwrap().to_string()
+    };
+    let default = score(&rccpack(&args));
+    for (name, value) in [
+        ("RCCPACK_NO_OVERLAP", "propagator"),
+        ("RCCPACK_CONNECTIVITY", "circuit"),
+        ("RCCPACK_DIFFERENCE", "off"),
+        ("RCCPACK_WARM_GROW", "off"),
+    ] {
+        assert_eq!(score(&with(name, value)), default, "{name}={value}");
+    }
+}

@@ -982,6 +982,7 @@ fn second_edition_generator_covers_the_language() {
                 rules: true,
                 symmetry_breaking: true,
                 redundant: true,
+                tuning: Default::default(),
             },
         );
         counted += usize::from(m.bools.iter().any(|b| matches!(b, BoolDef::AtLeast { .. })));

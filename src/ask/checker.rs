@@ -204,6 +204,7 @@ impl ProbeChecker {
                 // Pins hold interchangeable objects in any order.
                 symmetry_breaking: !pin,
                 redundant: true,
+                tuning: self.opts.tuning,
             },
         );
         let pins = (self.pin_at.iter().enumerate())

@@ -130,6 +130,10 @@ pub struct ProbeOptions {
     /// Set to true to stop every solve (a look-ahead for the answer not
     /// given).
     pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    /// Engine tuning of every solve and check (doc-hidden, see
+    /// [`crate::synth::Tuning`]).
+    #[doc(hidden)]
+    pub tuning: crate::synth::Tuning,
 }
 
 impl Default for ProbeOptions {
@@ -144,6 +148,7 @@ impl Default for ProbeOptions {
             explain: false,
             warm_start: Vec::new(),
             cancel: None,
+            tuning: crate::synth::Tuning::default(),
         }
     }
 }
@@ -270,6 +275,7 @@ pub(crate) fn search_group_probe(
         lns: None,
         warm_start: opts.warm_start.clone(),
         cancel: opts.cancel.clone(),
+        tuning: opts.tuning,
         ..SynthOptions::default()
     };
     let r = synthesize(problem, &rules, &sopts)?;

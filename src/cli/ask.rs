@@ -358,6 +358,7 @@ fn session_options(a: &AskArgs) -> Result<SessionOptions> {
             time_limit: Some(a.time_limit),
             node_limit: Some(a.node_limit),
             check_nodes: Some(a.check_nodes),
+            tuning: super::io::tuning()?,
             ..ProbeOptions::default()
         },
         resemble: true,

@@ -32,6 +32,13 @@ impl std::fmt::Display for LimitStruck {
 
 impl std::error::Error for LimitStruck {}
 
+/// The engine tuning the `RCCPACK_*` environment variables ask for
+/// (docs/performance.md): only the command line reads them, never the
+/// library.
+pub fn tuning() -> Result<rccpack::synth::Tuning, Reported> {
+    rccpack::synth::Tuning::from_env().map_err(|e| Reported(format!("error: {e}")))
+}
+
 /// A learning error in the command line's words: the library names
 /// parameters, the command line their flags.
 pub fn learn_error_text(e: &rccpack::InferError) -> String {

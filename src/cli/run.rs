@@ -182,6 +182,7 @@ fn read_inputs(a: &RunArgs) -> Result<(Task, RunOptions, Sources)> {
             contact: a.contact,
             time_limit: Some(a.time_limit),
             seed: a.seed,
+            tuning: super::io::tuning()?,
             ..SynthOptions::default()
         },
         like,

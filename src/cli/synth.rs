@@ -164,7 +164,7 @@ pub fn run(a: SynthArgs) -> Result<ExitCode> {
         warm_start,
         rules,
     } = read_inputs(&a)?;
-    let opts = synth_options(&a, like_scenes.as_deref(), warm_start);
+    let opts = synth_options(&a, like_scenes.as_deref(), warm_start, super::io::tuning()?);
     if let Some((path, format)) = &emit_to {
         write_emitted(path, *format, &problem, &rules, &opts).map_err(|e| match e {
             Emitted::Refused(e) => failure(&a, &e).into(),
@@ -225,6 +225,7 @@ fn synth_options(
     a: &SynthArgs,
     like_scenes: Option<&[Scene]>,
     warm_start: Vec<Scene>,
+    tuning: rccpack::synth::Tuning,
 ) -> SynthOptions {
     let time_limit = a.time_limit;
     let cancel = Arc::new(AtomicBool::new(false));
@@ -254,6 +255,7 @@ fn synth_options(
         progress,
         like: like_scenes.map(ResemblanceTarget::new),
         warm_start,
+        tuning,
         ..SynthOptions::default()
     }
 }

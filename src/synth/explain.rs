@@ -24,6 +24,7 @@ pub(super) fn explain(
         rules: false,
         symmetry_breaking: opts.symmetry_breaking,
         redundant: opts.redundant,
+        tuning: opts.tuning,
     };
     if capacity::cannot_fit(problem) {
         return Ok(Conflict {

@@ -561,6 +561,7 @@ mod tests {
             rules: true,
             symmetry_breaking: true,
             redundant: true,
+            tuning: Default::default(),
         };
         let model = Model::build(&problem, &rules, build);
         let weights: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();
@@ -652,6 +653,7 @@ mod tests {
             rules: true,
             symmetry_breaking: true,
             redundant: true,
+            tuning: Default::default(),
         };
         let model = Model::build(&problem, &rules, build);
         let weights: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();

@@ -75,6 +75,7 @@ pub mod report;
 mod resemblance_terms;
 mod result;
 mod solve;
+mod tuning;
 mod turns;
 mod verify;
 mod warm;
@@ -83,6 +84,8 @@ mod weights;
 pub use driver::Strategy;
 pub use lns::LnsOptions;
 pub use result::{Conflict, Resemblance, SolveStats, Status, SynthResult};
+#[doc(hidden)]
+pub use tuning::{NoOverlap, Tuning, TuningError};
 pub use turns::MAX_ORIENTATION_CHOICES;
 pub use verify::{verify_solution, VerifyError};
 
@@ -126,6 +129,10 @@ pub struct SynthOptions {
     /// never changes the optimum, only the time to reach it; an unusable
     /// hint is ignored. Empty: no warm start.
     pub warm_start: Vec<Scene>,
+    /// Engine tuning: never changes the answer (doc-hidden, see
+    /// [`Tuning`]); the library never fills it from the environment.
+    #[doc(hidden)]
+    pub tuning: Tuning,
 }
 
 /// An improving layout found during the search.
@@ -163,6 +170,7 @@ impl Default for SynthOptions {
             explain: true,
             lns: Some(lns::LnsOptions::default()),
             warm_start: Vec::new(),
+            tuning: Tuning::default(),
         }
     }
 }
@@ -362,7 +370,13 @@ pub(crate) fn objective_model_until(
     opts: &SynthOptions,
     stop: &dyn Fn() -> bool,
 ) -> Result<Option<(model::Model, Vec<i64>, model::BuildOptions)>, SynthError> {
-    objective_model_encoded(problem, rules, opts, stop, model::Encoding::from_env())
+    objective_model_encoded(
+        problem,
+        rules,
+        opts,
+        stop,
+        model::Encoding::of(&opts.tuning),
+    )
 }
 
 /// [`objective_model_until`] with the encoding chosen by the caller.
@@ -380,6 +394,7 @@ pub(crate) fn objective_model_encoded(
         rules: true,
         symmetry_breaking: opts.symmetry_breaking,
         redundant: opts.redundant,
+        tuning: opts.tuning,
     };
     let Some(model) = model::Model::build_encoded(problem, rules, build, stop, encoding) else {
         return Ok(None);

@@ -127,6 +127,7 @@ mod tests {
                 rules: false,
                 symmetry_breaking: false,
                 redundant: false,
+                tuning: Default::default(),
             },
         );
         let terms = resemblance_terms(&model, &problem, &like).unwrap();

@@ -39,11 +39,9 @@ use std::time::{Duration, Instant};
 /// Whether orientations are enumerated (one solve per choice) rather than
 /// chosen by the model's orientation variables: with a second objective
 /// (`like`: the resemblance costs assume each object's footprint), or
-/// when `RCCPACK_TURNS=enumerate` asks for it (to compare the two).
+/// when the tuning asks for it (`enumerate_turns`, to compare the two).
 pub(crate) fn enumerate(opts: &SynthOptions) -> bool {
-    static FORCED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    opts.like.is_some()
-        || *FORCED.get_or_init(|| std::env::var("RCCPACK_TURNS").as_deref() == Ok("enumerate"))
+    opts.like.is_some() || opts.tuning.enumerate_turns
 }
 
 /// Most nodes the flat probe of [`synthesize_model`] may use before the

@@ -77,7 +77,7 @@ pub(super) fn hint_values(
         .collect();
     let order = scene_order(&per_scene, &wanted);
     let (mut chosen, mut taken) = mosaic(model, problem, &per_scene, &order, &wanted);
-    if std::env::var("RCCPACK_WARM_GROW").map_or(true, |v| v != "off") {
+    if model.tuning.warm_grow {
         grow(model, &wanted, &mut chosen, &mut taken);
     }
     assign(model, problem, &wanted, chosen)
@@ -368,6 +368,7 @@ mod tests {
             rules: true,
             symmetry_breaking: true,
             redundant: true,
+            tuning: Default::default(),
         };
         let model = Model::build(problem, &rules, opts);
         let hint = hint_values(&model, problem, &[demo]).unwrap();
@@ -423,6 +424,7 @@ mod tests {
             rules: true,
             symmetry_breaking: true,
             redundant: true,
+            tuning: Default::default(),
         };
         let problem = scene(
             (0..3)

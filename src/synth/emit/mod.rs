@@ -174,7 +174,7 @@ fn emitted_encoded(
     problem.validate()?;
     let encoding = super::model::Encoding {
         connectivity,
-        ..super::model::Encoding::from_env()
+        ..super::model::Encoding::of(&opts.tuning)
     };
     let (mut model, coefs, _) =
         super::objective_model_encoded(problem, rules, opts, &|| false, encoding)?

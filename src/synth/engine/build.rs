@@ -240,7 +240,7 @@ impl<'m> Builder<'m> {
         let tag = self.tag;
         let mut pairs: std::collections::BTreeMap<(usize, usize), Vec<(i32, Literal)>> =
             std::collections::BTreeMap::new();
-        let by_pair = difference_propagator();
+        let by_pair = model.tuning.difference_propagator;
         for (i, def) in model.bools.iter().enumerate() {
             if i % 4096 == 4095 && self.late() {
                 return Ok(());
@@ -510,11 +510,4 @@ impl<'m> Builder<'m> {
             dead: false,
         }
     }
-}
-
-/// Whether `DiffGe` Booleans share one propagator per pair of variables
-/// (`difference`); `RCCPACK_DIFFERENCE=off` posts one reified linear
-/// constraint each instead (for comparison).
-fn difference_propagator() -> bool {
-    std::env::var("RCCPACK_DIFFERENCE").map_or(true, |v| v != "off")
 }

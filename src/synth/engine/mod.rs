@@ -656,6 +656,7 @@ mod tests {
                 rules: true,
                 symmetry_breaking: false,
                 redundant: false,
+                tuning: Default::default(),
             },
             &|| false,
             crate::synth::model::Encoding {

@@ -168,11 +168,11 @@ impl PendingResemblance {
 }
 
 /// The resemblance terms in groups of one class and size (same size,
-/// same map), in order of first appearance; every term alone when
-/// `RCCPACK_LIKE_GROUPS=off`.
+/// same map), in order of first appearance; every term alone when the
+/// model's tuning says so (`like_groups` off).
 fn resemblance_groups(model: &Model, like: &[ResemblanceTerm]) -> Vec<Vec<usize>> {
     let mut groups: Vec<Vec<usize>> = Vec::new();
-    let off = std::env::var("RCCPACK_LIKE_GROUPS").is_ok_and(|v| v == "off");
+    let off = !model.tuning.like_groups;
     for (i, t) in like.iter().enumerate() {
         let size = model.sizes[t.object];
         let same = |g: &Vec<usize>| {

@@ -15,29 +15,6 @@ use std::collections::HashMap;
 /// them all in linear memory. 2 000 pairs is about 64 objects.
 pub(crate) const PAIRWISE_NO_OVERLAP_PAIRS: usize = 2_000;
 
-/// `RCCPACK_NO_OVERLAP=clauses|propagator` forces one non-overlap encoding
-/// for every model (to run the differential tests and fuzz corpora through
-/// the propagator); unset, the number of pairs decides.
-fn forced_encoding() -> Option<bool> {
-    static FORCED: std::sync::OnceLock<Option<bool>> = std::sync::OnceLock::new();
-    *FORCED.get_or_init(|| match std::env::var("RCCPACK_NO_OVERLAP").as_deref() {
-        Ok("clauses") => Some(true),
-        Ok("propagator") => Some(false),
-        _ => None,
-    })
-}
-
-/// `RCCPACK_CONNECTIVITY=circuit` builds every model's group statements
-/// as circuits (to compare the encodings in `bench tasks` and to run the
-/// differential tests through both); otherwise the propagator.
-fn default_connectivity() -> Connectivity {
-    static FORCED: std::sync::OnceLock<Connectivity> = std::sync::OnceLock::new();
-    *FORCED.get_or_init(|| match std::env::var("RCCPACK_CONNECTIVITY").as_deref() {
-        Ok("circuit") => Connectivity::Circuit,
-        _ => Connectivity::Propagator,
-    })
-}
-
 /// How a model is encoded, beyond [`BuildOptions`]: choices that change
 /// the model's Booleans but never what it means.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -50,12 +27,20 @@ pub(crate) struct Encoding {
 }
 
 impl Encoding {
-    /// The encoding chosen by the environment (`RCCPACK_NO_OVERLAP`,
-    /// `RCCPACK_CONNECTIVITY`), else the defaults.
-    pub(crate) fn from_env() -> Encoding {
+    /// The encoding `tuning` asks for.
+    pub(crate) fn of(tuning: &crate::synth::Tuning) -> Encoding {
+        use crate::synth::NoOverlap;
         Encoding {
-            pairwise: forced_encoding(),
-            connectivity: default_connectivity(),
+            pairwise: match tuning.no_overlap {
+                NoOverlap::ByPairs => None,
+                NoOverlap::Clauses => Some(true),
+                NoOverlap::Propagator => Some(false),
+            },
+            connectivity: if tuning.circuit_connectivity {
+                Connectivity::Circuit
+            } else {
+                Connectivity::Propagator
+            },
         }
     }
 }
@@ -109,7 +94,7 @@ impl Model {
         opts: BuildOptions,
         stop: &dyn Fn() -> bool,
     ) -> Option<Model> {
-        Self::build_encoded(problem, rules, opts, stop, Encoding::from_env())
+        Self::build_encoded(problem, rules, opts, stop, Encoding::of(&opts.tuning))
     }
 
     pub(super) fn build_core(
@@ -121,6 +106,7 @@ impl Model {
         connectivity: Connectivity,
     ) -> Option<Model> {
         let mut m = Model::empty(problem, connectivity);
+        m.tuning = opts.tuning;
         m.post_coords(problem);
         if !m.too_large.is_empty() {
             return Some(m);
@@ -165,6 +151,7 @@ impl Model {
             too_large: Vec::new(),
             pairwise_no_overlap: false,
             connectivity,
+            tuning: crate::synth::Tuning::default(),
             interned: HashMap::new(),
         }
     }

@@ -269,6 +269,8 @@ pub struct BuildOptions {
     pub symmetry_breaking: bool,
     /// Cumulative relaxations.
     pub redundant: bool,
+    /// Engine tuning (see [`crate::synth::Tuning`]).
+    pub tuning: crate::synth::Tuning,
 }
 
 /// The whole model.
@@ -310,6 +312,9 @@ pub struct Model {
     pub pairwise_no_overlap: bool,
     /// How group statements' connectivity is encoded.
     pub connectivity: Connectivity,
+    /// The engine tuning the model was built with (the engine reads its
+    /// choices from here).
+    pub(crate) tuning: crate::synth::Tuning,
     interned: HashMap<BoolDef, u32>,
 }
 
@@ -454,6 +459,7 @@ mod tests {
             rules,
             symmetry_breaking: false,
             redundant: false,
+            tuning: Default::default(),
         }
     }
 
