@@ -123,6 +123,35 @@ impl Stop {
         self.cancel.as_ref()
     }
 
+    /// This stop with `nodes` as its node budget (`None`: no budget).
+    #[must_use]
+    pub(crate) fn nodes_at_most(mut self, nodes: Option<u64>) -> Stop {
+        self.nodes = nodes;
+        self
+    }
+
+    /// This stop with `flag` as its cancel flag (`None`: no flag).
+    #[must_use]
+    pub(crate) fn cancel_with(mut self, flag: Option<Arc<AtomicBool>>) -> Stop {
+        self.cancel = flag;
+        self
+    }
+
+    /// This stop, also stopping at `deadline` (the earlier deadline wins).
+    #[must_use]
+    pub(crate) fn by(mut self, deadline: Option<Instant>) -> Stop {
+        if let Some(d) = deadline {
+            self.deadline = Some(self.deadline.map_or(d, |own| own.min(d)));
+        }
+        self
+    }
+
+    /// Whether the deadline has passed or the flag is set (the node budget
+    /// is the searches' to check).
+    pub(crate) fn expired(&self) -> bool {
+        self.reason().is_some()
+    }
+
     /// Why to stop now, if so: the flag is checked first.
     pub fn reason(&self) -> Option<Reason> {
         if self

@@ -365,7 +365,7 @@ impl Asker {
         &mut self,
         cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
     ) {
-        self.opts.probe.cancel = cancel;
+        self.opts.probe.stop = self.opts.probe.stop.clone().cancel_with(cancel);
     }
 
     /// The demonstrations, accepted probes included (what `demos.json`

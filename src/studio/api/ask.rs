@@ -119,8 +119,8 @@ async fn start_session(
             probe: ProbeOptions {
                 contact: params.contact,
                 seed: params.seed,
-                time_limit: Some(Duration::from_secs(PROBE_TIME_LIMIT_SECS)),
-                cancel: Some(cancel),
+                solve_time: Some(Duration::from_secs(PROBE_TIME_LIMIT_SECS)),
+                stop: ProbeOptions::default().stop.with_cancel(cancel),
                 ..ProbeOptions::default()
             },
             resemble: true,
