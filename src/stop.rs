@@ -2,11 +2,23 @@
 //! the library (in the spirit of Pumpkin's `termination`).
 //!
 //! A [`Stop`] is a deadline, a budget of search nodes and a cancel flag,
-//! each optional. Learning checks the deadline and the flag before every
-//! random scene of its null model; a task's pipeline ([`crate::task::run`])
-//! makes one `Stop` from its time limit and hands learning and synthesis
-//! what is left of it. A `Stop` is cheap to clone: clones share the cancel
-//! flag, so setting it stops every computation that holds one.
+//! each optional. Learning ([`crate::infer::LearnOptions::stop`]),
+//! synthesis ([`crate::synth::SynthOptions::stop`]), sampling
+//! ([`crate::sample::SampleOptions::stop`]) and questions
+//! ([`crate::ask::ProbeOptions::stop`]) take one. Learning checks the
+//! deadline and the flag before every random scene of its null model; the
+//! searches check them while they run, and count their decisions against
+//! the node budget. A task's pipeline ([`crate::task::run`]) hands one
+//! `Stop` to learning and then synthesis: what learning used of the time
+//! is gone for synthesis.
+//!
+//! The deadline is absolute: a `Stop` made with [`Stop::after`] counts
+//! from when it is made (the command line makes one when a command
+//! starts), not from when a search starts. Where a budget counts from the
+//! start of each search (a sampled layout, one probe solve), the options
+//! say so and keep it beside the `Stop`. A `Stop` is cheap to clone:
+//! clones share the cancel flag, so setting it stops every computation
+//! that holds one.
 //!
 //! ```
 //! use rccpack::stop::Stop;

@@ -278,7 +278,6 @@ impl PyAskSession {
                     ..LearnParams::default()
                 },
                 probe: ProbeOptions {
-                    contact,
                     seed,
                     solve_time: time_limit.or(Some(Duration::from_secs(1_000_000))),
                     stop: rccpack_core::stop::Stop::never().with_nodes(node_limit.max(1)),

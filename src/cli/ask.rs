@@ -353,7 +353,6 @@ fn session_options(a: &AskArgs) -> Result<SessionOptions> {
             ..LearnParams::default()
         },
         probe: ProbeOptions {
-            contact: a.contact,
             seed: a.seed,
             solve_time: Some(a.time_limit),
             stop: rccpack::stop::Stop::never().with_nodes(a.node_limit),

@@ -117,7 +117,6 @@ async fn start_session(
         ask: AskOptions {
             learn: params,
             probe: ProbeOptions {
-                contact: params.contact,
                 seed: params.seed,
                 solve_time: Some(Duration::from_secs(PROBE_TIME_LIMIT_SECS)),
                 stop: ProbeOptions::default().stop.with_cancel(cancel),
