@@ -196,6 +196,32 @@ mod tests {
     }
 
     #[test]
+    fn the_earlier_deadline_wins_and_budgets_are_replaced() {
+        let now = Instant::now();
+        let later = now + Duration::from_secs(60);
+        let s = Stop::at(later).by(Some(now));
+        assert_eq!(s.deadline(), Some(now));
+        assert_eq!(s.reason(), Some(Reason::Deadline));
+        // A later deadline, or none, leaves the earlier one.
+        assert_eq!(Stop::at(now).by(Some(later)).deadline(), Some(now));
+        assert_eq!(Stop::at(now).by(None).deadline(), Some(now));
+        assert_eq!(Stop::never().by(Some(later)).deadline(), Some(later));
+        let s = Stop::never().with_nodes(5).nodes_at_most(Some(3));
+        assert_eq!(s.nodes(), Some(3));
+        assert_eq!(s.nodes_at_most(None).nodes(), None);
+        // The flag is replaced, not shared with the old one.
+        let a = Stop::never().cancellable();
+        let b = a.clone().cancel_with(None);
+        a.cancel();
+        assert!(b.reason().is_none() && !b.expired());
+        assert!(a.expired());
+        let flag = Arc::new(AtomicBool::new(false));
+        let c = Stop::never().cancel_with(Some(flag.clone()));
+        flag.store(true, Ordering::SeqCst);
+        assert_eq!(c.reason(), Some(Reason::Cancelled));
+    }
+
+    #[test]
     fn clones_share_the_cancel_flag() {
         let a = Stop::never().cancellable();
         let b = a.clone();
