@@ -173,7 +173,7 @@ fn layouts(problem: &Scene, demos: &[Scene], rules: &RuleSet) -> Vec<Scene> {
         quality: Quality::AllRules,
         like: demos.to_vec(),
         layout_node_limit: Some(20_000),
-        time_limit: Some(Duration::from_secs(20)),
+        stop: rccpack::stop::Stop::after(Duration::from_secs(20)),
         ..SampleOptions::default()
     };
     match sample(problem, &hard, &opts) {

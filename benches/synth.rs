@@ -193,7 +193,7 @@ fn study(a: &Args) {
                     strategy,
                     symmetry_breaking: sym,
                     redundant: red,
-                    time_limit: Some(Duration::from_secs(5)),
+                    stop: rccpack::stop::Stop::after(Duration::from_secs(5)),
                     ..Default::default()
                 };
                 let c0 = cpu_ms();
@@ -248,7 +248,7 @@ fn scale(a: &Args) {
                         seed,
                         symmetry_breaking: sym,
                         redundant: red,
-                        time_limit: Some(Duration::from_secs(limit)),
+                        stop: rccpack::stop::Stop::after(Duration::from_secs(limit)),
                         ..Default::default()
                     };
                     let c0 = cpu_ms();

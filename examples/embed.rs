@@ -11,7 +11,8 @@ use rccpack::task::{self, RunOptions, Task};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let task = Task::load(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/box-packing"))?;
     let mut opts = RunOptions::default();
-    opts.synth.time_limit = Some(std::time::Duration::from_secs(10));
+    // Ten seconds for the whole run, learning included.
+    opts.synth.stop = rccpack::stop::Stop::after(std::time::Duration::from_secs(10));
     let outcome = task::run(&task, &opts)?;
     println!("learned {} rules", outcome.rules.rules.len());
     let result = &outcome.placement.result;

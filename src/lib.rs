@@ -110,7 +110,7 @@
 //! let task = Task::load("examples/box-packing")?;
 //! let mut opts = RunOptions::default();
 //! opts.learn.samples = 200;
-//! opts.synth.node_limit = Some(20_000);
+//! opts.synth.stop = rccpack::stop::Stop::never().with_nodes(20_000);
 //! let outcome = task::run(&task, &opts)?;
 //! let layout = outcome.placement.result.scene.expect("a layout");
 //! assert!(layout.is_complete());

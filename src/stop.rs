@@ -2,11 +2,23 @@
 //! the library (in the spirit of Pumpkin's `termination`).
 //!
 //! A [`Stop`] is a deadline, a budget of search nodes and a cancel flag,
-//! each optional. Learning checks the deadline and the flag before every
-//! random scene of its null model; a task's pipeline ([`crate::task::run`])
-//! makes one `Stop` from its time limit and hands learning and synthesis
-//! what is left of it. A `Stop` is cheap to clone: clones share the cancel
-//! flag, so setting it stops every computation that holds one.
+//! each optional. Learning ([`crate::infer::LearnOptions::stop`]),
+//! synthesis ([`crate::synth::SynthOptions::stop`]), sampling
+//! ([`crate::sample::SampleOptions::stop`]) and questions
+//! ([`crate::ask::ProbeOptions::stop`]) take one. Learning checks the
+//! deadline and the flag before every random scene of its null model; the
+//! searches check them while they run, and count their decisions against
+//! the node budget. A task's pipeline ([`crate::task::run`]) hands one
+//! `Stop` to learning and then synthesis: what learning used of the time
+//! is gone for synthesis.
+//!
+//! The deadline is absolute: a `Stop` made with [`Stop::after`] counts
+//! from when it is made (the command line makes one when a command
+//! starts), not from when a search starts. Where a budget counts from the
+//! start of each search (a sampled layout, one probe solve), the options
+//! say so and keep it beside the `Stop`. A `Stop` is cheap to clone:
+//! clones share the cancel flag, so setting it stops every computation
+//! that holds one.
 //!
 //! ```
 //! use rccpack::stop::Stop;
@@ -123,6 +135,35 @@ impl Stop {
         self.cancel.as_ref()
     }
 
+    /// This stop with `nodes` as its node budget (`None`: no budget).
+    #[must_use]
+    pub(crate) fn nodes_at_most(mut self, nodes: Option<u64>) -> Stop {
+        self.nodes = nodes;
+        self
+    }
+
+    /// This stop with `flag` as its cancel flag (`None`: no flag).
+    #[must_use]
+    pub(crate) fn cancel_with(mut self, flag: Option<Arc<AtomicBool>>) -> Stop {
+        self.cancel = flag;
+        self
+    }
+
+    /// This stop, also stopping at `deadline` (the earlier deadline wins).
+    #[must_use]
+    pub(crate) fn by(mut self, deadline: Option<Instant>) -> Stop {
+        if let Some(d) = deadline {
+            self.deadline = Some(self.deadline.map_or(d, |own| own.min(d)));
+        }
+        self
+    }
+
+    /// Whether the deadline has passed or the flag is set (the node budget
+    /// is the searches' to check).
+    pub(crate) fn expired(&self) -> bool {
+        self.reason().is_some()
+    }
+
     /// Why to stop now, if so: the flag is checked first.
     pub fn reason(&self) -> Option<Reason> {
         if self
@@ -152,6 +193,32 @@ mod tests {
         assert_eq!(s.remaining(), Some(Duration::ZERO));
         // A limit the clock cannot hold never stops.
         assert_eq!(Stop::after(Duration::MAX).reason(), None);
+    }
+
+    #[test]
+    fn the_earlier_deadline_wins_and_budgets_are_replaced() {
+        let now = Instant::now();
+        let later = now + Duration::from_secs(60);
+        let s = Stop::at(later).by(Some(now));
+        assert_eq!(s.deadline(), Some(now));
+        assert_eq!(s.reason(), Some(Reason::Deadline));
+        // A later deadline, or none, leaves the earlier one.
+        assert_eq!(Stop::at(now).by(Some(later)).deadline(), Some(now));
+        assert_eq!(Stop::at(now).by(None).deadline(), Some(now));
+        assert_eq!(Stop::never().by(Some(later)).deadline(), Some(later));
+        let s = Stop::never().with_nodes(5).nodes_at_most(Some(3));
+        assert_eq!(s.nodes(), Some(3));
+        assert_eq!(s.nodes_at_most(None).nodes(), None);
+        // The flag is replaced, not shared with the old one.
+        let a = Stop::never().cancellable();
+        let b = a.clone().cancel_with(None);
+        a.cancel();
+        assert!(b.reason().is_none() && !b.expired());
+        assert!(a.expired());
+        let flag = Arc::new(AtomicBool::new(false));
+        let c = Stop::never().cancel_with(Some(flag.clone()));
+        flag.store(true, Ordering::SeqCst);
+        assert_eq!(c.reason(), Some(Reason::Cancelled));
     }
 
     #[test]

@@ -81,7 +81,7 @@ fn implies_on(problem: &Scene, premises: &RuleSet, rule: &Rule) -> bool {
     rules.push(neg);
     let opts = SynthOptions {
         explain: false,
-        time_limit: Some(Duration::from_secs(60)),
+        stop: rccpack::stop::Stop::after(Duration::from_secs(60)),
         ..SynthOptions::default()
     };
     let r = synthesize(problem, &RuleSet::new(rules), &opts).unwrap();

@@ -74,7 +74,7 @@ fn a_group_probe_breaks_exactly_the_rules_it_names() {
             &problem,
             rules,
             &SynthOptions {
-                node_limit: Some(20_000),
+                stop: rccpack::stop::Stop::never().with_nodes(20_000),
                 ..SynthOptions::default()
             },
         )
@@ -250,7 +250,7 @@ fn a_session_ends_with_exactly_a_random_hidden_truth() {
                 &with,
                 at,
                 &ProbeOptions {
-                    node_limit: Some(200_000),
+                    stop: rccpack::stop::Stop::never().with_nodes(200_000),
                     ..ProbeOptions::default()
                 },
             )

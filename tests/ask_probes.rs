@@ -384,13 +384,12 @@ fn check_case(case: &Case, t: &mut Tally) {
         let opts = ProbeOptions {
             contact: case.contact,
             seed: case.index,
-            time_limit: None,
-            node_limit: None,
+            solve_time: None,
+            stop: rccpack::stop::Stop::never(),
             check_nodes: None,
             like: like.clone(),
             explain,
             warm_start: Vec::new(),
-            cancel: None,
             tuning: Default::default(),
         };
         let fail = |t: &mut Tally, why: String| {

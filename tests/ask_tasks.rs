@@ -198,7 +198,7 @@ fn solve(
     let opts = SynthOptions {
         contact: CONTACT,
         explain: false,
-        time_limit: Some(SOLVE_LIMIT),
+        stop: rccpack::stop::Stop::after(SOLVE_LIMIT),
         seed,
         like,
         ..SynthOptions::default()
@@ -305,7 +305,7 @@ fn setup(task: &Task, truth: &RuleSet, rng: &mut ChaCha8Rng) -> (Scene, Vec<Scen
         },
         probe: ProbeOptions {
             contact: CONTACT,
-            time_limit: Some(SOLVE_LIMIT),
+            solve_time: Some(SOLVE_LIMIT),
             ..ProbeOptions::default()
         },
         resemble: true,

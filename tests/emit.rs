@@ -177,7 +177,7 @@ fn random_case(index: u64) -> Case {
         .collect();
     let opts = SynthOptions {
         contact: pick(&mut rng, &Contact::ALL),
-        time_limit: Some(Duration::from_secs(20)),
+        stop: rccpack::stop::Stop::after(Duration::from_secs(20)),
         symmetry_breaking: rng.random_range(0..4) != 0,
         redundant: rng.random_range(0..4) != 0,
         explain: false,

@@ -273,6 +273,7 @@ fn learning_flags_default_to_the_library_defaults() {
         ("seed", p.seed.to_string()),
         ("contact", p.contact.to_string()),
         ("templates", p.templates.to_string()),
+        ("slip-rate", p.slip_rate.to_string()),
     ];
     for command in ["learn", "run", "ask"] {
         let o = rccpack(&[command, "--help"]);
@@ -292,7 +293,28 @@ fn learning_flags_default_to_the_library_defaults() {
             );
             seen += 1;
         }
-        assert!(seen >= 5, "{command}: {seen} flags checked");
+        assert!(seen >= 6, "{command}: {seen} flags checked");
+    }
+    // `priors` counts the candidates learning finds by default, and its
+    // own flags default to the estimator's.
+    let q = rccpack::priors::PriorParams::default();
+    let o = rccpack(&["priors", "--help"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let help = String::from_utf8(o.stdout).unwrap();
+    for (flag, value) in [
+        ("strength", q.strength.to_string()),
+        ("rule-out-after", q.rule_out_after.to_string()),
+        ("templates", p.templates.to_string()),
+        ("contact", p.contact.to_string()),
+    ] {
+        // This help is in clap's long layout: the text on the next lines.
+        let at = help.find(&format!("--{flag} <")).expect(flag);
+        let item = &help[at..];
+        let item = &item[..item[2..].find("\n  -").map_or(item.len(), |e| e + 2)];
+        assert!(
+            item.contains(&format!("[default: {value}]")),
+            "`rccpack priors --{flag}` shows another default than the library's\n{help}"
+        );
     }
 }
 

@@ -123,7 +123,7 @@ fn limits_in_the_second_phase_keep_the_score_and_are_deterministic() {
     let mut stopped_in_phase_two = false;
     for extra in [1, 5, 20, 60] {
         let opts = SynthOptions {
-            node_limit: Some(first_phase_nodes + extra),
+            stop: rccpack::stop::Stop::never().with_nodes(first_phase_nodes + extra),
             ..with_like(Some(like.clone()))
         };
         let a = synthesize(&problem, &rules, &opts).unwrap();

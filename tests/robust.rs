@@ -24,7 +24,7 @@ const TWO_BLOCKS: &str = r#"{"id":"b1","class":"B","width":10,"height":10},
 
 fn solve(p: &Scene, rules: &RuleSet) -> Result<rccpack::synth::SynthResult, SynthError> {
     let opts = SynthOptions {
-        node_limit: Some(200_000),
+        stop: rccpack::stop::Stop::never().with_nodes(200_000),
         ..SynthOptions::default()
     };
     synthesize(p, rules, &opts)
@@ -138,7 +138,7 @@ fn synthesis_past_the_coordinate_bound_is_refused() {
 fn huge_library_time_limit_is_no_deadline() {
     let p = problem(0, 0, 40, 40, 10, TWO_BLOCKS);
     let opts = SynthOptions {
-        time_limit: Some(Duration::MAX),
+        stop: rccpack::stop::Stop::after(Duration::MAX),
         ..SynthOptions::default()
     };
     let r = synthesize(&p, &RuleSet::default(), &opts).unwrap();
@@ -384,7 +384,7 @@ fn infeasible_probe_problem_is_explained_without_core_extraction() {
     )
     .unwrap();
     let opts = SynthOptions {
-        time_limit: Some(Duration::from_secs(120)),
+        stop: rccpack::stop::Stop::after(Duration::from_secs(120)),
         ..SynthOptions::default()
     };
     let started = std::time::Instant::now();
@@ -460,7 +460,7 @@ rule r2 weight 2: !AL_E(B, no B) & (DR_W(B, W) | DR_W(B, W) | DR_W(B, A))
     .unwrap();
     let opts = SynthOptions {
         contact: Contact::Point,
-        node_limit: Some(1691),
+        stop: rccpack::stop::Stop::never().with_nodes(1691),
         seed: 12948890938015724467,
         symmetry_breaking: true,
         redundant: true,

@@ -181,6 +181,28 @@ fn a_node_limit_ends_with_limit_reached() {
     ));
 }
 
+/// The run's stop reaches the search for every next layout: cancelled
+/// after the first layout, the sampler ends with the limit and that one
+/// layout counted.
+#[test]
+fn a_cancelled_stop_ends_sampling_after_the_layouts_found() {
+    let (problem, rules) = box_task();
+    let stop = rccpack::stop::Stop::never().cancellable();
+    let o = SampleOptions {
+        stop: stop.clone(),
+        ..opts(Quality::AllRules, 0)
+    };
+    let mut s = sample(&problem, &rules, &o).unwrap();
+    let first = s.next().expect("a layout").expect("no error");
+    check_all(&problem, &rules, &[first], 1.0);
+    stop.cancel();
+    let rest: Vec<_> = s.collect();
+    assert!(
+        matches!(rest[..], [Err(SampleError::LimitReached { found: 1 })]),
+        "{rest:?}"
+    );
+}
+
 #[test]
 fn first_draws_cover_every_tiny_layout() {
     for (name, problem, rules) in tiny_problems() {

@@ -145,7 +145,7 @@ fn five_greens_keep_the_block() {
         &rules,
         &SynthOptions {
             like: Some(ResemblanceTarget::new(&demos)),
-            time_limit: Some(std::time::Duration::from_secs(120)),
+            stop: rccpack::stop::Stop::after(std::time::Duration::from_secs(120)),
             ..SynthOptions::default()
         },
     )

@@ -199,7 +199,7 @@ fn hard_problem() -> (Scene, RuleSet) {
 fn time_limit_returns_a_valid_layout() {
     let (p, rules) = hard_problem();
     let opts = SynthOptions {
-        time_limit: Some(Duration::from_millis(400)),
+        stop: rccpack::stop::Stop::after(Duration::from_millis(400)),
         ..Default::default()
     };
     let r = solve(&p, &rules, &opts);
@@ -221,7 +221,7 @@ fn time_limit_returns_a_valid_layout() {
 fn node_limit_is_deterministic() {
     let (p, rules) = hard_problem();
     let opts = SynthOptions {
-        node_limit: Some(300),
+        stop: rccpack::stop::Stop::never().with_nodes(300),
         seed: 7,
         ..Default::default()
     };
@@ -237,7 +237,7 @@ fn cancel_flag_stops() {
     let (p, rules) = hard_problem();
     let flag = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(true));
     let opts = SynthOptions {
-        cancel: Some(flag),
+        stop: rccpack::stop::Stop::never().with_cancel(flag),
         ..Default::default()
     };
     let r = solve(&p, &rules, &opts);
@@ -714,7 +714,7 @@ fn warm_start_from_the_demonstrations_keeps_the_optimum() {
     let problem = bundled_with(5);
     let rules = pilot_rules();
     let base = SynthOptions {
-        time_limit: Some(Duration::from_secs(60)),
+        stop: rccpack::stop::Stop::after(Duration::from_secs(60)),
         ..SynthOptions::default()
     };
     let cold = synthesize(&problem, &rules, &base).unwrap();
@@ -755,7 +755,7 @@ fn warm_start_is_the_first_incumbent() {
     let demos = bundled_demos();
     // 12 grid variables: one decision each, then the solution.
     let opts = SynthOptions {
-        node_limit: Some(13),
+        stop: rccpack::stop::Stop::never().with_nodes(13),
         warm_start: demos,
         ..SynthOptions::default()
     };
@@ -782,7 +782,7 @@ fn warm_start_is_the_first_incumbent() {
         &problem,
         &rules,
         &SynthOptions {
-            node_limit: Some(13),
+            stop: rccpack::stop::Stop::never().with_nodes(13),
             ..SynthOptions::default()
         },
     )
@@ -800,7 +800,7 @@ fn warm_start_search_is_deterministic_under_a_node_limit() {
     let rules = pilot_rules();
     for warm in [Vec::new(), bundled_demos()] {
         let opts = SynthOptions {
-            node_limit: Some(4_000),
+            stop: rccpack::stop::Stop::never().with_nodes(4_000),
             seed: 7,
             warm_start: warm,
             ..SynthOptions::default()
@@ -841,7 +841,7 @@ fn case_scale_n12_k5_s5_reaches_the_optimum() {
             &problem,
             &rules,
             &SynthOptions {
-                node_limit: Some(20_000),
+                stop: rccpack::stop::Stop::never().with_nodes(20_000),
                 seed,
                 ..SynthOptions::default()
             },

@@ -555,7 +555,7 @@ fn check_search(
         .map_err(|e| format!("brute force: {e}"))?;
     let opts = SynthOptions {
         contact: case.contact,
-        time_limit: Some(Duration::from_secs(20)),
+        stop: rccpack::stop::Stop::after(Duration::from_secs(20)),
         symmetry_breaking,
         redundant,
         lns,
@@ -689,7 +689,7 @@ fn check_like_with(
     .map_err(|e| format!("brute force: {e}"))?;
     let opts = SynthOptions {
         contact: case.contact,
-        time_limit: Some(Duration::from_secs(20)),
+        stop: rccpack::stop::Stop::after(Duration::from_secs(20)),
         symmetry_breaking,
         redundant,
         warm_start: if warm { scenes } else { Vec::new() },

@@ -72,7 +72,7 @@ fn run_learns_and_places_the_bundled_example() {
     let task = Task::load(path("examples/box-packing")).unwrap();
     let mut opts = RunOptions::default();
     opts.learn.samples = 200;
-    opts.synth.node_limit = Some(20_000);
+    opts.synth.stop = rccpack::stop::Stop::never().with_nodes(20_000);
     let out = task::run(&task, &opts).unwrap();
     let r = &out.placement.result;
     assert_eq!(r.status, Status::Optimal);

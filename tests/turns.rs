@@ -660,7 +660,7 @@ fn a_learned_habit_is_kept_by_synthesis() {
             })
             .collect();
         let opts = SynthOptions {
-            node_limit: Some(200_000),
+            stop: rccpack::stop::Stop::never().with_nodes(200_000),
             ..SynthOptions::default()
         };
         let r = synthesize(&problem, &set, &opts).expect("solve");

@@ -10,6 +10,7 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyBytes, PyTuple};
 use rccpack_core::infer::{learn_with, InferError, LearnOptions, LearnParams, Templates};
 use rccpack_core::render::render_png as core_render_png;
+use rccpack_core::stop::Stop;
 use rccpack_core::resemblance::ResemblanceTarget;
 use rccpack_core::synth::{Progress, ProgressFn};
 use rccpack_core::{
@@ -620,6 +621,20 @@ pub(crate) fn duration(seconds: Option<f64>) -> PyResult<Option<Duration>> {
     }
 }
 
+/// The stop of a solve: `time_limit` from now, the node budget and the
+/// cancel flag (set by Ctrl-C or a progress callback).
+pub(crate) fn stop(
+    time_limit: Option<Duration>,
+    node_limit: Option<u64>,
+    cancel: &Arc<AtomicBool>,
+) -> Stop {
+    let stop = Stop::within(time_limit).with_cancel(cancel.clone());
+    match node_limit {
+        Some(n) => stop.with_nodes(n),
+        None => stop,
+    }
+}
+
 /// Place the unplaced objects of `problem` (docs/guide.md#synthesis, docs/guide.md#layouts-like-the-demonstrations).
 ///
 /// The GIL is released while solving. Ctrl-C stops the search and returns
@@ -678,10 +693,8 @@ pub fn synthesize(
     });
     let opts = SynthOptions {
         contact,
-        time_limit,
-        node_limit,
+        stop: stop(time_limit, node_limit, &cancel),
         seed,
-        cancel: Some(cancel.clone()),
         progress,
         like: like_scenes.as_deref().map(ResemblanceTarget::new),
         warm_start: warm,

@@ -278,10 +278,9 @@ impl PyAskSession {
                     ..LearnParams::default()
                 },
                 probe: ProbeOptions {
-                    contact,
                     seed,
-                    time_limit: time_limit.or(Some(Duration::from_secs(1_000_000))),
-                    node_limit: Some(node_limit.max(1)),
+                    solve_time: time_limit.or(Some(Duration::from_secs(1_000_000))),
+                    stop: rccpack_core::stop::Stop::never().with_nodes(node_limit.max(1)),
                     check_nodes: Some(check_nodes.max(1)),
                     ..ProbeOptions::default()
                 },

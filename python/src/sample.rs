@@ -326,11 +326,10 @@ pub fn sample(
         quality,
         seed,
         contact: crate::api::contact(contact)?,
-        time_limit: crate::api::duration(time_limit)?,
+        stop: crate::api::stop(crate::api::duration(time_limit)?, None, &cancel),
         layout_time_limit: crate::api::duration(layout_time_limit)?,
         layout_node_limit,
         like,
-        cancel: Some(cancel.clone()),
         repair,
     };
     let (problem, rules) = (problem.inner.clone(), rules.inner.clone());

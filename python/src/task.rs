@@ -254,10 +254,8 @@ impl PyTask {
         let cancel = Arc::new(AtomicBool::new(false));
         let opts = SynthOptions {
             contact: self::contact(contact)?,
-            time_limit: duration(time_limit)?,
-            node_limit,
+            stop: crate::api::stop(duration(time_limit)?, node_limit, &cancel),
             seed,
-            cancel: Some(cancel.clone()),
             ..SynthOptions::default()
         };
         let t = &self.inner;
@@ -312,10 +310,8 @@ impl PyTask {
             },
             synth: SynthOptions {
                 contact,
-                time_limit: duration(time_limit)?,
-                node_limit,
+                stop: crate::api::stop(duration(time_limit)?, node_limit, &cancel),
                 seed,
-                cancel: Some(cancel.clone()),
                 ..SynthOptions::default()
             },
             like,

@@ -15,6 +15,7 @@
 //! *deferred* for the held rules of the moment (asked about again after
 //! learning is redone), and the session says so in its summary.
 
+use crate::stop::Stop;
 use std::time::{Duration, Instant};
 
 /// Default [`QuestionBudget::nodes`]: about a second of search on a
@@ -42,7 +43,9 @@ pub struct QuestionBudget {
     /// (see the module docs), over every check and probe search
     /// (deterministic).
     pub nodes: u64,
-    /// Wall-clock cap per question (a safety net; `None`: none).
+    /// Wall-clock cap per question, counted from when the question is
+    /// started (a safety net; `None`: none). Each question gets a
+    /// [`Stop`] at this much from its start.
     pub wall: Option<Duration>,
 }
 
@@ -55,11 +58,12 @@ impl Default for QuestionBudget {
     }
 }
 
-/// What is left of one question's budget.
+/// What is left of one question's budget: its weighted nodes, and its
+/// stop (the wall-clock cap as a deadline).
 #[derive(Debug, Clone)]
 pub(crate) struct Meter {
     left: u64,
-    deadline: Option<Instant>,
+    stop: Stop,
 }
 
 impl Meter {
@@ -67,7 +71,7 @@ impl Meter {
     pub(super) fn start(b: &QuestionBudget) -> Meter {
         Meter {
             left: b.nodes,
-            deadline: b.wall.and_then(|w| Instant::now().checked_add(w)),
+            stop: Stop::within(b.wall),
         }
     }
 
@@ -75,13 +79,13 @@ impl Meter {
     pub(super) fn unlimited() -> Meter {
         Meter {
             left: u64::MAX,
-            deadline: None,
+            stop: Stop::never(),
         }
     }
 
     /// Whether nothing is left (nodes or time).
     pub(super) fn exhausted(&self) -> bool {
-        self.left == 0 || self.deadline.is_some_and(|d| Instant::now() >= d)
+        self.left == 0 || self.stop.expired()
     }
 
     /// Nodes for a solve on a model of weight `weight` that wants `want`:
@@ -109,6 +113,33 @@ impl Meter {
 
     /// The deadline (the wall-clock cap), if any.
     pub(super) fn deadline(&self) -> Option<Instant> {
-        self.deadline
+        self.stop.deadline()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_wall_counts_from_the_question_start_and_nodes_are_weighted() {
+        let spent = Meter::start(&QuestionBudget {
+            nodes: 10,
+            wall: Some(Duration::ZERO),
+        });
+        assert!(spent.exhausted());
+        assert_eq!(spent.grant(5, 1), None);
+        let mut m = Meter::start(&QuestionBudget {
+            nodes: 10,
+            wall: Some(Duration::from_secs(3600)),
+        });
+        assert!(!m.exhausted());
+        assert!(m.deadline().is_some());
+        assert_eq!(m.grant(50, 2), Some(5));
+        m.spend(4, 2);
+        assert_eq!(m.grant(50, 1), Some(2));
+        m.spend(1, 2);
+        assert!(m.exhausted());
+        assert_eq!(Meter::unlimited().deadline(), None);
     }
 }

@@ -439,13 +439,11 @@ impl ProbeChecker {
         let Some(engine) = part.engine.as_mut() else {
             return Checked::Proven;
         };
-        let mut limits = check_limits(&self.opts, engine);
-        if let Some(d) = self.deadline {
-            limits.deadline = Some(limits.deadline.map_or(d, |l| l.min(d)));
-        }
+        let mut limits = check_limits(&self.opts, engine).by(self.deadline);
         if let Some(n) = nodes {
             let cap = engine.nodes().saturating_add(n);
-            limits.node_limit = Some(limits.node_limit.map_or(cap, |l| l.min(cap)));
+            let cap = limits.nodes().map_or(cap, |l| l.min(cap));
+            limits = limits.nodes_at_most(Some(cap));
         }
         let before = engine.nodes();
         let t = std::time::Instant::now();
@@ -493,19 +491,15 @@ impl Checked {
     }
 }
 
-/// The limits of one solve of a [`ProbeChecker`]: the probe options' time
-/// limit from now, their check budget past the nodes already spent.
+/// The limits of one solve of a [`ProbeChecker`]: the probe options' stop
+/// and per-solve time from now, their check budget past the nodes already
+/// spent.
 fn check_limits(
     opts: &ProbeOptions,
     engine: &crate::synth::engine::Engine,
-) -> crate::synth::engine::Limits {
-    crate::synth::engine::Limits {
-        deadline: opts
-            .time_limit
-            .and_then(|t| std::time::Instant::now().checked_add(t)),
-        node_limit: opts.check_nodes.map(|n| engine.nodes().saturating_add(n)),
-        cancel: opts.cancel.clone(),
-    }
+) -> crate::synth::engine::Stop {
+    opts.solve_stop()
+        .nodes_at_most(opts.check_nodes.map(|n| engine.nodes().saturating_add(n)))
 }
 
 /// A checker's engine leaves its greedy first phase after this many

@@ -154,10 +154,10 @@ pub(crate) struct EditSearch<'a> {
     pub contact: crate::relations::Contact,
     /// Seed of every solve.
     pub seed: u64,
-    /// The time limit of one solve (a safety net).
-    pub time_limit: Option<Duration>,
-    /// Stops every solve when set.
-    pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    /// The time budget of one solve (a safety net).
+    pub solve_time: Option<Duration>,
+    /// When to stop every solve (its deadline and cancel flag).
+    pub stop: crate::stop::Stop,
     /// The class and size of the problem's turnable blocks: a moved block
     /// of one of them may also turn over (as may a block the demonstration
     /// marks `turnable` or `turned`).
@@ -219,8 +219,8 @@ impl EditSearch<'_> {
         let popts = ProbeOptions {
             contact: self.contact,
             seed: self.seed,
-            time_limit: self.time_limit,
-            cancel: self.cancel.clone(),
+            solve_time: self.solve_time,
+            stop: self.stop.clone(),
             ..ProbeOptions::default()
         };
         for (n, (d, free)) in tries.into_iter().take(MAX_SOLVES).enumerate() {
@@ -283,13 +283,15 @@ impl EditSearch<'_> {
         }
         let opts = SynthOptions {
             contact: self.contact,
-            time_limit: self.time_limit,
-            node_limit: Some(nodes),
+            stop: (self.stop.clone())
+                .by(self
+                    .solve_time
+                    .and_then(|t| std::time::Instant::now().checked_add(t)))
+                .nodes_at_most(Some(nodes)),
             seed: self.seed,
             like: self.like.cloned(),
             explain: false,
             lns: None,
-            cancel: self.cancel.clone(),
             ..SynthOptions::default()
         };
         let r = synthesize(&scene, rules, &opts).ok()?;

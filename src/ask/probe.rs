@@ -38,6 +38,7 @@ use crate::relations::{Contact, Quant, MAX_COUNT};
 use crate::resemblance::ResemblanceTarget;
 use crate::rules::{Formula, Rule, RuleSet, Scope, Strength};
 use crate::scene::Scene;
+use crate::stop::Stop;
 use crate::synth::{synthesize, Status, SynthError, SynthOptions};
 use std::time::Duration;
 
@@ -93,7 +94,7 @@ pub fn negation(rule: &Rule) -> Option<Rule> {
     })
 }
 
-/// Default [`ProbeOptions::node_limit`]: on the bundled example the largest
+/// Default node budget of [`ProbeOptions::stop`]: on the bundled example the largest
 /// probe search takes 18,509 nodes (about 1.4 s in release), so this stops
 /// only searches far outside what a question should cost.
 pub const DEFAULT_PROBE_NODES: u64 = 100_000;
@@ -109,12 +110,14 @@ pub struct ProbeOptions {
     pub contact: Contact,
     /// Seed of the solve.
     pub seed: u64,
-    /// Stop each solve after this long (`None`: no limit): a safety net
-    /// for slow machines; what a limit stops then depends on the clock.
-    pub time_limit: Option<Duration>,
-    /// Stop a probe search after this many search nodes (deterministic:
-    /// the best probe found so far is shown).
-    pub node_limit: Option<u64>,
+    /// A per-solve time budget: stop each solve (a probe search or a
+    /// check) after this long from its start (`None`: no limit); a safety
+    /// net for slow machines, what it stops depends on the clock.
+    pub solve_time: Option<Duration>,
+    /// When to stop every solve: the deadline and the cancel flag (e.g. a
+    /// look-ahead for the answer not given), and the node budget of each
+    /// probe search (deterministic: the best probe found so far is shown).
+    pub stop: Stop,
     /// Stop a check of `ProbeChecker` (does a probe exist? does one rule
     /// imply another?) after this many search nodes (deterministic: the
     /// check then counts as undecided).
@@ -127,13 +130,21 @@ pub struct ProbeOptions {
     /// Layouts to start the probe search from (a probe a check found):
     /// the search then only improves on it.
     pub warm_start: Vec<Scene>,
-    /// Set to true to stop every solve (a look-ahead for the answer not
-    /// given).
-    pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
     /// Engine tuning of every solve and check (doc-hidden, see
     /// [`crate::synth::Tuning`]).
     #[doc(hidden)]
     pub tuning: crate::synth::Tuning,
+}
+
+impl ProbeOptions {
+    /// The stop of one solve starting now: [`ProbeOptions::stop`] with
+    /// the per-solve time budget.
+    pub(crate) fn solve_stop(&self) -> Stop {
+        let per = self
+            .solve_time
+            .and_then(|t| std::time::Instant::now().checked_add(t));
+        self.stop.clone().by(per)
+    }
 }
 
 impl Default for ProbeOptions {
@@ -141,13 +152,12 @@ impl Default for ProbeOptions {
         ProbeOptions {
             contact: Contact::Point,
             seed: 0,
-            time_limit: Some(Duration::from_secs(10)),
-            node_limit: Some(DEFAULT_PROBE_NODES),
+            solve_time: Some(Duration::from_secs(10)),
+            stop: Stop::never().with_nodes(DEFAULT_PROBE_NODES),
             check_nodes: Some(DEFAULT_CHECK_NODES),
             like: None,
             explain: false,
             warm_start: Vec::new(),
-            cancel: None,
             tuning: crate::synth::Tuning::default(),
         }
     }
@@ -265,8 +275,7 @@ pub(crate) fn search_group_probe(
     };
     let sopts = SynthOptions {
         contact: opts.contact,
-        time_limit: opts.time_limit,
-        node_limit: opts.node_limit,
+        stop: opts.solve_stop(),
         seed: opts.seed,
         like: opts.like.clone(),
         explain: opts.explain,
@@ -274,7 +283,6 @@ pub(crate) fn search_group_probe(
         // engine's own search, from a probe a check found when there is one.
         lns: None,
         warm_start: opts.warm_start.clone(),
-        cancel: opts.cancel.clone(),
         tuning: opts.tuning,
         ..SynthOptions::default()
     };

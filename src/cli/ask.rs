@@ -353,10 +353,9 @@ fn session_options(a: &AskArgs) -> Result<SessionOptions> {
             ..LearnParams::default()
         },
         probe: ProbeOptions {
-            contact: a.contact,
             seed: a.seed,
-            time_limit: Some(a.time_limit),
-            node_limit: Some(a.node_limit),
+            solve_time: Some(a.time_limit),
+            stop: rccpack::stop::Stop::never().with_nodes(a.node_limit),
             check_nodes: Some(a.check_nodes),
             tuning: super::io::tuning()?,
             ..ProbeOptions::default()

@@ -26,17 +26,17 @@ pub struct PriorsArgs {
     #[arg(short = 'o', long = "output")]
     output: Option<PathBuf>,
     /// Shrinkage strength: pseudo-candidates of the parent kind, at least 1.
-    #[arg(long, default_value_t = 4, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = PriorParams::default().strength, allow_hyphen_values = true)]
     strength: u32,
     /// Rule a kind out after this many tasks in which it was a candidate
     /// and never kept (0: never).
-    #[arg(long, default_value_t = 10, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = PriorParams::default().rule_out_after, allow_hyphen_values = true)]
     rule_out_after: u64,
     /// The template set whose candidates are counted.
-    #[arg(long, default_value = "third", value_name = "first|second|third")]
+    #[arg(long, default_value_t = PriorParams::default().templates, value_name = "first|second|third")]
     templates: Templates,
     /// How EC decides that two sides touch: `point` or `edge`.
-    #[arg(long, default_value = "point")]
+    #[arg(long, default_value_t = PriorParams::default().contact)]
     contact: Contact,
     /// Threads (default: every core). The output is the same for any number.
     #[arg(long, allow_hyphen_values = true)]

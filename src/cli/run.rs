@@ -11,6 +11,7 @@ use anyhow::Result;
 use clap::Args;
 use rccpack::infer::{LearnParams, Templates};
 use rccpack::relations::Contact;
+use rccpack::stop::Stop;
 use rccpack::synth::SynthOptions;
 use rccpack::task::folder::{self, Ending, FolderError};
 use rccpack::task::{files, Like, RunOptions, Task, TaskError};
@@ -70,15 +71,15 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     // nothing is written while another session writes there.
     let lock = folder::lock(&out).map_err(|e| Reported(format!("error: {e}")))?;
     // Every input is read and checked before anything is written.
-    let (task, opts, sources) = read_inputs(&a)?;
+    let (task, mut opts, sources) = read_inputs(&a)?;
     // The time limit covers the whole command: learning stops at it (exit
     // 3, nothing learned), synthesis gets what is left. A curated
     // learned.rcc (confirmed by `ask` or the studio, or edited) is never
     // lost: confirmed marks carry over to the rules learned again
     // unchanged, and a file that would still change is kept as a backup.
-    let start = std::time::Instant::now();
-    let ran = folder::run_locked(&lock, start, &task, &a.dir, &out, &opts)
-        .map_err(|e| sources.error(e))?;
+    opts.synth.stop = Stop::after(a.time_limit);
+    let ran =
+        folder::run_locked(&lock, &task, &a.dir, &out, &opts).map_err(|e| sources.error(e))?;
     let said = folder::summary(&ran);
     for line in &said.stdout {
         outln(line)?;
@@ -180,7 +181,6 @@ fn read_inputs(a: &RunArgs) -> Result<(Task, RunOptions, Sources)> {
         learn: params,
         synth: SynthOptions {
             contact: a.contact,
-            time_limit: Some(a.time_limit),
             seed: a.seed,
             tuning: super::io::tuning()?,
             ..SynthOptions::default()

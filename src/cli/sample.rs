@@ -6,6 +6,7 @@ use clap::Args;
 use rccpack::relations::Contact;
 use rccpack::sample::{sample, Quality, Repair, SampleError, SampleOptions, State};
 use rccpack::scene::scenes_to_json;
+use rccpack::stop::Stop;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -146,10 +147,9 @@ fn sample_options(a: &SampleArgs, like: Vec<rccpack::scene::Scene>) -> Result<Sa
         quality,
         seed: a.seed,
         contact: a.contact,
-        time_limit: a.time_limit,
+        stop: Stop::within(a.time_limit).with_cancel(cancel),
         layout_node_limit: a.layout_node_limit,
         like,
-        cancel: Some(cancel),
         repair: if a.repair == "activity" {
             Repair::Activity
         } else {

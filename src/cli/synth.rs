@@ -5,6 +5,7 @@ use rccpack::relations::Contact;
 use rccpack::resemblance::ResemblanceTarget;
 use rccpack::rules::RuleSet;
 use rccpack::scene::Scene;
+use rccpack::stop::Stop;
 use rccpack::synth::{
     emit, synthesize, Progress, ProgressFn, Status, SynthError, SynthOptions, SynthResult,
 };
@@ -227,7 +228,6 @@ fn synth_options(
     warm_start: Vec<Scene>,
     tuning: rccpack::synth::Tuning,
 ) -> SynthOptions {
-    let time_limit = a.time_limit;
     let cancel = Arc::new(AtomicBool::new(false));
     {
         let c = cancel.clone();
@@ -244,14 +244,16 @@ fn synth_options(
             );
         }))
     });
+    let mut stop = Stop::within(a.time_limit).with_cancel(cancel);
+    if let Some(n) = a.node_limit {
+        stop = stop.with_nodes(n);
+    }
     SynthOptions {
         contact: a.contact,
-        time_limit,
-        node_limit: a.node_limit,
+        stop,
         seed: a.seed,
         symmetry_breaking: !a.no_symmetry_breaking,
         redundant: !a.no_redundant,
-        cancel: Some(cancel),
         progress,
         like: like_scenes.map(ResemblanceTarget::new),
         warm_start,

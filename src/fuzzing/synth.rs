@@ -175,7 +175,7 @@ fn synth_inner(u: &mut Unstructured) -> AResult<()> {
 fn synth_options(u: &mut Unstructured, contact: Contact) -> AResult<crate::synth::SynthOptions> {
     let mut opts = crate::synth::SynthOptions {
         contact,
-        node_limit: Some(u.int_in_range(50..=4000)?),
+        stop: crate::stop::Stop::never().with_nodes(u.int_in_range(50..=4000)?),
         seed: u.arbitrary()?,
         symmetry_breaking: u.arbitrary()?,
         redundant: u.arbitrary()?,
@@ -295,8 +295,8 @@ fn probe_check(u: &mut Unstructured, p: &Scene, rules: &RuleSet, contact: Contac
     let k = u.choose_index(rules.rules.len())?;
     let opts = ProbeOptions {
         contact,
-        node_limit: Some(4000),
-        time_limit: None,
+        stop: crate::stop::Stop::never().with_nodes(4000),
+        solve_time: None,
         ..ProbeOptions::default()
     };
     let Ok(outcome) = find_probe(p, rules, k, &opts) else {

@@ -5,7 +5,7 @@
 use super::{like_key, Quality, Repair, SampleError, Sampler};
 use crate::eval::evaluate;
 use crate::scene::Scene;
-use crate::synth::backend::{Backend, Fact, Limits, Verdict};
+use crate::synth::backend::{Backend, Fact, Stop, Verdict};
 use crate::synth::engine::Engine;
 use crate::synth::model::{Coord, Lit, Model};
 use crate::synth::SynthError;
@@ -15,19 +15,19 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 impl Sampler {
-    pub(super) fn limits(&self, b: usize) -> Limits {
-        let now = Instant::now();
-        let per = self.opts.layout_time_limit.and_then(|t| now.checked_add(t));
-        let deadline = match (self.deadline, per) {
-            (Some(a), Some(b)) => Some(a.min(b)),
-            (a, b) => a.or(b),
-        };
+    /// The limits of the search for the next layout of choice `b`: the
+    /// run's stop, tightened by the per-layout time and node budgets.
+    pub(super) fn limits(&self, b: usize) -> Stop {
+        let per = self
+            .opts
+            .layout_time_limit
+            .and_then(|t| Instant::now().checked_add(t));
         let used = self.branches[b].engine.as_ref().map_or(0, |e| e.nodes());
-        Limits {
-            deadline,
-            node_limit: self.opts.layout_node_limit.map(|n| used.saturating_add(n)),
-            cancel: self.opts.cancel.clone(),
-        }
+        self.opts
+            .stop
+            .clone()
+            .by(per)
+            .nodes_at_most(self.opts.layout_node_limit.map(|n| used.saturating_add(n)))
     }
 
     /// The model of orientation choice `b` and its hint groups (built
@@ -90,7 +90,7 @@ impl Sampler {
             false,
             Some(coefs),
             &[],
-            self.deadline,
+            self.opts.stop.deadline(),
         )?
         else {
             return Ok(false);

@@ -69,13 +69,12 @@
 use crate::relations::Contact;
 use crate::rules::RuleSet;
 use crate::scene::Scene;
+use crate::stop::Stop;
 use crate::synth::{Conflict, Status, SynthError, SynthOptions};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeMap;
-use std::sync::atomic::AtomicBool;
-use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 #[cfg(feature = "arbitrary")]
 pub mod arbitrary;
@@ -114,20 +113,22 @@ pub struct SampleOptions {
     pub seed: u64,
     /// How EC decides that two sides touch.
     pub contact: Contact,
-    /// Stop looking for the next layout after this long (per layout).
+    /// A per-layout time budget: stop looking for the next layout after
+    /// this long, counted from when the search for it starts.
     pub layout_time_limit: Option<Duration>,
-    /// Stop looking for the next layout after this many search decisions
-    /// (per layout; deterministic).
+    /// A per-layout node budget: stop looking for the next layout after
+    /// this many search decisions (deterministic); also the node budget of
+    /// the optimum's solve.
     pub layout_node_limit: Option<u64>,
-    /// Stop the whole run (the optimum included) after this long.
-    pub time_limit: Option<Duration>,
+    /// When to stop the whole run (the optimum included): its deadline and
+    /// cancel flag (e.g. set from a Ctrl-C handler). Its node budget is not
+    /// used: the per-layout one is [`SampleOptions::layout_node_limit`].
+    pub stop: Stop,
     /// Complete scenes (usually the demonstrations): half of the hints put
     /// an object where an object of its class and size is in one of them,
     /// so the layouts lean towards those positions. Also the warm start of
     /// the optimum. Empty: uniform hints only.
     pub like: Vec<Scene>,
-    /// Set to true (e.g. from a Ctrl-C handler) to stop.
-    pub cancel: Option<Arc<AtomicBool>>,
     /// How the engine completes a random hint into a layout.
     pub repair: Repair,
 }
@@ -152,9 +153,8 @@ impl Default for SampleOptions {
             contact: Contact::Point,
             layout_time_limit: None,
             layout_node_limit: None,
-            time_limit: None,
+            stop: Stop::never(),
             like: Vec::new(),
-            cancel: None,
             repair: Repair::Random,
         }
     }
@@ -203,14 +203,10 @@ pub fn sample(
         }
     }
     problem.validate().map_err(SynthError::from)?;
-    let start = Instant::now();
-    let deadline = opts.time_limit.and_then(|t| start.checked_add(t));
     let synth_opts = SynthOptions {
         contact: opts.contact,
         seed: opts.seed,
-        time_limit: opts.time_limit,
-        node_limit: opts.layout_node_limit,
-        cancel: opts.cancel.clone(),
+        stop: opts.stop.clone().nodes_at_most(opts.layout_node_limit),
         warm_start: opts.like.clone(),
         ..SynthOptions::default()
     };
@@ -238,7 +234,6 @@ pub fn sample(
         skipped: 0,
         pending: None,
         state: State::Running,
-        deadline,
     };
     // The first choice (nothing turned) is built at once: bad rules and
     // weights are errors of `sample` itself.
@@ -287,7 +282,6 @@ pub struct Sampler {
     /// An outcome decided before the first call (infeasible, no layout).
     pending: Option<SampleError>,
     state: State,
-    deadline: Option<Instant>,
 }
 
 impl std::fmt::Debug for Sampler {
@@ -383,13 +377,7 @@ impl Sampler {
     /// Nothing of the quality asked for: say why (infeasible, or the best
     /// score there is).
     fn no_layout(&mut self) -> Result<(), SampleError> {
-        let opts = SynthOptions {
-            time_limit: self
-                .deadline
-                .map(|d| d.saturating_duration_since(Instant::now())),
-            ..self.synth_opts.clone()
-        };
-        let r = crate::synth::synthesize(&self.problem, &self.rules, &opts)?;
+        let r = crate::synth::synthesize(&self.problem, &self.rules, &self.synth_opts)?;
         let quality = match self.opts.quality {
             Quality::MinScore(x) => format!("scores at least {x}"),
             _ => "keeps every rule (score 1)".to_string(),

@@ -35,31 +35,7 @@
 //! must mean, and the synthesis differential tests run it against brute
 //! force.
 
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
-use std::time::Instant;
-
-/// When to stop.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct Limits {
-    /// Wall-clock deadline.
-    pub deadline: Option<Instant>,
-    /// Maximum number of decisions (over the whole backend's life).
-    pub node_limit: Option<u64>,
-    /// External stop flag.
-    pub cancel: Option<Arc<AtomicBool>>,
-}
-
-impl Limits {
-    /// Whether a limit other than the node count has fired (the deadline
-    /// has passed or the stop flag is set).
-    pub(crate) fn expired(&self) -> bool {
-        self.cancel
-            .as_ref()
-            .is_some_and(|c| c.load(Ordering::Relaxed))
-            || self.deadline.is_some_and(|d| Instant::now() >= d)
-    }
-}
+pub(crate) use crate::stop::Stop;
 
 /// One assumption of a call: holds for this call only.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -107,8 +83,9 @@ pub(crate) enum Verdict {
 
 /// An engine holding one model.
 pub(crate) trait Backend {
-    /// Solve under `assumptions` within `limits`.
-    fn solve(&mut self, assumptions: &[Assumption], limits: &Limits) -> Verdict;
+    /// Solve under `assumptions` within `limits` (its node budget counts the
+    /// decisions over the backend's life).
+    fn solve(&mut self, assumptions: &[Assumption], limits: &Stop) -> Verdict;
     /// Add a fact for every later call.
     fn add(&mut self, fact: Fact);
     /// The largest objective value not yet excluded at the root (`None`:

@@ -39,7 +39,7 @@
 //! tests go in the `tests` module below, against its `MockBackend`, which states
 //! the answers a backend may give.
 
-use super::backend::{Assumption, Backend, Core, Fact, Limits, Verdict};
+use super::backend::{Assumption, Backend, Core, Fact, Stop, Verdict};
 use super::weights::SubsetSums;
 
 /// How many times [`Strategy::UpperBoundFirst`] asks for the proven upper
@@ -119,7 +119,7 @@ pub(super) struct Objective<'a> {
 pub(super) fn optimise(
     backend: &mut dyn Backend,
     objective: Option<&Objective<'_>>,
-    limits: &Limits,
+    limits: &Stop,
     strategy: Strategy,
     on_incumbent: &mut dyn FnMut(&[i64]),
 ) -> OptOutcome {
@@ -135,7 +135,7 @@ pub(super) fn optimise(
 /// or the outcome when there is none.
 pub(super) fn first_solution(
     backend: &mut dyn Backend,
-    limits: &Limits,
+    limits: &Stop,
 ) -> Result<Vec<i64>, OptOutcome> {
     match backend.solve(&[], limits) {
         Verdict::Solution(v) => {
@@ -154,7 +154,7 @@ pub(super) fn optimise_from(
     backend: &mut dyn Backend,
     objective: Option<&Objective<'_>>,
     best: Vec<i64>,
-    limits: &Limits,
+    limits: &Stop,
     strategy: Strategy,
     on_incumbent: &mut dyn FnMut(&[i64]),
 ) -> OptOutcome {
@@ -246,7 +246,7 @@ pub(super) fn minimise_cost(
     objective: Option<&Objective<'_>>,
     cost: &dyn Fn(&[i64]) -> u64,
     best: Vec<i64>,
-    limits: &Limits,
+    limits: &Stop,
     on_incumbent: &mut dyn FnMut(&[i64]),
 ) -> CostOutcome {
     let best_cost = cost(&best);
@@ -281,7 +281,7 @@ pub(super) fn minimise_cost(
         step_down: true,
     };
     let out_of_limits =
-        |b: &dyn Backend| limits.expired() || limits.node_limit.is_some_and(|n| b.nodes() >= n);
+        |b: &dyn Backend| limits.expired() || limits.nodes().is_some_and(|n| b.nodes() >= n);
     // A spent limit needs no check here: the backend answers `Unknown` at
     // once, and that arm ends the phase.
     while search.lo < search.best_cost {
@@ -322,7 +322,7 @@ pub(super) fn minimise_cost(
 fn open_cost_phase(
     backend: &mut dyn Backend,
     best_cost: u64,
-    limits: &Limits,
+    limits: &Stop,
 ) -> Result<u64, (bool, u64)> {
     let Some(lo) = backend.cost_bound() else {
         return Err((true, best_cost));
@@ -349,14 +349,13 @@ fn probe_cost(
     backend: &mut dyn Backend,
     search: &CostSearch,
     mid: u64,
-    limits: &Limits,
+    limits: &Stop,
     cost: &dyn Fn(&[i64]) -> u64,
 ) -> (Verdict, u64) {
     let cap = backend.nodes().saturating_add(search.budget);
-    let probe_limits = Limits {
-        node_limit: Some(limits.node_limit.map_or(cap, |n| cap.min(n))),
-        ..limits.clone()
-    };
+    let probe_limits = limits
+        .clone()
+        .nodes_at_most(Some(limits.nodes().map_or(cap, |n| cap.min(n))));
     let t0 = std::time::Instant::now();
     let verdict = backend.solve(&[Assumption::CostAtMost(mid)], &probe_limits);
     log::debug!(
@@ -472,7 +471,7 @@ impl CostSearch {
 pub(super) fn shrink_conflict(
     backend: &mut dyn Backend,
     rules: &[usize],
-    limits: &Limits,
+    limits: &Stop,
 ) -> (Vec<usize>, bool) {
     let mut core: Vec<usize> = rules.to_vec();
     let mut minimal = true;
@@ -584,7 +583,7 @@ mod tests {
     }
 
     impl Backend for MockBackend {
-        fn solve(&mut self, a: &[Assumption], limits: &Limits) -> Verdict {
+        fn solve(&mut self, a: &[Assumption], limits: &Stop) -> Verdict {
             self.calls += 1;
             self.asked.push(a.to_vec());
             if self.budget.is_some_and(|b| self.calls > b) {
@@ -595,7 +594,7 @@ mod tests {
                 .any(|x| matches!(x, Assumption::CostAtMost(k) if *k >= self.cheap_below))
                 && !self.cands.iter().any(|c| self.allowed(c, a));
             if refutes_cost && self.refute_cost_nodes > 0 {
-                let cap = limits.node_limit.unwrap_or(u64::MAX);
+                let cap = limits.nodes().unwrap_or(u64::MAX);
                 if self.nodes() + self.refute_cost_nodes > cap {
                     self.spent += cap.saturating_sub(self.nodes());
                     return Verdict::Unknown;
@@ -668,9 +667,7 @@ mod tests {
             value: &value,
         };
         let mut seen = Vec::new();
-        let out = optimise(m, Some(&obj), &Limits::default(), s, &mut |v| {
-            seen.push(v[0])
-        });
+        let out = optimise(m, Some(&obj), &Stop::never(), s, &mut |v| seen.push(v[0]));
         (out, seen)
     }
 
@@ -737,7 +734,7 @@ mod tests {
         let out = optimise(
             &mut m,
             Some(&obj),
-            &Limits::default(),
+            &Stop::never(),
             Strategy::UpperBoundFirst,
             &mut |_| {},
         );
@@ -779,7 +776,7 @@ mod tests {
 
     /// [`minimise_cost`] from the layout `[5, 9]` (numerator 5, cost 9) of
     /// a mock whose values are `[numerator, cost]`.
-    fn minimise_from_9(m: &mut MockBackend, limits: &Limits) -> CostOutcome {
+    fn minimise_from_9(m: &mut MockBackend, limits: &Stop) -> CostOutcome {
         let value = |v: &[i64]| v[0];
         let cost = |v: &[i64]| v[1] as u64;
         let obj = Objective {
@@ -795,7 +792,7 @@ mod tests {
     #[test]
     fn minimise_cost_keeps_the_score() {
         let mut m = MockBackend::new(vec![cand(5, 9), cand(4, 0), cand(5, 3), cand(6, 7)]);
-        let r = minimise_from_9(&mut m, &Limits::default());
+        let r = minimise_from_9(&mut m, &Stop::never());
         // cost 0 needs numerator 4 < 5: refused; cost 3 at numerator 5.
         assert_eq!(
             r,
@@ -809,14 +806,14 @@ mod tests {
         assert!(m.facts.contains(&Fact::ObjectiveAtLeast(5)));
         // Numerator 6 turns up under `cost ≤ 7`: the floor rises to 6.
         let mut m = MockBackend::new(vec![cand(6, 7), cand(5, 9)]);
-        let r = minimise_from_9(&mut m, &Limits::default());
+        let r = minimise_from_9(&mut m, &Stop::never());
         assert_eq!(r.values, vec![6, 7]);
         assert!(r.proven);
         assert!(m.facts.contains(&Fact::ObjectiveAtLeast(6)));
         // A limit: not proven.
         let mut m = MockBackend::new(vec![cand(5, 3), cand(5, 9)]);
         m.budget = Some(0);
-        let r = minimise_from_9(&mut m, &Limits::default());
+        let r = minimise_from_9(&mut m, &Stop::never());
         assert_eq!((r.cost, r.proven, r.bound), (9, false, 0));
         // A limit after a refutation: the refuted bound is the reported
         // one (candidates 5/9 and 5/6: `cost ≤ 8` finds 6; `cost ≤ 5` runs
@@ -826,12 +823,12 @@ mod tests {
         m.refute_cost_nodes = 3 * COST_PROBE_NODES / 2;
         m.cheap_below = 3;
         m.budget = Some(3);
-        let r = minimise_from_9(&mut m, &Limits::default());
+        let r = minimise_from_9(&mut m, &Stop::never());
         assert_eq!((r.cost, r.proven, r.bound), (6, false, 3));
         // No second objective: the input, proven.
         let mut m = MockBackend::new(vec![cand(5, 3)]);
         m.with_cost = false;
-        let r = minimise_from_9(&mut m, &Limits::default());
+        let r = minimise_from_9(&mut m, &Stop::never());
         assert_eq!((r.cost, r.proven, m.calls), (9, true, 0));
     }
 
@@ -844,7 +841,7 @@ mod tests {
         let cands = vec![cand(5, 8), cand(5, 7), cand(5, 6)];
         let mut m = MockBackend::new(cands.clone());
         m.refute_cost_nodes = 3 * COST_PROBE_NODES / 2;
-        let r = minimise_from_9(&mut m, &Limits::default());
+        let r = minimise_from_9(&mut m, &Stop::never());
         assert_eq!((r.cost, r.proven, r.bound), (6, true, 6));
         let probes: Vec<u64> = m
             .asked
@@ -860,10 +857,7 @@ mod tests {
         // Under a node limit that the first refutation exhausts.
         let mut m = MockBackend::new(cands);
         m.refute_cost_nodes = 3 * COST_PROBE_NODES / 2;
-        let limits = Limits {
-            node_limit: Some(COST_PROBE_NODES + 5),
-            ..Limits::default()
-        };
+        let limits = Stop::never().nodes_at_most(Some(COST_PROBE_NODES + 5));
         let r = minimise_from_9(&mut m, &limits);
         assert!(!r.proven);
         assert!(r.cost <= 8 && r.bound == 0, "{r:?}");
@@ -897,31 +891,31 @@ mod tests {
         };
         let all = [3, 0, 1, 2];
         let mut plain = MockBackend::new(cands());
-        let (c, minimal) = shrink_conflict(&mut plain, &all, &Limits::default());
+        let (c, minimal) = shrink_conflict(&mut plain, &all, &Stop::never());
         assert_eq!((c, minimal), (vec![0, 1, 2], true));
         let mut cored = MockBackend::new(cands());
         cored.give_cores = true;
-        let (c, minimal) = shrink_conflict(&mut cored, &all, &Limits::default());
+        let (c, minimal) = shrink_conflict(&mut cored, &all, &Stop::never());
         assert_eq!((c, minimal), (vec![0, 1, 2], true));
         assert!(cored.calls <= plain.calls);
         // Infeasible whatever is assumed.
         let mut none = MockBackend::new(Vec::new());
         none.give_cores = true;
         assert_eq!(
-            shrink_conflict(&mut none, &all, &Limits::default()),
+            shrink_conflict(&mut none, &all, &Stop::never()),
             (Vec::new(), true)
         );
         // Without cores the same model says "no core": every rule is
         // dropped one by one, each drop proven by a call.
         let mut none = MockBackend::new(Vec::new());
-        let (c, _) = shrink_conflict(&mut none, &all, &Limits::default());
+        let (c, _) = shrink_conflict(&mut none, &all, &Stop::never());
         assert!(c.is_empty());
         assert_eq!(none.calls, 4);
         // Out of budget at once: everything kept, not minimal.
         let mut spent = MockBackend::new(cands());
         spent.budget = Some(0);
         assert_eq!(
-            shrink_conflict(&mut spent, &all, &Limits::default()),
+            shrink_conflict(&mut spent, &all, &Stop::never()),
             (all.to_vec(), false)
         );
     }

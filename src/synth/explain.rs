@@ -1,7 +1,7 @@
 //! Why a proved-infeasible problem is infeasible: the objects that cannot
 //! fit, or a minimal set of hard rules that conflict.
 
-use super::backend::{Limits, Verdict};
+use super::backend::{Stop, Verdict};
 use super::engine::Engine;
 use super::model::{BuildOptions, Model};
 use super::{capacity, driver, Conflict, SolveStats, SynthError, SynthOptions};
@@ -16,7 +16,7 @@ pub(super) fn explain(
     problem: &Scene,
     rules: &RuleSet,
     opts: &SynthOptions,
-    limits: &Limits,
+    limits: &Stop,
     stats: &mut SolveStats,
 ) -> Result<Conflict, SynthError> {
     let base = BuildOptions {
@@ -69,7 +69,7 @@ fn unless_objects_fit(
     rules: &RuleSet,
     base: BuildOptions,
     opts: &SynthOptions,
-    limits: &Limits,
+    limits: &Stop,
     stats: &mut SolveStats,
 ) -> Result<Option<Conflict>, SynthError> {
     let m0 = Model::build(problem, rules, base);
@@ -99,7 +99,7 @@ fn shrink_hard_rules(
     rules: &RuleSet,
     base: BuildOptions,
     opts: &SynthOptions,
-    limits: &Limits,
+    limits: &Stop,
     stats: &mut SolveStats,
 ) -> Result<Conflict, SynthError> {
     let mg = Model::build(

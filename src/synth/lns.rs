@@ -45,7 +45,7 @@
 //! `tests/synth_differential.rs` run synthesis with LNS forced on (tiny
 //! windows, proof attempts of a few nodes) and compare with brute force.
 
-use super::backend::{Backend, Limits};
+use super::backend::{Backend, Stop};
 use super::driver::{self, Objective, OptOutcome, Strategy};
 use super::engine::Engine;
 use super::model::{BuildOptions, Coord, Lit, Model};
@@ -160,7 +160,7 @@ impl Lns<'_> {
         &self,
         start: Vec<i64>,
         bound: i64,
-        limits: &Limits,
+        limits: &Stop,
         on_incumbent: &mut dyn FnMut(&[i64]),
     ) -> Result<LnsOutcome, SynthError> {
         let mut state = self.state(start);
@@ -191,7 +191,7 @@ impl Lns<'_> {
         engine: &mut dyn Backend,
         objective: &Objective<'_>,
         best: Vec<i64>,
-        limits: &Limits,
+        limits: &Stop,
         strategy: Strategy,
         on_incumbent: &mut dyn FnMut(&[i64]),
     ) -> Result<(OptOutcome, LnsOutcome), SynthError> {
@@ -201,19 +201,16 @@ impl Lns<'_> {
         loop {
             let lns_nodes = state.out.nodes;
             let used = engine.nodes().saturating_add(lns_nodes);
-            if limits.expired() || limits.node_limit.is_some_and(|n| used >= n) {
+            if limits.expired() || limits.nodes().is_some_and(|n| used >= n) {
                 let best = state.out.values.clone();
                 return Ok((OptOutcome::Feasible(best), state.out));
             }
             // The engine's own limit counts its nodes only.
             let cap = engine.nodes().saturating_add(budget);
             let cap = limits
-                .node_limit
+                .nodes()
                 .map_or(cap, |n| cap.min(n.saturating_sub(lns_nodes)));
-            let proof_limits = Limits {
-                node_limit: Some(cap),
-                ..limits.clone()
-            };
+            let proof_limits = limits.clone().nodes_at_most(Some(cap));
             let best = state.out.values.clone();
             // Every other attempt asks for the incumbent plus one (the
             // proof a below-the-bound optimum needs); the others use the
@@ -243,10 +240,9 @@ impl Lns<'_> {
                 done => return Ok((done, state.out)),
             }
             let bound = engine.objective_bound().unwrap_or(i64::MAX);
-            let lns_limits = Limits {
-                node_limit: limits.node_limit.map(|n| n.saturating_sub(engine.nodes())),
-                ..limits.clone()
-            };
+            let lns_limits = limits
+                .clone()
+                .nodes_at_most(limits.nodes().map(|n| n.saturating_sub(engine.nodes())));
             let phase_budget = if attempt == 1 && self.long_first_phase {
                 self.opts.budget_nodes
             } else {
@@ -282,14 +278,14 @@ impl Lns<'_> {
 
     /// One LNS phase: rounds until the incumbent reaches `bound`, `budget`
     /// nodes pass without an improvement, the rounds stop paying off at the
-    /// largest window, or a limit fires (`limits.node_limit` counts the phase's nodes from
+    /// largest window, or a limit fires (`limits.nodes()` counts the phase's nodes from
     /// the state's total).
     fn run(
         &self,
         st: &mut State,
         bound: i64,
         budget: u64,
-        limits: &Limits,
+        limits: &Stop,
         on_incumbent: &mut dyn FnMut(&[i64]),
     ) -> Result<(), SynthError> {
         let model = self.model;
@@ -301,7 +297,7 @@ impl Lns<'_> {
         while st.out.value < bound && st.window > 0 {
             let phase = st.out.nodes - start_nodes;
             let used = st.out.nodes;
-            if phase >= budget || limits.node_limit.is_some_and(|n| used >= n) || limits.expired() {
+            if phase >= budget || limits.nodes().is_some_and(|n| used >= n) || limits.expired() {
                 break;
             }
             let freed = self.window(
@@ -315,12 +311,8 @@ impl Lns<'_> {
             let round_nodes = opts
                 .round_nodes
                 .min(budget - phase)
-                .min(limits.node_limit.map_or(u64::MAX, |n| n - used));
-            let sub_limits = Limits {
-                deadline: limits.deadline,
-                node_limit: Some(round_nodes),
-                cancel: limits.cancel.clone(),
-            };
+                .min(limits.nodes().map_or(u64::MAX, |n| n - used));
+            let sub_limits = limits.clone().nodes_at_most(Some(round_nodes));
             let seed = self.seed.wrapping_add(u64::from(st.out.rounds));
             let r = self.round(&st.out.values, &freed, bound, &sub_limits, seed)?;
             st.out.nodes += r.nodes;
@@ -424,7 +416,7 @@ impl Lns<'_> {
         vals: &[i64],
         freed: &[usize],
         bound: i64,
-        limits: &Limits,
+        limits: &Stop,
         seed: u64,
     ) -> Result<Round, SynthError> {
         let model = self.model;
@@ -567,7 +559,7 @@ mod tests {
         let weights: Vec<f64> = model.soft.iter().map(|s| s.weight).collect();
         let coefs = integer_weights(&weights).unwrap();
         let mut engine = Engine::new(&model, 0, false, Some(&coefs)).unwrap();
-        let first = driver::first_solution(&mut engine, &Limits::default()).unwrap();
+        let first = driver::first_solution(&mut engine, &Stop::never()).unwrap();
         let start = model.objective_value(&coefs, &first);
         let bound = engine.objective_bound().unwrap();
         assert!(start < bound, "the greedy packing is already optimal");
@@ -591,9 +583,7 @@ mod tests {
         };
         let mut seen = Vec::new();
         let out = lns
-            .improve(first, bound, &Limits::default(), &mut |v| {
-                seen.push(v.to_vec())
-            })
+            .improve(first, bound, &Stop::never(), &mut |v| seen.push(v.to_vec()))
             .unwrap();
         assert_eq!(out.value, bound, "{out:?}");
         assert!(out.improved > 0 && out.rounds >= out.improved);
@@ -605,11 +595,11 @@ mod tests {
         // Deterministic: the same seed, the same layouts.
         let first = driver::first_solution(
             &mut Engine::new(&model, 0, false, Some(&coefs)).unwrap(),
-            &Limits::default(),
+            &Stop::never(),
         )
         .unwrap();
         let again = lns
-            .improve(first, bound, &Limits::default(), &mut |_| {})
+            .improve(first, bound, &Stop::never(), &mut |_| {})
             .unwrap();
         assert_eq!(again, out);
     }
@@ -669,20 +659,14 @@ mod tests {
             let mut calls = 0u32;
             let mut best = loop {
                 calls += 1;
-                let limits = Limits {
-                    node_limit: step.map(|s| engine.nodes() + s),
-                    ..Limits::default()
-                };
+                let limits = Stop::never().nodes_at_most(step.map(|s| engine.nodes() + s));
                 if let Ok(v) = driver::first_solution(&mut engine, &limits) {
                     break v;
                 }
             };
             loop {
                 calls += 1;
-                let limits = Limits {
-                    node_limit: step.map(|s| engine.nodes() + s),
-                    ..Limits::default()
-                };
+                let limits = Stop::never().nodes_at_most(step.map(|s| engine.nodes() + s));
                 match driver::optimise_from(
                     &mut engine,
                     Some(&objective),

@@ -48,7 +48,7 @@ use crate::relations::Contact;
 use crate::resemblance::ResemblanceTarget;
 use crate::rules::RuleSet;
 use crate::scene::Scene;
-use std::sync::atomic::AtomicBool;
+use crate::stop::Stop;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -94,18 +94,16 @@ pub use verify::{verify_solution, VerifyError};
 pub struct SynthOptions {
     /// How EC decides that two sides touch.
     pub contact: Contact,
-    /// Stop after this long and return the best layout found.
-    pub time_limit: Option<Duration>,
-    /// Stop after this many search nodes (decisions).
-    pub node_limit: Option<u64>,
+    /// When to stop and return the best layout found: the deadline, the
+    /// cancel flag (e.g. set from a Ctrl-C handler) and the budget of
+    /// search nodes (decisions) of this solve.
+    pub stop: Stop,
     /// Seed for any randomised choice; same seed and limits → same layout.
     pub seed: u64,
     /// Break symmetry between interchangeable objects (same class and size).
     pub symmetry_breaking: bool,
     /// Post redundant area reasoning.
     pub redundant: bool,
-    /// Set to true (e.g. from a Ctrl-C handler) to stop the search.
-    pub cancel: Option<Arc<AtomicBool>>,
     /// The optimisation procedure (see [`Strategy`]).
     pub strategy: Strategy,
     /// Called with every improving layout (e.g. to print progress).
@@ -158,12 +156,10 @@ impl Default for SynthOptions {
     fn default() -> Self {
         SynthOptions {
             contact: Contact::Point,
-            time_limit: None,
-            node_limit: None,
+            stop: Stop::never(),
             seed: 0,
             symmetry_breaking: true,
             redundant: true,
-            cancel: None,
             strategy: Strategy::default(),
             progress: None,
             like: None,
@@ -455,7 +451,7 @@ fn synthesize_fixed(
     opts: &SynthOptions,
 ) -> Result<SynthResult, SynthError> {
     let start = std::time::Instant::now();
-    let limits = solve::solve_limits(opts, start);
+    let limits = opts.stop.clone();
     let mut stats = SolveStats::default();
     // The deadline and Ctrl-C are checked while the model is built.
     let Some((model, coefs, build)) =

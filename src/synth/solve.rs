@@ -4,7 +4,7 @@
 //! cost minimised with the score held, and the layout checked and
 //! reported.
 
-use super::backend::{Backend, Limits};
+use super::backend::{Backend, Stop};
 use super::driver::{self, Objective, OptOutcome};
 use super::engine::Engine;
 use super::model::{BuildOptions, Lit, Model};
@@ -16,17 +16,6 @@ use crate::resemblance::ResemblanceTarget;
 use crate::rules::RuleSet;
 use crate::scene::Scene;
 use std::time::{Duration, Instant};
-
-/// The limits of a solve started at `start`: the time limit as a deadline,
-/// the node limit and the cancel flag.
-pub(super) fn solve_limits(opts: &SynthOptions, start: Instant) -> Limits {
-    Limits {
-        // A limit past what `Instant` can represent means no deadline.
-        deadline: opts.time_limit.and_then(|t| start.checked_add(t)),
-        node_limit: opts.node_limit,
-        cancel: opts.cancel.clone(),
-    }
-}
 
 /// One solve of a built model: what every phase reads.
 pub(super) struct Solve<'a> {
@@ -43,7 +32,7 @@ pub(super) struct Solve<'a> {
     /// The options `model` was built with.
     pub(super) build: BuildOptions,
     /// The solve's limits.
-    pub(super) limits: &'a Limits,
+    pub(super) limits: &'a Stop,
     /// When the solve started.
     pub(super) start: Instant,
 }

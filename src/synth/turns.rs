@@ -32,7 +32,6 @@ use super::{
 };
 use crate::rules::RuleSet;
 use crate::scene::Scene;
-use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -65,22 +64,20 @@ pub(super) fn synthesize_model(
 ) -> Result<SynthResult, SynthError> {
     let start = Instant::now();
     let mut probe = opts.clone();
-    probe.node_limit = Some(
-        opts.node_limit
+    probe.stop = opts.stop.clone().nodes_at_most(Some(
+        opts.stop
+            .nodes()
             .map_or(FLAT_PROBE_NODES, |n| n.min(FLAT_PROBE_NODES)),
-    );
+    ));
     let flat = oriented(problem, groups, &vec![0; groups.len()]);
     let mut first = synthesize_fixed(&flat, rules, &probe)?;
     turnable_as_in(&mut first, problem);
     let elapsed = start.elapsed();
-    let time_left = opts.time_limit.map(|t| t.saturating_sub(elapsed));
-    let nodes_left = opts.node_limit.map(|n| n.saturating_sub(first.stats.nodes));
-    let cancelled = opts
-        .cancel
-        .as_ref()
-        .is_some_and(|c| c.load(Ordering::Relaxed));
-    if at_maximum(&first) || cancelled || time_left == Some(Duration::ZERO) || nodes_left == Some(0)
-    {
+    let nodes_left = opts
+        .stop
+        .nodes()
+        .map(|n| n.saturating_sub(first.stats.nodes));
+    if at_maximum(&first) || opts.stop.expired() || nodes_left == Some(0) {
         if at_maximum(&first) {
             first.status = Status::Optimal;
             first.score_bound = first.evaluation.as_ref().map(|e| e.score);
@@ -99,8 +96,7 @@ pub(super) fn synthesize_model(
         return Ok(first);
     }
     let mut sub = opts.clone();
-    sub.time_limit = time_left;
-    sub.node_limit = nodes_left;
+    sub.stop = opts.stop.clone().nodes_at_most(nodes_left);
     let offset = elapsed.as_secs_f64() * 1000.0;
     let mut out = synthesize_fixed(problem, rules, &sub)?;
     // The model found nothing before a limit, the probe did: its layout.
@@ -226,7 +222,6 @@ pub(super) fn synthesize_turning(
         choices(groups)
     };
     let start = Instant::now();
-    let deadline = opts.time_limit.and_then(|t| start.checked_add(t));
     // The best score reported so far: progress reports only improvements
     // over every choice, timed from the whole solve's start.
     let reported = Arc::new(Mutex::new(f64::NEG_INFINITY));
@@ -234,21 +229,15 @@ pub(super) fn synthesize_turning(
     let mut solved: Vec<Solved> = Vec::new();
     let (mut stopped, mut maximum) = (false, false);
     for turned in all {
-        let cancelled = opts
-            .cancel
-            .as_ref()
-            .is_some_and(|c| c.load(Ordering::Relaxed));
         let now = Instant::now();
-        let time_left = deadline.map(|d| d.saturating_duration_since(now));
-        let nodes_left = opts.node_limit.map(|n| n.saturating_sub(nodes_used));
-        if cancelled || time_left == Some(Duration::ZERO) || nodes_left == Some(0) {
+        let nodes_left = opts.stop.nodes().map(|n| n.saturating_sub(nodes_used));
+        if opts.stop.expired() || nodes_left == Some(0) {
             stopped = true;
             break;
         }
         let offset = now.duration_since(start);
         let mut sub = opts.clone();
-        sub.time_limit = time_left;
-        sub.node_limit = nodes_left;
+        sub.stop = opts.stop.clone().nodes_at_most(nodes_left);
         sub.progress = opts.progress.as_ref().map(|f| {
             let (f, reported) = (f.clone(), Arc::clone(&reported));
             ProgressFn(Arc::new(move |p: &Progress| {

@@ -18,7 +18,6 @@ use crate::rules::{missing_classes_note, RuleSet};
 use crate::synth::report::{bound_text, conflict_text, resemblance_text};
 use crate::synth::Status;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// Why the folder pipeline stopped.
 #[derive(Debug, thiserror::Error)]
@@ -323,19 +322,17 @@ pub fn run_folder(
     out: &Path,
     opts: &RunOptions,
 ) -> Result<FolderRun, FolderError> {
-    let start = Instant::now();
     let lock = lock(out)?;
-    run_locked(&lock, start, task, dir, out, opts)
+    run_locked(&lock, task, dir, out, opts)
 }
 
 /// The one implementation of running a task folder, under the lock of
 /// `out` already taken ([`lock`]; the command line takes it before it
-/// reads the inputs): learn ([`super::run`]: the time limit
-/// `opts.synth.time_limit`, counted from `start`, covers the whole run),
+/// reads the inputs): learn ([`super::run`]: `opts.synth.stop` covers the
+/// whole run),
 /// place, write the files ([`write_outcome`]).
 pub fn run_locked(
     _held: &DirLock,
-    start: Instant,
     task: &Task,
     dir: &Path,
     out: &Path,
@@ -345,7 +342,7 @@ pub fn run_locked(
         learned,
         rules,
         placement,
-    } = super::run_from(start, task, opts)?;
+    } = super::run(task, opts)?;
     let w = write_outcome(dir, out, &learned, &rules, placement, opts.learn.contact)?;
     Ok(FolderRun {
         outcome: Outcome {

@@ -12,7 +12,7 @@
 //! let task = Task::load("examples/box-packing")?;
 //! let mut opts = RunOptions::default();
 //! opts.learn.samples = 200; // a quick run; the default is 1000
-//! opts.synth.node_limit = Some(20_000);
+//! opts.synth.stop = rccpack::stop::Stop::never().with_nodes(20_000);
 //! let outcome = task::run(&task, &opts)?;
 //! println!("{} rules learned", outcome.rules.rules.len());
 //! let layout = outcome.placement.result.scene.as_ref().expect("a layout");
@@ -31,10 +31,8 @@ use crate::infer::{InferError, LearnOptions, LearnParams, Learned};
 use crate::resemblance::ResemblanceTarget;
 use crate::rules::{check_landmarks, missing_classes, parse_rules, RuleSet, RulesError};
 use crate::scene::{scenes_from_json, Scene, SceneError};
-use crate::stop::Stop;
 use crate::synth::{synthesize, SynthError, SynthOptions, SynthResult};
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// Why the pipeline stopped. Every variant that comes from a file names it.
 #[derive(Debug, thiserror::Error)]
@@ -233,8 +231,8 @@ pub enum Like {
 pub struct RunOptions {
     /// Learning parameters.
     pub learn: LearnParams,
-    /// Synthesis options. `time_limit` covers the whole of [`run`]
-    /// (learning included); `contact` is the learning's
+    /// Synthesis options. `stop` covers the whole of [`run`] (learning
+    /// stops at its deadline and cancel flag too); `contact` is the learning's
     /// ([`LearnParams::contact`]); `like` and `warm_start` are set from
     /// [`RunOptions::like`] and the demonstrations.
     pub synth: SynthOptions,
@@ -315,37 +313,19 @@ pub fn learn(
     )?)
 }
 
-/// The whole pipeline: [`learn`], then [`place`] with what is left of the
-/// time limit.
+/// The whole pipeline: [`learn`], then [`place`] with what is left of
+/// `opts.synth.stop` (one stop for the whole pipeline: its deadline and
+/// cancel flag stop learning too; its node budget is synthesis').
 pub fn run(task: &Task, opts: &RunOptions) -> Result<Outcome, TaskError> {
-    run_from(Instant::now(), task, opts)
-}
-
-/// [`run`] with its time limit counted from `start`.
-pub(crate) fn run_from(
-    start: Instant,
-    task: &Task,
-    opts: &RunOptions,
-) -> Result<Outcome, TaskError> {
-    // One stop for the whole pipeline: the time limit counted from
-    // `start`, and the synthesis cancel flag ([`SynthOptions::cancel`]).
-    let mut stop = match opts.synth.time_limit {
-        Some(limit) => start.checked_add(limit).map_or_else(Stop::never, Stop::at),
-        None => Stop::never(),
-    };
-    if let Some(flag) = &opts.synth.cancel {
-        stop = stop.with_cancel(flag.clone());
-    }
     let learn_opts = LearnOptions {
         priors: opts.priors.as_deref(),
-        stop: stop.clone(),
+        stop: opts.synth.stop.clone().nodes_at_most(None),
         ..LearnOptions::default()
     };
     let learned = learn(task, &opts.learn, &learn_opts)?;
     let rules = learned.rules();
     let synth = SynthOptions {
         contact: opts.learn.contact,
-        time_limit: stop.remaining(),
         ..opts.synth.clone()
     };
     let placement = place(&task.problem, &rules, &task.demos, &opts.like, &synth)?;

@@ -367,7 +367,7 @@ impl Session {
         &mut self,
         flag: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
     ) {
-        self.opts.ask.probe.cancel = flag.clone();
+        self.opts.ask.probe.stop = self.opts.ask.probe.stop.clone().cancel_with(flag.clone());
         self.asker.set_cancel(flag);
     }
 

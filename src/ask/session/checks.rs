@@ -84,12 +84,9 @@ impl Asker {
             ..self.opts.probe.clone()
         };
         let meter = self.meter.borrow();
-        let want = opts.node_limit.unwrap_or(u64::MAX);
-        opts.node_limit = Some(meter.grant(want, self.weight.get())?);
-        if let Some(d) = meter.deadline() {
-            let left = d.saturating_duration_since(std::time::Instant::now());
-            opts.time_limit = Some(opts.time_limit.map_or(left, |t| t.min(left)));
-        }
+        let want = opts.stop.nodes().unwrap_or(u64::MAX);
+        let grant = meter.grant(want, self.weight.get())?;
+        opts.stop = opts.stop.nodes_at_most(Some(grant)).by(meter.deadline());
         Some(opts)
     }
 
@@ -399,8 +396,8 @@ impl Asker {
             like: self.like.as_ref(),
             contact: self.opts.probe.contact,
             seed: self.opts.probe.seed,
-            time_limit: self.opts.probe.time_limit,
-            cancel: self.opts.probe.cancel.clone(),
+            solve_time: self.opts.probe.solve_time,
+            stop: self.opts.probe.stop.clone(),
             turnable: (self.problem.objects.iter())
                 .filter(|o| o.turnable && o.is_oblong())
                 .map(|o| (o.class.clone(), o.width, o.height))

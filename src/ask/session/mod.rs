@@ -116,7 +116,9 @@ pub struct AskOptions {
     /// Learning parameters (as for `learn`/`run`).
     pub learn: LearnParams,
     /// Probe search settings (`like` is filled from the demonstrations when
-    /// `resemble` is on).
+    /// `resemble` is on; `contact` is the learning's,
+    /// [`LearnParams::contact`], whatever is set here: one session, one
+    /// meaning of touching).
     pub probe: ProbeOptions,
     /// Probes resemble the demonstrations (docs/guide.md#layouts-like-the-demonstrations).
     pub resemble: bool,
@@ -287,8 +289,10 @@ impl Asker {
         demos: Vec<Scene>,
         statements: Option<RuleSet>,
         answers: Vec<Answer>,
-        opts: AskOptions,
+        mut opts: AskOptions,
     ) -> Result<Asker, AskError> {
+        // The learning's contact is the session's (see `AskOptions::probe`).
+        opts.probe.contact = opts.learn.contact;
         let (slipped, meant) = suspect_answers(&answers);
         let learned = learn_session(&demos, statements.as_ref(), &opts, &slipped, &meant)?;
         // A confirmed rule must be one of the task's statements (a hand
@@ -360,12 +364,12 @@ impl Asker {
         set
     }
 
-    /// Stop every solve when `cancel` is set (`None`: never).
+    /// Stop every solve when `cancel` is set (`None`: no flag).
     pub(crate) fn set_cancel(
         &mut self,
         cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
     ) {
-        self.opts.probe.cancel = cancel;
+        self.opts.probe.stop = self.opts.probe.stop.clone().cancel_with(cancel);
     }
 
     /// The demonstrations, accepted probes included (what `demos.json`
@@ -623,6 +627,18 @@ mod tests {
     /// and with random sets of rules allowed to break; and for every pair
     /// the pool says "does not alone imply". Every pool layout is a layout
     /// of the problem (the verifier, no rule).
+    /// The learning's contact is the probes' too, whatever the probe
+    /// options say: one session, one meaning of touching.
+    #[test]
+    fn the_probes_take_the_learnings_contact() {
+        let (problem, demos) = example();
+        let mut opts = AskOptions::default();
+        opts.learn.contact = crate::relations::Contact::Edge;
+        opts.probe.contact = crate::relations::Contact::Point;
+        let asker = Asker::new(problem, demos, None, Vec::new(), opts).unwrap();
+        assert_eq!(asker.opts.probe.contact, crate::relations::Contact::Edge);
+    }
+
     #[test]
     fn settled_checks_agree_with_solves() {
         let (problem, demos) = example();

@@ -51,10 +51,7 @@ pub(super) fn learn_session(
     let slipped: Vec<usize> = slipped.iter().copied().collect();
     let meant: Vec<usize> = meant.iter().copied().collect();
     // The flag that stops the probe searches stops learning too.
-    let stop = match &opts.probe.cancel {
-        Some(flag) => crate::stop::Stop::never().with_cancel(flag.clone()),
-        None => crate::stop::Stop::never(),
-    };
+    let stop = crate::stop::Stop::never().cancel_with(opts.probe.stop.cancel_flag().cloned());
     crate::infer::learn_with(
         demos,
         statements,

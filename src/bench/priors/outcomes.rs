@@ -239,7 +239,7 @@ pub(super) fn ask_outcome(
         learn: cfg.learn_params(),
         probe: ProbeOptions {
             contact,
-            time_limit: None,
+            solve_time: None,
             ..ProbeOptions::default()
         },
         budget: QuestionBudget {

@@ -89,7 +89,7 @@ pub struct Diversity {
 }
 
 /// Draw up to `n` layouts with `opts` and measure how spread out they are;
-/// also returns the layouts. A limit (`opts.time_limit`) ends the run with
+/// also returns the layouts. A limit (`opts.stop`) ends the run with
 /// what was found ([`Diversity::limit_struck`]).
 pub fn diversity(
     problem: &Scene,

@@ -151,7 +151,7 @@ pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
             seed: cfg.seed,
             repair: repair(random_search),
             // Never panics on an unchecked value (the command line checks it).
-            time_limit: Some(crate::limits::time_limit(cfg.time_limit_s).unwrap_or(
+            stop: crate::stop::Stop::after(crate::limits::time_limit(cfg.time_limit_s).unwrap_or(
                 std::time::Duration::from_secs_f64(crate::limits::MAX_TIME_LIMIT_SECS),
             )),
             ..SampleOptions::default()

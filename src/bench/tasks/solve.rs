@@ -16,11 +16,12 @@ use serde::Serialize;
 use std::time::Instant;
 
 /// The options of a solve: score only (`like = None`) or with the
-/// demonstrations as like-scenes.
+/// demonstrations as like-scenes; the time limit counts from now (see
+/// [`restarted`]).
 pub fn solve_options(cfg: &TasksConfig, demos: &[Scene], like: bool) -> SynthOptions {
     let mut opts = SynthOptions {
         contact: Contact::Point,
-        time_limit: Some(cfg.time_limit),
+        stop: crate::stop::Stop::after(cfg.time_limit),
         seed: cfg.seed,
         like: like.then(|| ResemblanceTarget::new(demos)),
         ..SynthOptions::default()
@@ -285,6 +286,14 @@ struct Progress {
     total: usize,
 }
 
+/// `opts` with the time limit counted from now (one per solve).
+fn restarted(cfg: &TasksConfig, opts: &SynthOptions) -> SynthOptions {
+    SynthOptions {
+        stop: crate::stop::Stop::after(cfg.time_limit),
+        ..opts.clone()
+    }
+}
+
 /// One problem of task `t`: score only, with `like` (`opts` in that
 /// order), and by each peer.
 fn solve_problem(
@@ -315,12 +324,14 @@ fn solve_problem(
         row
     };
     progress(&label("score-only"));
+    let score_opts = &restarted(cfg, score_opts);
     let score_only = kept(
         solve_once(engine, &p.scene, &t.rules, score_opts),
         score_opts,
     );
     let like = cfg.like.then(|| {
         progress(&label("like"));
+        let like_opts = &restarted(cfg, like_opts);
         kept(solve_once(engine, &p.scene, &t.rules, like_opts), like_opts)
     });
     let peers = cfg

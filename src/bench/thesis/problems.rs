@@ -211,7 +211,6 @@ pub fn find_viable_sets(
         .flat_map(|c| std::iter::repeat_n(*c, cfg.viability_objects_per_class))
         .collect();
     let scene = with_blocks(box_scene(200), &classes);
-    let opts = study_options(cfg);
     let mut sets = Vec::new();
     let mut draws = 0;
     while sets.len() < cfg.sets && draws < cfg.max_draws {
@@ -224,7 +223,7 @@ pub fn find_viable_sets(
                 .iter()
                 .any(|r| unsatisfiable_with_two(&r.formula));
         let viable = !hopeless
-            && match (engine.solve)(&scene, &rules, &opts) {
+            && match (engine.solve)(&scene, &rules, &study_options(cfg)) {
                 Ok(r) => r
                     .evaluation
                     .as_ref()

@@ -115,11 +115,13 @@ pub fn solve_peer(engine: Solver<'_>, cfg: &StudyConfig, p: &Problem, peer: Peer
     row
 }
 
-/// The synthesis options of every solve of the study.
+/// The synthesis options of one solve of the study (its time limit
+/// counts from now).
 pub fn study_options(cfg: &StudyConfig) -> SynthOptions {
     let mut opts = SynthOptions {
         contact: cfg.contact,
-        time_limit: Some(cfg.time_limit),
+        // Counted from now: one call per solve.
+        stop: crate::stop::Stop::after(cfg.time_limit),
         seed: cfg.seed,
         ..SynthOptions::default()
     };

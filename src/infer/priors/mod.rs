@@ -48,8 +48,9 @@ impl Default for PriorParams {
         PriorParams {
             strength: 4,
             rule_out_after: 10,
-            templates: Templates::Third,
-            contact: Contact::Point,
+            // The candidates learning finds by default.
+            templates: crate::infer::LearnParams::default().templates,
+            contact: crate::infer::LearnParams::default().contact,
         }
     }
 }

@@ -117,10 +117,9 @@ async fn start_session(
         ask: AskOptions {
             learn: params,
             probe: ProbeOptions {
-                contact: params.contact,
                 seed: params.seed,
-                time_limit: Some(Duration::from_secs(PROBE_TIME_LIMIT_SECS)),
-                cancel: Some(cancel),
+                solve_time: Some(Duration::from_secs(PROBE_TIME_LIMIT_SECS)),
+                stop: ProbeOptions::default().stop.with_cancel(cancel),
                 ..ProbeOptions::default()
             },
             resemble: true,

@@ -67,7 +67,7 @@ pub(crate) async fn sample_layout(State(st): St, body: Bytes) -> ApiResult {
     let opts = crate::sample::SampleOptions {
         quality,
         seed: b.seed.unwrap_or(0),
-        time_limit: Some(SAMPLE_TIME_LIMIT),
+        stop: crate::stop::Stop::after(SAMPLE_TIME_LIMIT),
         like: read_demos(&st)?,
         ..crate::sample::SampleOptions::default()
     };

@@ -93,9 +93,8 @@ pub(crate) async fn start_synth(State(st): St, body: Bytes) -> ApiResult {
     }
     let progress_best = best.clone();
     let opts = SynthOptions {
-        time_limit: Some(limit),
+        stop: crate::stop::Stop::after(limit).with_cancel(cancel),
         seed: b.seed.unwrap_or(0),
-        cancel: Some(cancel),
         progress: Some(ProgressFn(Arc::new(move |p: &Progress| {
             *progress_best.lock().expect("best lock") = Some(p.score);
         }))),

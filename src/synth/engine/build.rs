@@ -4,7 +4,7 @@
 
 use super::brancher::Phased;
 use super::stop::{Counters, Counting};
-use super::{resemblance_fits, Engine, Limits};
+use super::{resemblance_fits, Engine, Stop};
 use crate::synth::model::{BoolDef, Coord, Lit, Model};
 use crate::synth::resemblance_terms::ResemblanceTerm;
 use crate::synth::SynthError;
@@ -91,7 +91,7 @@ pub(super) struct Builder<'m> {
     pub(super) truth: Literal,
     /// Building stops (and the engine is not made) past this instant.
     /// The deadline and the cancel flag (the node limit is not used here).
-    pub(super) stop: Limits,
+    pub(super) stop: Stop,
 }
 
 impl<'m> Builder<'m> {
@@ -123,7 +123,7 @@ impl<'m> Builder<'m> {
             vars,
             lits: Vec::new(),
             truth,
-            stop: Limits::default(),
+            stop: Stop::never(),
         })
     }
 

@@ -70,9 +70,9 @@ use pumpkin_core::variables::{DomainId, Literal};
 use pumpkin_core::Solver;
 use std::cell::Cell;
 use std::rc::Rc;
-use stop::{Counters, Counting, Stop};
+use stop::{Counters, Counting, Termination};
 
-pub(crate) use super::backend::Limits;
+pub(crate) use crate::stop::Stop;
 
 /// A Pumpkin solver holding one model: the [`Backend`] the driver runs on.
 pub(crate) struct Engine {
@@ -149,10 +149,7 @@ impl Engine {
         like: &[ResemblanceTerm],
         deadline: Option<std::time::Instant>,
     ) -> Result<Option<Engine>, SynthError> {
-        let stop = Limits {
-            deadline,
-            ..Limits::default()
-        };
+        let stop = Stop::never().by(deadline);
         Self::with_resemblance_stop(model, seed, guarded, coefs, like, &stop)
     }
 
@@ -164,15 +161,11 @@ impl Engine {
         guarded: bool,
         coefs: Option<&[i64]>,
         like: &[ResemblanceTerm],
-        stop: &Limits,
+        stop: &Stop,
     ) -> Result<Option<Engine>, SynthError> {
         check_ranges(model, like)?;
         let mut b = Builder::new(model, seed)?;
-        b.stop = Limits {
-            deadline: stop.deadline,
-            node_limit: None,
-            cancel: stop.cancel.clone(),
-        };
+        b.stop = stop.clone().nodes_at_most(None);
         // Every variable and literal first ...
         b.create_literals()?;
         let guards = b.create_guards(guarded);
@@ -218,10 +211,10 @@ impl Engine {
         self.counters.conflicts.get()
     }
 
-    fn stop(&self, limits: &Limits) -> Stop {
+    fn stop(&self, limits: &Stop) -> Termination {
         // Every call starts at the root.
         self.counters.safe.set(false);
-        Stop {
+        Termination {
             limits: limits.clone(),
             nodes: self.counters.nodes.clone(),
             safe: self.counters.safe.clone(),
@@ -236,13 +229,13 @@ impl Engine {
     }
 
     /// Find any solution.
-    pub(crate) fn satisfy(&mut self, limits: &Limits) -> Verdict {
+    pub(crate) fn satisfy(&mut self, limits: &Stop) -> Verdict {
         self.solve(&[], limits)
     }
 
     /// Solve with the guards of the hard rules in `rules` (indices into
     /// `Model::hard`) assumed true.
-    pub(crate) fn satisfy_rules(&mut self, rules: &[usize], limits: &Limits) -> Verdict {
+    pub(crate) fn satisfy_rules(&mut self, rules: &[usize], limits: &Stop) -> Verdict {
         let a: Vec<Assumption> = rules.iter().map(|&r| Assumption::Rule(r)).collect();
         self.solve(&a, limits)
     }
@@ -255,7 +248,7 @@ impl Engine {
     /// probe problems of the bundled example
     /// (`tests/fixtures/regressions/core-hang.rcc`), so the driver shrinks
     /// conflicts by deletion, where every solve obeys the limits.
-    fn call(&mut self, assumptions: &[Predicate], limits: &Limits) -> Verdict {
+    fn call(&mut self, assumptions: &[Predicate], limits: &Stop) -> Verdict {
         if self.dead {
             return Verdict::Infeasible(Core::Rules(Vec::new()));
         }
@@ -362,7 +355,7 @@ impl Backend for Engine {
     /// `Rule(r)` on an engine built without guards is a no-op (its rule is
     /// posted as units); `ObjectiveAtLeast(k)` without an objective holds
     /// iff `k ≤ 0`, `CostAtMost` without a second objective always holds.
-    fn solve(&mut self, assumptions: &[Assumption], limits: &Limits) -> Verdict {
+    fn solve(&mut self, assumptions: &[Assumption], limits: &Stop) -> Verdict {
         if assumptions
             .iter()
             .any(|a| matches!(a, Assumption::CostAtMost(_)))
@@ -709,7 +702,7 @@ mod tests {
                 }];
                 let possible = all.iter().any(|(_, b)| lit.value(b));
                 let mut e = Engine::new(&mh, 0, true, None).unwrap();
-                match e.satisfy_rules(&[0], &Limits::default()) {
+                match e.satisfy_rules(&[0], &Stop::never()) {
                     Verdict::Solution(v) => {
                         assert!(possible, "engine found {v:?} for the impossible {lit:?}");
                         let b = m.eval_bools(&v);

@@ -4,7 +4,7 @@
 //! root.
 
 use super::brancher::Phased;
-use super::Limits;
+use crate::stop::Stop;
 use pumpkin_core::branching::{Brancher, BrancherEvent, SelectionContext};
 use pumpkin_core::predicates::Predicate;
 use pumpkin_core::results::SolutionReference;
@@ -15,7 +15,7 @@ use std::cell::Cell;
 use std::rc::Rc;
 
 /// The search's counters, shared by the engine, its [`Counting`] brancher
-/// and its [`Stop`]: decisions, conflicts, and whether the search is above
+/// and its [`Termination`]: decisions, conflicts, and whether the search is above
 /// the root (where stopping is safe).
 #[derive(Debug, Clone, Default)]
 pub(super) struct Counters {
@@ -33,23 +33,20 @@ pub(super) struct Counters {
 /// (which may jump back to the root), so a limit waits at most for the
 /// next decision; an engine can then be solved again after any limit,
 /// keeping what it learned.
-pub(super) struct Stop {
-    pub(super) limits: Limits,
+pub(super) struct Termination {
+    pub(super) limits: Stop,
     pub(super) nodes: Rc<Cell<u64>>,
     pub(super) safe: Rc<Cell<bool>>,
     pub(super) fired: Rc<Cell<bool>>,
 }
 
-impl TerminationCondition for Stop {
+impl TerminationCondition for Termination {
     fn should_stop(&mut self) -> bool {
         if !self.safe.get() {
             return false;
         }
-        let stop = self
-            .limits
-            .node_limit
-            .is_some_and(|n| self.nodes.get() >= n)
-            || self.limits.expired();
+        let stop =
+            self.limits.nodes().is_some_and(|n| self.nodes.get() >= n) || self.limits.expired();
         if stop {
             self.fired.set(true);
         }
@@ -63,7 +60,7 @@ pub(super) struct Counting {
     pub(super) inner: Phased,
     pub(super) nodes: Rc<Cell<u64>>,
     pub(super) conflicts: Rc<Cell<u64>>,
-    /// Whether the search is above the root (see [`Stop`]).
+    /// Whether the search is above the root (see [`Termination`]).
     pub(super) safe: Rc<Cell<bool>>,
 }
 

@@ -40,7 +40,7 @@ impl Session {
                 self.asker.held(),
                 &question,
                 number,
-                self.opts.ask.probe.contact,
+                self.opts.ask.learn.contact,
             )?;
             (Some(j), Some(p))
         } else {
