@@ -155,6 +155,7 @@ fn sample_options(a: &SampleArgs, like: Vec<rccpack::scene::Scene>) -> Result<Sa
         } else {
             Repair::Random
         },
+        tuning: super::io::tuning()?,
         ..SampleOptions::default()
     })
 }

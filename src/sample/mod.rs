@@ -131,6 +131,10 @@ pub struct SampleOptions {
     pub like: Vec<Scene>,
     /// How the engine completes a random hint into a layout.
     pub repair: Repair,
+    /// Engine tuning of every model (doc-hidden, see
+    /// [`crate::synth::Tuning`]).
+    #[doc(hidden)]
+    pub tuning: crate::synth::Tuning,
 }
 
 /// How the engine completes a random hint into a layout (see the module
@@ -156,6 +160,7 @@ impl Default for SampleOptions {
             stop: Stop::never(),
             like: Vec::new(),
             repair: Repair::Random,
+            tuning: crate::synth::Tuning::default(),
         }
     }
 }
@@ -208,6 +213,7 @@ pub fn sample(
         seed: opts.seed,
         stop: opts.stop.clone().nodes_at_most(opts.layout_node_limit),
         warm_start: opts.like.clone(),
+        tuning: opts.tuning,
         ..SynthOptions::default()
     };
     let (turning, branches) = orientation_branches(problem)?;
