@@ -6,6 +6,8 @@
 use super::probe::{negation, ProbeOptions};
 use crate::rules::{Rule, RuleSet, Strength};
 use crate::scene::Scene;
+use crate::stop::Stop;
+use crate::synth::backend::{Assumption, Backend};
 use crate::synth::SynthError;
 
 /// Whether each held rule has a probe, for many rules with one engine.
@@ -60,7 +62,7 @@ pub(super) struct ProbeChecker {
 
 /// One orientation's engine.
 struct Part {
-    engine: Option<crate::synth::engine::Engine>,
+    engine: Option<Box<dyn crate::synth::backend::Backend>>,
     model: crate::synth::model::Model,
     /// Per object of the problem: the hard index of its pin (see
     /// [`ProbeChecker::pinned`]), `None` when it has none.
@@ -190,7 +192,6 @@ impl ProbeChecker {
 
     /// The engine of part `k` (its problem in `oriented[k]`).
     fn build_part(&self, k: usize) -> Result<Part, SynthError> {
-        use crate::synth::engine::Engine;
         use crate::synth::model::{BuildOptions, Model};
         let problem = &self.oriented[k];
         crate::synth::check_problem(problem)?;
@@ -213,7 +214,15 @@ impl ProbeChecker {
         // Every rule is hard, so `model.hard[i]` is rule `i`.
         debug_assert!(model.hard.iter().enumerate().all(|(i, h)| h.rule == i));
         let engine = if model.too_large.is_empty() {
-            let mut e = Engine::new(&model, self.opts.seed, true, None)?;
+            let mut e = crate::synth::backend::load(
+                &model,
+                self.opts.seed,
+                true,
+                None,
+                &[],
+                &Stop::never(),
+            )?
+            .expect("never stopped");
             // Checks are mostly proofs that no layout breaks a rule.
             e.leave_greedy_after(CHECK_GREEDY_CONFLICTS);
             Some(e)
@@ -439,7 +448,7 @@ impl ProbeChecker {
         let Some(engine) = part.engine.as_mut() else {
             return Checked::Proven;
         };
-        let mut limits = check_limits(&self.opts, engine).by(self.deadline);
+        let mut limits = check_limits(&self.opts, &**engine).by(self.deadline);
         if let Some(n) = nodes {
             let cap = engine.nodes().saturating_add(n);
             let cap = limits.nodes().map_or(cap, |l| l.min(cap));
@@ -447,7 +456,8 @@ impl ProbeChecker {
         }
         let before = engine.nodes();
         let t = std::time::Instant::now();
-        let sat = engine.satisfy_rules(&assume, &limits);
+        let assume: Vec<Assumption> = assume.iter().map(|&r| Assumption::Rule(r)).collect();
+        let sat = engine.solve(&assume, &limits);
         log::debug!(
             "ask: checker solve, {} nodes in {:.1} ms",
             engine.nodes() - before,
@@ -494,16 +504,13 @@ impl Checked {
 /// The limits of one solve of a [`ProbeChecker`]: the probe options' stop
 /// and per-solve time from now, their check budget past the nodes already
 /// spent.
-fn check_limits(
-    opts: &ProbeOptions,
-    engine: &crate::synth::engine::Engine,
-) -> crate::synth::engine::Stop {
+fn check_limits(opts: &ProbeOptions, engine: &dyn Backend) -> Stop {
     opts.solve_stop()
         .nodes_at_most(opts.check_nodes.map(|n| engine.nodes().saturating_add(n)))
 }
 
 /// A checker's engine leaves its greedy first phase after this many
-/// conflicts without a layout (see `Engine::leave_greedy_after`): a proof
+/// conflicts without a layout (see `Backend::leave_greedy_after`): a proof
 /// that a rule is implied needs the complete search, which the greedy
 /// phase holds back (on the bundled example, "`group(B)` implies every B
 /// touches something flush" is proven in under 0.1 s this way).

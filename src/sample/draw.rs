@@ -5,8 +5,7 @@
 use super::{like_key, Quality, Repair, SampleError, Sampler};
 use crate::eval::evaluate;
 use crate::scene::Scene;
-use crate::synth::backend::{Backend, Fact, Stop, Verdict};
-use crate::synth::engine::Engine;
+use crate::synth::backend::{Fact, Stop, Verdict};
 use crate::synth::model::{Coord, Lit, Model};
 use crate::synth::SynthError;
 use rand::seq::SliceRandom;
@@ -84,13 +83,13 @@ impl Sampler {
                 return Ok(true);
             }
         };
-        let Some(mut engine) = Engine::with_resemblance_until(
+        let Some(mut engine) = crate::synth::backend::load(
             model,
             self.opts.seed,
             false,
             Some(coefs),
             &[],
-            self.opts.stop.deadline(),
+            &Stop::never().by(self.opts.stop.deadline()),
         )?
         else {
             return Ok(false);

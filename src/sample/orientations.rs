@@ -3,7 +3,7 @@
 
 use super::{like_key, SampleError, Sampler};
 use crate::scene::Scene;
-use crate::synth::engine::Engine;
+use crate::synth::backend::Backend;
 use crate::synth::model::Model;
 use crate::synth::SynthError;
 use std::collections::BTreeMap;
@@ -63,7 +63,7 @@ pub(super) struct Branch {
     /// Its model and integer objective coefficients (built when first
     /// drawn from).
     pub(super) model: Option<(Model, Vec<i64>)>,
-    pub(super) engine: Option<Engine>,
+    pub(super) engine: Option<Box<dyn Backend>>,
     /// Groups of interchangeable unplaced objects: their x variables, in
     /// the symmetry order.
     pub(super) groups: Vec<Vec<usize>>,

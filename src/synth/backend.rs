@@ -107,4 +107,38 @@ pub(crate) trait Backend {
     fn hint(&mut self, _values: &[Option<i64>]) {}
     /// Decisions so far.
     fn nodes(&self) -> u64;
+
+    // What sampling and the question checks ask of an engine beyond the
+    // driver's procedures (`crate::sample`, `crate::ask`'s checker).
+
+    /// [`Backend::hint`] as `(variable, value)` pairs tried in this order
+    /// (sampling draws the order at random).
+    fn hint_in_order(&mut self, hints: &[(usize, i64)]);
+    /// Forbid this solution (one value per model variable) in every later
+    /// call: sampling's next layout differs from every one before.
+    fn exclude(&mut self, values: &[i64]);
+    /// After the hint, branch at random (a seeded choice of variable and
+    /// value) instead of by the engine's own heuristic.
+    fn random_search(&mut self);
+    /// Leave a greedy first phase, if the backend has one, after this many
+    /// conflicts without a solution (checks are mostly proofs).
+    fn leave_greedy_after(&mut self, _conflicts: u64) {}
+}
+
+/// Load `model` into the engine (the one place outside the engine's
+/// folder that names it): `guarded` hard rules take [`Assumption::Rule`],
+/// `coefs` is the objective (`None`: satisfaction only), `like` the
+/// resemblance terms of the second objective (empty: none). `Ok(None)`:
+/// `stop` struck while it was built.
+pub(crate) fn load(
+    model: &super::model::Model,
+    seed: u64,
+    guarded: bool,
+    coefs: Option<&[i64]>,
+    like: &[super::resemblance_terms::ResemblanceTerm],
+    stop: &Stop,
+) -> Result<Option<Box<dyn Backend>>, super::SynthError> {
+    let engine =
+        super::engine::Engine::with_resemblance_stop(model, seed, guarded, coefs, like, stop)?;
+    Ok(engine.map(|e| Box::new(e) as Box<dyn Backend>))
 }

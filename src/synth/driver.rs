@@ -648,6 +648,10 @@ mod tests {
         fn nodes(&self) -> u64 {
             u64::from(self.calls) + self.spent
         }
+        // Sampling's operations: the driver never calls them.
+        fn hint_in_order(&mut self, _hints: &[(usize, i64)]) {}
+        fn exclude(&mut self, _values: &[i64]) {}
+        fn random_search(&mut self) {}
     }
 
     fn cand(obj: i64, cost: u64) -> Cand {

@@ -61,7 +61,7 @@ pub mod brute_force;
 mod capacity;
 mod driver;
 pub mod emit;
-pub(crate) mod engine;
+mod engine;
 mod explain;
 mod lns;
 // The solver-free model: internal, visible to the crate's own differential

@@ -233,13 +233,6 @@ impl Engine {
         self.solve(&[], limits)
     }
 
-    /// Solve with the guards of the hard rules in `rules` (indices into
-    /// `Model::hard`) assumed true.
-    pub(crate) fn satisfy_rules(&mut self, rules: &[usize], limits: &Stop) -> Verdict {
-        let a: Vec<Assumption> = rules.iter().map(|&r| Assumption::Rule(r)).collect();
-        self.solve(&a, limits)
-    }
-
     /// A Pumpkin call under `assumptions` (none: a plain `satisfy`).
     ///
     /// An infeasible call under assumptions carries no core: Pumpkin 0.5's
@@ -289,65 +282,6 @@ impl Engine {
             }
         };
         answer
-    }
-}
-
-impl Engine {
-    /// Exclude the assignment `values` (one per model variable) from every
-    /// later call: the clause "some variable takes another value". Used by
-    /// `crate::sample` to draw distinct layouts. With no variable, the model
-    /// has one assignment, so every later call is infeasible.
-    pub(crate) fn exclude(&mut self, values: &[i64]) {
-        if self.dead {
-            return;
-        }
-        if self.vars.is_empty() {
-            self.dead = true;
-            return;
-        }
-        let clause: Vec<Predicate> = self
-            .vars
-            .iter()
-            .zip(values)
-            .map(|(&v, &x)| predicate![v != clamp_i32(x)])
-            .collect();
-        self.solver.add_clause(clause, self.tag);
-    }
-
-    /// Leave the greedy first phase after `conflicts` conflicts without a
-    /// solution, for the learning brancher (which branches on the rules'
-    /// Booleans too). For engines that mostly prove infeasibility — `ask`'s
-    /// implication checks —, where enumerating coordinates greedily can
-    /// take thousands of times longer; synthesis keeps the greedy phase
-    /// until its first layout (it finds one sooner on hard feasible
-    /// problems).
-    pub(crate) fn leave_greedy_after(&mut self, conflicts: u64) {
-        self.brancher.inner.first_cap = Some(conflicts);
-    }
-
-    /// After the hint, search at random instead of by activity: a random
-    /// unfixed grid variable, a random value of its domain (the solver's
-    /// seeded generator); conflicts are learned as usual. Every Boolean of
-    /// the model is defined by the grid variables, so branching on them
-    /// alone is complete. Used by `crate::sample`.
-    pub(crate) fn random_search(&mut self) {
-        self.brancher.inner.main = Box::new(IndependentVariableValueBrancher::new(
-            RandomSelector::new(self.vars.iter().copied()),
-            InDomainRandom,
-        ));
-    }
-
-    /// Try `hints` (pairs of a model variable and a value) first, in this
-    /// order, until the next solution: [`Backend::hint`] with the order
-    /// chosen by the caller (`crate::sample` draws it at random).
-    pub(crate) fn hint_in_order(&mut self, hints: &[(usize, i64)]) {
-        // `WarmStart` tries its list from the back.
-        let (vars, vals): (Vec<DomainId>, Vec<i32>) = hints
-            .iter()
-            .rev()
-            .filter_map(|&(v, x)| Some((*self.vars.get(v)?, i32::try_from(x).ok()?)))
-            .unzip();
-        self.brancher.inner.hint = (!vars.is_empty()).then(|| WarmStart::new(&vars, &vals));
     }
 }
 
@@ -455,6 +389,60 @@ impl Backend for Engine {
 
     fn nodes(&self) -> u64 {
         self.counters.nodes.get()
+    }
+
+    /// Exclude the assignment `values` (one per model variable) from every
+    /// later call: the clause "some variable takes another value". Used by
+    /// `crate::sample` to draw distinct layouts. With no variable, the model
+    /// has one assignment, so every later call is infeasible.
+    fn exclude(&mut self, values: &[i64]) {
+        if self.dead {
+            return;
+        }
+        if self.vars.is_empty() {
+            self.dead = true;
+            return;
+        }
+        let clause: Vec<Predicate> = self
+            .vars
+            .iter()
+            .zip(values)
+            .map(|(&v, &x)| predicate![v != clamp_i32(x)])
+            .collect();
+        self.solver.add_clause(clause, self.tag);
+    }
+    /// Leave the greedy first phase after `conflicts` conflicts without a
+    /// solution, for the learning brancher (which branches on the rules'
+    /// Booleans too). For engines that mostly prove infeasibility — `ask`'s
+    /// implication checks —, where enumerating coordinates greedily can
+    /// take thousands of times longer; synthesis keeps the greedy phase
+    /// until its first layout (it finds one sooner on hard feasible
+    /// problems).
+    fn leave_greedy_after(&mut self, conflicts: u64) {
+        self.brancher.inner.first_cap = Some(conflicts);
+    }
+    /// After the hint, search at random instead of by activity: a random
+    /// unfixed grid variable, a random value of its domain (the solver's
+    /// seeded generator); conflicts are learned as usual. Every Boolean of
+    /// the model is defined by the grid variables, so branching on them
+    /// alone is complete. Used by `crate::sample`.
+    fn random_search(&mut self) {
+        self.brancher.inner.main = Box::new(IndependentVariableValueBrancher::new(
+            RandomSelector::new(self.vars.iter().copied()),
+            InDomainRandom,
+        ));
+    }
+    /// Try `hints` (pairs of a model variable and a value) first, in this
+    /// order, until the next solution: [`Backend::hint`] with the order
+    /// chosen by the caller (`crate::sample` draws it at random).
+    fn hint_in_order(&mut self, hints: &[(usize, i64)]) {
+        // `WarmStart` tries its list from the back.
+        let (vars, vals): (Vec<DomainId>, Vec<i32>) = hints
+            .iter()
+            .rev()
+            .filter_map(|&(v, x)| Some((*self.vars.get(v)?, i32::try_from(x).ok()?)))
+            .unzip();
+        self.brancher.inner.hint = (!vars.is_empty()).then(|| WarmStart::new(&vars, &vals));
     }
 }
 
@@ -702,7 +690,7 @@ mod tests {
                 }];
                 let possible = all.iter().any(|(_, b)| lit.value(b));
                 let mut e = Engine::new(&mh, 0, true, None).unwrap();
-                match e.satisfy_rules(&[0], &Stop::never()) {
+                match e.solve(&[Assumption::Rule(0)], &Stop::never()) {
                     Verdict::Solution(v) => {
                         assert!(possible, "engine found {v:?} for the impossible {lit:?}");
                         let b = m.eval_bools(&v);
