@@ -167,7 +167,6 @@ fn bad_time_limits_exit_1_everywhere() {
                 bad,
             ],
             vec!["synth", problem, "--rules", rules, "--time-limit", bad],
-            vec!["bench", "thesis", "--out", out, "--time-limit", bad],
         ] {
             let o = rccpack(&args);
             let e = stderr(&o);
@@ -226,44 +225,6 @@ fn usage_errors_exit_1_help_exits_0() {
         let o = rccpack(&args);
         assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
         assert!(!o.stdout.is_empty(), "{args:?}: printed to stdout");
-    }
-}
-
-/// `bench thesis` refuses out-of-range series, set counts and peers at
-/// once (exit 1, naming the flag and the value), before drawing anything.
-#[test]
-fn bench_flags_out_of_range_are_refused() {
-    let out = crate::support::scratch("robust-bench-refuse").join("out");
-    for (args, names) in [
-        (vec!["--scale-ns", "0"], "invalid value '0' for '--scale-ns"),
-        (
-            vec!["--scale-ns", "16,513"],
-            "invalid value '513' for '--scale-ns",
-        ),
-        (vec!["--scale-ks", "6"], "invalid value '6' for '--scale-ks"),
-        (
-            vec!["--scale-ks", "3,0"],
-            "invalid value '0' for '--scale-ks",
-        ),
-        (vec!["--sets", "0"], "invalid value '0' for '--sets"),
-        (vec!["--sets", "1001"], "invalid value '1001' for '--sets"),
-        (vec!["--peers", "cplex"], "unknown peer `cplex`"),
-        (
-            vec!["--time-limit", "nan"],
-            "invalid value 'nan' for '--time-limit",
-        ),
-    ] {
-        let mut all = vec!["bench", "thesis", "--out", out.to_str().unwrap()];
-        all.extend(&args);
-        let o = rccpack(&all);
-        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
-        let e = stderr(&o);
-        assert!(e.contains(names), "{args:?}: message names {names}: {e}");
-        assert!(
-            !out.exists(),
-            "{args:?}: refused before writing {}",
-            out.display()
-        );
     }
 }
 

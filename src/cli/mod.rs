@@ -22,7 +22,6 @@ macro_rules! ewrite {
 }
 
 mod ask;
-mod bench;
 mod check;
 mod io;
 mod learn;
@@ -84,8 +83,6 @@ enum Command {
     /// Check the learned rules of a task folder with the person: show probe
     /// layouts that break one rule each, drop or confirm it (docs/guide.md#questions).
     Ask(ask::AskArgs),
-    /// Benchmarks: `bench thesis` reproduces the thesis runtime study; `bench tasks` measures realistic learned tasks.
-    Bench(bench::BenchArgs),
 }
 
 /// Parse arguments, run the command, map errors to exit codes.
@@ -143,7 +140,6 @@ pub fn main() -> ExitCode {
         Command::Sample(a) => sample::run(a),
         Command::Studio(a) => studio::run(a),
         Command::Ask(a) => ask::run(a),
-        Command::Bench(a) => bench::run(a),
     };
     match result {
         Ok(code) => code,
