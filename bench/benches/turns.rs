@@ -9,7 +9,7 @@
 //! orientation choices the turned solve tried.
 //!
 //! `cargo bench --bench turns -- tasks [SECONDS]` then solves the first
-//! four realistic tasks of `rccpack bench tasks` (seed 0, sizes 1× and
+//! four realistic tasks of `rccpack-bench tasks` (seed 0, sizes 1× and
 //! 1.5×, score only, the demonstrations as warm start) as generated and
 //! with every oblong block `turnable`, under the same time limit per
 //! problem (default 10 s; shared by the orientation choices), every layout

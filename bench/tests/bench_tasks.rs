@@ -1,4 +1,4 @@
-//! `rccpack bench tasks`: the realistic-task generator is
+//! `rccpack-bench tasks`: the realistic-task generator is
 //! deterministic, its demonstrations are valid scenes that keep every rule
 //! learned from them, its problems have the requested counts and fit their
 //! box; and a quick CLI run exits 0 and writes problems that `synth` reruns.

@@ -1,4 +1,4 @@
-//! `rccpack bench priors` on a tiny configuration: a library
+//! `rccpack-bench priors` on a tiny configuration: a library
 //! of 5 tasks, 3 held-out tasks, a true library of 10, no question loop.
 //! The population is what the module says (class names vary, demonstration
 //! counts, truth rules are candidates), the report is the same on one and

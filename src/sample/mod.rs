@@ -57,7 +57,7 @@
 //! excluded, the first `k` samples are `k` distinct layouts, and drawing
 //! until the end enumerates every layout exactly once. docs/performance.md#sampling
 //! reports a chi-square test against uniform on tiny problems enumerated by brute
-//! force (`rccpack bench sample`).
+//! force (`rccpack-bench sample`).
 //!
 //! # Determinism
 //!
