@@ -221,7 +221,10 @@ fn run_page(page: &Path, tag: &str) -> Vec<String> {
     if steps.is_empty() {
         return Vec::new();
     }
-    if steps.iter().any(|s| as_binary(&s.command).contains("rccpack-bench")) {
+    if steps
+        .iter()
+        .any(|s| as_binary(&s.command).contains("rccpack-bench"))
+    {
         // Built by `cargo test` at the root (the bench crate is a default
         // member); fails naming it when it is missing.
         let _ = support::bench_command();
