@@ -507,7 +507,7 @@ pub(crate) fn implies(f: &Formula, g: &Formula, contact: Contact) -> bool {
 }
 
 /// Whether statement `f` (with its scope) implies statement `g` in every
-/// scene: per-object statements by [`implies`]; scene-level ones when the
+/// scene: per-object statements by `implies`; scene-level ones when the
 /// formulas imply each other in the direction of their quantifiers
 /// (`some`/`at least k` ⇒ `at least j ≤ k` when `f ⇒ g`; `no`/`at most k`
 /// ⇒ `at most j ≥ k` when `g ⇒ f`). A per-object and a scene-level
