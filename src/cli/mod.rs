@@ -22,6 +22,7 @@ macro_rules! ewrite {
 }
 
 mod ask;
+mod bench;
 mod check;
 mod io;
 mod learn;
@@ -83,6 +84,10 @@ enum Command {
     /// Check the learned rules of a task folder with the person: show probe
     /// layouts that break one rule each, drop or confirm it (docs/guide.md#questions).
     Ask(ask::AskArgs),
+    /// Benchmarks: runs `rccpack-bench` (docs/performance.md), which
+    /// `cargo build --release` builds beside rccpack.
+    #[command(disable_help_flag = true)]
+    Bench(bench::BenchArgs),
 }
 
 /// Parse arguments, run the command, map errors to exit codes.
@@ -126,7 +131,9 @@ pub fn main() -> ExitCode {
             };
         }
     };
-    if !matches!(cli.command, Command::Studio(_)) {
+    // The studio stops gracefully on its own; `rccpack-bench` handles its
+    // signals itself.
+    if !matches!(cli.command, Command::Studio(_) | Command::Bench(_)) {
         signals::install();
     }
     let result = match cli.command {
@@ -140,6 +147,7 @@ pub fn main() -> ExitCode {
         Command::Sample(a) => sample::run(a),
         Command::Studio(a) => studio::run(a),
         Command::Ask(a) => ask::run(a),
+        Command::Bench(a) => bench::run(a),
     };
     match result {
         Ok(code) => code,
