@@ -144,16 +144,17 @@
 //! - [`stop`]: when to stop a computation (a deadline, a node budget, a
 //!   cancel flag), taken by learning ([`infer::learn_with`]) and the pipeline.
 //! - [`fsutil`]: the one atomic file writer, UTF-8 reading, the folder lock.
-//! - `studio` (feature `studio`): the local web app; `bench` (feature
-//!   `bench`): the benchmark suites.
+//! - `studio` (feature `studio`): the local web app. The benchmark suites
+//!   are a crate of their own in the repository (`bench/`, `rccpack-bench`),
+//!   built on this public API.
 //!
 //! ## Features
 //!
 //! The default features build the whole command-line tool. An embedder
 //! writes `rccpack = { version = "0.1", default-features = false }` and gets
 //! the core above (learning, evaluation, synthesis, SVG, the task pipeline)
-//! with no web server, image or CLI crates; `png`, `studio`, `bench` and
-//! `cli` add the rest (see the README, "As a library").
+//! with no web server, image or CLI crates; `png`, `studio` and `cli` add
+//! the rest (see the README, "As a library").
 //!
 //! The command-line tool `rccpack` wraps these (`check`, `score`, `render`,
 //! …); see docs/cli.md.
@@ -161,8 +162,6 @@
 #![warn(missing_docs)]
 
 pub mod ask;
-#[cfg(feature = "bench")]
-pub mod bench;
 pub mod eval;
 pub mod fsutil;
 #[cfg(feature = "fuzzing")]

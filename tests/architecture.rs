@@ -114,7 +114,6 @@ fn nothing_below_learning_and_solving_knows_them() {
         "crate::ask",
         "crate::task",
         "crate::studio",
-        "crate::bench",
         "crate::render",
     ];
     let found: Vec<String> = lower
@@ -137,7 +136,6 @@ fn file_io_only_in_the_allowed_modules() {
             "src/fsutil.rs",
             "src/task/",
             "src/studio/",
-            "src/bench/",
             "src/fuzzing/",
             "src/cli/",
         ],
@@ -162,12 +160,7 @@ fn file_io_only_in_the_allowed_modules() {
 fn processes_only_where_allowed() {
     let found = occurrences(
         &["std::process::Command", "Command::new", "process::exit"],
-        &[
-            "src/bench/peers.rs",
-            "src/bench/sample/diversity.rs",
-            "src/cli/",
-            "src/main.rs",
-        ],
+        &["src/cli/", "src/main.rs"],
     );
     assert!(
         found.is_empty(),
@@ -374,12 +367,13 @@ fn quoted(text: &str) -> Vec<&str> {
     text.split('`').skip(1).step_by(2).collect()
 }
 
-/// The public enums named `…Error` in `src/` marked `#[non_exhaustive]`
-/// are exactly those the invariant "Library errors are typed" lists.
+/// The public enums named `…Error` in `src/` and the bench library marked
+/// `#[non_exhaustive]` are exactly those the invariant "Library errors are
+/// typed" lists.
 #[test]
 fn the_non_exhaustive_error_enums_are_those_listed() {
     let mut marked = BTreeSet::new();
-    for f in sources() {
+    for f in sources().into_iter().chain(bench_library_sources()) {
         let lines = code_lines(&f);
         for (i, (_, line)) in lines.iter().enumerate() {
             let Some(rest) = line.trim().strip_prefix("pub enum ") else {
@@ -866,5 +860,78 @@ fn rooms_use_only_rooms_below_them_and_form_no_circle() {
         wrong.is_empty(),
         "the layer table's \"may use\" column names a room not below the row:\n{}",
         wrong.join("\n")
+    );
+}
+
+/// The `.rs` files of the bench crate's library (`bench/src/` without the
+/// binary's `main.rs` and `cli/`), relative to the repository root.
+fn bench_library_sources() -> Vec<PathBuf> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in fs::read_dir(dir).expect("read bench/src") {
+            let p = entry.expect("entry").path();
+            if p.is_dir() {
+                walk(&p, out);
+            } else if p.extension().is_some_and(|e| e == "rs") {
+                out.push(p.strip_prefix(root()).expect("under root").to_path_buf());
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(&root().join("bench/src"), &mut out);
+    out.retain(|f| {
+        let name = unix(f);
+        name != "bench/src/main.rs" && !name.starts_with("bench/src/cli/")
+    });
+    out.sort();
+    out
+}
+
+/// "The library never depends on the bench crate": no file of `src/`
+/// names it, and the root package lists it only as a dev-dependency.
+#[test]
+fn the_library_never_depends_on_the_bench_crate() {
+    let found = occurrences(&["rccpack_bench", "rccpack-bench ="], &[]);
+    assert!(
+        found.is_empty(),
+        "the library names the bench crate:\n{}",
+        found.join("\n")
+    );
+    assert!(
+        !dependencies().iter().any(|d| d == "rccpack_bench"),
+        "rccpack-bench is a [dependencies] entry of Cargo.toml (only a dev-dependency may be)"
+    );
+    let toml = fs::read_to_string(root().join("Cargo.toml")).expect("Cargo.toml");
+    assert!(
+        !toml.contains("plotters") && !toml.contains("indicatif"),
+        "the root package depends on the bench crate's chart or progress crates"
+    );
+}
+
+/// The bench library starts processes only for the peers, and never
+/// prints (its binary, `bench/src/cli/`, does).
+#[test]
+fn the_bench_library_starts_peers_only_and_never_prints() {
+    let sources = bench_library_sources();
+    assert!(sources.len() >= 20, "found {sources:?}");
+    let mut found = Vec::new();
+    for f in &sources {
+        let name = unix(f);
+        let peers = name == "bench/src/peers.rs" || name == "bench/src/sample/diversity.rs";
+        for (n, line) in code_lines(f) {
+            let process = ["std::process::Command", "Command::new", "process::exit"]
+                .iter()
+                .any(|x| line.contains(x));
+            let prints = ["println!", "eprintln!", "print!(", "eprint!(", "dbg!("]
+                .iter()
+                .any(|x| line.contains(x));
+            if (process && !peers) || prints {
+                found.push(format!("{name}:{n}: {}", line.trim()));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "the bench library starts a process outside the peers, or prints:\n{}",
+        found.join("\n")
     );
 }

@@ -26,7 +26,6 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rccpack::ask::probe_rules;
 use rccpack::ask::{find_probe, negation, ProbeOptions, ProbeOutcome};
-use rccpack::bench::pool::{among, atom, corner, touches};
 use rccpack::eval::{evaluate, Evaluator};
 use rccpack::relations::{Contact, Dir, Kind, Quant, Relation, MAX_COUNT};
 use rccpack::resemblance::ResemblanceTarget;
@@ -34,6 +33,7 @@ use rccpack::rules::{Atom, Formula, Rule, RuleSet, Scope, Target};
 use rccpack::scene::{Object, Rect, Scene};
 use rccpack::synth::brute_force::grid_positions;
 use rccpack::synth::verify_solution;
+use rccpack_bench::pool::{among, atom, corner, touches};
 
 use crate::support::formulas::{pick, q_atom, random_target, random_tree, Vocabulary};
 

@@ -17,7 +17,8 @@
 //! The commands of one page run in order, through `sh`, in one scratch
 //! folder that holds a copy of `examples/`, with the `rccpack` under test
 //! first on `PATH` (`cargo run --release --` and `target/release/rccpack`
-//! are read as that binary). A block marked `console ignore` is shown, not
+//! are read as that binary; `rccpack-bench`, from the bench crate, lies
+//! beside it when `cargo test` runs at the root). A block marked `console ignore` is shown, not
 //! run: installing software, and measurements that take minutes. A block
 //! whose language is `rcc` must parse as a rule file (`rcc ignore`: shown
 //! only, e.g. a file with an error on purpose). Shell
@@ -158,9 +159,12 @@ fn lines_match(expected: &[String], lines: &[&str]) -> bool {
     }
 }
 
-/// Read the documented spellings of the binary as the binary under test.
+/// Read the documented spellings of the binaries as the binaries under
+/// test (`rccpack-bench`, the bench crate's, lies beside `rccpack`).
 fn as_binary(command: &str) -> String {
     command
+        .replace("cargo run --release -p rccpack-bench -- ", "rccpack-bench ")
+        .replace("target/release/rccpack-bench ", "rccpack-bench ")
         .replace("cargo run --release -- ", "rccpack ")
         .replace("target/release/rccpack ", "rccpack ")
 }
@@ -216,6 +220,14 @@ fn run_page(page: &Path, tag: &str) -> Vec<String> {
     };
     if steps.is_empty() {
         return Vec::new();
+    }
+    if steps
+        .iter()
+        .any(|s| as_binary(&s.command).contains("rccpack-bench"))
+    {
+        // Built by `cargo test` at the root (the bench crate is a default
+        // member); fails naming it when it is missing.
+        let _ = support::bench_command();
     }
     let dir = support::scratch(&format!("docs-{tag}"));
     copy_dir(&support::path("examples"), &dir.join("examples"));

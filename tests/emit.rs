@@ -20,7 +20,6 @@
 
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rccpack::bench::peers::{self, Peer, PeerStatus};
 use rccpack::eval::evaluate;
 use rccpack::relations::{Contact, Dir, Kind, Quant, Relation};
 use rccpack::rules::{Atom, Formula, Rule, RuleSet, Scope, Strength, Target};
@@ -29,6 +28,7 @@ use rccpack::synth::emit::{emitted, to_json, to_minizinc, Emitted, FORMAT};
 use rccpack::synth::model::{BoolDef, LinLe, Lit, SoftTerm};
 use rccpack::synth::verify_solution;
 use rccpack::synth::{synthesize, Status, SynthOptions};
+use rccpack_bench::peers::{self, Peer, PeerStatus};
 use serde_json::Value;
 
 use crate::support::formulas::{pick, random_tree, Vocabulary};

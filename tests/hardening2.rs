@@ -270,20 +270,6 @@ fn a_full_stderr_never_panics() {
     assert_eq!(o.code(), Some(1));
 }
 
-/// Item 8: `bench sample --time-limit` takes the shared parser.
-#[test]
-fn bench_sample_time_limits_are_checked() {
-    for v in ["nan", "inf", "-1", "1e30"] {
-        let o = rccpack(&["bench", "sample", "--time-limit", v]);
-        let e = stderr(&o);
-        assert_eq!(o.status.code(), Some(1), "{v}: {e}");
-        assert!(
-            e.contains("time limit") && e.contains("expected"),
-            "{v}: {e}"
-        );
-    }
-}
-
 /// Item 9: ids with U+FFFE/U+FFFF (not XML characters) still draw a
 /// well-formed SVG and a PNG.
 #[test]

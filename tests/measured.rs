@@ -4,10 +4,10 @@
 use crate::support::{rccpack, scratch, stderr, write_file};
 use rand::SeedableRng;
 use rccpack::ask::{AskOptions, Asker};
-use rccpack::bench::noisy;
-use rccpack::bench::tasks::{generate_task, TasksConfig};
 use rccpack::infer::{learn, LearnParams};
 use rccpack::scene::Scene;
+use rccpack_bench::noisy;
+use rccpack_bench::tasks::{generate_task, TasksConfig};
 use std::time::Duration;
 
 fn box_demos() -> String {
@@ -139,7 +139,7 @@ fn bad_measured_input_names_file_demonstration_objects_and_value() {
     }
 }
 
-fn task0() -> rccpack::bench::tasks::BenchTask {
+fn task0() -> rccpack_bench::tasks::BenchTask {
     let cfg = TasksConfig {
         tasks: 1,
         sizes: vec![1.0],

@@ -2,7 +2,7 @@
 //! at and just past its bound (accepted and solved correctly at the limit,
 //! refused with a clear message just past it).
 
-use crate::support::{rccpack, stderr};
+use crate::support::{rccpack, stderr, stdout};
 use rccpack::relations::Contact;
 use rccpack::rules::{parse_rules, RuleSet};
 use rccpack::scene::Scene;
@@ -167,7 +167,6 @@ fn bad_time_limits_exit_1_everywhere() {
                 bad,
             ],
             vec!["synth", problem, "--rules", rules, "--time-limit", bad],
-            vec!["bench", "thesis", "--out", out, "--time-limit", bad],
         ] {
             let o = rccpack(&args);
             let e = stderr(&o);
@@ -226,44 +225,6 @@ fn usage_errors_exit_1_help_exits_0() {
         let o = rccpack(&args);
         assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
         assert!(!o.stdout.is_empty(), "{args:?}: printed to stdout");
-    }
-}
-
-/// `bench thesis` refuses out-of-range series, set counts and peers at
-/// once (exit 1, naming the flag and the value), before drawing anything.
-#[test]
-fn bench_flags_out_of_range_are_refused() {
-    let out = crate::support::scratch("robust-bench-refuse").join("out");
-    for (args, names) in [
-        (vec!["--scale-ns", "0"], "invalid value '0' for '--scale-ns"),
-        (
-            vec!["--scale-ns", "16,513"],
-            "invalid value '513' for '--scale-ns",
-        ),
-        (vec!["--scale-ks", "6"], "invalid value '6' for '--scale-ks"),
-        (
-            vec!["--scale-ks", "3,0"],
-            "invalid value '0' for '--scale-ks",
-        ),
-        (vec!["--sets", "0"], "invalid value '0' for '--sets"),
-        (vec!["--sets", "1001"], "invalid value '1001' for '--sets"),
-        (vec!["--peers", "cplex"], "unknown peer `cplex`"),
-        (
-            vec!["--time-limit", "nan"],
-            "invalid value 'nan' for '--time-limit",
-        ),
-    ] {
-        let mut all = vec!["bench", "thesis", "--out", out.to_str().unwrap()];
-        all.extend(&args);
-        let o = rccpack(&all);
-        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
-        let e = stderr(&o);
-        assert!(e.contains(names), "{args:?}: message names {names}: {e}");
-        assert!(
-            !out.exists(),
-            "{args:?}: refused before writing {}",
-            out.display()
-        );
     }
 }
 
@@ -527,4 +488,44 @@ fn issue_21_limits_at_and_past_their_bounds() {
     let o = rccpack(&["ask", "examples/box-packing", "--oracle-timeout", "1000001"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("expected a number of seconds from 0 to 1000000"));
+}
+
+/// `rccpack bench …` runs `rccpack-bench` from the same folder with the
+/// same arguments and exits with its code; without it beside `rccpack`, it
+/// exits 1 naming the binary it looked for.
+#[test]
+fn bench_delegates_to_rccpack_bench_beside_it() {
+    // `cargo test` at the root builds it; fails naming it otherwise.
+    let _ = crate::support::bench_command();
+    let o = rccpack(&["bench", "tasks", "--help"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("Usage: rccpack-bench tasks [OPTIONS]"),
+        "{}",
+        stdout(&o)
+    );
+    let o = rccpack(&["bench", "thesis", "--sets", "0"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("invalid value '0' for '--sets"),
+        "{}",
+        stderr(&o)
+    );
+    let dir = crate::support::scratch("bench-delegate-alone");
+    let alone = dir.join("rccpack");
+    std::fs::copy(env!("CARGO_BIN_EXE_rccpack"), &alone).expect("copy rccpack");
+    let o = std::process::Command::new(&alone)
+        .args(["bench", "thesis"])
+        .output()
+        .expect("run the copy");
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.contains(&format!(
+            "{} not found",
+            dir.join("rccpack-bench").display()
+        )),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

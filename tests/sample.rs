@@ -2,7 +2,6 @@
 //! independent verifier), distinct, of the quality asked for; determinism;
 //! exhaustion agrees with brute force; "no layout" is reported.
 
-use rccpack::bench::sample::{enumerate, tiny_problems, uniformity};
 use rccpack::eval::evaluate;
 use rccpack::relations::Contact;
 use rccpack::rules::{parse_rules, RuleSet};
@@ -10,6 +9,7 @@ use rccpack::sample::{canonical_key, sample, Quality, Repair, SampleError, Sampl
 use rccpack::scene::{scenes_from_json, Scene};
 use rccpack::synth::verify_solution;
 use rccpack::{learn, LearnParams};
+use rccpack_bench::sample::{enumerate, tiny_problems, uniformity};
 use std::collections::BTreeSet;
 
 fn box_task() -> (Scene, RuleSet) {
@@ -347,14 +347,14 @@ fn like_scenes_keep_validity_and_determinism() {
 #[test]
 #[ignore = "needs CP-SAT (python3 with ortools): run by .ci/run"]
 fn cpsat_baseline_layouts_are_valid() {
-    crate::support::require_peer(rccpack::bench::peers::Peer::CpSat);
+    crate::support::require_peer(rccpack_bench::peers::Peer::CpSat);
     let (_, problem, rules) = tiny_problems().remove(0);
     let first = sample(&problem, &rules, &opts(Quality::Optimum, 0))
         .unwrap()
         .next()
         .unwrap()
         .unwrap();
-    let b = rccpack::bench::sample::cpsat_baseline(&problem, &rules, Contact::Point, &first, 5, 0)
+    let b = rccpack_bench::sample::cpsat_baseline(&problem, &rules, Contact::Point, &first, 5, 0)
         .unwrap();
     assert_eq!((b.spread.layouts, b.invalid), (5, 0));
 }

@@ -41,7 +41,6 @@
 use crate::support::cases::Case;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rccpack::bench::pool::{among, atom, corner, touches};
 use rccpack::eval::evaluate;
 use rccpack::relations::{Contact, Dir, Kind, Quant, Relation};
 use rccpack::resemblance::ResemblanceTarget;
@@ -52,6 +51,7 @@ use rccpack::synth::model::{BoolDef, BuildOptions, Model};
 use rccpack::synth::verify_solution;
 use rccpack::synth::LnsOptions;
 use rccpack::synth::{synthesize, Status, SynthOptions};
+use rccpack_bench::pool::{among, atom, corner, touches};
 use std::time::Duration;
 
 use crate::support::formulas::{pick, q_atom, random_target, random_tree, Vocabulary};

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The baseline of `rccpack bench sample`: layouts of an rccpack-model/1
+"""The baseline of `rccpack-bench sample`: layouts of an rccpack-model/1
 JSON model drawn by OR-Tools CP-SAT with randomised search, one solve per
 seed, under "objective >= K" instead of the objective.
 

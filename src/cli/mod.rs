@@ -84,7 +84,9 @@ enum Command {
     /// Check the learned rules of a task folder with the person: show probe
     /// layouts that break one rule each, drop or confirm it (docs/guide.md#questions).
     Ask(ask::AskArgs),
-    /// Benchmarks: `bench thesis` reproduces the thesis runtime study; `bench tasks` measures realistic learned tasks.
+    /// Benchmarks: runs `rccpack-bench` (docs/performance.md), which
+    /// `cargo build --release` builds beside rccpack.
+    #[command(disable_help_flag = true)]
     Bench(bench::BenchArgs),
 }
 
@@ -129,7 +131,9 @@ pub fn main() -> ExitCode {
             };
         }
     };
-    if !matches!(cli.command, Command::Studio(_)) {
+    // The studio stops gracefully on its own; `rccpack-bench` handles its
+    // signals itself.
+    if !matches!(cli.command, Command::Studio(_) | Command::Bench(_)) {
         signals::install();
     }
     let result = match cli.command {

@@ -507,12 +507,12 @@ pub(crate) fn implies(f: &Formula, g: &Formula, contact: Contact) -> bool {
 }
 
 /// Whether statement `f` (with its scope) implies statement `g` in every
-/// scene: per-object statements by [`implies`]; scene-level ones when the
+/// scene: per-object statements by `implies`; scene-level ones when the
 /// formulas imply each other in the direction of their quantifiers
 /// (`some`/`at least k` ⇒ `at least j ≤ k` when `f ⇒ g`; `no`/`at most k`
 /// ⇒ `at most j ≥ k` when `g ⇒ f`). A per-object and a scene-level
 /// statement are never compared.
-pub(crate) fn rule_implies(f: (Scope, &Formula), g: (Scope, &Formula), contact: Contact) -> bool {
+pub fn rule_implies(f: (Scope, &Formula), g: (Scope, &Formula), contact: Contact) -> bool {
     match (f.0, g.0) {
         (Scope::Each, Scope::Each) => implies(f.1, g.1, contact),
         (Scope::Scene(qf), Scope::Scene(qg)) => {

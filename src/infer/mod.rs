@@ -47,6 +47,9 @@ pub(crate) use candidates::{find_candidates, find_exceptions};
 pub use candidates::{Exception, Provenance};
 pub(crate) use checks::check_demos;
 pub use english::{reading, statement_reading};
+// The bench crate's priors study counts rules implied by others with it.
+#[doc(hidden)]
+pub use english::rule_implies;
 pub use error::InferError;
 pub use learn::{candidate_flags, learn, learn_with, LearnOptions};
 pub use learned::{ClassStats, Learned, StatementResult, StatementSource, Suspect};

@@ -233,7 +233,7 @@ fn hint_groups(model: &Model, problem: &Scene) -> Vec<Vec<usize>> {
 
 /// The grid value of every variable of `model` in `scene` (a complete
 /// scene of the problem the model was built for).
-pub(crate) fn grid_values(model: &Model, scene: &Scene) -> Vec<i64> {
+pub fn grid_values(model: &Model, scene: &Scene) -> Vec<i64> {
     let (ox, oy) = model.origin;
     model
         .vars

@@ -57,7 +57,7 @@
 //! excluded, the first `k` samples are `k` distinct layouts, and drawing
 //! until the end enumerates every layout exactly once. docs/performance.md#sampling
 //! reports a chi-square test against uniform on tiny problems enumerated by brute
-//! force (`rccpack bench sample`).
+//! force (`rccpack-bench sample`).
 //!
 //! # Determinism
 //!
@@ -84,7 +84,9 @@ pub mod strategy;
 mod draw;
 mod orientations;
 
-pub(crate) use draw::grid_values;
+// The bench crate's CP-SAT baseline scores peer layouts with it.
+#[doc(hidden)]
+pub use draw::grid_values;
 use draw::Totals;
 pub(crate) use orientations::orientation_choices;
 pub use orientations::MAX_SAMPLE_ORIENTATIONS;

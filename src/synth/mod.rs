@@ -54,8 +54,7 @@ use std::time::Duration;
 
 pub(crate) mod backend;
 // The exhaustive reference solver: a test oracle (and the uniformity
-// reference of `bench sample`), not an API.
-#[cfg(any(test, feature = "fuzzing", feature = "bench"))]
+// reference of `rccpack-bench sample`, in the bench crate), not an API.
 #[doc(hidden)]
 pub mod brute_force;
 mod capacity;

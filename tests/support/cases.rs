@@ -1,10 +1,10 @@
 //! A random problem of the differential tests (`synth_differential`,
 //! `ask_probes`) and the text that reproduces it by hand.
 
-use rccpack::bench::pool::formula_text;
 use rccpack::relations::Contact;
 use rccpack::rules::{Rule, RuleSet, Scope, Strength};
 use rccpack::scene::Scene;
+use rccpack_bench::pool::formula_text;
 
 /// One random problem.
 #[derive(Debug, Clone)]

@@ -24,9 +24,44 @@ pub fn rccpack(args: &[&str]) -> Output {
     rccpack_in(root(), args)
 }
 
-/// A command running the built `rccpack` binary.
+/// A command running the built `rccpack` binary: the root package's tests
+/// know its path; the bench crate's (`bench/tests/`) find it beside their
+/// own executable, where a `cargo test` at the root builds it.
 pub fn command() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_rccpack"))
+    Command::new(built_binary(
+        option_env!("CARGO_BIN_EXE_rccpack"),
+        "rccpack",
+    ))
+}
+
+/// A command running the built `rccpack-bench` binary (the bench crate's
+/// tests only).
+pub fn bench_command() -> Command {
+    Command::new(built_binary(
+        option_env!("CARGO_BIN_EXE_rccpack-bench"),
+        "rccpack-bench",
+    ))
+}
+
+/// The path cargo gave for a binary of this package, else `name` in the
+/// target folder of the running test (`target/debug/deps/..`); fails
+/// naming the binary when it is not built.
+fn built_binary(known: Option<&str>, name: &str) -> PathBuf {
+    if let Some(p) = known {
+        return PathBuf::from(p);
+    }
+    let exe = std::env::current_exe().expect("the test's own path");
+    let dir = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("a test runs from target/<profile>/deps");
+    let p = dir.join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+    assert!(
+        p.is_file(),
+        "{}: the {name} binary is not built; run `cargo test` at the repository root",
+        p.display()
+    );
+    p
 }
 
 /// Run the `rccpack` binary with `args` in `dir`.
@@ -109,8 +144,8 @@ pub fn overlaps_any(objects: &[rccpack::scene::Object], o: &rccpack::scene::Obje
 
 /// Fails, naming what is missing, unless `peer` can run: a peer test is
 /// `#[ignore]`d, and one that is run must run.
-pub fn require_peer(peer: rccpack::bench::peers::Peer) {
-    if let Err(why) = rccpack::bench::peers::check_available(peer) {
+pub fn require_peer(peer: rccpack_bench::peers::Peer) {
+    if let Err(why) = rccpack_bench::peers::check_available(peer) {
         panic!("{peer} cannot run: {why}");
     }
 }

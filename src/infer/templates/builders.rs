@@ -1,5 +1,5 @@
 //! The formula builders of the templates (and of the runtime study's pool,
-//! `bench::pool`): one function per statement shape, built through the AST.
+//! the bench crate's `pool`): one function per statement shape, built through the AST.
 
 use crate::relations::{Dir, Kind, Quant, Relation};
 use crate::rules::{Atom, Formula, Shape, Target};

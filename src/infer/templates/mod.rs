@@ -33,7 +33,7 @@
 //!
 //! The formulas are built by the public builders of this module
 //! ([`atom`], [`touches`], [`inside`], [`corner`], …), which the runtime
-//! study's pool (`bench::pool`) uses too.
+//! study's pool (the bench crate's `pool`) uses too.
 //!
 //! # How to extend
 //!

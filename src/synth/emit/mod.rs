@@ -1,7 +1,7 @@
 //! The solver-free `Model` written out for other solvers: plain JSON
 //! (`rccpack-model/1`) and a MiniZinc model, so OR-Tools CP-SAT, Gecode or
 //! any other engine can solve exactly the problem the Pumpkin engine solves
-//! (`rccpack synth --emit FILE`, `benches/peers/`, [`crate::bench::peers`]).
+//! (`rccpack synth --emit FILE`, `benches/peers/`, the bench crate's `peers`).
 //!
 //! # What is written
 //!
