@@ -83,3 +83,28 @@ fn bench_sample_time_limits_are_checked() {
         );
     }
 }
+
+/// The engine tuning variables reach `thesis` and `tasks` (the library
+/// never reads them): a value that is not a choice is refused at once,
+/// naming the variable, before anything is drawn or written.
+#[test]
+fn a_tuning_variable_that_is_not_a_choice_is_refused() {
+    let out = crate::support::scratch("bench-tuning").join("out");
+    let out = out.to_str().unwrap();
+    for command in ["thesis", "tasks"] {
+        let o = bench_command()
+            .args([command, "--quick", "--out", out])
+            .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+            .env("RCCPACK_CONNECTIVITY", "circuits")
+            .output()
+            .expect("run rccpack-bench");
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{command}: {e}");
+        assert!(
+            e.contains("RCCPACK_CONNECTIVITY=\"circuits\"")
+                && e.contains("expected circuit or propagator"),
+            "{command}: {e}"
+        );
+        assert!(!std::path::Path::new(out).exists(), "{command} wrote {out}");
+    }
+}

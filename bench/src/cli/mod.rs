@@ -46,6 +46,12 @@ impl std::error::Error for Reported {}
 
 /// Write a whole file atomically ([`rccpack::fsutil::atomic_write`]); `what`
 /// names the contents in the error ("cannot write report").
+/// The engine tuning the `RCCPACK_*` environment variables ask for (to
+/// compare encodings; a value that is not a choice is an error).
+fn tuning() -> Result<rccpack::synth::Tuning> {
+    rccpack::synth::Tuning::from_env().map_err(|e| Reported(format!("error: {e}")).into())
+}
+
 fn write_file(path: &Path, contents: impl AsRef<[u8]>, what: &str) -> Result<()> {
     rccpack::fsutil::atomic_write(path, contents).map_err(|e| {
         Reported(format!(

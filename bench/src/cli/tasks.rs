@@ -90,7 +90,8 @@ pub(super) fn run_tasks(a: TasksArgs) -> Result<ExitCode> {
     let limit = a
         .time_limit
         .unwrap_or(Duration::from_secs(if a.quick { 5 } else { 30 }));
-    let cfg = tasks_config(&a, limit);
+    let mut cfg = tasks_config(&a, limit);
+    cfg.tuning = super::tuning()?;
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("{}: cannot create directory", a.out.display()))?;
 

@@ -66,7 +66,8 @@ pub(super) struct ThesisArgs {
 /// `bench thesis`: run the study, print its tables, write `thesis.json`
 /// and the charts; exit 1 when a problem failed.
 pub(super) fn run_thesis(a: ThesisArgs) -> Result<ExitCode> {
-    let cfg = thesis_config(&a);
+    let mut cfg = thesis_config(&a);
+    cfg.tuning = super::tuning()?;
     std::fs::create_dir_all(&a.out)
         .with_context(|| format!("{}: cannot create directory", a.out.display()))?;
     let report = run_study(&cfg, a.problems_out.as_deref())?;

@@ -151,9 +151,11 @@ pub fn run_bench(cfg: &BenchConfig, note: &mut dyn FnMut(&str)) -> BenchReport {
             seed: cfg.seed,
             repair: repair(random_search),
             // Never panics on an unchecked value (the command line checks it).
-            stop: rccpack::stop::Stop::after(rccpack::limits::time_limit(cfg.time_limit_s).unwrap_or(
-                std::time::Duration::from_secs_f64(rccpack::limits::MAX_TIME_LIMIT_SECS),
-            )),
+            stop: rccpack::stop::Stop::after(
+                rccpack::limits::time_limit(cfg.time_limit_s).unwrap_or(
+                    std::time::Duration::from_secs_f64(rccpack::limits::MAX_TIME_LIMIT_SECS),
+                ),
+            ),
             ..SampleOptions::default()
         };
         let movable = problem.objects.iter().filter(|o| !o.is_placed()).count();

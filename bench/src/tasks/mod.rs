@@ -233,6 +233,10 @@ pub struct TasksConfig {
     /// ([`Orientation`]); off, the tasks are those of earlier versions.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub turnable: bool,
+    /// Engine tuning of every solve (never changes an answer; the
+    /// command filled it from `RCCPACK_*` variables).
+    #[serde(skip)]
+    pub tuning: rccpack::synth::Tuning,
 }
 
 fn ser_templates<S: serde::Serializer>(t: &Templates, s: S) -> Result<S::Ok, S::Error> {
@@ -256,6 +260,7 @@ impl TasksConfig {
             groups: 0,
             templates: Templates::default(),
             turnable: false,
+            tuning: rccpack::synth::Tuning::default(),
         }
     }
 

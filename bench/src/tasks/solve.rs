@@ -24,6 +24,7 @@ pub fn solve_options(cfg: &TasksConfig, demos: &[Scene], like: bool) -> SynthOpt
         stop: rccpack::stop::Stop::after(cfg.time_limit),
         seed: cfg.seed,
         like: like.then(|| ResemblanceTarget::new(demos)),
+        tuning: cfg.tuning,
         ..SynthOptions::default()
     };
     if cfg.warm_start {

@@ -106,6 +106,10 @@ pub struct StudyConfig {
     /// time limit).
     #[serde(serialize_with = "ser_peers")]
     pub peers: Vec<Peer>,
+    /// Engine tuning of every solve (never changes an answer; the
+    /// command filled it from `RCCPACK_*` variables).
+    #[serde(skip)]
+    pub tuning: rccpack::synth::Tuning,
 }
 
 pub(crate) fn ser_peers<S: serde::Serializer>(p: &[Peer], s: S) -> Result<S::Ok, S::Error> {
@@ -138,6 +142,7 @@ impl StudyConfig {
             contact: Contact::Point,
             lns: true,
             peers: Vec::new(),
+            tuning: rccpack::synth::Tuning::default(),
         }
     }
 

@@ -123,6 +123,7 @@ pub fn study_options(cfg: &StudyConfig) -> SynthOptions {
         // Counted from now: one call per solve.
         stop: rccpack::stop::Stop::after(cfg.time_limit),
         seed: cfg.seed,
+        tuning: cfg.tuning,
         ..SynthOptions::default()
     };
     if !cfg.lns {
