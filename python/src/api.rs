@@ -10,8 +10,8 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyBytes, PyTuple};
 use rccpack_core::infer::{learn_with, InferError, LearnOptions, LearnParams, Templates};
 use rccpack_core::render::render_png as core_render_png;
-use rccpack_core::stop::Stop;
 use rccpack_core::resemblance::ResemblanceTarget;
+use rccpack_core::stop::Stop;
 use rccpack_core::synth::{Progress, ProgressFn};
 use rccpack_core::{
     evaluate as core_evaluate, render_svg, synthesize as core_synthesize, Contact, Evaluation,

@@ -331,6 +331,7 @@ pub fn sample(
         layout_node_limit,
         like,
         repair,
+        ..SampleOptions::default()
     };
     let (problem, rules) = (problem.inner.clone(), rules.inner.clone());
     let (req_tx, req_rx) = channel::<()>();
