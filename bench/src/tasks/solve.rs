@@ -17,7 +17,7 @@ use std::time::Instant;
 
 /// The options of a solve: score only (`like = None`) or with the
 /// demonstrations as like-scenes; the time limit counts from now (see
-/// [`restarted`]).
+/// `restarted`).
 pub fn solve_options(cfg: &TasksConfig, demos: &[Scene], like: bool) -> SynthOptions {
     let mut opts = SynthOptions {
         contact: Contact::Point,
