@@ -480,7 +480,7 @@ fn json_form_holds_on_rccpack_solutions() {
                 .collect();
             assert_eq!(json_bools(&j, &vals), e.model.eval_bools(&vals));
         }
-        let r = synthesize(&case.scene, &case.rules, &case.opts).expect("solves");
+        let r = synthesize(&case.scene, &case.rules, &armed(&case.opts)).expect("solves");
         match r.status {
             Status::Optimal => {
                 solved += 1;
@@ -546,6 +546,15 @@ fn minizinc_form_is_complete() {
     }
 }
 
+/// `opts` with its 20-s safety net counted from now: the cases are drawn
+/// before any is solved, and a `Stop` holds a deadline, not a duration.
+fn armed(opts: &SynthOptions) -> SynthOptions {
+    SynthOptions {
+        stop: rccpack::stop::Stop::after(Duration::from_secs(20)),
+        ..opts.clone()
+    }
+}
+
 /// Runs `peer` on the cases and compares with rccpack.
 fn against_peer(peer: Peer, cases: &[Case], time_limit: Duration) {
     against_peer_with(peer, cases, time_limit, emitted);
@@ -558,7 +567,7 @@ fn against_peer_with(peer: Peer, cases: &[Case], time_limit: Duration, emit: Emi
     let (mut optimal, mut infeasible) = (0, 0);
     for case in cases {
         let e: Emitted = emit(&case.scene, &case.rules, &case.opts).expect("usable");
-        let r = synthesize(&case.scene, &case.rules, &case.opts).expect("solves");
+        let r = synthesize(&case.scene, &case.rules, &armed(&case.opts)).expect("solves");
         let p = peers::solve(peer, &e, time_limit)
             .unwrap_or_else(|m| panic!("case {}: {m}", case.index));
         let ctx = || format!("{peer} case {}\n{}", case.index, case.scene.to_json());
@@ -666,7 +675,7 @@ fn definitions_agree(peer: Peer, from: u64, n: usize) {
         with_at_least += usize::from(at_least);
         done += 1;
         let mut rng = ChaCha8Rng::seed_from_u64(index);
-        let vals: Vec<i64> = match synthesize(&case.scene, &case.rules, &case.opts) {
+        let vals: Vec<i64> = match synthesize(&case.scene, &case.rules, &armed(&case.opts)) {
             Ok(r) if r.scene.is_some() && done % 2 == 1 => {
                 let s = r.scene.expect("scene");
                 let j: Value = serde_json::from_str(&to_json(&e)).expect("json");

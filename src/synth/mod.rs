@@ -95,7 +95,9 @@ pub struct SynthOptions {
     pub contact: Contact,
     /// When to stop and return the best layout found: the deadline, the
     /// cancel flag (e.g. set from a Ctrl-C handler) and the budget of
-    /// search nodes (decisions) of this solve.
+    /// search nodes (decisions) of this solve. A deadline is a moment, not
+    /// a duration: options kept for a later solve need a fresh
+    /// [`Stop::after`].
     pub stop: Stop,
     /// Seed for any randomised choice; same seed and limits → same layout.
     pub seed: u64,
