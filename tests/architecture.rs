@@ -10,10 +10,11 @@ fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// Every `.rs` file under `src/`, relative to the crate root, sorted.
-fn sources() -> Vec<PathBuf> {
+/// Every `.rs` file under the folder `dir` of the crate root, relative to
+/// the root, sorted.
+fn rust_files_under(dir: &str) -> Vec<PathBuf> {
     fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
-        for entry in fs::read_dir(dir).expect("read src") {
+        for entry in fs::read_dir(dir).unwrap_or_else(|e| panic!("read {}: {e}", dir.display())) {
             let p = entry.expect("entry").path();
             if p.is_dir() {
                 walk(&p, out);
@@ -23,9 +24,14 @@ fn sources() -> Vec<PathBuf> {
         }
     }
     let mut out = Vec::new();
-    walk(&root().join("src"), &mut out);
+    walk(&root().join(dir), &mut out);
     out.sort();
     out
+}
+
+/// Every `.rs` file under `src/`, relative to the crate root, sorted.
+fn sources() -> Vec<PathBuf> {
+    rust_files_under("src")
 }
 
 /// The code lines of a file (comments and doc comments left out), with
@@ -866,23 +872,11 @@ fn rooms_use_only_rooms_below_them_and_form_no_circle() {
 /// The `.rs` files of the bench crate's library (`bench/src/` without the
 /// binary's `main.rs` and `cli/`), relative to the repository root.
 fn bench_library_sources() -> Vec<PathBuf> {
-    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
-        for entry in fs::read_dir(dir).expect("read bench/src") {
-            let p = entry.expect("entry").path();
-            if p.is_dir() {
-                walk(&p, out);
-            } else if p.extension().is_some_and(|e| e == "rs") {
-                out.push(p.strip_prefix(root()).expect("under root").to_path_buf());
-            }
-        }
-    }
-    let mut out = Vec::new();
-    walk(&root().join("bench/src"), &mut out);
+    let mut out = rust_files_under("bench/src");
     out.retain(|f| {
         let name = unix(f);
         name != "bench/src/main.rs" && !name.starts_with("bench/src/cli/")
     });
-    out.sort();
     out
 }
 

@@ -19,12 +19,11 @@ pub(super) fn explain(
     limits: &Stop,
     stats: &mut SolveStats,
 ) -> Result<Conflict, SynthError> {
-    let base = BuildOptions {
-        contact: opts.contact,
-        rules: false,
-        symmetry_breaking: opts.symmetry_breaking,
-        redundant: opts.redundant,
-        tuning: opts.tuning,
+    let job = Explaining {
+        problem,
+        rules,
+        opts,
+        limits,
     };
     if capacity::cannot_fit(problem) {
         return Ok(Conflict {
@@ -41,7 +40,7 @@ pub(super) fn explain(
             ..Conflict::default()
         });
     }
-    if let Some(conflict) = unless_objects_fit(problem, rules, base, opts, limits, stats)? {
+    if let Some(conflict) = job.unless_objects_fit(stats)? {
         return Ok(conflict);
     }
     // The objects fit, so the hard rules together conflict (the main solve
@@ -58,69 +57,69 @@ pub(super) fn explain(
             ..Conflict::default()
         });
     }
-    shrink_hard_rules(problem, rules, base, opts, limits, stats)
+    job.shrink_hard_rules(stats)
 }
 
-/// Solve without the rules: `None` when the objects fit, else the
-/// explanation — they cannot fit, or a limit struck before it was known
-/// (then nothing is blamed: every hard rule may be harmless).
-fn unless_objects_fit(
-    problem: &Scene,
-    rules: &RuleSet,
-    base: BuildOptions,
-    opts: &SynthOptions,
-    limits: &Stop,
-    stats: &mut SolveStats,
-) -> Result<Option<Conflict>, SynthError> {
-    let m0 = Model::build(problem, rules, base);
-    let mut e0 = Engine::new(&m0, opts.seed, false, None)?;
-    let fit = e0.satisfy(limits);
-    stats.nodes += e0.nodes();
-    stats.conflicts += e0.conflicts();
-    drop(e0);
-    Ok(match fit {
-        Verdict::Infeasible(_) => Some(Conflict {
-            objects_cannot_fit: true,
-            ..Conflict::default()
-        }),
-        Verdict::Unknown => Some(Conflict {
-            limit_struck: true,
-            ..Conflict::default()
-        }),
-        Verdict::Solution(_) => None,
-    })
+/// One explanation's inputs, shared by its two steps.
+struct Explaining<'a> {
+    problem: &'a Scene,
+    rules: &'a RuleSet,
+    opts: &'a SynthOptions,
+    limits: &'a Stop,
 }
 
-/// A minimal set of conflicting hard rules, by deletion through the driver
-/// on a model with the rules: every solve obeys the limits (a limit keeps
-/// the rule, so the set stays conflicting, perhaps not minimal).
-fn shrink_hard_rules(
-    problem: &Scene,
-    rules: &RuleSet,
-    base: BuildOptions,
-    opts: &SynthOptions,
-    limits: &Stop,
-    stats: &mut SolveStats,
-) -> Result<Conflict, SynthError> {
-    let mg = Model::build(
-        problem,
-        rules,
+impl Explaining<'_> {
+    /// The model options: the solve's, with or without the rules.
+    fn build(&self, rules: bool) -> BuildOptions {
         BuildOptions {
-            rules: true,
-            ..base
-        },
-    );
-    let mut eg = Engine::new(&mg, opts.seed, true, None)?;
-    let all: Vec<usize> = (0..mg.hard.len()).collect();
-    let (core, minimal) = driver::shrink_conflict(&mut eg, &all, limits);
-    stats.nodes += eg.nodes();
-    stats.conflicts += eg.conflicts();
-    Ok(Conflict {
-        objects_cannot_fit: false,
-        hard_rules: core
-            .iter()
-            .map(|&k| rules.rules[mg.hard[k].rule].name.clone())
-            .collect(),
-        limit_struck: !minimal || core.is_empty(),
-    })
+            contact: self.opts.contact,
+            rules,
+            symmetry_breaking: self.opts.symmetry_breaking,
+            redundant: self.opts.redundant,
+            tuning: self.opts.tuning,
+        }
+    }
+
+    /// Solve without the rules: `None` when the objects fit, else the
+    /// explanation — they cannot fit, or a limit struck before it was known
+    /// (then nothing is blamed: every hard rule may be harmless).
+    fn unless_objects_fit(&self, stats: &mut SolveStats) -> Result<Option<Conflict>, SynthError> {
+        let m0 = Model::build(self.problem, self.rules, self.build(false));
+        let mut e0 = Engine::new(&m0, self.opts.seed, false, None)?;
+        let fit = e0.satisfy(self.limits);
+        stats.nodes += e0.nodes();
+        stats.conflicts += e0.conflicts();
+        drop(e0);
+        Ok(match fit {
+            Verdict::Infeasible(_) => Some(Conflict {
+                objects_cannot_fit: true,
+                ..Conflict::default()
+            }),
+            Verdict::Unknown => Some(Conflict {
+                limit_struck: true,
+                ..Conflict::default()
+            }),
+            Verdict::Solution(_) => None,
+        })
+    }
+
+    /// A minimal set of conflicting hard rules, by deletion through the driver
+    /// on a model with the rules: every solve obeys the limits (a limit keeps
+    /// the rule, so the set stays conflicting, perhaps not minimal).
+    fn shrink_hard_rules(&self, stats: &mut SolveStats) -> Result<Conflict, SynthError> {
+        let mg = Model::build(self.problem, self.rules, self.build(true));
+        let mut eg = Engine::new(&mg, self.opts.seed, true, None)?;
+        let all: Vec<usize> = (0..mg.hard.len()).collect();
+        let (core, minimal) = driver::shrink_conflict(&mut eg, &all, self.limits);
+        stats.nodes += eg.nodes();
+        stats.conflicts += eg.conflicts();
+        Ok(Conflict {
+            objects_cannot_fit: false,
+            hard_rules: core
+                .iter()
+                .map(|&k| self.rules.rules[mg.hard[k].rule].name.clone())
+                .collect(),
+            limit_struck: !minimal || core.is_empty(),
+        })
+    }
 }
