@@ -226,6 +226,23 @@ fn engine_tuning_comes_from_the_environment_and_never_changes_the_score() {
         let at = s.find("score ").expect("a score line");
         s[at..].split_whitespace().nth(1).unwrap().to_string()
     };
+    // The variable reaches the model: the non-overlap clauses (72 on this
+    // problem) go to the propagator (the debug line counts the clauses).
+    let clauses = |value: Option<&str>| {
+        let mut c = crate::support::command();
+        c.args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .env("RCCPACK_DEBUG", "1");
+        if let Some(v) = value {
+            c.env("RCCPACK_NO_OVERLAP", v);
+        }
+        let e = stderr(&c.output().unwrap());
+        let at = e.find(" clauses)").expect("a model debug line");
+        let n: usize = e[..at].rsplit(' ').next().unwrap().parse().unwrap();
+        n
+    };
+    assert!(clauses(None) > 0);
+    assert_eq!(clauses(Some("propagator")), 0);
     let default = score(&rccpack(&args));
     for (name, value) in [
         ("RCCPACK_NO_OVERLAP", "propagator"),
