@@ -135,7 +135,8 @@ fn a_group_probe_breaks_exactly_the_rules_it_names() {
 }
 
 /// Every group question of a session on the bundled example (answered by
-/// the pilot's rules) breaks exactly its group among the held rules, also
+/// the pilot's rules), sweeps included, breaks exactly its group among the
+/// held rules, also
 /// when it is a demonstration with objects moved (then exactly the moved
 /// objects differ from that demonstration).
 #[test]
@@ -143,9 +144,12 @@ fn group_questions_of_a_session_break_exactly_their_group() {
     let (problem, demos, oracle) = example();
     let mut asker = Asker::new(problem, demos, None, Vec::new(), options()).unwrap();
     let mut groups = 0;
+    let mut largest = 0;
+    let mut in_groups = 0;
     while let Some(q) = asker.next_question().unwrap() {
         if !q.group.is_empty() {
             groups += 1;
+            largest = largest.max(q.group.len());
             let mut want = q.group_names();
             let mut got = broken(&q.probe.scene, asker.held());
             want.sort();
@@ -165,9 +169,19 @@ fn group_questions_of_a_session_break_exactly_their_group() {
             }
         }
         let ok = keeps(&q.probe.scene, &oracle);
+        if ok {
+            in_groups += q.group.len();
+        }
         asker.answer(&q, ok).unwrap();
     }
     assert!(groups > 0, "the session asked no group question");
+    assert_eq!(asker.progress().dropped_in_groups, in_groups);
+    assert!(
+        in_groups >= 4,
+        "the sweep's rules were dropped in one answer"
+    );
+    // The first question is a sweep of the four "not beyond" habits.
+    assert!(largest >= 4, "no sweep broke more than {largest} rules");
 }
 
 /// A random third of `held`: what a simulated person means.

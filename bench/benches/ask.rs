@@ -342,7 +342,7 @@ fn main() {
         "recall",
         "spurious"
     );
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples");
     let mut series: Vec<Series> = Vec::new();
     for (task, oracle_file) in [("box-packing", "pilot.rcc"), ("shelf", "intended.rcc")] {
         let dir = root.join(task);

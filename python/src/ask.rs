@@ -132,7 +132,8 @@ impl PyAskResult {
     fn answers_json(&self) -> &str {
         &self.answers_json
     }
-    /// Counts: asked, dropped, confirmed, implied, unknown, held,
+    /// Counts: asked, dropped, dropped_in_groups (dropped by accepted
+    /// questions about a group), confirmed, implied, unknown, held,
     /// grouped (questions about a group), deduced (confirmed as the one
     /// left of a rejected group).
     #[getter]
@@ -193,6 +194,7 @@ fn tally<'py>(py: Python<'py>, p: rccpack_core::ask::Tally) -> PyResult<Bound<'p
     let d = PyDict::new(py);
     d.set_item("asked", p.asked)?;
     d.set_item("dropped", p.dropped)?;
+    d.set_item("dropped_in_groups", p.dropped_in_groups)?;
     d.set_item("confirmed", p.confirmed)?;
     d.set_item("implied", p.implied)?;
     d.set_item("unknown", p.unknown)?;

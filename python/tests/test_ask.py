@@ -39,6 +39,7 @@ def test_ask_matches_cli_oracle(example: Path, tmp_path: Path, pilot_oracle: Ora
     # them); a rejected single rule is confirmed, a rejected group is not,
     # and the one left of a rejected group is confirmed without a question
     assert progress["dropped"] == sum(len(q.group) or 1 for q in result.questions if q.accepted)
+    assert progress["dropped_in_groups"] == sum(len(q.group) for q in result.questions if q.accepted)
     assert progress["confirmed"] == progress["deduced"] + sum(
         1 for q in result.questions if q.accepted is False and not q.group
     )

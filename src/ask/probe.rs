@@ -137,6 +137,23 @@ pub struct ProbeOptions {
 }
 
 impl ProbeOptions {
+    /// The synthesis options of one probe solve starting now: a layout
+    /// first and resemblance second, the engine's own search (from
+    /// [`ProbeOptions::warm_start`] when there is one).
+    pub(crate) fn synth_options(&self) -> SynthOptions {
+        SynthOptions {
+            contact: self.contact,
+            stop: self.solve_stop(),
+            seed: self.seed,
+            like: self.like.clone(),
+            explain: self.explain,
+            lns: None,
+            warm_start: self.warm_start.clone(),
+            tuning: self.tuning,
+            ..SynthOptions::default()
+        }
+    }
+
     /// The stop of one solve starting now: [`ProbeOptions::stop`] with
     /// the per-solve time budget.
     pub(crate) fn solve_stop(&self) -> Stop {
@@ -199,6 +216,17 @@ pub struct Probe {
     pub edit: Option<super::edit::Edit>,
 }
 
+/// `rule` as a probe problem keeps it: hard, without its comments and
+/// origin.
+pub(crate) fn kept_hard(rule: &Rule) -> Rule {
+    Rule {
+        strength: Strength::Hard,
+        comments: Vec::new(),
+        origin: None,
+        ..rule.clone()
+    }
+}
+
 /// The probe problem for `held.rules[target]`: the other held rules hard,
 /// its negation hard, "break it for as many subjects as possible" soft.
 /// `None` when the rule cannot be broken at all ([`negation`]).
@@ -216,12 +244,7 @@ pub fn group_probe_rules(held: &RuleSet, targets: &[usize]) -> Option<RuleSet> {
         .iter()
         .enumerate()
         .filter(|&(k, _)| !targets.contains(&k))
-        .map(|(_, h)| Rule {
-            strength: Strength::Hard,
-            comments: Vec::new(),
-            origin: None,
-            ..h.clone()
-        })
+        .map(|(_, h)| kept_hard(h))
         .collect();
     for &target in targets {
         let r = &held.rules[target];
@@ -273,20 +296,7 @@ pub(crate) fn search_group_probe(
     let Some(rules) = group_probe_rules(held, targets) else {
         return Ok((ProbeOutcome::Implied { by: Vec::new() }, 0));
     };
-    let sopts = SynthOptions {
-        contact: opts.contact,
-        stop: opts.solve_stop(),
-        seed: opts.seed,
-        like: opts.like.clone(),
-        explain: opts.explain,
-        // A probe needs a layout first and resemblance second: the
-        // engine's own search, from a probe a check found when there is one.
-        lns: None,
-        warm_start: opts.warm_start.clone(),
-        tuning: opts.tuning,
-        ..SynthOptions::default()
-    };
-    let r = synthesize(problem, &rules, &sopts)?;
+    let r = synthesize(problem, &rules, &opts.synth_options())?;
     let name = &held.rules[targets[0]].name;
     let nodes = r.stats.nodes;
     let outcome = match r.status {

@@ -521,7 +521,7 @@ fn finish(a: &AskArgs, session: &Session, end: LoopEnd) -> Result<ExitCode> {
     };
     outln("")?;
     outln(format!(
-        "asked {} questions ({} in this run{}{}): {} rules dropped, {} confirmed{}; {} rules held, {} need no question (the others imply them{}){} -> {}",
+        "asked {} questions ({} in this run{}{}): {} rules dropped{}, {} confirmed{}; {} rules held, {} need no question (the others imply them{}){} -> {}",
         p.asked,
         asked_now,
         median.map_or(String::new(), |m| format!(", median {m:.0} ms to a question")),
@@ -531,6 +531,11 @@ fn finish(a: &AskArgs, session: &Session, end: LoopEnd) -> Result<ExitCode> {
             String::new()
         },
         p.dropped,
+        if p.dropped_in_groups > 0 {
+            format!(" ({} in group questions)", p.dropped_in_groups)
+        } else {
+            String::new()
+        },
         p.confirmed,
         if p.deduced > 0 {
             format!(" ({} as the one left of a rejected group)", p.deduced)

@@ -161,6 +161,9 @@ impl Asker {
         for name in &self.deduced {
             note(name, true);
         }
+        for name in &self.also_dropped {
+            note(name, false);
+        }
         f
     }
 

@@ -181,7 +181,7 @@ impl Asker {
     }
 
     /// Held rule `j` as a member of a group question.
-    fn asked(&self, j: usize) -> Asked {
+    pub(super) fn asked(&self, j: usize) -> Asked {
         let rule = &self.held.rules[j];
         Asked {
             rule: rule.name.clone(),

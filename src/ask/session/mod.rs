@@ -69,6 +69,7 @@ mod resume;
 mod reuse;
 mod scan;
 mod suspects;
+mod sweep;
 
 pub use question::{Asked, Question, Tally, Unasked};
 pub use suspects::SuspectQuestion;
@@ -214,6 +215,9 @@ pub struct Asker {
     pending: Vec<String>,
     /// Rules confirmed by deduction: the one left of a rejected group.
     deduced: BTreeSet<String>,
+    /// Held rules an accepted probe broke besides those it asked about
+    /// (habits too, for the families; rebuilt by a replay).
+    also_dropped: BTreeSet<String>,
 }
 
 impl Asker {
@@ -348,6 +352,7 @@ impl Asker {
             meant,
             pending,
             deduced,
+            also_dropped: BTreeSet::new(),
         };
         asker.held = asker.held_rules();
         asker.settle_pending();
@@ -544,6 +549,12 @@ impl Asker {
             let demos = self.demos.clone();
             self.relearn(demos)?;
         } else if accepted {
+            let asked = a.asked();
+            self.also_dropped.extend(
+                (q.also_broken.iter())
+                    .filter(|n| !asked.contains(&n.as_str()))
+                    .cloned(),
+            );
             let mut demos = self.demos.clone();
             demos.push(q.probe.scene.clone());
             self.relearn(demos)?;

@@ -85,6 +85,9 @@ pub struct Tally {
     pub asked: usize,
     /// Rules dropped by accepted probes.
     pub dropped: usize,
+    /// Rules dropped by accepted questions about a group of rules (a
+    /// sweep or a group; among `dropped`): asked in a group, not alone.
+    pub dropped_in_groups: usize,
     /// Rules confirmed by rejected probes.
     pub confirmed: usize,
     /// Held rules not asked because the others imply them.
@@ -123,6 +126,12 @@ impl Asker {
                         .as_ref()
                         .map_or(a.asked().len(), |s| s.breaks.len())
                 })
+                .sum(),
+            dropped_in_groups: self
+                .answers
+                .iter()
+                .filter(|a| a.accepted && a.suspect.is_none())
+                .map(|a| a.group.len())
                 .sum(),
             confirmed: self.confirmed.len(),
             implied: count(|k| matches!(k, Known::Implied)),

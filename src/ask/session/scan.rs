@@ -3,7 +3,7 @@
 
 use super::checks::related;
 use super::{AskError, Asker, Known, Question};
-use crate::ask::budget::Meter;
+use crate::ask::budget::{Meter, QuestionBudget};
 use crate::ask::checker::ProbeChecker;
 use crate::ask::probe::Probe;
 use std::ops::ControlFlow;
@@ -49,6 +49,20 @@ impl Asker {
         let order = self.asking_order_with(&p);
         if self.opts.groups && !self.pending.is_empty() {
             if let Some(q) = self.pending_question(&p, checker, edit_checkers)? {
+                return Ok(Scan::Question(Box::new(q)));
+            }
+        }
+        if self.opts.groups && self.pending.is_empty() {
+            // A sweep has a budget of its own (a quarter of a question's),
+            // so that a sweep that finds nothing defers no rule.
+            let share = QuestionBudget {
+                nodes: (self.opts.budget.nodes / 4).max(1),
+                ..self.opts.budget
+            };
+            *self.meter.get_mut() = Meter::start(&share);
+            let sweep = self.sweep_question(&p, &order, checker, edit_checkers)?;
+            *self.meter.get_mut() = Meter::start(&self.opts.budget);
+            if let Some(q) = sweep {
                 return Ok(Scan::Question(Box::new(q)));
             }
         }
