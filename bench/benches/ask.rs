@@ -1,5 +1,5 @@
 //! Question benchmark: `cargo bench --bench ask [-- FILTER…] [--compare]
-//! [--no-probes] [--questions N]`.
+//! [--no-probes] [--questions N] [--think S]`.
 //!
 //! For each bundled task (box-packing with `pilot.rcc`, shelf with
 //! `intended.rcc` as the oracle) and several learning cutoffs (more rules
@@ -31,7 +31,10 @@
 //! check and probe search runs to its own limits) and `budget` (the
 //! defaults). `--no-probes` skips the probe-search columns; `--no-groups`
 //! asks about one rule per question (no group questions); `--transcript`
-//! prints every question (rule, answer, evidence, group).
+//! prints every question (rule, answer, evidence, group); `--think S` is a
+//! person who answers S seconds after each question is shown while the
+//! look-ahead computes the next question for both answers on two threads
+//! (the ready columns are then the waits that person sees).
 
 #[path = "../../tests/support/mod.rs"]
 mod support;
@@ -137,6 +140,20 @@ struct Session {
     held: RuleSet,
 }
 
+/// `--think S`: a person who answers S seconds after a question is shown,
+/// while the look-ahead computes the next question for both answers on two
+/// threads (as `rccpack ask` does); a question is then ready after what is
+/// left of its branch.
+fn think_time() -> Option<Duration> {
+    let args: Vec<String> = std::env::args().collect();
+    let i = args.iter().position(|a| a == "--think")?;
+    let s: f64 = args
+        .get(i + 1)
+        .and_then(|v| v.parse().ok())
+        .expect("--think SECONDS");
+    Some(Duration::from_secs_f64(s))
+}
+
 /// The options of a `plain` (`budget == false`) or `budget` session.
 fn options(params: &LearnParams, budget: bool) -> AskOptions {
     let groups = !std::env::args().any(|a| a == "--no-groups");
@@ -228,16 +245,25 @@ fn session(
     let mut ready = Vec::new();
     let mut cpu = Vec::new();
     let mut transcript = Vec::new();
+    let think = think_time();
+    // With `--think`: the question the look-ahead computed, with the wait
+    // the person saw for it.
+    let mut next: Option<(Option<rccpack::ask::Question>, f64)> = None;
     loop {
         let t = Instant::now();
         let c = cpu_seconds();
-        let Some(q) = asker.next_question().unwrap() else {
+        let (q, waited) = match next.take() {
+            Some((q, w)) => (q, Some(w)),
+            None => (asker.next_question().unwrap(), None),
+        };
+        let waited = waited.unwrap_or_else(|| t.elapsed().as_secs_f64() * 1e3);
+        let Some(q) = q else {
             // The wait for "no more questions" is a wait too.
-            ready.push(t.elapsed().as_secs_f64() * 1e3);
+            ready.push(waited);
             cpu.push((cpu_seconds() - c) * 1e3);
             break;
         };
-        ready.push(t.elapsed().as_secs_f64() * 1e3);
+        ready.push(waited);
         cpu.push((cpu_seconds() - c) * 1e3);
         log::debug!(
             target: "rccpack_bench",
@@ -270,7 +296,18 @@ fn session(
         }
         edits += usize::from(q.probe.edit.is_some());
         transcript.push((q.rule.clone(), ok));
-        asker.answer(&q, ok).unwrap();
+        if let Some(think) = think {
+            // The person looks for `think`, then answers; the wait is what
+            // is left of the branch of that answer.
+            let ahead = asker.look_ahead(&q, 2);
+            std::thread::sleep(think);
+            let t = Instant::now();
+            let (after, q) = ahead.answer(ok).unwrap();
+            asker = after;
+            next = Some((q, t.elapsed().as_secs_f64() * 1e3));
+        } else {
+            asker.answer(&q, ok).unwrap();
+        }
         if ready.len() >= max_questions {
             break;
         }

@@ -1,9 +1,8 @@
 //! The question budget: how much search one question may cost.
 //!
 //! Every question is produced under a budget of search work
-//! ([`QuestionBudget::nodes`] per pass over the held rules, summed over
-//! every check and probe search; [`QUESTION_BUDGETS`] times that for the
-//! whole question), so the same folder, answers and budget give the same
+//! ([`QuestionBudget::nodes`], summed over every check and probe search the
+//! question needs), so the same folder, answers and budget give the same
 //! questions on any machine and thread count. A search node on a large
 //! model costs more than one on a small model, so each node is charged the
 //! model's *weight*: its Booleans in units of [`WEIGHT_UNIT`] (at least 1).
@@ -14,9 +13,7 @@
 //!
 //! A check the budget does not decide is never waited on: the rule is
 //! *deferred* for the held rules of the moment (asked about again after
-//! learning is redone), and the session says so in its summary. When a
-//! question's whole budget is spent before any rule has a probe, the
-//! session has no question to ask: it ends, with those rules deferred.
+//! learning is redone), and the session says so in its summary.
 
 use crate::stop::Stop;
 use std::time::{Duration, Instant};
@@ -42,10 +39,9 @@ pub const DEFAULT_QUESTION_WALL: Duration = Duration::from_secs(10);
 /// How much one question may cost.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct QuestionBudget {
-    /// Search work per pass of a question: nodes, each weighted by its
-    /// model's size (see the module docs), over every check and probe
-    /// search (deterministic). A question's passes spend three times this at
-    /// most; what that does not decide is deferred.
+    /// Search work per question: nodes, each weighted by its model's size
+    /// (see the module docs), over every check and probe search
+    /// (deterministic).
     pub nodes: u64,
     /// Wall-clock cap per question, counted from when the question is
     /// started (a safety net; `None`: none). Each question gets a
@@ -62,34 +58,19 @@ impl Default for QuestionBudget {
     }
 }
 
-/// The scans and passes of one question together spend at most this many
-/// times [`QuestionBudget::nodes`]; a pass gets at most one of them. What
-/// the question's budget did not decide is deferred (see the module docs).
-/// Measured (docs/performance.md#questions): without this bound, each pass
-/// and each new scan had a budget of its own and one question of a
-/// generated task took 6 s.
-pub(crate) const QUESTION_BUDGETS: u64 = 3;
-
-/// What is left of one question's budget: its weighted nodes (of this pass
-/// and of the whole question), and its stop (the wall-clock cap as a
-/// deadline, counted from the question's start).
+/// What is left of one question's budget: its weighted nodes, and its
+/// stop (the wall-clock cap as a deadline).
 #[derive(Debug, Clone)]
 pub(crate) struct Meter {
     left: u64,
-    question: u64,
-    /// Weighted nodes spent since the start (for the log and the tests).
-    spent: u64,
     stop: Stop,
 }
 
 impl Meter {
-    /// A full budget from now: one pass's nodes, the question's
-    /// [`QUESTION_BUDGETS`] in all.
+    /// A full budget from now.
     pub(super) fn start(b: &QuestionBudget) -> Meter {
         Meter {
             left: b.nodes,
-            question: b.nodes.saturating_mul(QUESTION_BUDGETS),
-            spent: 0,
             stop: Stop::within(b.wall),
         }
     }
@@ -98,32 +79,13 @@ impl Meter {
     pub(super) fn unlimited() -> Meter {
         Meter {
             left: u64::MAX,
-            question: u64::MAX,
-            spent: 0,
             stop: Stop::never(),
         }
-    }
-
-    /// A new pass of the same question: `nodes` to spend, at most what the
-    /// question has left; the same deadline.
-    pub(super) fn refill(&mut self, nodes: u64) {
-        self.left = nodes.min(self.question);
-    }
-
-    /// Weighted nodes spent since the start.
-    pub(super) fn spent(&self) -> u64 {
-        self.spent
     }
 
     /// Whether nothing is left (nodes or time).
     pub(super) fn exhausted(&self) -> bool {
         self.left == 0 || self.stop.expired()
-    }
-
-    /// Whether the whole question's budget is spent (nodes or time): no
-    /// pass can get more.
-    pub(super) fn question_spent(&self) -> bool {
-        self.question == 0 || self.stop.expired()
     }
 
     /// Nodes for a solve on a model of weight `weight` that wants `want`:
@@ -144,10 +106,9 @@ impl Meter {
 
     /// Charge `nodes` spent on a model of weight `weight`.
     pub(super) fn spend(&mut self, nodes: u64, weight: u64) {
-        let cost = nodes.saturating_mul(weight.max(1));
-        self.left = self.left.saturating_sub(cost);
-        self.question = self.question.saturating_sub(cost);
-        self.spent = self.spent.saturating_add(cost);
+        self.left = self
+            .left
+            .saturating_sub(nodes.saturating_mul(weight.max(1)));
     }
 
     /// The deadline (the wall-clock cap), if any.
@@ -180,33 +141,5 @@ mod tests {
         m.spend(1, 2);
         assert!(m.exhausted());
         assert_eq!(Meter::unlimited().deadline(), None);
-    }
-
-    /// A pass refills at most what the question has left; once the
-    /// question's budgets are spent, no pass gets more.
-    #[test]
-    fn passes_share_the_questions_budget() {
-        let b = QuestionBudget {
-            nodes: 10,
-            wall: None,
-        };
-        let mut m = Meter::start(&b);
-        for _ in 0..QUESTION_BUDGETS {
-            assert!(!m.question_spent());
-            m.spend(10, 1);
-            assert!(m.exhausted());
-            m.refill(b.nodes);
-        }
-        assert!(m.question_spent());
-        assert!(m.exhausted());
-        assert_eq!(m.grant(1, 1), None);
-        // The last pass gets what the question has left.
-        let mut m = Meter::start(&b);
-        m.spend(10 * QUESTION_BUDGETS - 15, 1);
-        m.refill(b.nodes);
-        assert_eq!(m.grant(100, 1), Some(10));
-        m.spend(10, 1);
-        m.refill(b.nodes);
-        assert_eq!(m.grant(100, 1), Some(5));
     }
 }

@@ -64,11 +64,10 @@ pub struct AskArgs {
     /// this many search nodes (the rule is then left unsettled, not asked).
     #[arg(long, value_name = "N", default_value_t = rccpack::ask::DEFAULT_CHECK_NODES, value_parser = clap::value_parser!(u64).range(1..), allow_hyphen_values = true)]
     check_nodes: u64,
-    /// Search nodes each pass of a question may cost, over every check and
-    /// probe search it needs, three passes' worth per question at most
-    /// (deterministic: the same folder, answers and budget ask the same
-    /// questions on any machine); a rule the budget does not decide is
-    /// deferred, never waited on.
+    /// Search nodes each question may cost, over every check and probe
+    /// search it needs (deterministic: the same folder, answers and budget
+    /// ask the same questions on any machine); a rule the budget does not
+    /// decide is deferred, never waited on.
     #[arg(long, value_name = "N", default_value_t = rccpack::ask::DEFAULT_QUESTION_NODES, value_parser = clap::value_parser!(u64).range(1..), allow_hyphen_values = true)]
     question_nodes: u64,
     /// Wall-clock cap per question in seconds: a safety net for slow

@@ -3,6 +3,7 @@
 
 use super::checks::related;
 use super::{AskError, Asker, Known, Question};
+use crate::ask::budget::{Meter, QuestionBudget};
 use crate::ask::checker::ProbeChecker;
 use crate::ask::probe::Probe;
 use std::ops::ControlFlow;
@@ -37,8 +38,7 @@ impl Asker {
         checker: &mut Option<ProbeChecker>,
         edit_checkers: &mut Vec<Option<ProbeChecker>>,
     ) -> Result<Scan, AskError> {
-        let nodes = self.opts.budget.nodes;
-        self.meter.get_mut().refill(nodes);
+        *self.meter.get_mut() = Meter::start(&self.opts.budget);
         let mut decided = 0usize;
         // Decided checks so far: a group pass that runs out of budget after
         // deciding new ones goes on in the next scan (the decided ones are
@@ -55,9 +55,13 @@ impl Asker {
         if self.opts.groups && self.pending.is_empty() {
             // A sweep has a budget of its own (a quarter of a question's),
             // so that a sweep that finds nothing defers no rule.
-            self.meter.get_mut().refill((nodes / 4).max(1));
+            let share = QuestionBudget {
+                nodes: (self.opts.budget.nodes / 4).max(1),
+                ..self.opts.budget
+            };
+            *self.meter.get_mut() = Meter::start(&share);
             let sweep = self.sweep_question(&p, &order, checker, edit_checkers)?;
-            self.meter.get_mut().refill(nodes);
+            *self.meter.get_mut() = Meter::start(&self.opts.budget);
             if let Some(q) = sweep {
                 return Ok(Scan::Question(Box::new(q)));
             }
@@ -65,8 +69,8 @@ impl Asker {
         for pass in 0..4 {
             if pass > 0 {
                 // The group passes and the last one get budgets of their
-                // own (within the question's).
-                self.meter.get_mut().refill(nodes);
+                // own.
+                *self.meter.get_mut() = Meter::start(&self.opts.budget);
             }
             let mut tried = 0usize;
             for &k in &order {
@@ -87,7 +91,7 @@ impl Asker {
                         ControlFlow::Continue(probe) => probe,
                     },
                     1 | 2 => {
-                        if self.more_to_come() && settled(self) > settled_before {
+                        if self.meter.borrow().exhausted() && settled(self) > settled_before {
                             return Ok(Scan::OutOfBudget);
                         }
                         if matches!(self.known.get(&name), Some(Known::Implied)) {
@@ -108,15 +112,6 @@ impl Asker {
             }
         }
         Ok(Scan::Done)
-    }
-
-    /// Whether this pass's budget is spent but the question has more: the
-    /// next scan goes on with a pass of its own. Once the question's budget
-    /// is spent, the scan goes on without solving (what is undecided is
-    /// deferred, what is known is asked).
-    fn more_to_come(&self) -> bool {
-        let m = self.meter.borrow();
-        m.exhausted() && !m.question_spent()
     }
 
     /// Pass 0 for rule `k`: a group question when the rule is an unlikely
@@ -142,7 +137,7 @@ impl Asker {
             }
         }
         if !self.known.contains_key(&name) {
-            if *decided > 0 && self.more_to_come() {
+            if *decided > 0 && self.meter.borrow().exhausted() {
                 // Every rule so far is decided or deferred: the next scan
                 // goes on from here with a fresh budget.
                 return Ok(ControlFlow::Break(Scan::OutOfBudget));
@@ -196,12 +191,7 @@ impl Asker {
         {
             return EditPass::Skip;
         }
-        if self.meter.borrow().question_spent() {
-            // Not tried: the question's budget is spent.
-            self.edit_tried.borrow_mut().remove(name);
-            return EditPass::Skip;
-        }
-        if *tried > 0 && self.more_to_come() {
+        if *tried > 0 && self.meter.borrow().exhausted() {
             self.edit_tried.borrow_mut().remove(name);
             return EditPass::OutOfBudget;
         }
