@@ -212,6 +212,56 @@ impl Asker {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ask::budget::{Meter, QuestionBudget};
+    use crate::ask::AskOptions;
+    use crate::scene::{scenes_from_json, Scene};
+    use std::collections::BTreeSet;
+
+    /// A rejected sweep's rules are not swept again: after "not
+    /// acceptable" to the bundled example's first question (a sweep), no
+    /// sweep of the next questions names a rule of it (each sweep looked
+    /// for directly, before the session's own question). Without the
+    /// exclusion, `R_not_dr_s_R` is swept again.
+    #[test]
+    fn a_rejected_sweeps_rules_are_not_swept_again() {
+        let demos = scenes_from_json(include_str!("../../../examples/box-packing/demos.json"))
+            .expect("demonstrations");
+        let problem = Scene::from_json(include_str!("../../../examples/box-packing/problem.json"))
+            .expect("problem");
+        let opts = AskOptions {
+            budget: QuestionBudget {
+                wall: None,
+                ..QuestionBudget::default()
+            },
+            ..AskOptions::default()
+        };
+        let mut asker = Asker::new(problem, demos, None, Vec::new(), opts).unwrap();
+        let q = asker.next_question().unwrap().expect("a question");
+        assert!(q.group.len() >= 2, "the first question is a sweep");
+        let rejected: BTreeSet<String> = q.group_names().into_iter().collect();
+        asker.answer(&q, false).unwrap();
+        let mut swept = 0;
+        for i in 0..8 {
+            let p = asker.meant_chances();
+            let order = asker.asking_order_with(&p);
+            *asker.meter.get_mut() = Meter::start(&asker.opts.budget);
+            let (mut checker, mut edits) = (None, Vec::new());
+            if let Some(s) = asker
+                .sweep_question(&p, &order, &mut checker, &mut edits)
+                .unwrap()
+            {
+                swept += 1;
+                for n in s.group_names() {
+                    assert!(!rejected.contains(&n), "{n} swept again");
+                }
+            }
+            let Some(q) = asker.next_question().unwrap() else {
+                break;
+            };
+            asker.answer(&q, i % 2 == 0).unwrap();
+        }
+        assert!(swept > 0, "no sweep to look at");
+    }
 
     /// A sweep of `n` rules is worth a question when all are habits with a
     /// chance of at least `0.75/n`; the longest such prefix counts.
