@@ -252,11 +252,10 @@ fn session(
     loop {
         let t = Instant::now();
         let c = cpu_seconds();
-        let (q, waited) = match next.take() {
-            Some((q, w)) => (q, Some(w)),
-            None => (asker.next_question().unwrap(), None),
-        };
-        let waited = waited.unwrap_or_else(|| t.elapsed().as_secs_f64() * 1e3);
+        let (q, waited) = next.take().unwrap_or_else(|| {
+            let q = asker.next_question().unwrap();
+            (q, t.elapsed().as_secs_f64() * 1e3)
+        });
         let Some(q) = q else {
             // The wait for "no more questions" is a wait too.
             ready.push(waited);

@@ -22,11 +22,54 @@ use rccpack::ask::negation;
 use rccpack::eval::evaluate;
 use rccpack::infer::{learn, LearnParams};
 use rccpack::relations::Contact;
-use rccpack::rules::{parse_rules, RuleSet, Strength};
+use rccpack::rules::{parse_rules, Rule, RuleSet, Strength};
 use rccpack::scene::{scenes_from_json, Scene};
 use rccpack::stop::Stop;
-use rccpack::synth::{synthesize, SynthOptions};
+use rccpack::synth::{synthesize, Status, SynthOptions};
+use rccpack_bench::tasks::{generate_task, TasksConfig};
 use std::time::Duration;
+
+/// `r` kept hard.
+fn hard(r: &Rule) -> Rule {
+    Rule {
+        strength: Strength::Hard,
+        ..r.clone()
+    }
+}
+
+/// A layout of `problem` keeping every rule of `keep` and breaking as many
+/// of `soft` as it can (each weighing 1), within `limit`; with the solve's
+/// status.
+fn breaking_layout<'a>(
+    problem: &Scene,
+    keep: impl IntoIterator<Item = &'a Rule>,
+    soft: impl IntoIterator<Item = &'a Rule>,
+    limit: Stop,
+) -> (Status, Option<Scene>) {
+    let mut rules: Vec<Rule> = keep.into_iter().map(hard).collect();
+    for h in soft {
+        if let Some(mut n) = negation(h) {
+            n.strength = Strength::Weight(1.0);
+            rules.push(n);
+        }
+    }
+    let opts = SynthOptions {
+        stop: limit,
+        ..SynthOptions::default()
+    };
+    let r = synthesize(problem, &RuleSet::new(rules), &opts).unwrap();
+    (r.status, r.scene)
+}
+
+/// The rules of `held` that `scene` breaks.
+fn broken(scene: &Scene, held: &RuleSet) -> Vec<String> {
+    evaluate(scene, held, Contact::Point)
+        .rules
+        .iter()
+        .filter(|x| x.satisfied != x.subjects)
+        .map(|x| x.name.clone())
+        .collect()
+}
 
 fn box_packing() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/box-packing");
@@ -40,40 +83,14 @@ fn box_packing() {
     };
     for round in 0..20 {
         let held = learn(&demos, None, &params).unwrap().rules();
-        let mut rules: Vec<_> = oracle
-            .rules
-            .iter()
-            .cloned()
-            .map(|mut r| {
-                r.strength = Strength::Hard;
-                r
-            })
-            .collect();
-        for h in &held.rules {
-            if let Some(mut n) = negation(h) {
-                n.strength = Strength::Weight(1.0);
-                rules.push(n);
-            }
-        }
-        let opts = SynthOptions {
-            stop: Stop::after(Duration::from_secs(20)),
-            ..SynthOptions::default()
-        };
-        let r = synthesize(&problem, &RuleSet::new(rules), &opts).unwrap();
-        let scene = r.scene.unwrap();
-        let ev = evaluate(&scene, &held, Contact::Point);
-        let broken: Vec<_> = ev
-            .rules
-            .iter()
-            .filter(|x| x.satisfied != x.subjects)
-            .map(|x| x.name.clone())
-            .collect();
+        let limit = Stop::after(Duration::from_secs(20));
+        let (status, scene) = breaking_layout(&problem, &oracle.rules, &held.rules, limit);
+        let scene = scene.unwrap();
+        let broken = broken(&scene, &held);
         println!(
-            "round {round}: held {} status {:?} broken {}: {:?}",
+            "round {round}: held {} status {status:?} broken {}: {broken:?}",
             held.rules.len(),
-            r.status,
             broken.len(),
-            broken
         );
         if broken.is_empty() {
             println!(
@@ -86,11 +103,20 @@ fn box_packing() {
     }
 }
 
-/// The lower bound of one generated task: (meant held rules, those that
-/// need a question of their own, undecided in the limit, whether a habit
-/// can break).
-fn task_bound(index: usize) -> (usize, usize, usize, bool) {
-    use rccpack_bench::tasks::{generate_task, TasksConfig};
+/// One generated task's lower bound.
+struct Bound {
+    held: usize,
+    meant: usize,
+    /// Meant rules a layout breaks while every other meant rule holds.
+    alone: usize,
+    /// Meant rules the limit did not decide.
+    undecided: usize,
+    /// Some habit breaks while every meant rule holds.
+    habit: bool,
+}
+
+/// The lower bound of generated task `index`.
+fn task_bound(index: usize) -> Bound {
     let cfg = TasksConfig {
         sizes: vec![1.0],
         ..TasksConfig::full(0, Duration::from_secs(10))
@@ -105,69 +131,43 @@ fn task_bound(index: usize) -> (usize, usize, usize, bool) {
         ..LearnParams::default()
     };
     let oracle = learn(&task.demos, None, &strict).unwrap().rules();
-    let hard = |r: &rccpack::rules::Rule| {
-        let mut r = r.clone();
-        r.strength = Strength::Hard;
-        r
-    };
-    let breaks = |rules: Vec<rccpack::rules::Rule>| -> Option<bool> {
-        let opts = SynthOptions {
-            stop: Stop::after(Duration::from_secs(10)).with_nodes(200_000),
-            ..SynthOptions::default()
-        };
-        let r = synthesize(problem, &RuleSet::new(rules), &opts).unwrap();
-        match r.status {
-            rccpack::synth::Status::Optimal | rccpack::synth::Status::Feasible => Some(true),
-            rccpack::synth::Status::Infeasible => Some(false),
-            _ => None,
-        }
-    };
-    let meant: Vec<&rccpack::rules::Rule> = oracle
-        .rules
-        .iter()
-        .filter(|r| held.rules.iter().any(|h| h.name == r.name))
-        .collect();
-    let (mut alone, mut unknown) = (0, 0);
+    let is_held = |r: &&Rule| held.rules.iter().any(|h| h.name == r.name);
+    let meant: Vec<&Rule> = oracle.rules.iter().filter(is_held).collect();
+    let limit = || Stop::after(Duration::from_secs(10)).with_nodes(200_000);
+    let (mut alone, mut undecided) = (0, 0);
     for r in &meant {
         let Some(neg) = negation(r) else { continue };
-        let mut rules: Vec<_> = meant
+        let mut rules: Vec<Rule> = meant
             .iter()
             .filter(|o| o.name != r.name)
             .map(|o| hard(o))
             .collect();
         rules.push(hard(&neg));
-        match breaks(rules) {
-            Some(true) => alone += 1,
-            Some(false) => {}
-            None => unknown += 1,
-        }
-    }
-    // Some habit can break while every meant rule holds.
-    let mut rules: Vec<_> = meant.iter().map(|o| hard(o)).collect();
-    for h in held
-        .rules
-        .iter()
-        .filter(|h| !meant.iter().any(|m| m.name == h.name))
-    {
-        if let Some(mut n) = negation(h) {
-            n.strength = Strength::Weight(1.0);
-            rules.push(n);
-        }
-    }
-    let habit = rules.len() > meant.len() && {
         let opts = SynthOptions {
-            stop: Stop::after(Duration::from_secs(10)).with_nodes(200_000),
+            stop: limit(),
             ..SynthOptions::default()
         };
-        let r = synthesize(problem, &RuleSet::new(rules), &opts).unwrap();
-        r.scene.is_some_and(|s| {
-            evaluate(&s, &held, Contact::Point)
-                .rules
-                .iter()
-                .any(|x| x.satisfied != x.subjects)
-        })
-    };
-    (meant.len(), alone, unknown, habit)
+        match synthesize(problem, &RuleSet::new(rules), &opts)
+            .unwrap()
+            .status
+        {
+            Status::Optimal | Status::Feasible => alone += 1,
+            Status::Infeasible => {}
+            _ => undecided += 1,
+        }
+    }
+    let habits = held
+        .rules
+        .iter()
+        .filter(|h| !meant.iter().any(|m| m.name == h.name));
+    let (_, scene) = breaking_layout(problem, meant.iter().copied(), habits, limit());
+    Bound {
+        held: held.rules.len(),
+        meant: meant.len(),
+        alone,
+        undecided,
+        habit: scene.is_some_and(|s| !broken(&s, &held).is_empty()),
+    }
 }
 
 fn main() {
@@ -175,25 +175,16 @@ fn main() {
         println!("task    held  meant  need a question alone  undecided  a habit breaks  bound");
         let mut bounds = Vec::new();
         for i in 0..10 {
-            let held = {
-                use rccpack_bench::tasks::{generate_task, TasksConfig};
-                let cfg = TasksConfig {
-                    sizes: vec![1.0],
-                    ..TasksConfig::full(0, Duration::from_secs(10))
-                };
-                let task = generate_task(&cfg, i).unwrap();
-                learn(&task.demos, None, &LearnParams::default())
-                    .unwrap()
-                    .rules()
-                    .rules
-                    .len()
-            };
-            let (meant, alone, unknown, habit) = task_bound(i);
-            let bound = alone + usize::from(habit);
+            let b = task_bound(i);
+            let bound = b.alone + usize::from(b.habit);
             bounds.push(bound);
             println!(
-                "task{i:02} {held:>5} {meant:>6} {alone:>22} {unknown:>10} {:>15} {bound:>6}",
-                if habit { "yes" } else { "no" }
+                "task{i:02} {:>5} {:>6} {:>22} {:>10} {:>15} {bound:>6}",
+                b.held,
+                b.meant,
+                b.alone,
+                b.undecided,
+                if b.habit { "yes" } else { "no" }
             );
         }
         bounds.sort_unstable();

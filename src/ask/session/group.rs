@@ -181,7 +181,7 @@ impl Asker {
     }
 
     /// Held rule `j` as a member of a group question.
-    pub(super) fn asked(&self, j: usize) -> Asked {
+    fn asked(&self, j: usize) -> Asked {
         let rule = &self.held.rules[j];
         Asked {
             rule: rule.name.clone(),
@@ -214,9 +214,25 @@ impl Asker {
                 _ => self.pool_group_probe(&ordered)?,
             },
         };
-        let mut q = self.question(k, probe);
-        q.group = ordered.iter().map(|&j| self.asked(j)).collect();
-        Some(q)
+        Some(self.group_question_of(&ordered, probe))
+    }
+
+    /// The question about the held rules `set` (the first named first)
+    /// with `probe`, which breaks them all.
+    pub(super) fn group_question_of(&self, set: &[usize], probe: Probe) -> Question {
+        let mut q = self.question(set[0], probe);
+        q.group = set.iter().map(|&j| self.asked(j)).collect();
+        q
+    }
+
+    /// The memo key of a check about the rule set `set` (`tag`: what kind
+    /// of check), beside the single-rule checks.
+    pub(super) fn set_key(&self, set: &[usize], tag: &str) -> (String, Vec<String>) {
+        let names: Vec<&str> = set
+            .iter()
+            .map(|&j| self.held.rules[j].name.as_str())
+            .collect();
+        (names.join(" + "), vec![tag.to_string()])
     }
 
     /// Does one layout break every rule of `set` and keep every other held
@@ -227,11 +243,7 @@ impl Asker {
         checker: &mut Option<ProbeChecker>,
         set: &[usize],
     ) -> Result<Option<bool>, AskError> {
-        let names: Vec<String> = set
-            .iter()
-            .map(|&j| self.held.rules[j].name.clone())
-            .collect();
-        let key = (names.join(" + "), vec!["(group)".to_string()]);
+        let key = self.set_key(set, "(group)");
         if let Some(&v) = self.checks.borrow().get(&key) {
             return Ok(Some(v));
         }

@@ -91,11 +91,7 @@ impl Asker {
             if candidates.len() < 2 {
                 return Ok(None);
             }
-            let names: Vec<String> = candidates
-                .iter()
-                .map(|&k| self.held.rules[k].name.clone())
-                .collect();
-            let key = (names.join(" + "), vec!["(sweep)".to_string()]);
+            let key = self.set_key(&candidates, "(sweep)");
             if self.checks.borrow().contains_key(&key) {
                 return Ok(None);
             }
@@ -148,9 +144,7 @@ impl Asker {
             Some(pr) => pr,
             None => self.probe_of(set, scene),
         };
-        let mut q = self.question(set[0], probe);
-        q.group = set.iter().map(|&j| self.asked(j)).collect();
-        q
+        self.group_question_of(set, probe)
     }
 
     /// Solve the sweep of `candidates` under the question's budget: the
@@ -204,8 +198,10 @@ impl Asker {
             set.len(),
             t.elapsed().as_secs_f64() * 1e3
         );
-        debug_assert!(set.iter().all(|j| candidates.contains(j)));
-        Ok((set.len() >= 2 && set.iter().all(|j| candidates.contains(j))).then_some((set, scene)))
+        // Every other held rule is hard, so only candidates can break.
+        let only_candidates = set.iter().all(|j| candidates.contains(j));
+        debug_assert!(only_candidates);
+        Ok((set.len() >= 2 && only_candidates).then_some((set, scene)))
     }
 }
 
